@@ -1,0 +1,63 @@
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "point.hpp"
+
+namespace fatc {
+
+enum class Units { mm, inch };
+
+/// How the spindle drops whatever it may hold before it receives a tool.
+struct FlushConfig {
+  int pulses = 1;              ///< chuck openings; 0 disables the flush
+  double pulse_seconds = 0.2;  ///< how long the chuck stays open each pulse
+  double pause_seconds = 0.2;  ///< how long it stays closed between pulses
+};
+
+/// The validated contents of config.json. Lengths are in `units`, feeds in
+/// `units` per minute, positions are machine coordinates (G53).
+struct Config {
+  Units units = Units::mm;
+
+  // Keys of the Python prototype, same meaning.
+  double probe_length_compensation_offset = 0.0;
+  double probe_retract_offset_z = 0.0;
+  PlanarOffset pocket_side_offset;
+  double pocket_above_chuck_offset_z = 0.0;
+  double pocket_above_clearance_offset_z = 0.0;
+  double chuck_seconds = 0.5;
+  Point loading;
+  Point probe_limit;
+  Point safe;
+  std::map<int, Point> pockets;  ///< tool number -> its pocket, pocket_default merged
+
+  // Keys new in the C++ version, all optional.
+  double pocket_feed = 500.0;        ///< slow moves into and out of a pocket
+  double probe_seek_feed = 300.0;    ///< first, fast probing stage
+  double probe_latch_feed = 25.0;    ///< second, slow probing stage
+  double probe_backoff = 2.0;        ///< lift between the two stages
+  FlushConfig flush;
+  double spindle_stop_timeout_seconds = 10.0;
+  std::optional<double> rack_keepout_margin;  ///< unset: half the side offset
+
+  bool has_pocket(int tool) const { return pockets.count(tool) != 0; }
+  double keepout_margin() const;
+};
+
+/// Either a Config or every problem found, one line each, each naming the
+/// JSON path it is about.
+struct ConfigResult {
+  std::optional<Config> config;
+  std::vector<std::string> errors;
+};
+
+/// Parses and validates the text of a config.json.
+ConfigResult parse_config(const std::string& json_text);
+
+const char* units_name(Units units);
+
+}  // namespace fatc

@@ -1,0 +1,47 @@
+#pragma once
+
+#include <string>
+
+namespace fatc {
+
+/// The machine is on, homed and out of estop.
+struct Ready {};
+/// The machine went off, out of homing, or into estop.
+struct NotReady {};
+/// M6: put `tool` in the spindle (0 leaves it empty).
+struct ToolChange {
+  int tool = 0;
+};
+/// The operator asks to load tool `tool` by hand, measure it and store it.
+struct LoadRequest {
+  int tool = 0;
+};
+/// The operator asks to take tool `tool` out of the machine.
+struct UnloadRequest {
+  int tool = 0;
+};
+/// The executor finished the last published move or command.
+struct InPosition {};
+/// The executor finished a probe move; `z` is the latched machine Z.
+struct ProbeResult {
+  bool touched = false;
+  double z = 0.0;
+};
+/// The timer armed by Ports::start_timer ran out.
+struct TimerElapsed {};
+/// The spindle reports it has stopped.
+struct SpindleStopped {};
+/// The operator pressed Continue (or Done).
+struct OperatorContinue {};
+/// The operator pressed Cancel.
+struct OperatorCancel {};
+/// LinuxCNC aborted the program or the executor failed.
+struct Abort {
+  std::string reason;
+};
+/// The operator checked the spindle and says what it holds.
+struct ClearFault {
+  int spindle_tool = 0;
+};
+
+}  // namespace fatc

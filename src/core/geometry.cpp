@@ -1,0 +1,103 @@
+#include "geometry.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace fatc {
+namespace {
+
+struct Box {
+  Point low, high;
+};
+
+Box column_of(const Config& config, const Point& pocket) {
+  const double m = config.keepout_margin();
+  // Tools hang below their holder down to the table: the column has no floor.
+  return {{pocket.x - m, pocket.y - m, -1e12},
+          {pocket.x + m, pocket.y + m, pocket.z + config.pocket_above_clearance_offset_z}};
+}
+
+/// Whether the segment a→b passes through the open interior of the box
+/// (touching a face, as at above_clearance, is allowed).
+bool passes_through(const Point& a, const Point& b, const Box& box) {
+  constexpr double kTouch = 1e-6;
+  const double start[] = {a.x, a.y, a.z};
+  const double delta[] = {b.x - a.x, b.y - a.y, b.z - a.z};
+  const double low[] = {box.low.x + kTouch, box.low.y + kTouch, box.low.z + kTouch};
+  const double high[] = {box.high.x - kTouch, box.high.y - kTouch, box.high.z - kTouch};
+  double enter = 0.0;
+  double leave = 1.0;
+  for (int axis = 0; axis < 3; ++axis) {
+    if (delta[axis] == 0.0) {
+      if (start[axis] <= low[axis] || start[axis] >= high[axis]) return false;
+      continue;
+    }
+    double t1 = (low[axis] - start[axis]) / delta[axis];
+    double t2 = (high[axis] - start[axis]) / delta[axis];
+    if (t1 > t2) std::swap(t1, t2);
+    enter = std::max(enter, t1);
+    leave = std::min(leave, t2);
+    if (enter >= leave) return false;
+  }
+  return true;
+}
+
+std::string format(const char* pattern, double value) {
+  char buffer[96];
+  std::snprintf(buffer, sizeof buffer, pattern, value);
+  return buffer;
+}
+
+}  // namespace
+
+PocketWaypoints pocket_waypoints(const Config& config, int tool) {
+  const Point pocket = config.pockets.at(tool);
+  return {pocket,
+          {pocket.x + config.pocket_side_offset.x, pocket.y + config.pocket_side_offset.y, pocket.z},
+          {pocket.x, pocket.y, pocket.z + config.pocket_above_chuck_offset_z},
+          {pocket.x, pocket.y, pocket.z + config.pocket_above_clearance_offset_z}};
+}
+
+std::vector<Violation> check_steps(const Config& config, const std::vector<Step>& steps,
+                                   const std::optional<SoftLimits>& limits) {
+  std::vector<Violation> violations;
+  Point position;
+  unsigned known = 0;  // axes whose position is known; the start position is not
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    const Step& step = steps[i];
+    if (!is_motion(step.kind)) continue;
+    Point target = position;
+    if (step.axes & axis_x) target.x = step.target.x;
+    if (step.axes & axis_y) target.y = step.target.y;
+    if (step.axes & axis_z) target.z = step.target.z;
+
+    if (limits) {
+      const char* names[] = {"X", "Y", "Z"};
+      const double values[] = {target.x, target.y, target.z};
+      const AxisLimits axes[] = {limits->x, limits->y, limits->z};
+      for (int axis = 0; axis < 3; ++axis) {
+        if (!(step.axes & (1u << axis))) continue;
+        if (values[axis] < axes[axis].min - 1e-9 || values[axis] > axes[axis].max + 1e-9) {
+          violations.push_back({i, std::string(names[axis]) + format("=%.3f", values[axis]) +
+                                       " is outside the soft limits " +
+                                       format("%.3f", axes[axis].min) + " .. " +
+                                       format("%.3f", axes[axis].max)});
+        }
+      }
+    }
+    if (known == axis_xyz) {
+      for (const auto& [tool, pocket] : config.pockets) {
+        if (!passes_through(position, target, column_of(config, pocket))) continue;
+        if (tool == step.pocket && step.approach) continue;
+        violations.push_back({i, "passes through the rack at pocket " + std::to_string(tool) +
+                                     (tool == step.pocket ? " outside its approach" : "")});
+      }
+    }
+    position = target;
+    known |= step.axes;
+  }
+  return violations;
+}
+
+}  // namespace fatc

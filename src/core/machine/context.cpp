@@ -1,0 +1,137 @@
+#include "context.hpp"
+
+#include <cstdio>
+
+namespace fatc {
+
+bool Context::at_safe() const {
+  return known_axes == axis_xyz && position.x == config.safe.x && position.y == config.safe.y &&
+         position.z == config.safe.z;
+}
+
+void Context::publish(const Step& step) {
+  if (step.kind == StepKind::rapid || step.kind == StepKind::feed) {
+    if (step.axes & axis_x) position.x = step.target.x;
+    if (step.axes & axis_y) position.y = step.target.y;
+    if (step.axes & axis_z) position.z = step.target.z;
+    known_axes |= step.axes;
+  } else if (step.kind == StepKind::probe) {
+    known_axes &= ~static_cast<unsigned>(axis_z);  // the probe stops wherever it touches
+  } else if (step.kind == StepKind::wait_operator || step.kind == StepKind::fail) {
+    known_axes = 0;  // the operator may jog; a failed sequence may stop anywhere
+  }
+  status.activity = std::string(step_kind_name(step.kind)) + " to " + step.label;
+  if (step.kind == StepKind::probe) status.awaiting = Awaiting::probe;
+  if (step.kind == StepKind::fail) status.activity = "failed: " + step.label;
+  ports.publish(step);
+}
+
+void Context::open_chuck(const std::string& where) {
+  status.activity = "chuck open " + where;
+  ports.set_chuck_open(true);
+}
+
+void Context::close_chuck() { ports.set_chuck_open(false); }
+
+void Context::wait(double seconds, const std::string& activity) {
+  status.activity = activity;
+  status.awaiting = Awaiting::timer;
+  ports.start_timer(seconds);
+}
+
+void Context::ask_operator(const std::string& prompt) {
+  status.activity = prompt;
+  status.awaiting = Awaiting::operator_choice;
+  ports.tell(MessageKind::prompt, prompt);
+}
+
+void Context::record_in_spindle(int tool) {
+  tools.spindle = tool;
+  tools.in_pocket.erase(tool);
+  ports.save(tools);
+}
+
+void Context::record_in_pocket(int tool) {
+  if (tools.spindle == tool) tools.spindle = 0;
+  tools.in_pocket.insert(tool);
+  ports.save(tools);
+}
+
+void Context::record_out_of_machine(int tool) {
+  if (tools.spindle == tool) tools.spindle = 0;
+  tools.in_pocket.erase(tool);
+  ports.save(tools);
+}
+
+void Context::record_length(int tool, double length) {
+  tools.lengths[tool] = length;
+  ports.save(tools);
+}
+
+std::string Context::whereabouts() const {
+  std::string text = tools.spindle == 0 ? std::string("the spindle is empty")
+                                        : "tool " + std::to_string(tools.spindle) + " is in the spindle";
+  if (tools.uncertain) text += " (last known; not certain)";
+  return text;
+}
+
+namespace {
+
+std::string tool_name(int tool) { return "tool " + std::to_string(tool); }
+
+/// The tool in the spindle must be able to go home before anything else.
+std::optional<std::string> why_spindle_cannot_be_emptied(const Context& ctx) {
+  const int held = ctx.tools.spindle;
+  if (held == 0) return std::nullopt;
+  if (!ctx.config.has_pocket(held)) {
+    return tool_name(held) + " in the spindle has no pocket in the config; unload it by hand first";
+  }
+  if (ctx.tools.in_pocket.count(held) != 0) {
+    return "pocket " + std::to_string(held) + " is recorded full, yet " + tool_name(held) +
+           " is in the spindle; check the rack";
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> why_not_busy(const Context& ctx) {
+  if (!ctx.machine_ready) return std::string("the machine is not on and homed, or is in estop");
+  if (ctx.tools.uncertain) return "the spindle contents are uncertain: " + ctx.whereabouts();
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<std::string> why_not_change(const Context& ctx, int tool) {
+  if (tool < 0) return "T" + std::to_string(tool) + " is not a tool number";
+  if (auto busy = why_not_busy(ctx)) return busy;
+  if (tool == ctx.tools.spindle) return std::nullopt;
+  if (tool != 0 && !ctx.config.has_pocket(tool)) return tool_name(tool) + " has no pocket in the config";
+  if (tool != 0 && ctx.tools.in_pocket.count(tool) == 0) {
+    return tool_name(tool) + " is not in its pocket (it was unloaded); load it first";
+  }
+  return why_spindle_cannot_be_emptied(ctx);
+}
+
+std::optional<std::string> why_not_load(const Context& ctx, int tool) {
+  if (tool <= 0) return "load needs a tool number above 0, got " + std::to_string(tool);
+  if (auto busy = why_not_busy(ctx)) return busy;
+  if (!ctx.spindle_stopped) return std::string("the spindle is turning; stop it first");
+  if (!ctx.config.has_pocket(tool)) return tool_name(tool) + " has no pocket in the config";
+  if (ctx.tools.spindle == tool) return std::nullopt;
+  if (ctx.tools.in_pocket.count(tool) != 0) {
+    return tool_name(tool) + " is already in its pocket; unload it first";
+  }
+  return why_spindle_cannot_be_emptied(ctx);
+}
+
+std::optional<std::string> why_not_unload(const Context& ctx, int tool) {
+  if (tool <= 0) return "unload needs a tool number above 0, got " + std::to_string(tool);
+  if (auto busy = why_not_busy(ctx)) return busy;
+  if (!ctx.spindle_stopped) return std::string("the spindle is turning; stop it first");
+  if (ctx.tools.spindle == tool) return std::nullopt;
+  if (!ctx.config.has_pocket(tool)) return tool_name(tool) + " has no pocket in the config";
+  if (ctx.tools.in_pocket.count(tool) == 0) return tool_name(tool) + " is not in the rack";
+  return why_spindle_cannot_be_emptied(ctx);
+}
+
+}  // namespace fatc

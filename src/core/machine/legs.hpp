@@ -1,0 +1,238 @@
+#pragma once
+
+// The legs every flow is made of: flush the chuck, return a tool to its
+// pocket, retrieve a tool from its pocket, measure a tool on the sensor.
+
+#include "common.hpp"
+
+namespace fatc::machine {
+
+// ================================================================ flush
+/// Opens the chuck briefly, `flush.pulses` times, so that whatever the spindle
+/// may still hold drops before it receives a tool. Ends with the chuck closed.
+struct FlushLeg_ : Flow<FlushLeg_> {
+  template <class Event, class Parent>
+  void on_entry(const Event& e, Parent& parent) {
+    Flow::on_entry(e, parent);
+    ctx->flush_pulses_done = 0;
+  }
+
+  struct PulseOpen : msmf::state<> {
+    template <class Event, class Fsm>
+    void on_entry(const Event&, Fsm& fsm) {
+      ++fsm.ctx->flush_pulses_done;
+      fsm.ctx->open_chuck("(flush)");
+      fsm.ctx->wait(fsm.ctx->config.flush.pulse_seconds, "flushing the chuck");
+    }
+  };
+  struct PulseClosed : msmf::state<> {
+    template <class Event, class Fsm>
+    void on_entry(const Event&, Fsm& fsm) {
+      fsm.ctx->close_chuck();
+      fsm.ctx->wait(fsm.ctx->config.flush.pause_seconds, "flushing the chuck");
+    }
+  };
+  struct PulsesLeft {
+    template <class Event, class Fsm, class Source, class Target>
+    bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      return fsm.ctx->flush_pulses_done < fsm.ctx->config.flush.pulses;
+    }
+  };
+
+  using initial_state = Choosing;
+  // clang-format off
+  using transition_table = boost::mpl::vector<
+  //    Start          Event           Next          Action  Guard
+  // +-------------+---------------+-------------+-------+-----------------+
+  Row < Choosing    , none          , PulseOpen   , none  , PulsesLeft      >,
+  Row < Choosing    , none          , Finished    , none  , Not<PulsesLeft> >,
+  Row < PulseOpen   , TimerElapsed  , PulseClosed , none  , none            >,
+  Row < PulseClosed , TimerElapsed  , PulseOpen   , none  , PulsesLeft      >,
+  Row < PulseClosed , TimerElapsed  , Finished    , none  , Not<PulsesLeft> >
+  >;
+  // clang-format on
+};
+using FlushLeg = msm::back::state_machine<FlushLeg_>;
+
+// ================================================================ return
+/// Puts the tool in the spindle back into its own pocket (DESIGN.md, "Return").
+/// `Which` only tells two uses within one flow apart.
+template <class Which>
+struct ReturnLeg_ : Flow<ReturnLeg_<Which>> {
+  static int served_tool(const Context& ctx) { return ctx.tools.spindle; }
+
+  struct ToSafeZ : Moving<to::SafeZ> {};
+  struct ToSafeXY : Moving<to::SafeXY> {};
+  struct OverSide : Moving<to::SideAtSafeZ> {};
+  struct DownToSide : Moving<to::Side> {};
+  struct IntoPocket : Moving<to::SlowlyIntoPocket> {};
+  struct ReleasingTool : Waiting<ChuckSeconds> {
+    template <class Event, class Fsm>
+    void on_entry(const Event& e, Fsm& fsm) {
+      fsm.ctx->open_chuck("at pocket " + std::to_string(fsm.pocket_tool));
+      Waiting::on_entry(e, fsm);
+    }
+  };
+  struct UpToAboveChuck : Moving<to::AboveChuck> {};
+  struct UpToClearance : Moving<to::AboveClearance> {};
+  struct UpToSafeZ : Moving<to::SafeZOverPocket> {};
+  struct BackToSafeXY : Moving<to::SafeXY> {};
+
+  struct RecordToolInPocket {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      fsm.ctx->record_in_pocket(fsm.pocket_tool);
+    }
+  };
+
+  using initial_state = ToSafeZ;
+  // clang-format off
+  using transition_table = boost::mpl::vector<
+  //    Start            Event          Next             Action              Guard
+  // +----------------+--------------+----------------+--------------------+------+
+  Row < ToSafeZ        , InPosition   , ToSafeXY       , none               , none >,
+  Row < ToSafeXY       , InPosition   , OverSide       , none               , none >,
+  Row < OverSide       , InPosition   , DownToSide     , none               , none >,
+  Row < DownToSide     , InPosition   , IntoPocket     , none               , none >,
+  Row < IntoPocket     , InPosition   , ReleasingTool  , none               , none >,
+  Row < ReleasingTool  , TimerElapsed , UpToAboveChuck , RecordToolInPocket , none >,
+  Row < UpToAboveChuck , InPosition   , UpToClearance  , CloseChuck         , none >,
+  Row < UpToClearance  , InPosition   , UpToSafeZ      , none               , none >,
+  Row < UpToSafeZ      , InPosition   , BackToSafeXY   , none               , none >,
+  Row < BackToSafeXY   , InPosition   , Finished       , none               , none >
+  >;
+  // clang-format on
+};
+template <class Which>
+using ReturnLeg = msm::back::state_machine<ReturnLeg_<Which>>;
+
+// ================================================================ retrieve
+/// Takes the requested tool out of its pocket (DESIGN.md, "Retrieve").
+struct RetrieveLeg_ : Flow<RetrieveLeg_> {
+  struct ToSafeZ : Moving<to::SafeZ> {};
+  struct ToSafeXY : Moving<to::SafeXY> {};
+  struct OverPocket : Moving<to::PocketAtSafeZ> {};
+  struct DownToClearance : Moving<to::AboveClearance> {};
+  struct DownToAboveChuck : Moving<to::AboveChuck> {};
+  struct OpeningChuck : Waiting<ChuckSeconds> {
+    template <class Event, class Fsm>
+    void on_entry(const Event& e, Fsm& fsm) {
+      fsm.ctx->open_chuck("above pocket " + std::to_string(fsm.pocket_tool));
+      Waiting::on_entry(e, fsm);
+    }
+  };
+  struct SlowlyDownToPocket : Moving<to::SlowlyDownToPocket> {};
+  struct Settling : Waiting<ChuckSeconds> {};
+  struct GrippingTool : Waiting<ChuckSeconds> {
+    template <class Event, class Fsm>
+    void on_entry(const Event& e, Fsm& fsm) {
+      fsm.ctx->close_chuck();
+      fsm.ctx->status.activity = "gripping tool " + std::to_string(fsm.pocket_tool);
+      Waiting::on_entry(e, fsm);
+    }
+  };
+  struct SlowlyOutToSide : Moving<to::SlowlyToSide> {};
+  struct UpToSafeZ : Moving<to::SafeZOverPocket> {};
+  struct BackToSafeXY : Moving<to::SafeXY> {};
+
+  struct RecordToolInSpindle {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      fsm.ctx->record_in_spindle(fsm.pocket_tool);
+    }
+  };
+
+  struct AlreadyAtSafe {
+    template <class Event, class Fsm, class Source, class Target>
+    bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      return fsm.ctx->at_safe();
+    }
+  };
+
+  using initial_state = Choosing;
+  // clang-format off
+  using transition_table = boost::mpl::vector<
+  //    Start                                Event          Next                 Action               Guard
+  // +------------------------------------+--------------+--------------------+--------------------+--------------------+
+  Row < Choosing                           , none         , ToSafeZ            , none               , Not<AlreadyAtSafe> >,
+  Row < Choosing                           , none         , OverPocket         , none               , AlreadyAtSafe      >,
+  Row < ToSafeZ                            , InPosition   , ToSafeXY           , none               , none >,
+  Row < ToSafeXY                           , InPosition   , OverPocket         , none               , none >,
+  Row < OverPocket                         , InPosition   , DownToClearance    , none               , none >,
+  Row < DownToClearance                    , InPosition   , DownToAboveChuck   , none               , none >,
+  Row < DownToAboveChuck                   , InPosition   , FlushLeg           , none               , none >,
+  Row < FlushLeg::exit_pt<Finished>        , LegDone      , OpeningChuck       , none               , none >,
+  Row < OpeningChuck                       , TimerElapsed , SlowlyDownToPocket , none               , none >,
+  Row < SlowlyDownToPocket                 , InPosition   , Settling           , none               , none >,
+  Row < Settling                           , TimerElapsed , GrippingTool       , none               , none >,
+  Row < GrippingTool                       , TimerElapsed , SlowlyOutToSide    , RecordToolInSpindle, none >,
+  Row < SlowlyOutToSide                    , InPosition   , UpToSafeZ          , none               , none >,
+  Row < UpToSafeZ                          , InPosition   , BackToSafeXY       , none               , none >,
+  Row < BackToSafeXY                       , InPosition   , Finished           , none               , none >
+  >;
+  // clang-format on
+};
+using RetrieveLeg = msm::back::state_machine<RetrieveLeg_>;
+
+// ================================================================ probing
+/// Measures the tool in the spindle on the touch-off sensor: a fast seek, a
+/// back-off, a slow latch; length = latched machine Z minus
+/// probe_length_compensation_offset, written to the tool table.
+struct ProbingLeg_ : Flow<ProbingLeg_> {
+  struct NotMeasured : msmf::exit_pseudo_state<LegDone> {};
+
+  struct Seeking : Moving<to::ProbeSeek> {};
+  struct BackingOff : Moving<to::ProbeBackOff> {};
+  struct Latching : Moving<to::ProbeLatch> {};
+  struct WritingLength : Moving<to::ToolLength> {};
+  struct Retracting : Moving<to::RetractFromSensor> {};
+  struct RetractingUnmeasured : Moving<to::LoadingZ> {};
+
+  struct Touched {
+    template <class Fsm, class Source, class Target>
+    bool operator()(const ProbeResult& e, Fsm&, Source&, Target&) const {
+      return e.touched;
+    }
+  };
+  struct RememberFirstTouch {
+    template <class Fsm, class Source, class Target>
+    void operator()(const ProbeResult& e, Fsm& fsm, Source&, Target&) const {
+      fsm.ctx->first_touch_z = e.z;
+    }
+  };
+  struct RecordLength {
+    template <class Fsm, class Source, class Target>
+    void operator()(const ProbeResult& e, Fsm& fsm, Source&, Target&) const {
+      fsm.ctx->latched_z = e.z;
+      fsm.ctx->record_length(fsm.pocket_tool,
+                             e.z - fsm.ctx->config.probe_length_compensation_offset);
+    }
+  };
+  struct SayNoTouch {
+    template <class Fsm, class Source, class Target>
+    void operator()(const ProbeResult&, Fsm& fsm, Source&, Target&) const {
+      fsm.ctx->tell(MessageKind::error,
+                    "probe: tool " + std::to_string(fsm.pocket_tool) +
+                        " did not touch the sensor before probe_limit; nothing written");
+    }
+  };
+
+  using initial_state = Seeking;
+  // clang-format off
+  using transition_table = boost::mpl::vector<
+  //    Start                  Event         Next                   Action              Guard
+  // +----------------------+-------------+----------------------+-------------------+-------------+
+  Row < Seeking              , ProbeResult , BackingOff           , RememberFirstTouch, Touched      >,
+  Row < Seeking              , ProbeResult , RetractingUnmeasured , SayNoTouch        , Not<Touched> >,
+  Row < BackingOff           , InPosition  , Latching             , none              , none         >,
+  Row < Latching             , ProbeResult , WritingLength        , RecordLength      , Touched      >,
+  Row < Latching             , ProbeResult , RetractingUnmeasured , SayNoTouch        , Not<Touched> >,
+  Row < WritingLength        , InPosition  , Retracting           , none              , none         >,
+  Row < Retracting           , InPosition  , Finished             , none              , none         >,
+  Row < RetractingUnmeasured , InPosition  , NotMeasured          , none              , none         >
+  >;
+  // clang-format on
+};
+using ProbingLeg = msm::back::state_machine<ProbingLeg_>;
+
+}  // namespace fatc::machine

@@ -1,0 +1,21 @@
+#pragma once
+
+#include <string>
+
+namespace fatc {
+
+/// Which flow the changer is in; the value of the `state` pin.
+enum class Phase { not_ready = 0, idle = 1, changing = 2, loading = 3, unloading = 4, fault = 5 };
+
+/// Which event the changer waits for now; adapters deliver only that one.
+enum class Awaiting { nothing, motion, probe, timer, spindle, operator_choice };
+
+struct Status {
+  Phase phase = Phase::not_ready;
+  Awaiting awaiting = Awaiting::nothing;
+  std::string activity;  ///< what it is doing, in the machinist's words
+};
+
+const char* phase_name(Phase phase);
+
+}  // namespace fatc

@@ -1,0 +1,56 @@
+#include "step.hpp"
+
+#include <cstdio>
+
+namespace fatc {
+
+bool is_motion(StepKind kind) {
+  return kind == StepKind::rapid || kind == StepKind::feed || kind == StepKind::probe;
+}
+
+const char* step_kind_name(StepKind kind) {
+  switch (kind) {
+    case StepKind::rapid: return "rapid";
+    case StepKind::feed: return "feed";
+    case StepKind::probe: return "probe";
+    case StepKind::set_tool_length: return "set-length";
+    case StepKind::set_spindle_tool: return "set-tool";
+    case StepKind::wait_operator: return "wait";
+    case StepKind::done: return "done";
+    case StepKind::fail: return "fail";
+  }
+  return "?";
+}
+
+std::string describe(const Step& step) {
+  std::string coordinates;
+  char buffer[64];
+  if (is_motion(step.kind)) {
+    const char* names[] = {"X", "Y", "Z"};
+    const double values[] = {step.target.x, step.target.y, step.target.z};
+    for (int i = 0; i < 3; ++i) {
+      if (step.axes & (1u << i)) {
+        std::snprintf(buffer, sizeof buffer, "%s%s=%.3f", coordinates.empty() ? "" : " ", names[i],
+                      values[i]);
+        coordinates += buffer;
+      }
+    }
+    if (step.kind != StepKind::rapid) {
+      std::snprintf(buffer, sizeof buffer, " F%.0f", step.feed);
+      coordinates += buffer;
+    }
+  } else if (step.kind == StepKind::set_tool_length) {
+    std::snprintf(buffer, sizeof buffer, "T%d length=%.4f", step.tool, step.value);
+    coordinates = buffer;
+  } else if (step.kind == StepKind::set_spindle_tool || step.kind == StepKind::done) {
+    std::snprintf(buffer, sizeof buffer, "T%d", step.tool);
+    coordinates = buffer;
+  }
+  std::snprintf(buffer, sizeof buffer, "%-10s ", step_kind_name(step.kind));
+  std::string line = buffer;
+  line += coordinates;
+  if (line.size() < 48) line.resize(48, ' ');
+  return line + " " + step.label;
+}
+
+}  // namespace fatc

@@ -1,0 +1,576 @@
+#include <gtest/gtest.h>
+
+#include <functional>
+#include <memory>
+
+#include "core/changer.hpp"
+#include "core/simulator.hpp"
+#include "test_config.hpp"
+
+namespace fatc {
+namespace {
+
+using Lines = std::vector<std::string>;
+
+/// A changer wired to a Simulator; an unexpected event fails the test.
+struct Rig {
+  explicit Rig(int spindle = 0, std::set<int> out_of_machine = {}) {
+    ToolState tools = ToolState::fresh(config);
+    tools.spindle = spindle;
+    tools.in_pocket.erase(spindle);
+    for (int tool : out_of_machine) tools.in_pocket.erase(tool);
+    changer = std::make_unique<Changer>(config, sim, tools);
+    changer->ready();
+  }
+  ~Rig() { EXPECT_TRUE(sim.unexpected_events.empty()) << sim.unexpected_events.front(); }
+
+  /// The records since `from`, compactly: "rapid safe Z", "chuck open", "dwell 0.50", ...
+  Lines lines(std::size_t from = 0) const {
+    Lines out;
+    char buffer[32];
+    for (std::size_t i = from; i < sim.records.size(); ++i) {
+      const Record& r = sim.records[i];
+      switch (r.kind) {
+        case Record::Kind::step:
+          if (r.step.kind == StepKind::done || r.step.kind == StepKind::set_spindle_tool) {
+            out.push_back(std::string(step_kind_name(r.step.kind)) + " T" + std::to_string(r.step.tool));
+          } else {
+            out.push_back(std::string(step_kind_name(r.step.kind)) + " " + r.step.label);
+          }
+          break;
+        case Record::Kind::chuck: out.push_back(r.chuck_open ? "chuck open" : "chuck close"); break;
+        case Record::Kind::dwell:
+          std::snprintf(buffer, sizeof buffer, "dwell %.2f", r.seconds);
+          out.push_back(buffer);
+          break;
+        case Record::Kind::message: break;
+        case Record::Kind::save: break;
+      }
+    }
+    return out;
+  }
+
+  /// One event the way the executor, the clock or the operator would give it.
+  bool advance_once() {
+    if (changer->status().awaiting == Awaiting::operator_choice) {
+      changer->operator_continue();
+      return true;
+    }
+    return sim.run(*changer, 1) == 1;
+  }
+
+  Config config = test::valid_config();
+  Simulator sim;
+  std::unique_ptr<Changer> changer;
+};
+
+Lines concat(std::initializer_list<Lines> parts) {
+  Lines all;
+  for (const auto& part : parts) all.insert(all.end(), part.begin(), part.end());
+  return all;
+}
+
+// The sequences of DESIGN.md, spelled out once, for pocket `t` of the test config.
+Lines to_safe() { return {"rapid safe Z", "rapid safe XY"}; }
+
+Lines return_to_pocket(int t) {
+  const std::string p = std::to_string(t);
+  return concat({to_safe(),
+                 {"rapid over the side of pocket " + p, "rapid side of pocket " + p,
+                  "feed pocket " + p, "chuck open", "dwell 0.50", "rapid above-chuck of pocket " + p,
+                  "chuck close", "rapid above-clearance of pocket " + p},
+                 to_safe()});
+}
+
+/// Retrieval after a return, which already ended at safe.
+Lines retrieve_from_safe(int t) {
+  const std::string p = std::to_string(t);
+  return concat({{"rapid over pocket " + p, "rapid above-clearance of pocket " + p,
+                  "rapid above-chuck of pocket " + p, "chuck open", "dwell 0.20", "chuck close",
+                  "dwell 0.20", "chuck open", "dwell 0.50", "feed pocket " + p, "dwell 0.50",
+                  "chuck close", "dwell 0.50", "feed side of pocket " + p},
+                 to_safe()});
+}
+
+Lines retrieve(int t) { return concat({to_safe(), retrieve_from_safe(t)}); }
+
+// ---------------------------------------------------------------- M6
+
+TEST(Change, shouldAnswerAtOnceWithoutMotionWhenTheToolIsAlreadyInTheSpindle) {
+  Rig rig(3);
+  rig.changer->tool_change(3);
+  EXPECT_EQ(rig.lines(), (Lines{"done T3"}));
+  EXPECT_EQ(rig.changer->status().phase, Phase::idle);
+}
+
+TEST(Change, shouldAnswerAtOnceForT0WithAnEmptySpindle) {
+  Rig rig(0);
+  rig.changer->tool_change(0);
+  EXPECT_EQ(rig.lines(), (Lines{"done T0"}));
+}
+
+TEST(Change, shouldRetrieveIntoAnEmptySpindle) {
+  Rig rig(0);
+  rig.changer->tool_change(4);
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.lines(), concat({retrieve(4), {"done T4"}}));
+  EXPECT_EQ(rig.changer->tools().spindle, 4);
+  EXPECT_EQ(rig.changer->tools().in_pocket.count(4), 0u);
+  EXPECT_EQ(rig.changer->status().phase, Phase::idle);
+}
+
+TEST(Change, shouldReturnThenRetrieveFromAToB) {
+  Rig rig(2);
+  rig.changer->tool_change(5);
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.lines(), concat({return_to_pocket(2), retrieve_from_safe(5), {"done T5"}}));
+  EXPECT_EQ(rig.changer->tools().spindle, 5);
+  EXPECT_EQ(rig.changer->tools().in_pocket.count(2), 1u);
+  EXPECT_FALSE(rig.sim.chuck_open);
+}
+
+TEST(Change, shouldOnlyReturnForT0) {
+  Rig rig(6);
+  rig.changer->tool_change(0);
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.lines(), concat({return_to_pocket(6), {"done T0"}}));
+  EXPECT_EQ(rig.changer->tools().spindle, 0);
+}
+
+TEST(Change, shouldSaveTheToolStateWhenTheSpindleEmptiesAndWhenItFills) {
+  Rig rig(2);
+  rig.changer->tool_change(5);
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.sim.saves, 2);
+}
+
+TEST(Change, shouldOpenTheChuckOnlyAtAPocketOrAboveItsChuck) {
+  Rig rig(1);
+  rig.changer->tool_change(6);
+  rig.sim.run(*rig.changer);
+  std::string where;
+  for (const auto& record : rig.sim.records) {
+    if (record.kind == Record::Kind::step && is_motion(record.step.kind)) where = record.step.label;
+    if (record.kind == Record::Kind::chuck && record.chuck_open) {
+      EXPECT_TRUE(where.rfind("pocket ", 0) == 0 || where.rfind("above-chuck of pocket", 0) == 0)
+          << "chuck opened at " << where;
+    }
+  }
+}
+
+TEST(Change, shouldMoveSlowlyOnlyIntoAndOutOfThePocket) {
+  Rig rig(1);
+  rig.changer->tool_change(6);
+  rig.sim.run(*rig.changer);
+  for (const auto& step : rig.sim.motion_steps()) {
+    const bool slow = step.label.rfind("pocket ", 0) == 0 || step.label.rfind("side of pocket", 0) == 0;
+    if (step.kind == StepKind::feed) {
+      EXPECT_TRUE(slow) << step.label;
+      EXPECT_EQ(step.feed, rig.config.pocket_feed);
+    }
+  }
+}
+
+struct Refusal {
+  const char* name;
+  int spindle;
+  std::set<int> out;
+  int tool;
+  const char* why;
+};
+std::ostream& operator<<(std::ostream& out, const Refusal& r) { return out << r.name; }
+
+class RefusedChange : public ::testing::TestWithParam<Refusal> {};
+
+TEST_P(RefusedChange, shouldFailTheExecutorWithAMessageAndMoveNothing) {
+  Rig rig(GetParam().spindle, GetParam().out);
+  rig.changer->tool_change(GetParam().tool);
+  ASSERT_EQ(rig.sim.steps().size(), 1u);
+  EXPECT_EQ(rig.sim.steps()[0].kind, StepKind::fail);
+  EXPECT_NE(rig.sim.steps()[0].label.find(GetParam().why), std::string::npos) << rig.sim.steps()[0].label;
+  ASSERT_EQ(rig.sim.messages(MessageKind::error).size(), 1u);
+  EXPECT_NE(rig.sim.messages(MessageKind::error)[0].find(GetParam().why), std::string::npos);
+  EXPECT_EQ(rig.changer->status().phase, Phase::idle);
+  EXPECT_EQ(rig.changer->tools().spindle, GetParam().spindle);
+}
+
+// clang-format off
+INSTANTIATE_TEST_SUITE_P(Each, RefusedChange, ::testing::Values(
+  Refusal{"no_pocket", 0, {}, 9, "tool 9 has no pocket in the config"},
+  Refusal{"negative", 0, {}, -1, "T-1 is not a tool number"},
+  Refusal{"unloaded", 0, {4}, 4, "tool 4 is not in its pocket (it was unloaded); load it first"},
+  Refusal{"spindle_tool_without_pocket", 9, {}, 2, "tool 9 in the spindle has no pocket in the config"}
+));
+// clang-format on
+
+TEST(Change, shouldRefuseWhenTheMachineIsNotReady) {
+  Rig rig(0);
+  rig.changer->not_ready();
+  rig.changer->tool_change(2);
+  ASSERT_EQ(rig.sim.steps().size(), 1u);
+  EXPECT_EQ(rig.sim.steps()[0].kind, StepKind::fail);
+  EXPECT_NE(rig.sim.steps()[0].label.find("not on and homed"), std::string::npos);
+}
+
+TEST(Change, shouldRefuseASecondRequestWhileBusyAndFinishTheFirst) {
+  Rig rig(0);
+  rig.changer->tool_change(2);
+  rig.advance_once();
+  rig.changer->tool_change(3);
+  rig.changer->load(3);
+  EXPECT_EQ(rig.sim.messages(MessageKind::error).size(), 2u);
+  EXPECT_NE(rig.sim.messages(MessageKind::error)[0].find("busy"), std::string::npos);
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.changer->tools().spindle, 2);
+  EXPECT_EQ(rig.changer->status().phase, Phase::idle);
+}
+
+TEST(Change, shouldWaitForTheSpindleToStopBeforeMoving) {
+  Rig rig(0);
+  rig.changer->spindle_stopped(false);
+  rig.changer->tool_change(2);
+  EXPECT_EQ(rig.changer->status().awaiting, Awaiting::spindle);
+  EXPECT_TRUE(rig.sim.motion_steps().empty());
+  rig.changer->spindle_stopped(true);
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.changer->tools().spindle, 2);
+}
+
+TEST(Change, shouldFaultWhenTheSpindleDoesNotStopInTime) {
+  Rig rig(1);
+  rig.changer->spindle_stopped(false);
+  rig.changer->tool_change(2);
+  rig.changer->timer_elapsed();
+  EXPECT_EQ(rig.changer->status().phase, Phase::fault);
+  EXPECT_TRUE(rig.sim.motion_steps().empty());
+  EXPECT_EQ(rig.sim.steps().back().kind, StepKind::fail);
+  EXPECT_FALSE(rig.changer->tools().uncertain) << "nothing moved, the spindle still holds tool 1";
+  EXPECT_NE(rig.sim.messages(MessageKind::error).back().find("did not stop"), std::string::npos);
+}
+
+// ---------------------------------------------------------------- load and probe
+
+constexpr double kSensorZ = -70.0;
+
+TEST(Load, shouldLoadProbeAndPutAwayWithAnEmptySpindle) {
+  Rig rig(0, {4});
+  rig.sim.sensor_z = kSensorZ;
+  rig.changer->load(4);
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.lines(), (Lines{"rapid loading Z", "rapid loading XY", "chuck open", "dwell 0.20",
+                                "chuck close", "dwell 0.20", "wait operator"}));
+  EXPECT_EQ(rig.changer->status().phase, Phase::loading);
+  EXPECT_EQ(rig.changer->status().awaiting, Awaiting::operator_choice);
+  const std::size_t inserted = rig.sim.records.size();
+  rig.changer->operator_continue();
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.lines(inserted), (Lines{"set-tool T4", "wait operator"}));
+  const std::size_t jogged = rig.sim.records.size();
+  rig.changer->operator_continue();
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.lines(jogged),
+            concat({{"probe touch-off sensor (seek)", "feed back off the sensor",
+                     "probe touch-off sensor (latch)", "set-length tool table",
+                     "rapid retract from the sensor"},
+                    return_to_pocket(4),
+                    {"set-tool T0", "done T0"}}));
+  EXPECT_DOUBLE_EQ(rig.changer->tools().lengths.at(4), kSensorZ - rig.config.probe_length_compensation_offset);
+  EXPECT_EQ(rig.changer->tools().spindle, 0);
+  EXPECT_EQ(rig.changer->tools().in_pocket.count(4), 1u);
+  EXPECT_EQ(rig.changer->status().phase, Phase::idle);
+}
+
+TEST(Load, shouldWriteTheLengthItMeasuredIntoTheToolTableStep) {
+  Rig rig(0, {4});
+  rig.sim.sensor_z = kSensorZ;
+  rig.changer->load(4);
+  for (int i = 0; i < 3; ++i) {
+    rig.sim.run(*rig.changer);
+    if (rig.changer->status().awaiting == Awaiting::operator_choice) rig.changer->operator_continue();
+  }
+  for (const auto& step : rig.sim.steps()) {
+    if (step.kind != StepKind::set_tool_length) continue;
+    EXPECT_EQ(step.tool, 4);
+    EXPECT_DOUBLE_EQ(step.value, 25.0);  // -70 - (-95)
+  }
+}
+
+TEST(Load, shouldReturnTheToolInTheSpindleFirst) {
+  Rig rig(2, {4});
+  rig.sim.sensor_z = kSensorZ;
+  rig.changer->load(4);
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.lines(), concat({return_to_pocket(2),
+                                 {"rapid loading Z", "rapid loading XY", "chuck open", "dwell 0.20",
+                                  "chuck close", "dwell 0.20", "wait operator"}}));
+}
+
+TEST(Load, shouldGoStraightToProbingWhenTheToolIsAlreadyInTheSpindle) {
+  Rig rig(4);
+  rig.sim.sensor_z = kSensorZ;
+  rig.changer->load(4);
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.lines(), (Lines{"rapid loading Z", "rapid loading XY", "wait operator"}));
+  EXPECT_NE(rig.changer->status().activity.find("Jog"), std::string::npos);
+}
+
+TEST(Load, shouldLeaveTheSpindleEmptyWhenCancelledBeforeInsertion) {
+  Rig rig(0, {4});
+  rig.changer->load(4);
+  rig.sim.run(*rig.changer);
+  const std::size_t before = rig.sim.records.size();
+  rig.changer->operator_cancel();
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.lines(before), (Lines{"set-tool T0", "done T0"}));
+  EXPECT_EQ(rig.changer->tools().spindle, 0);
+  EXPECT_TRUE(rig.changer->tools().lengths.empty());
+  EXPECT_NE(rig.sim.messages(MessageKind::info).back().find("the spindle is empty"), std::string::npos);
+}
+
+TEST(Load, shouldKeepTheToolInTheSpindleUnmeasuredWhenCancelledBeforeProbing) {
+  Rig rig(0, {4});
+  rig.changer->load(4);
+  rig.sim.run(*rig.changer);
+  rig.changer->operator_continue();
+  rig.sim.run(*rig.changer);
+  const std::size_t before = rig.sim.records.size();
+  rig.changer->operator_cancel();
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.lines(before), (Lines{"set-tool T4", "done T4"}));
+  EXPECT_EQ(rig.changer->tools().spindle, 4);
+  EXPECT_TRUE(rig.changer->tools().lengths.empty());
+  EXPECT_NE(rig.sim.messages(MessageKind::info).back().find("tool 4 is in the spindle"), std::string::npos);
+}
+
+TEST(Load, shouldRetractAndWriteNothingWhenTheSensorIsNeverTouched) {
+  Rig rig(4);
+  rig.changer->load(4);  // sim.sensor_z unset: the probe misses
+  rig.sim.run(*rig.changer);
+  const std::size_t before = rig.sim.records.size();
+  rig.changer->operator_continue();
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.lines(before), (Lines{"probe touch-off sensor (seek)", "rapid loading Z", "set-tool T4", "done T4"}));
+  EXPECT_TRUE(rig.changer->tools().lengths.empty());
+  EXPECT_NE(rig.sim.messages(MessageKind::error).back().find("did not touch the sensor"), std::string::npos);
+  EXPECT_EQ(rig.changer->status().phase, Phase::idle);
+}
+
+TEST(Load, shouldWriteNothingWhenTheLatchStageMisses) {
+  Rig rig(4);
+  rig.changer->load(4);
+  rig.sim.run(*rig.changer);
+  rig.changer->operator_continue();
+  rig.changer->probe_result(true, kSensorZ);  // the seek touches ...
+  rig.changer->in_position();                 // ... the back-off ends ...
+  rig.changer->probe_result(false, -90.0);    // ... and the latch misses
+  rig.sim.run(*rig.changer);
+  EXPECT_TRUE(rig.changer->tools().lengths.empty());
+  EXPECT_EQ(rig.changer->status().phase, Phase::idle);
+}
+
+struct LoadRefusal {
+  const char* name;
+  int spindle;
+  std::set<int> out;
+  int tool;
+  const char* why;
+};
+std::ostream& operator<<(std::ostream& out, const LoadRefusal& r) { return out << r.name; }
+class RefusedLoad : public ::testing::TestWithParam<LoadRefusal> {};
+
+TEST_P(RefusedLoad, shouldSayWhyAndMoveNothing) {
+  Rig rig(GetParam().spindle, GetParam().out);
+  rig.changer->load(GetParam().tool);
+  EXPECT_TRUE(rig.sim.steps().empty());
+  ASSERT_EQ(rig.sim.messages(MessageKind::error).size(), 1u);
+  EXPECT_EQ(rig.sim.messages(MessageKind::error)[0], GetParam().why);
+}
+
+// clang-format off
+INSTANTIATE_TEST_SUITE_P(Each, RefusedLoad, ::testing::Values(
+  LoadRefusal{"no_pocket", 0, {}, 9, "tool 9 has no pocket in the config"},
+  LoadRefusal{"zero", 0, {}, 0, "load needs a tool number above 0, got 0"},
+  LoadRefusal{"already_in_rack", 0, {}, 3, "tool 3 is already in its pocket; unload it first"},
+  LoadRefusal{"spindle_tool_homeless", 9, {3}, 3, "tool 9 in the spindle has no pocket in the config; unload it by hand first"}
+));
+// clang-format on
+
+TEST(Load, shouldRefuseWhileTheSpindleTurns) {
+  Rig rig(0, {4});
+  rig.changer->spindle_stopped(false);
+  rig.changer->load(4);
+  EXPECT_TRUE(rig.sim.steps().empty());
+  EXPECT_EQ(rig.sim.messages(MessageKind::error).at(0), "the spindle is turning; stop it first");
+}
+
+// ---------------------------------------------------------------- unload
+
+TEST(Unload, shouldFetchTheToolAndLetTheOperatorTakeIt) {
+  Rig rig(0);
+  rig.changer->unload(3);
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.lines(), concat({retrieve(3),
+                                 {"rapid loading Z", "rapid loading XY", "set-tool T3", "wait operator"}}));
+  const std::size_t before = rig.sim.records.size();
+  rig.changer->operator_continue();
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.lines(before), (Lines{"chuck open", "dwell 0.20", "chuck close", "dwell 0.20",
+                                      "set-tool T0", "done T0"}));
+  EXPECT_EQ(rig.changer->tools().spindle, 0);
+  EXPECT_EQ(rig.changer->tools().in_pocket.count(3), 0u);
+}
+
+TEST(Unload, shouldReturnTheToolInTheSpindleFirst) {
+  Rig rig(1);
+  rig.changer->unload(3);
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.lines(), concat({return_to_pocket(1), retrieve_from_safe(3),
+                                 {"rapid loading Z", "rapid loading XY", "set-tool T3", "wait operator"}}));
+}
+
+TEST(Unload, shouldGoStraightToLoadingWhenTheToolIsInTheSpindle) {
+  Rig rig(3);
+  rig.changer->unload(3);
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.lines(), (Lines{"rapid loading Z", "rapid loading XY", "set-tool T3", "wait operator"}));
+}
+
+TEST(Unload, shouldKeepTheToolInTheSpindleWhenCancelled) {
+  Rig rig(3);
+  rig.changer->unload(3);
+  rig.sim.run(*rig.changer);
+  rig.changer->operator_cancel();
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.changer->tools().spindle, 3);
+  EXPECT_EQ(rig.changer->status().phase, Phase::idle);
+  EXPECT_EQ(rig.lines().back(), "done T3");
+}
+
+TEST(Unload, shouldRefuseAToolThatIsNotInTheRack) {
+  Rig rig(0, {3});
+  rig.changer->unload(3);
+  EXPECT_TRUE(rig.sim.steps().empty());
+  EXPECT_EQ(rig.sim.messages(MessageKind::error).at(0), "tool 3 is not in the rack");
+}
+
+// ---------------------------------------------------------------- faults
+
+struct Flow {
+  const char* name;
+  int spindle;
+  std::set<int> out;
+  std::function<void(Changer&)> start;
+};
+std::ostream& operator<<(std::ostream& out, const Flow& f) { return out << f.name; }
+
+class EveryState : public ::testing::TestWithParam<Flow> {};
+
+/// Aborts after 0, 1, 2, ... events, so that every state of the flow is hit.
+TEST_P(EveryState, shouldFaultSafelyOnAbort) {
+  int states = 0;
+  for (int cut = 0;; ++cut) {
+    Rig rig(GetParam().spindle, GetParam().out);
+    rig.sim.sensor_z = kSensorZ;
+    GetParam().start(*rig.changer);
+    bool more = true;
+    for (int i = 0; i < cut && more; ++i) more = rig.advance_once();
+    if (!more || rig.changer->status().phase == Phase::idle) break;
+    ++states;
+    const int spindle_before = rig.changer->tools().spindle;
+    rig.changer->abort("program aborted");
+    EXPECT_EQ(rig.changer->status().phase, Phase::fault) << "cut " << cut;
+    EXPECT_FALSE(rig.sim.chuck_open) << "cut " << cut;
+    EXPECT_TRUE(rig.changer->tools().uncertain) << "cut " << cut;
+    EXPECT_EQ(rig.changer->tools().spindle, spindle_before);
+    EXPECT_FALSE(rig.sim.timer_armed);
+    EXPECT_EQ(rig.sim.steps().back().kind, StepKind::fail);
+    const auto errors = rig.sim.messages(MessageKind::error);
+    EXPECT_NE(errors.back().find("program aborted"), std::string::npos) << errors.back();
+    EXPECT_NE(errors.back().find("not certain"), std::string::npos) << errors.back();
+
+    rig.changer->tool_change(1);
+    EXPECT_EQ(rig.sim.steps().back().kind, StepKind::fail) << "M6 is refused while faulted";
+    rig.changer->clear_fault(2);
+    EXPECT_EQ(rig.changer->status().phase, Phase::idle);
+    EXPECT_EQ(rig.changer->tools().spindle, 2);
+    EXPECT_FALSE(rig.changer->tools().uncertain);
+  }
+  EXPECT_GT(states, 5);
+}
+
+// clang-format off
+INSTANTIATE_TEST_SUITE_P(Each, EveryState, ::testing::Values(
+  Flow{"change_a_to_b", 1, {}, [](Changer& c) { c.tool_change(4); }},
+  Flow{"load_with_tool_in_spindle", 1, {5}, [](Changer& c) { c.load(5); }},
+  Flow{"unload_with_tool_in_spindle", 1, {}, [](Changer& c) { c.unload(5); }}
+));
+// clang-format on
+
+TEST(Fault, shouldFaultWhenTheMachineGoesOffDuringASequence) {
+  Rig rig(1);
+  rig.changer->tool_change(2);
+  rig.advance_once();
+  rig.changer->not_ready();
+  EXPECT_EQ(rig.changer->status().phase, Phase::fault);
+  EXPECT_TRUE(rig.changer->tools().uncertain);
+  rig.changer->clear_fault(1);
+  EXPECT_EQ(rig.changer->status().phase, Phase::not_ready) << "cleared, but the machine is still off";
+  rig.changer->ready();
+  EXPECT_EQ(rig.changer->status().phase, Phase::idle);
+}
+
+TEST(Fault, shouldIgnoreAnAbortWhileIdle) {
+  Rig rig(1);
+  rig.changer->abort("program aborted");
+  EXPECT_EQ(rig.changer->status().phase, Phase::idle);
+  EXPECT_FALSE(rig.changer->tools().uncertain);
+}
+
+TEST(Fault, shouldStartInFaultWhenTheSavedStateIsUncertain) {
+  Simulator sim;
+  ToolState tools = ToolState::fresh(test::valid_config());
+  tools.uncertain = true;
+  const Config config = test::valid_config();
+  Changer changer(config, sim, tools);
+  EXPECT_EQ(changer.status().phase, Phase::not_ready);
+  changer.ready();
+  EXPECT_EQ(changer.status().phase, Phase::fault);
+}
+
+TEST(Fault, shouldGoToNotReadyWhenTheMachineGoesOffWhileIdle) {
+  Rig rig(1);
+  rig.changer->not_ready();
+  EXPECT_EQ(rig.changer->status().phase, Phase::not_ready);
+  EXPECT_FALSE(rig.changer->tools().uncertain);
+}
+
+TEST(Fault, shouldReportAStrayEventAsABug) {
+  Simulator sim;
+  const Config config = test::valid_config();
+  Changer changer(config, sim, ToolState::fresh(config));
+  changer.ready();
+  changer.in_position();  // nothing was published
+  ASSERT_EQ(sim.unexpected_events.size(), 1u);
+  EXPECT_NE(sim.unexpected_events[0].find("InPosition"), std::string::npos);
+}
+
+TEST(Operator, shouldIgnoreContinueWhenNothingWaits) {
+  Rig rig(1);
+  rig.changer->operator_continue();
+  rig.changer->operator_cancel();
+  EXPECT_EQ(rig.changer->status().phase, Phase::idle);
+  EXPECT_EQ(rig.sim.messages(MessageKind::info).size(), 2u);
+}
+
+TEST(Diagram, shouldNameEveryFlowAndStateOfTheTables) {
+  const std::string dot = Changer::dot();
+  for (const char* name : {"ChangeFlow", "LoadFlow", "UnloadFlow", "ReturnLeg<Before>", "RetrieveLeg",
+                           "FlushLeg", "ProbingLeg", "IntoPocket", "GrippingTool", "AwaitingTool",
+                           "Faulted", "MachineNotReady"}) {
+    EXPECT_NE(dot.find(name), std::string::npos) << name;
+  }
+  EXPECT_EQ(dot.rfind("digraph", 0), 0u);
+}
+
+}  // namespace
+}  // namespace fatc

@@ -1,0 +1,27 @@
+#pragma once
+
+#include <string>
+
+#include "core/config.hpp"
+
+namespace fatc::test {
+
+/// A small valid config: six pockets along X, side offset +Y.
+inline const char* const kValidConfig = R"({
+  "probe_length_compensation_offset": -95.0,
+  "probe_retract_offset_z": 5.0,
+  "pocket_side_offset": {"x": 0.0, "y": 40.0},
+  "pocket_above_chuck_offset_z": 20.0,
+  "pocket_above_clearance_offset_z": 60.0,
+  "chuck_seconds": 0.5,
+  "loading": {"x": 20.0, "y": 150.0, "z": -10.0},
+  "probe_limit": {"x": 20.0, "y": 150.0, "z": -90.0},
+  "safe": {"x": 120.0, "y": 80.0, "z": -5.0},
+  "pocket_default": {"y": 20.0, "z": -80.0},
+  "pockets": {"1": {"x": 50.0}, "2": {"x": 100.0}, "3": {"x": 150.0},
+              "4": {"x": 200.0}, "5": {"x": 250.0}, "6": {"x": 300.0, "z": -82.5}}
+})";
+
+inline Config valid_config() { return *parse_config(kValidConfig).config; }
+
+}  // namespace fatc::test
