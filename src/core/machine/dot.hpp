@@ -55,7 +55,11 @@ inline std::string short_name(std::string name) {
 
 template <class T>
 std::string name_of() {
-  return short_name(boost::core::demangle(typeid(T).name()));
+  if constexpr (IsComposite<T>::value) {
+    return name_of<typename IsComposite<T>::front>();
+  } else {
+    return short_name(boost::core::demangle(typeid(T).name()));
+  }
 }
 
 class DotWriter {
@@ -66,7 +70,8 @@ class DotWriter {
   void machine(const std::string& path) {
     using Initial = typename Front::initial_state;
     out << "  \"" << path << "/start\" [shape=point, label=\"\"];\n";
-    out << "  \"" << path << "/start\" -> \"" << node<Initial>(path) << "\";\n";
+    const std::string initial = node<Initial>(path);
+    out << "  \"" << path << "/start\" -> \"" << initial << "\";\n";
     boost::mpl::for_each<typename Front::transition_table, Wrap<boost::mpl::placeholders::_1>>(
         RowVisitor{this, path});
   }
@@ -131,7 +136,7 @@ class DotWriter {
     }
     out << "  \"" << from << "\" -> \"" << to << "\" [label=\"" << label << "\""
         << (internal ? ", style=dashed" : "");
-    if constexpr (IsComposite<typename Row::Source>::value) {
+    if (IsComposite<typename Row::Source>::value && !internal) {
       out << ", ltail=\"cluster_" << path << "/" << name_of<typename Row::Source>() << "\"";
     }
     out << "];\n";

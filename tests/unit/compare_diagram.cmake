@@ -1,0 +1,5 @@
+execute_process(COMMAND ${BINARY} --dot OUTPUT_VARIABLE generated RESULT_VARIABLE code)
+file(READ ${EXPECTED} committed)
+if(NOT code EQUAL 0 OR NOT generated STREQUAL committed)
+  message(FATAL_ERROR "docs/state_machine.dot is out of date: run `cmake --build build --target diagram`")
+endif()
