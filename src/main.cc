@@ -1,20 +1,84 @@
-// fixed_atc_probe: a fixed-rack tool changer for LinuxCNC.
+// fixed_atc_probe: a fixed-rack tool changer for LinuxCNC, as a userspace HAL
+// component (default), or a config checker and planner (--check, --plan, --dot).
+#include <hal.h>
+
+#include <chrono>
+#include <csignal>
 #include <iostream>
 #include <string>
+#include <thread>
 #include <vector>
 
+#include "core/changer.hpp"
 #include "io/cli.hpp"
+#include "io/files.hpp"
+#include "linuxcnc/component.hpp"
+#include "linuxcnc/hal_pins.hpp"
+
+namespace {
+
+volatile std::sig_atomic_t stop_requested = 0;
+
+void request_stop(int) { stop_requested = 1; }
+
+int fail(const std::string& message) {
+  std::cerr << "fixed_atc_probe: " << message << std::endl;
+  return 1;
+}
+
+int run_component(const fatc::io::Options& options) {
+  const auto config = fatc::io::load_config_file(options.config_path);
+  if (!config.config) {
+    for (const auto& error : config.errors) std::cerr << "fixed_atc_probe: " << error << "\n";
+    return 1;
+  }
+  const std::string state_path =
+      options.state_path.empty() ? options.config_path + ".state" : options.state_path;
+  const auto tools = fatc::io::load_state_file(state_path, *config.config);
+  if (!tools.state) return fail(tools.error);
+
+  int id = -1;
+  fatc::linuxcnc::HalPins* pins = nullptr;
+  try {
+    pins = fatc::linuxcnc::create_pins("fixed_atc_probe", id);
+  } catch (const std::exception& e) {
+    if (id >= 0) hal_exit(id);
+    return fail(e.what());
+  }
+  std::signal(SIGTERM, request_stop);
+  std::signal(SIGINT, request_stop);
+
+  fatc::linuxcnc::Component component(pins, *config.config, state_path);
+  fatc::Changer changer(*config.config, component, *tools.state);
+  component.attach(&changer);
+  component.poll(std::chrono::steady_clock::now());
+  hal_ready(id);
+
+  try {
+    while (!stop_requested) {
+      component.poll(std::chrono::steady_clock::now());
+      // Quick turns while a handshake is open; otherwise sleep, don't spin.
+      std::this_thread::sleep_for(std::chrono::milliseconds(component.active() ? 1 : 20));
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "fixed_atc_probe: " << e.what() << std::endl;
+    hal_exit(id);
+    return 1;
+  }
+  hal_exit(id);
+  return 0;
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   std::string error;
-  const auto options = fatc::io::parse_options(std::vector<std::string>(argv + 1, argv + argc), error);
+  const auto options =
+      fatc::io::parse_options(std::vector<std::string>(argv + 1, argv + argc), error);
   if (!options) {
     std::cerr << "fixed_atc_probe: " << error << "\n" << fatc::io::kUsage;
     return 2;
   }
-  if (options->mode == fatc::io::Options::Mode::component) {
-    std::cerr << "fixed_atc_probe: the HAL component mode is not built yet; use --check or --plan\n";
-    return 2;
-  }
+  if (options->mode == fatc::io::Options::Mode::component) return run_component(*options);
   return fatc::io::run_tool_mode(*options, std::cout, std::cerr);
 }

@@ -519,6 +519,15 @@ TEST(Fault, shouldFaultWhenTheMachineGoesOffDuringASequence) {
   EXPECT_EQ(rig.changer->status().phase, Phase::idle);
 }
 
+TEST(Fault, shouldAcceptNotReadyAtStartUp) {
+  Simulator sim;
+  const Config config = test::valid_config();
+  Changer changer(config, sim, ToolState::fresh(config));
+  changer.not_ready();
+  EXPECT_TRUE(sim.unexpected_events.empty());
+  EXPECT_EQ(changer.status().phase, Phase::not_ready);
+}
+
 TEST(Fault, shouldIgnoreAnAbortWhileIdle) {
   Rig rig(1);
   rig.changer->abort("program aborted");

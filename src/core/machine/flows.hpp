@@ -385,6 +385,7 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
   Row < MachineNotReady              , Ready      , Operating, none           , Not<SpindleUncertain> >,
   Row < MachineNotReady              , Ready      , Faulted  , SayUncertain   , SpindleUncertain      >,
   Row < MachineNotReady              , Abort      , none     , none           , none                  >,
+  Row < MachineNotReady              , NotReady   , none     , none           , none                  >,
   Row < Operating                    , NotReady   , MachineNotReady, none     , Not<IsBusy>           >,
   Row < Operating                    , NotReady   , Faulted  , MarkInterrupted, IsBusy                >,
   Row < Operating                    , Abort      , none     , none           , Not<IsBusy>           >,

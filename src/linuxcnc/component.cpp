@@ -1,0 +1,143 @@
+#include "component.hpp"
+
+#include <cmath>
+#include <iostream>
+
+#include "hal_pins_detail.hpp"
+#include "io/files.hpp"
+
+namespace fatc::linuxcnc {
+
+Component::Component(HalPins* pins, const Config& config, std::string state_path)
+    : pins_(pins), state_path_(std::move(state_path)) {
+  *pins_->units_inch = config.units == Units::inch;
+  *pins_->step_ready = 0;
+  *pins_->chuck = 0;
+}
+
+bool Component::active() const {
+  return offered_ || executing_ || pending_ || deadline_ || last_request_ ||
+         (changer_ && changer_->status().phase != Phase::idle &&
+          changer_->status().phase != Phase::not_ready && changer_->status().phase != Phase::fault);
+}
+
+void Component::poll(Clock::time_point now) {
+  now_ = now;
+  const bool ready = *pins_->machine_on && *pins_->all_homed;
+  if (machine_ready_ != ready) {
+    machine_ready_ = ready;
+    ready ? changer_->ready() : changer_->not_ready();
+  }
+  changer_->spindle_stopped(*pins_->spindle_stopped);
+
+  const bool abort = *pins_->abort;
+  if (abort && !last_abort_) {
+    // The executor is gone with the program; nothing it was doing will finish.
+    executing_.reset();
+    offered_.reset();
+    pending_.reset();
+    *pins_->step_ready = 0;
+    changer_->abort("LinuxCNC aborted the program");
+    pending_.reset();
+  }
+  last_abort_ = abort;
+
+  const bool clear = *pins_->clear_fault;
+  if (clear && !last_clear_) changer_->clear_fault(*pins_->linuxcnc_tool);
+  last_clear_ = clear;
+
+  if (deadline_ && now >= *deadline_) {
+    deadline_.reset();
+    changer_->timer_elapsed();
+  }
+
+  *pins_->prepared = *pins_->tool_prepare;
+  serve_executor();
+  // Level handshake, as hal_manualtoolchange: the builtin M6 at the end of the
+  // remap raises tool-change only once the sequence is done.
+  *pins_->changed = *pins_->tool_change && changer_->status().phase == Phase::idle;
+  show_status();
+}
+
+void Component::serve_executor() {
+  const bool request = *pins_->step_request;
+  if (request && !last_request_) {
+    if (executing_) {
+      const Step finished = *executing_;
+      executing_.reset();
+      if (finished.kind == StepKind::probe) {
+        changer_->probe_result(*pins_->probe, finished.target.z);
+      } else {
+        changer_->in_position();
+      }
+    } else if (!offered_) {
+      changer_->tool_change(*pins_->number);
+    }
+  }
+  if (!request && last_request_ && offered_) {
+    *pins_->step_ready = 0;
+    const StepKind kind = offered_->kind;
+    if (kind != StepKind::done && kind != StepKind::fail && kind != StepKind::wait_operator) {
+      executing_ = offered_;
+    }
+    offered_.reset();
+  }
+  if (request && pending_ && !offered_ && !executing_) {
+    offer(*pending_);
+    pending_.reset();
+  }
+  last_request_ = request;
+}
+
+void Component::offer(const Step& step) {
+  *pins_->step_kind = static_cast<int>(step.kind);
+  *pins_->step_axes = static_cast<int>(step.axes);
+  *pins_->step_x = step.target.x;
+  *pins_->step_y = step.target.y;
+  *pins_->step_z = step.target.z;
+  *pins_->step_feed = step.feed;
+  *pins_->step_tool = step.tool;
+  *pins_->step_value = step.value;
+  *pins_->step_ready = 1;
+  offered_ = step;
+}
+
+void Component::show_status() {
+  const Status& status = changer_->status();
+  *pins_->state = static_cast<int>(status.phase);
+  *pins_->ready = status.phase == Phase::idle;
+  *pins_->fault = status.phase == Phase::fault;
+  *pins_->busy = status.phase == Phase::changing || status.phase == Phase::loading ||
+                 status.phase == Phase::unloading;
+  *pins_->tool_in_spindle = changer_->tools().spindle;
+}
+
+void Component::publish(const Step& step) {
+  pending_ = step;
+  // A step published while the executor already asks goes out this turn.
+  if (*pins_->step_request && !offered_ && !executing_) {
+    offer(*pending_);
+    pending_.reset();
+  }
+}
+
+void Component::set_chuck_open(bool open) { *pins_->chuck = open; }
+
+void Component::start_timer(double seconds) {
+  deadline_ = now_ + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+}
+
+void Component::cancel_timer() { deadline_.reset(); }
+
+void Component::tell(MessageKind kind, const std::string& text) {
+  const char* tag = kind == MessageKind::error ? "error" : kind == MessageKind::prompt ? "operator" : "info";
+  std::cerr << "fixed_atc_probe: " << tag << ": " << text << std::endl;
+}
+
+void Component::save(const ToolState& state) { io::save_state_file(state_path_, state); }
+
+void Component::unexpected(const std::string& state, const std::string& event) {
+  std::cerr << "fixed_atc_probe: internal error: event " << event << " in " << state << std::endl;
+}
+
+}  // namespace fatc::linuxcnc

@@ -1,0 +1,54 @@
+#pragma once
+
+#include <chrono>
+#include <optional>
+#include <string>
+
+#include "core/changer.hpp"
+#include "core/ports.hpp"
+
+namespace fatc::linuxcnc {
+
+struct HalPins;
+
+/// The adapter between HAL and the changer: turns pin edges, the step
+/// executor's handshake and the clock into events, and steps, chuck and
+/// timers into pins. One poll() per loop turn.
+class Component : public Ports {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  Component(HalPins* pins, const Config& config, std::string state_path);
+  void attach(Changer* changer) { changer_ = changer; }
+  void poll(Clock::time_point now);
+  /// Whether the next poll should come soon: a sequence runs or a handshake is open.
+  bool active() const;
+
+  void publish(const Step& step) override;
+  void set_chuck_open(bool open) override;
+  void start_timer(double seconds) override;
+  void cancel_timer() override;
+  void tell(MessageKind kind, const std::string& text) override;
+  void save(const ToolState& state) override;
+  void unexpected(const std::string& state, const std::string& event) override;
+
+ private:
+  void serve_executor();
+  void offer(const Step& step);
+  void show_status();
+
+  HalPins* pins_;
+  std::string state_path_;
+  Changer* changer_ = nullptr;
+  Clock::time_point now_;
+  std::optional<Clock::time_point> deadline_;
+  std::optional<Step> pending_;    ///< published, not yet on the pins
+  std::optional<Step> offered_;    ///< on the pins, step-ready high
+  std::optional<Step> executing_;  ///< taken by the executor, not yet finished
+  std::optional<bool> machine_ready_;
+  bool last_request_ = false;
+  bool last_abort_ = false;
+  bool last_clear_ = false;
+};
+
+}  // namespace fatc::linuxcnc

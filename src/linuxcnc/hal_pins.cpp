@@ -1,0 +1,65 @@
+#include "hal_pins_detail.hpp"
+
+#include <stdexcept>
+
+namespace fatc::linuxcnc {
+namespace {
+
+void check(int result, const std::string& prefix, const char* name) {
+  if (result != 0) throw std::runtime_error("cannot create pin " + prefix + "." + name);
+}
+void make(int id, hal_pin_dir_t dir, hal_bit_t** pin, const std::string& prefix, const char* name) {
+  check(hal_pin_bit_newf(dir, pin, id, "%s.%s", prefix.c_str(), name), prefix, name);
+}
+void make(int id, hal_pin_dir_t dir, hal_s32_t** pin, const std::string& prefix, const char* name) {
+  check(hal_pin_s32_newf(dir, pin, id, "%s.%s", prefix.c_str(), name), prefix, name);
+}
+void make(int id, hal_pin_dir_t dir, hal_float_t** pin, const std::string& prefix, const char* name) {
+  check(hal_pin_float_newf(dir, pin, id, "%s.%s", prefix.c_str(), name), prefix, name);
+}
+
+}  // namespace
+
+HalPins* create_pins(const std::string& name, int& id) {
+  id = hal_init(name.c_str());
+  if (id < 0) throw std::runtime_error("hal_init failed: is LinuxCNC (or halrun) running?");
+  auto* p = static_cast<HalPins*>(hal_malloc(sizeof(HalPins)));
+  if (!p) throw std::runtime_error("hal_malloc failed");
+  const std::string& n = name;
+  // iocontrol's tool handshake, mirrored.
+  make(id, HAL_IN, &p->number, n, "number");
+  make(id, HAL_IN, &p->tool_prepare, n, "tool-prepare");
+  make(id, HAL_OUT, &p->prepared, n, "prepared");
+  make(id, HAL_IN, &p->tool_change, n, "tool-change");
+  make(id, HAL_OUT, &p->changed, n, "changed");
+  // The rack.
+  make(id, HAL_OUT, &p->chuck, n, "chuck");
+  make(id, HAL_IN, &p->probe, n, "probe");
+  make(id, HAL_IN, &p->spindle_stopped, n, "spindle-stopped");
+  make(id, HAL_IN, &p->machine_on, n, "machine-on");
+  make(id, HAL_IN, &p->all_homed, n, "all-homed");
+  make(id, HAL_IN, &p->clear_fault, n, "clear-fault");
+  make(id, HAL_IN, &p->linuxcnc_tool, n, "linuxcnc-tool");
+  // What the changer is doing.
+  make(id, HAL_OUT, &p->state, n, "state");
+  make(id, HAL_OUT, &p->ready, n, "ready");
+  make(id, HAL_OUT, &p->busy, n, "busy");
+  make(id, HAL_OUT, &p->fault, n, "fault");
+  make(id, HAL_OUT, &p->tool_in_spindle, n, "tool-in-spindle");
+  // The step executor's handshake.
+  make(id, HAL_IN, &p->step_request, n, "step-request");
+  make(id, HAL_IN, &p->abort, n, "abort");
+  make(id, HAL_OUT, &p->step_ready, n, "step-ready");
+  make(id, HAL_OUT, &p->step_kind, n, "step-kind");
+  make(id, HAL_OUT, &p->step_axes, n, "step-axes");
+  make(id, HAL_OUT, &p->step_x, n, "step-x");
+  make(id, HAL_OUT, &p->step_y, n, "step-y");
+  make(id, HAL_OUT, &p->step_z, n, "step-z");
+  make(id, HAL_OUT, &p->step_feed, n, "step-feed");
+  make(id, HAL_OUT, &p->step_tool, n, "step-tool");
+  make(id, HAL_OUT, &p->step_value, n, "step-value");
+  make(id, HAL_OUT, &p->units_inch, n, "units-inch");
+  return p;
+}
+
+}  // namespace fatc::linuxcnc

@@ -1,0 +1,41 @@
+#pragma once
+
+#include <hal.h>
+
+#include "hal_pins.hpp"
+
+namespace fatc::linuxcnc {
+
+struct HalPins {
+  hal_s32_t* number;         ///< in: tool being prepared (iocontrol.0.tool-prep-number)
+  hal_bit_t* tool_prepare;   ///< in: iocontrol.0.tool-prepare
+  hal_bit_t* prepared;       ///< out: iocontrol.0.tool-prepared
+  hal_bit_t* tool_change;    ///< in: iocontrol.0.tool-change
+  hal_bit_t* changed;        ///< out: iocontrol.0.tool-changed; high until tool-change drops
+  hal_bit_t* chuck;          ///< out: true opens the chuck
+  hal_bit_t* probe;          ///< in: the touch-off sensor
+  hal_bit_t* spindle_stopped;///< in: the spindle stands still
+  hal_bit_t* machine_on;     ///< in: machine on and out of estop
+  hal_bit_t* all_homed;      ///< in: every joint homed
+  hal_bit_t* clear_fault;    ///< in: rising edge clears a fault; linuxcnc-tool is then in the spindle
+  hal_s32_t* linuxcnc_tool;  ///< in: iocontrol.0.tool-number
+  hal_s32_t* state;          ///< out: 0 not ready, 1 idle, 2 changing, 3 loading, 4 unloading, 5 fault
+  hal_bit_t* ready;          ///< out: idle and able to change tools
+  hal_bit_t* busy;           ///< out: running a sequence
+  hal_bit_t* fault;          ///< out: in fault
+  hal_s32_t* tool_in_spindle;///< out: what the changer knows is in the spindle
+  hal_bit_t* step_request;   ///< in: the executor asks for its next step (motion.digital-out-M)
+  hal_bit_t* abort;          ///< in: ON_ABORT_COMMAND raised it (motion.digital-out-K)
+  hal_bit_t* step_ready;     ///< out: a step is on the step pins (motion.digital-in-N)
+  hal_s32_t* step_kind;      ///< out: StepKind
+  hal_s32_t* step_axes;      ///< out: 3 = XY, 4 = Z, 7 = XYZ
+  hal_float_t* step_x;       ///< out: machine X of the move
+  hal_float_t* step_y;
+  hal_float_t* step_z;
+  hal_float_t* step_feed;    ///< out: units per minute
+  hal_s32_t* step_tool;      ///< out: tool of set-length, set-tool, done
+  hal_float_t* step_value;   ///< out: tool length of set-length
+  hal_bit_t* units_inch;     ///< out: the config is in inches (the executor uses G20)
+};
+
+}  // namespace fatc::linuxcnc

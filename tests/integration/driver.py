@@ -1,0 +1,153 @@
+#!/usr/bin/python3
+"""[DISPLAY]DISPLAY of the integration runs: brings the simulated machine up,
+runs each scenario's G-code, samples what LinuxCNC reports (position, tool in
+spindle, HAL pins) and writes it all to FATC_RESULTS as JSON. LinuxCNC shuts
+down when this exits."""
+import json
+import os
+import sys
+import time
+
+import hal
+import linuxcnc
+
+PINS = ["fixed_atc_probe.chuck", "fixed_atc_probe.state", "fixed_atc_probe.fault",
+        "fixed_atc_probe.busy", "fixed_atc_probe.tool-in-spindle", "fixed_atc_probe.step-ready",
+        "fixed_atc_probe.step-request", "iocontrol.0.tool-prepare", "iocontrol.0.tool-prepared",
+        "iocontrol.0.tool-change", "iocontrol.0.tool-changed", "iocontrol.0.tool-number",
+        "motion.probe-input"]
+
+stat = linuxcnc.stat()
+command = linuxcnc.command()
+errors = linuxcnc.error_channel()
+messages = []
+
+
+def drain_errors():
+    while True:
+        error = errors.poll()
+        if not error:
+            return
+        messages.append(error[1])
+
+
+def wait_for(condition, timeout, what):
+    """Waits on a condition LinuxCNC reports, generously: these machines are shared."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        stat.poll()
+        drain_errors()
+        if condition():
+            return
+        time.sleep(0.01)
+    raise TimeoutError("timed out waiting for " + what)
+
+
+def bring_up():
+    wait_for(lambda: stat.task_state in (linuxcnc.STATE_ESTOP, linuxcnc.STATE_ESTOP_RESET,
+                                         linuxcnc.STATE_ON, linuxcnc.STATE_OFF), 120, "task")
+    command.state(linuxcnc.STATE_ESTOP_RESET)
+    command.state(linuxcnc.STATE_ON)
+    wait_for(lambda: stat.task_state == linuxcnc.STATE_ON, 60, "machine on")
+    command.mode(linuxcnc.MODE_MANUAL)
+    command.wait_complete()
+    command.home(-1)
+    wait_for(lambda: all(stat.homed[i] for i in range(stat.joints)), 120, "homing")
+    wait_for(lambda: hal.get_value("fixed_atc_probe.state") == 1, 60, "fixed_atc_probe idle")
+
+
+def sample(start):
+    values = {pin: hal.get_value(pin) for pin in PINS}
+    values["t"] = time.monotonic() - start
+    values["pos"] = list(stat.actual_position[:3])
+    values["tool_in_spindle"] = stat.tool_in_spindle
+    values["interp"] = stat.interp_state
+    values["paused"] = stat.paused
+    return values
+
+
+def run_scenario(scenario):
+    result = {"name": scenario["name"], "samples": [], "messages": []}
+    first_message = len(messages)
+    for line in scenario.get("mdi", []):
+        command.mode(linuxcnc.MODE_MDI)
+        command.wait_complete()
+        command.mdi(line)
+        command.wait_complete(60)
+    command.mode(linuxcnc.MODE_AUTO)
+    command.wait_complete()
+    command.program_open(scenario["program"])
+    command.wait_complete()
+    command.auto(linuxcnc.AUTO_RUN, 0)
+    start = time.monotonic()
+    wait_for(lambda: stat.interp_state != linuxcnc.INTERP_IDLE or stat.exec_state != 0, 30,
+             "the program to start")
+    acted = set()
+    deadline = start + scenario.get("timeout", 300)
+    while time.monotonic() < deadline:
+        stat.poll()
+        drain_errors()
+        s = sample(start)
+        result["samples"].append(s)
+        for action in scenario.get("actions", []):
+            key = json.dumps(action)
+            if key in acted or not when(action, s):
+                continue
+            acted.add(key)
+            if action["do"] == "pause":
+                command.auto(linuxcnc.AUTO_PAUSE)
+                result["paused_at"] = s["t"]
+            elif action["do"] == "resume":
+                command.auto(linuxcnc.AUTO_RESUME)
+                result["resumed_at"] = s["t"]
+            elif action["do"] == "abort":
+                command.abort()
+                result["aborted_at"] = s["t"]
+        if stat.interp_state == linuxcnc.INTERP_IDLE and s["t"] > 0.5:
+            break
+        time.sleep(0.002)
+    time.sleep(0.3)
+    stat.poll()
+    drain_errors()
+    result["samples"].append(sample(start))
+    result["messages"] = messages[first_message:]
+    result["tool_table"] = {str(t.id): t.zoffset for t in stat.tool_table if t.id > 0}
+    result["g5x_offset"] = list(stat.g5x_offset[:3])
+    result["tool_offset"] = list(stat.tool_offset[:3])
+    result["gcodes"] = list(stat.gcodes)
+    result["duration"] = time.monotonic() - start
+    for line in scenario.get("after_mdi", []):
+        command.mode(linuxcnc.MODE_MDI)
+        command.wait_complete()
+        command.mdi(line)
+        command.wait_complete(60)
+        time.sleep(0.2)
+    return result
+
+
+def when(action, s):
+    """An action fires on a condition of the sample: e.g. chuck open, or a pin value."""
+    condition = action["when"]
+    if "pin" in condition:
+        return s[condition["pin"]] == condition["value"]
+    if "after_paused" in condition:
+        return s["paused"] and s["t"] > condition["after_paused"]
+    return False
+
+
+def main():
+    driver = hal.component("fatc-driver")  # hal.get_value needs a component of our own
+    driver.ready()
+    scenarios = json.load(open(os.environ["FATC_SCENARIOS"]))
+    results = {"scenarios": [], "error": None}
+    try:
+        bring_up()
+        for scenario in scenarios:
+            results["scenarios"].append(run_scenario(scenario))
+    except Exception as e:  # the checker reports it; LinuxCNC must still shut down
+        results["error"] = "%s: %s" % (type(e).__name__, e)
+    json.dump(results, open(os.environ["FATC_RESULTS"], "w"))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Starts the simulated machine (config/sim) headless with a display program
+# of our choice, as an ordinary user (rtapi_app refuses root).
+#   run_sim.sh WORKDIR DISPLAY_COMMAND   (env passes through to the display)
+set -euo pipefail
+root=$(cd "$(dirname "$0")/../.." && pwd)
+work=$1
+display=$2
+user=${FATC_SIM_USER:-fatc}
+id "$user" >/dev/null 2>&1 || useradd -m -s /bin/bash "$user"
+
+mkdir -p "$work"
+cp "$root/config/sim/sim.tbl" "$work/"
+cp "${FATC_CONFIG:-$root/config/config.json}" "$work/config.json"
+sed -e "s|^DISPLAY = .*|DISPLAY = $display|" \
+    -e "s|\.\./\.\./nc_files|$root/nc_files|g" \
+    -e "s|\.\./\.\./hal/|$root/hal/|" \
+    -e "s|^CONFIG = .*|CONFIG = $work/config.json|" \
+    -e "s|^HALFILE = touchoff_sensor.hal|HALFILE = $root/config/sim/touchoff_sensor.hal|" \
+    "$root/config/sim/fixed_atc_sim.ini" > "$work/sim.ini"
+if [ -n "${FATC_INI_EXTRA:-}" ]; then
+  sed -i "s|^RETURN_TO_XY = .*|$FATC_INI_EXTRA|" "$work/sim.ini"
+fi
+chown -R "$user" "$work"
+# Our binary must be on the PATH of the user LinuxCNC runs as.
+bin_dir=$(dirname "$(readlink -f "${FATC_BINARY:-$root/build/fixed_atc_probe}")")
+for d in "$bin_dir" "$root"; do
+  while [ "$d" != "/" ]; do chmod o+rx "$d" 2>/dev/null || true; d=$(dirname "$d"); done
+done
+cd "$work"
+exec runuser -u "$user" -- env PATH="$bin_dir:$PATH" HOME="$(getent passwd "$user" | cut -d: -f6)" \
+  FATC_SCENARIOS="${FATC_SCENARIOS:-}" FATC_RESULTS="${FATC_RESULTS:-}" \
+  linuxcnc "$work/sim.ini"
