@@ -76,7 +76,7 @@ def run_scenario(scenario):
         command.wait_complete(60)
     command.mode(linuxcnc.MODE_AUTO)
     command.wait_complete()
-    command.program_open(scenario["program"])
+    command.program_open(os.path.join(os.environ["FATC_ROOT"], scenario["program"]))
     command.wait_complete()
     command.auto(linuxcnc.AUTO_RUN, 0)
     start = time.monotonic()
@@ -91,7 +91,7 @@ def run_scenario(scenario):
         result["samples"].append(s)
         for action in scenario.get("actions", []):
             key = json.dumps(action)
-            if key in acted or not when(action, s):
+            if key in acted or not when(action, s, result):
                 continue
             acted.add(key)
             if action["do"] == "pause":
@@ -103,6 +103,11 @@ def run_scenario(scenario):
             elif action["do"] == "abort":
                 command.abort()
                 result["aborted_at"] = s["t"]
+            elif action["do"] == "snapshot_abort":
+                result["snapshot"] = {"gcodes": list(stat.gcodes),
+                                      "tool_offset": list(stat.tool_offset[:3]),
+                                      "program_units": stat.program_units}
+                command.abort()
         if stat.interp_state == linuxcnc.INTERP_IDLE and s["t"] > 0.5:
             break
         time.sleep(0.002)
@@ -111,27 +116,28 @@ def run_scenario(scenario):
     drain_errors()
     result["samples"].append(sample(start))
     result["messages"] = messages[first_message:]
+    result["start_pos"] = result["samples"][0]["pos"]
     result["tool_table"] = {str(t.id): t.zoffset for t in stat.tool_table if t.id > 0}
     result["g5x_offset"] = list(stat.g5x_offset[:3])
     result["tool_offset"] = list(stat.tool_offset[:3])
     result["gcodes"] = list(stat.gcodes)
     result["duration"] = time.monotonic() - start
-    for line in scenario.get("after_mdi", []):
-        command.mode(linuxcnc.MODE_MDI)
-        command.wait_complete()
-        command.mdi(line)
-        command.wait_complete(60)
-        time.sleep(0.2)
+    for step in scenario.get("after", []):
+        if step == "clear_fault":
+            # The operator has checked the spindle: it holds what LinuxCNC says.
+            hal.set_p("fixed_atc_probe.clear-fault", "1")
+            wait_for(lambda: hal.get_value("fixed_atc_probe.state") == 1, 30, "the fault to clear")
+            hal.set_p("fixed_atc_probe.clear-fault", "0")
     return result
 
 
-def when(action, s):
+def when(action, s, result):
     """An action fires on a condition of the sample: e.g. chuck open, or a pin value."""
     condition = action["when"]
     if "pin" in condition:
         return s[condition["pin"]] == condition["value"]
     if "after_paused" in condition:
-        return s["paused"] and s["t"] > condition["after_paused"]
+        return "paused_at" in result and s["t"] > result["paused_at"] + condition["after_paused"]
     return False
 
 

@@ -29,5 +29,5 @@ for d in "$bin_dir" "$root"; do
 done
 cd "$work"
 exec runuser -u "$user" -- env PATH="$bin_dir:$PATH" HOME="$(getent passwd "$user" | cut -d: -f6)" \
-  FATC_SCENARIOS="${FATC_SCENARIOS:-}" FATC_RESULTS="${FATC_RESULTS:-}" \
+  FATC_ROOT="$root" FATC_SCENARIOS="${FATC_SCENARIOS:-}" FATC_RESULTS="${FATC_RESULTS:-}" \
   linuxcnc "$work/sim.ini"

@@ -1,0 +1,217 @@
+#!/usr/bin/env python3
+"""Checks one scenario of an integration run against what LinuxCNC reported.
+   check.py RESULTS.json CONFIG.json SCENARIO
+Prints what it checked; exits 1 on the first failed expectation."""
+import json
+import math
+import sys
+
+TOLERANCE = 0.01  # mm: the sim follows its commands exactly
+
+
+def fail(message):
+    print("FAIL: " + message)
+    sys.exit(1)
+
+
+def ok(message):
+    print("ok: " + message)
+
+
+class Rack:
+    def __init__(self, config):
+        self.c = config
+        default = config.get("pocket_default", {})
+        self.pockets = {int(k): {**default, **v} for k, v in config["pockets"].items()}
+
+    def pocket(self, t):
+        p = self.pockets[t]
+        return [p["x"], p["y"], p["z"]]
+
+    def side(self, t):
+        p = self.pocket(t)
+        return [p[0] + self.c["pocket_side_offset"]["x"], p[1] + self.c["pocket_side_offset"]["y"], p[2]]
+
+    def above(self, t, key):
+        p = self.pocket(t)
+        return [p[0], p[1], p[2] + self.c[key]]
+
+    def safe(self):
+        s = self.c["safe"]
+        return [s["x"], s["y"], s["z"]]
+
+    def return_waypoints(self, t):
+        return [("side of pocket %d" % t, self.side(t)), ("pocket %d" % t, self.pocket(t)),
+                ("above-chuck %d" % t, self.above(t, "pocket_above_chuck_offset_z")),
+                ("above-clearance %d" % t, self.above(t, "pocket_above_clearance_offset_z")),
+                ("safe", self.safe())]
+
+    def retrieve_waypoints(self, t):
+        return [("above-clearance %d" % t, self.above(t, "pocket_above_clearance_offset_z")),
+                ("above-chuck %d" % t, self.above(t, "pocket_above_chuck_offset_z")),
+                ("pocket %d" % t, self.pocket(t)), ("side of pocket %d" % t, self.side(t)),
+                ("safe", self.safe())]
+
+
+def near(a, b):
+    return math.dist(a, b) < TOLERANCE
+
+
+def visits_in_order(samples, waypoints):
+    """Each waypoint must be reached, in order, by the sampled machine position."""
+    i = 0
+    for name, target in waypoints:
+        while i < len(samples) and not near(samples[i]["pos"], target):
+            i += 1
+        if i == len(samples):
+            fail("the machine never reached %s %s after the previous waypoint" % (name, target))
+    ok("visited %d waypoints in order at the config's positions" % len(waypoints))
+
+
+def rising(samples, pin):
+    count, last = 0, False
+    for s in samples:
+        if s[pin] and not last:
+            count += 1
+        last = s[pin]
+    return count
+
+
+def distinct(samples, key):
+    values = []
+    for s in samples:
+        if not values or values[-1] != s[key]:
+            values.append(s[key])
+    return values
+
+
+def chuck_only_at_pockets(samples, rack):
+    for s in samples:
+        if not s["fixed_atc_probe.chuck"]:
+            continue
+        x, y, z = s["pos"]
+        allowed = False
+        for t in rack.pockets:
+            p = rack.pocket(t)
+            top = p[2] + rack.c["pocket_above_chuck_offset_z"]
+            if abs(x - p[0]) < TOLERANCE and abs(y - p[1]) < TOLERANCE and p[2] - TOLERANCE <= z <= top + TOLERANCE:
+                allowed = True
+        if not allowed:
+            fail("chuck open at %s, not at a pocket or above its chuck (t=%.3f)" % (s["pos"], s["t"]))
+    ok("the chuck opened only at a pocket or above its chuck")
+
+
+def no_fault(r):
+    if any(s["fixed_atc_probe.fault"] for s in r["samples"]):
+        fail("fixed_atc_probe faulted: %s" % r["messages"])
+    ok("no fault")
+
+
+def handshake_complete(r):
+    last = r["samples"][-1]
+    for pin in ("iocontrol.0.tool-change", "iocontrol.0.tool-changed", "iocontrol.0.tool-prepare"):
+        if last[pin]:
+            fail("%s still high after the program" % pin)
+    if rising(r["samples"], "iocontrol.0.tool-changed") == 0:
+        fail("changed never answered tool-change")
+    ok("prepare/change handshakes completed (changed answered, all levels low at the end)")
+
+
+def check_changes(r, rack):
+    no_fault(r)
+    tools = distinct(r["samples"], "tool_in_spindle")
+    if tools[-4:] != [1, 3, 0, 5]:
+        fail("tool in spindle went %s, expected ... 1, 3, 0, 5" % tools)
+    ok("tool in spindle went %s (T3 M6 twice: no change)" % tools)
+    visits_in_order(r["samples"], [("safe", rack.safe())] + rack.retrieve_waypoints(1) +
+                    rack.return_waypoints(1) + rack.retrieve_waypoints(3) +
+                    rack.return_waypoints(3) + rack.retrieve_waypoints(5))
+    openings = rising(r["samples"], "fixed_atc_probe.chuck")
+    expected = 2 + 3 + 0 + 1 + 2  # retrieval: flush + open; return: open
+    if openings != expected:
+        fail("the chuck opened %d times, expected %d" % (openings, expected))
+    ok("the chuck opened %d times: nothing moved for the repeated T3" % openings)
+    chuck_only_at_pockets(r["samples"], rack)
+    handshake_complete(r)
+
+
+def check_modal(r, rack):
+    no_fault(r)
+    snap = r.get("snapshot")
+    if not snap:
+        fail("the program never reached its M0 after M6")
+    codes = set(snap["gcodes"])
+    for code, name in ((200, "G20"), (910, "G91"), (430, "G43")):
+        if code not in codes:
+            fail("%s not active after M6 (active: %s)" % (name, sorted(c for c in codes if c > 0)))
+    ok("G20, G91 and G43 active after M6")
+    length_in = 35.0 / 25.4  # tool 2's length in sim.tbl, in the program's inches
+    if abs(snap["tool_offset"][2] - length_in) > 1e-4 and abs(snap["tool_offset"][2] - 35.0) > 1e-3:
+        fail("tool length offset %.4f, expected tool 2's 35 mm" % snap["tool_offset"][2])
+    ok("G43 uses tool 2's length (%.4f)" % snap["tool_offset"][2])
+    if r["samples"][-1]["tool_in_spindle"] != 2:
+        fail("tool 2 not in the spindle")
+
+
+def check_no_pocket(r, rack):
+    if not any("T7" in m for m in r["messages"]):
+        fail("no message naming T7: %s" % r["messages"])
+    ok("message: %s" % [m for m in r["messages"] if "T7" in m][0])
+    start = r["start_pos"]
+    for s in r["samples"]:
+        if not near(s["pos"], start):
+            fail("the machine moved to %s" % s["pos"])
+    ok("nothing moved")
+
+
+def check_feed_hold(r, rack):
+    no_fault(r)
+    if "paused_at" not in r or "resumed_at" not in r:
+        fail("the feed hold was not applied")
+    paused = [s for s in r["samples"] if r["paused_at"] + 0.2 < s["t"] < r["resumed_at"]]
+    if paused and math.dist(paused[0]["pos"], paused[-1]["pos"]) > TOLERANCE:
+        fail("the machine moved during the feed hold")
+    ok("held %.1f s during the sequence" % (r["resumed_at"] - r["paused_at"]))
+    if r["samples"][-1]["tool_in_spindle"] != 4:
+        fail("tool 4 not in the spindle after resume")
+    ok("the change completed after resume: T4 in the spindle")
+
+
+def check_abort(r, rack):
+    last = r["samples"][-1]
+    if "aborted_at" not in r:
+        fail("the program was not aborted")
+    if not last["fixed_atc_probe.fault"] or last["fixed_atc_probe.busy"] or last["fixed_atc_probe.chuck"]:
+        fail("after abort: fault=%s busy=%s chuck=%s" % (last["fixed_atc_probe.fault"],
+             last["fixed_atc_probe.busy"], last["fixed_atc_probe.chuck"]))
+    ok("after abort: fault set, not busy, chuck closed")
+
+
+def check_after_abort(r, rack):
+    if not any("T1" in m for m in r["messages"]):
+        fail("M6 was not refused with a message while faulted: %s" % r["messages"])
+    ok("M6 refused while faulted: %s" % r["messages"][0])
+    if any(s["pos"] != r["start_pos"] for s in r["samples"]):
+        fail("the machine moved while faulted")
+
+
+def check_after_clear(r, rack):
+    no_fault(r)
+    if r["samples"][-1]["tool_in_spindle"] != 1:
+        fail("after clearing the fault, M6 T1 did not complete")
+    ok("after clearing the fault, M6 T1 completed")
+
+
+def main():
+    results = json.load(open(sys.argv[1]))
+    rack = Rack(json.load(open(sys.argv[2])))
+    name = sys.argv[3]
+    scenario = next((s for s in results["scenarios"] if s["name"] == name), None)
+    if scenario is None:
+        fail("scenario %s did not run: %s" % (name, results["error"]))
+    globals()["check_" + name](scenario, rack)
+    print("%s: %.1f s, %d samples" % (name, scenario["duration"], len(scenario["samples"])))
+
+
+if __name__ == "__main__":
+    main()
