@@ -10,6 +10,8 @@ user=${FATC_SIM_USER:-fatc}
 id "$user" >/dev/null 2>&1 || useradd -m -s /bin/bash "$user"
 
 mkdir -p "$work"
+# Each run starts as a fresh machine: LinuxCNC starts with an empty spindle.
+rm -f "$work/fixed_atc_state.json" "$work/results.json"
 cp "$root/config/sim/sim.tbl" "$work/"
 cp "${FATC_CONFIG:-$root/config/config.json}" "$work/config.json"
 sed -e "s|^DISPLAY = .*|DISPLAY = $display|" \
