@@ -4,6 +4,9 @@
 
 #include <chrono>
 #include <csignal>
+#include <cstdlib>
+#include <memory>
+#include <optional>
 #include <iostream>
 #include <string>
 #include <thread>
@@ -14,6 +17,7 @@
 #include "io/files.hpp"
 #include "linuxcnc/component.hpp"
 #include "linuxcnc/hal_pins.hpp"
+#include "linuxcnc/nml_status.hpp"
 
 namespace {
 
@@ -37,6 +41,15 @@ int run_component(const fatc::io::Options& options) {
   const auto tools = fatc::io::load_state_file(state_path, *config.config);
   if (!tools.state) return fail(tools.error);
 
+  // Under LinuxCNC (INI_FILE_NAME set) the status channel must open; under a
+  // bare halrun there is none, and aborts are only seen on the abort pin.
+  std::unique_ptr<fatc::linuxcnc::NmlStatus> nml;
+  if (const char* ini = std::getenv("INI_FILE_NAME")) {
+    std::string error;
+    nml = fatc::linuxcnc::NmlStatus::open(fatc::linuxcnc::nml_file_of(ini), error);
+    if (!nml) return fail(error);
+  }
+
   int id = -1;
   fatc::linuxcnc::HalPins* pins = nullptr;
   try {
@@ -51,12 +64,16 @@ int run_component(const fatc::io::Options& options) {
   fatc::linuxcnc::Component component(pins, *config.config, state_path);
   fatc::Changer changer(*config.config, component, *tools.state);
   component.attach(&changer);
-  component.poll(std::chrono::steady_clock::now());
+  auto interpreter_idle = [&]() -> std::optional<bool> {
+    if (!nml || !nml->poll()) return std::nullopt;
+    return nml->interpreter_idle();
+  };
+  component.poll(std::chrono::steady_clock::now(), interpreter_idle());
   hal_ready(id);
 
   try {
     while (!stop_requested) {
-      component.poll(std::chrono::steady_clock::now());
+      component.poll(std::chrono::steady_clock::now(), interpreter_idle());
       // Quick turns while a handshake is open; otherwise sleep, don't spin.
       std::this_thread::sleep_for(std::chrono::milliseconds(component.active() ? 1 : 20));
     }

@@ -7,6 +7,12 @@
 #include "io/files.hpp"
 
 namespace fatc::linuxcnc {
+namespace {
+
+/// step-kind 0: nothing to do, ask again (resynchronises after an abort).
+constexpr StepKind kResync = static_cast<StepKind>(0);
+
+}  // namespace
 
 Component::Component(HalPins* pins, const Config& config, std::string state_path)
     : pins_(pins), state_path_(std::move(state_path)) {
@@ -21,7 +27,7 @@ bool Component::active() const {
           changer_->status().phase != Phase::not_ready && changer_->status().phase != Phase::fault);
 }
 
-void Component::poll(Clock::time_point now) {
+void Component::poll(Clock::time_point now, std::optional<bool> interpreter_idle) {
   now_ = now;
   const bool ready = *pins_->machine_on && *pins_->all_homed;
   if (machine_ready_ != ready) {
@@ -30,17 +36,10 @@ void Component::poll(Clock::time_point now) {
   }
   changer_->spindle_stopped(*pins_->spindle_stopped);
 
-  const bool abort = *pins_->abort;
-  if (abort && !last_abort_) {
-    // The executor is gone with the program; nothing it was doing will finish.
-    executing_.reset();
-    offered_.reset();
-    pending_.reset();
-    *pins_->step_ready = 0;
-    changer_->abort("LinuxCNC aborted the program");
-    pending_.reset();
-  }
-  last_abort_ = abort;
+  const bool abort_pin = *pins_->abort;
+  if (abort_pin && !last_abort_) abort("the abort pin was raised");
+  last_abort_ = abort_pin;
+  watch_for_abort(interpreter_idle);
 
   const bool clear = *pins_->clear_fault;
   if (clear && !last_clear_) changer_->clear_fault(*pins_->linuxcnc_tool);
@@ -57,6 +56,40 @@ void Component::poll(Clock::time_point now) {
   // remap raises tool-change only once the sequence is done.
   *pins_->changed = *pins_->tool_change && changer_->status().phase == Phase::idle;
   show_status();
+}
+
+void Component::watch_for_abort(std::optional<bool> interpreter_idle) {
+  // The executor runs inside the interpreter: an idle interpreter while a
+  // sequence still expects steps means the program (or MDI) was aborted.
+  const Status& status = changer_->status();
+  const bool sequence_runs = (status.phase == Phase::changing || status.phase == Phase::loading ||
+                              status.phase == Phase::unloading) &&
+                             status.awaiting != Awaiting::operator_choice;
+  if (!interpreter_idle || !*interpreter_idle || !sequence_runs) {
+    idle_since_.reset();
+    return;
+  }
+  if (!idle_since_) idle_since_ = now_;
+  if (now_ - *idle_since_ >= std::chrono::milliseconds(200)) {
+    idle_since_.reset();
+    abort("LinuxCNC aborted the program during the sequence");
+  }
+}
+
+void Component::abort(const std::string& reason) {
+  // The executor is gone with the program; nothing it was doing will finish.
+  changer_->abort(reason);
+  executing_.reset();
+  offered_.reset();
+  pending_.reset();
+  *pins_->step_ready = 0;
+  if (*pins_->step_request) {
+    // It died asking for a step, and motion keeps that output high. The next
+    // executor takes this empty step, drops the request and asks afresh.
+    Step resync;
+    resync.kind = kResync;
+    offer(resync);
+  }
 }
 
 void Component::serve_executor() {
@@ -77,7 +110,8 @@ void Component::serve_executor() {
   if (!request && last_request_ && offered_) {
     *pins_->step_ready = 0;
     const StepKind kind = offered_->kind;
-    if (kind != StepKind::done && kind != StepKind::fail && kind != StepKind::wait_operator) {
+    if (kind != StepKind::done && kind != StepKind::fail && kind != StepKind::wait_operator &&
+        kind != kResync) {
       executing_ = offered_;
     }
     offered_.reset();

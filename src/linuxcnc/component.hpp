@@ -20,7 +20,8 @@ class Component : public Ports {
 
   Component(HalPins* pins, const Config& config, std::string state_path);
   void attach(Changer* changer) { changer_ = changer; }
-  void poll(Clock::time_point now);
+  /// `interpreter_idle`: LinuxCNC's interpreter state, when NML is available.
+  void poll(Clock::time_point now, std::optional<bool> interpreter_idle);
   /// Whether the next poll should come soon: a sequence runs or a handshake is open.
   bool active() const;
 
@@ -34,6 +35,8 @@ class Component : public Ports {
 
  private:
   void serve_executor();
+  void watch_for_abort(std::optional<bool> interpreter_idle);
+  void abort(const std::string& reason);
   void offer(const Step& step);
   void show_status();
 
@@ -49,6 +52,7 @@ class Component : public Ports {
   bool last_request_ = false;
   bool last_abort_ = false;
   bool last_clear_ = false;
+  std::optional<Clock::time_point> idle_since_;  ///< interpreter idle while a sequence runs
 };
 
 }  // namespace fatc::linuxcnc

@@ -25,7 +25,7 @@ struct HalPins {
   hal_bit_t* fault;          ///< out: in fault
   hal_s32_t* tool_in_spindle;///< out: what the changer knows is in the spindle
   hal_bit_t* step_request;   ///< in: the executor asks for its next step (motion.digital-out-M)
-  hal_bit_t* abort;          ///< in: ON_ABORT_COMMAND raised it (motion.digital-out-K)
+  hal_bit_t* abort;          ///< in: a rising edge aborts the running sequence
   hal_bit_t* step_ready;     ///< out: a step is on the step pins (motion.digital-in-N)
   hal_s32_t* step_kind;      ///< out: StepKind
   hal_s32_t* step_axes;      ///< out: 3 = XY, 4 = Z, 7 = XYZ

@@ -149,6 +149,11 @@ def check_modal(r, rack):
     if abs(snap["tool_offset"][2] - length_in) > 1e-4 and abs(snap["tool_offset"][2] - 35.0) > 1e-3:
         fail("tool length offset %.4f, expected tool 2's 35 mm" % snap["tool_offset"][2])
     ok("G43 uses tool 2's length (%.4f)" % snap["tool_offset"][2])
+    safe = rack.safe()
+    expected = [safe[0] + 25.4, safe[1] + 12.7, safe[2]]
+    if not near(snap["pos"], expected):
+        fail("after M6, G0 X1 Y0.5 went to %s, expected %s (inches, relative)" % (snap["pos"], expected))
+    ok("the program's next move was relative and in inches: %s" % snap["pos"])
     if r["samples"][-1]["tool_in_spindle"] != 2:
         fail("tool 2 not in the spindle")
 

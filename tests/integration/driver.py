@@ -106,11 +106,18 @@ def run_scenario(scenario):
             elif action["do"] == "snapshot_abort":
                 result["snapshot"] = {"gcodes": list(stat.gcodes),
                                       "tool_offset": list(stat.tool_offset[:3]),
-                                      "program_units": stat.program_units}
+                                      "program_units": stat.program_units,
+                                      "pos": list(stat.actual_position[:3])}
                 command.abort()
         if stat.interp_state == linuxcnc.INTERP_IDLE and s["t"] > 0.5:
             break
         time.sleep(0.002)
+    if scenario.get("settle_pin"):
+        pin, value = scenario["settle_pin"]
+        try:
+            wait_for(lambda: hal.get_value(pin) == value, 10, pin)
+        except TimeoutError:
+            pass  # the checker reports what it finds
     time.sleep(0.3)
     stat.poll()
     drain_errors()
@@ -136,6 +143,8 @@ def when(action, s, result):
     condition = action["when"]
     if "pin" in condition:
         return s[condition["pin"]] == condition["value"]
+    if "program_paused" in condition:
+        return s["paused"]
     if "after_paused" in condition:
         return "paused_at" in result and s["t"] > result["paused_at"] + condition["after_paused"]
     return False

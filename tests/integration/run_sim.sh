@@ -32,4 +32,4 @@ done
 cd "$work"
 exec runuser -u "$user" -- env PATH="$bin_dir:$PATH" HOME="$(getent passwd "$user" | cut -d: -f6)" \
   FATC_ROOT="$root" FATC_SCENARIOS="${FATC_SCENARIOS:-}" FATC_RESULTS="${FATC_RESULTS:-}" \
-  linuxcnc "$work/sim.ini"
+  RUNTESTS=1 linuxcnc "$work/sim.ini"
