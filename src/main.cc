@@ -17,7 +17,7 @@
 #include "io/files.hpp"
 #include "linuxcnc/component.hpp"
 #include "linuxcnc/hal_pins.hpp"
-#include "linuxcnc/nml_status.hpp"
+#include "linuxcnc/nml_link.hpp"
 
 namespace {
 
@@ -42,11 +42,12 @@ int run_component(const fatc::io::Options& options) {
   if (!tools.state) return fail(tools.error);
 
   // Under LinuxCNC (INI_FILE_NAME set) the status channel must open; under a
-  // bare halrun there is none, and aborts are only seen on the abort pin.
-  std::unique_ptr<fatc::linuxcnc::NmlStatus> nml;
+  // bare halrun there is none: aborts are only seen on the abort pin and
+  // messages only on stderr.
+  std::unique_ptr<fatc::linuxcnc::NmlLink> nml;
   if (const char* ini = std::getenv("INI_FILE_NAME")) {
     std::string error;
-    nml = fatc::linuxcnc::NmlStatus::open(fatc::linuxcnc::nml_file_of(ini), error);
+    nml = fatc::linuxcnc::NmlLink::open(fatc::linuxcnc::nml_file_of(ini), error);
     if (!nml) return fail(error);
   }
 
@@ -61,7 +62,7 @@ int run_component(const fatc::io::Options& options) {
   std::signal(SIGTERM, request_stop);
   std::signal(SIGINT, request_stop);
 
-  fatc::linuxcnc::Component component(pins, *config.config, state_path);
+  fatc::linuxcnc::Component component(pins, *config.config, state_path, nml.get());
   fatc::Changer changer(*config.config, component, *tools.state);
   component.attach(&changer);
   auto interpreter_idle = [&]() -> std::optional<bool> {

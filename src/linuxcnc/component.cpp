@@ -5,6 +5,7 @@
 
 #include "hal_pins_detail.hpp"
 #include "io/files.hpp"
+#include "nml_link.hpp"
 
 namespace fatc::linuxcnc {
 namespace {
@@ -14,8 +15,8 @@ constexpr StepKind kResync = static_cast<StepKind>(0);
 
 }  // namespace
 
-Component::Component(HalPins* pins, const Config& config, std::string state_path)
-    : pins_(pins), state_path_(std::move(state_path)) {
+Component::Component(HalPins* pins, const Config& config, std::string state_path, NmlLink* nml)
+    : pins_(pins), nml_(nml), state_path_(std::move(state_path)) {
   *pins_->units_inch = config.units == Units::inch;
   *pins_->step_ready = 0;
   *pins_->chuck = 0;
@@ -166,6 +167,7 @@ void Component::cancel_timer() { deadline_.reset(); }
 void Component::tell(MessageKind kind, const std::string& text) {
   const char* tag = kind == MessageKind::error ? "error" : kind == MessageKind::prompt ? "operator" : "info";
   std::cerr << "fixed_atc_probe: " << tag << ": " << text << std::endl;
+  if (nml_) nml_->tell(kind, text);
 }
 
 void Component::save(const ToolState& state) { io::save_state_file(state_path_, state); }

@@ -10,6 +10,7 @@
 namespace fatc::linuxcnc {
 
 struct HalPins;
+class NmlLink;
 
 /// The adapter between HAL and the changer: turns pin edges, the step
 /// executor's handshake and the clock into events, and steps, chuck and
@@ -18,7 +19,8 @@ class Component : public Ports {
  public:
   using Clock = std::chrono::steady_clock;
 
-  Component(HalPins* pins, const Config& config, std::string state_path);
+  /// `nml` may be null (no LinuxCNC task, as under halrun).
+  Component(HalPins* pins, const Config& config, std::string state_path, NmlLink* nml);
   void attach(Changer* changer) { changer_ = changer; }
   /// `interpreter_idle`: LinuxCNC's interpreter state, when NML is available.
   void poll(Clock::time_point now, std::optional<bool> interpreter_idle);
@@ -41,6 +43,7 @@ class Component : public Ports {
   void show_status();
 
   HalPins* pins_;
+  NmlLink* nml_;
   std::string state_path_;
   Changer* changer_ = nullptr;
   Clock::time_point now_;

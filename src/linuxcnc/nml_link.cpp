@@ -1,0 +1,72 @@
+#include "nml_link.hpp"
+
+#include <cstring>
+#include <emc.hh>
+#include <emc_nml.hh>
+#include <rcs_print.hh>
+#include <stat_msg.hh>
+
+#include "io/ini.hpp"
+
+namespace fatc::linuxcnc {
+
+struct NmlLink::Channels {
+  std::unique_ptr<RCS_STAT_CHANNEL> status;
+  std::unique_ptr<RCS_CMD_CHANNEL> command;
+};
+
+std::unique_ptr<NmlLink> NmlLink::open(const std::string& nml_file, std::string& error) {
+  // NML prints its own diagnostics; our one line says what failed.
+  set_rcs_print_destination(RCS_PRINT_TO_NULL);
+  auto channels = std::make_unique<Channels>();
+  channels->status = std::make_unique<RCS_STAT_CHANNEL>(emcFormat, "emcStatus", "xemc", nml_file.c_str());
+  channels->command = std::make_unique<RCS_CMD_CHANNEL>(emcFormat, "emcCommand", "xemc", nml_file.c_str());
+  if (!channels->status->valid() || !channels->command->valid()) {
+    error = "cannot reach LinuxCNC through " + nml_file + ": is LinuxCNC running?";
+    return nullptr;
+  }
+  auto link = std::unique_ptr<NmlLink>(new NmlLink(std::move(channels)));
+  link->poll();
+  return link;
+}
+
+NmlLink::NmlLink(std::unique_ptr<Channels> channels) : channels_(std::move(channels)) {}
+NmlLink::~NmlLink() = default;
+
+bool NmlLink::poll() {
+  if (!channels_->status->valid()) return false;
+  if (channels_->status->peek() == EMC_STAT_TYPE) {
+    const auto* stat = static_cast<EMC_STAT*>(channels_->status->get_address());
+    interpreter_idle_ = stat->task.interpState == EMC_TASK_INTERP_IDLE;
+    serial_ = std::max(serial_, stat->echo_serial_number);
+  }
+  return true;
+}
+
+void NmlLink::tell(MessageKind kind, const std::string& text) {
+  const std::string line = "fixed_atc_probe: " + text;
+  if (kind == MessageKind::error) {
+    EMC_OPERATOR_ERROR message;
+    std::strncpy(message.error, line.c_str(), sizeof message.error - 1);
+    message.error[sizeof message.error - 1] = '\0';
+    message.serial_number = ++serial_;
+    channels_->command->write(&message);
+  } else {
+    EMC_OPERATOR_DISPLAY message;
+    std::strncpy(message.display, line.c_str(), sizeof message.display - 1);
+    message.display[sizeof message.display - 1] = '\0';
+    message.serial_number = ++serial_;
+    channels_->command->write(&message);
+  }
+}
+
+std::string nml_file_of(const std::string& ini_path) {
+  std::string error;
+  const auto ini = io::IniFile::read(ini_path, error);
+  if (ini) {
+    if (const auto file = ini->get("EMC", "NML_FILE")) return *file;
+  }
+  return "/usr/share/linuxcnc/linuxcnc.nml";
+}
+
+}  // namespace fatc::linuxcnc

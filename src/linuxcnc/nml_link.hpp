@@ -1,0 +1,36 @@
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "core/ports.hpp"
+
+namespace fatc::linuxcnc {
+
+/// LinuxCNC's NML channels: status (is the interpreter idle, which is how the
+/// component learns that a program was aborted) and commands (operator
+/// messages, which every GUI shows).
+class NmlLink {
+ public:
+  /// Connects through `nml_file`; nullptr and `error` on failure.
+  static std::unique_ptr<NmlLink> open(const std::string& nml_file, std::string& error);
+  ~NmlLink();
+
+  /// Reads the newest status; false when the channel fails.
+  bool poll();
+  bool interpreter_idle() const { return interpreter_idle_; }
+  /// An operator message: errors as EMC_OPERATOR_ERROR, the rest as EMC_OPERATOR_DISPLAY.
+  void tell(MessageKind kind, const std::string& text);
+
+ private:
+  struct Channels;
+  explicit NmlLink(std::unique_ptr<Channels> channels);
+  std::unique_ptr<Channels> channels_;
+  bool interpreter_idle_ = true;
+  int serial_ = 0;
+};
+
+/// The NML file LinuxCNC uses: [EMC]NML_FILE of the INI, or the default.
+std::string nml_file_of(const std::string& ini_path);
+
+}  // namespace fatc::linuxcnc
