@@ -59,6 +59,7 @@ HalPins* create_pins(const std::string& name, int& id) {
   make(id, HAL_OUT, &p->step_tool, n, "step-tool");
   make(id, HAL_OUT, &p->step_value, n, "step-value");
   make(id, HAL_OUT, &p->units_inch, n, "units-inch");
+  make(id, HAL_IN, &p->return_to_xy, n, "return-to-xy");
   return p;
 }
 

@@ -35,6 +35,7 @@ struct HalPins {
   hal_float_t* step_feed;    ///< out: units per minute
   hal_s32_t* step_tool;      ///< out: tool of set-length, set-tool, done
   hal_float_t* step_value;   ///< out: tool length of set-length
+  hal_bit_t* return_to_xy;   ///< in: after M6, go back over the XY where it was called
   hal_bit_t* units_inch;     ///< out: the config is in inches (the executor uses G20)
 };
 

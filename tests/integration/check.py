@@ -208,6 +208,17 @@ def check_after_clear(r, rack):
     ok("after clearing the fault, M6 T1 completed")
 
 
+def check_return_to_xy(r, rack):
+    no_fault(r)
+    last = r["samples"][-1]
+    expected = [30.0, 40.0, rack.safe()[2]]
+    if not near(last["pos"], expected):
+        fail("after M6 the machine stands at %s, expected over X30 Y40 at safe Z %s" % (last["pos"], expected))
+    ok("back over X30 Y40 where M6 was called, at safe Z")
+    if last["tool_in_spindle"] != 3:
+        fail("tool 3 not in the spindle")
+
+
 def main():
     results = json.load(open(sys.argv[1]))
     rack = Rack(json.load(open(sys.argv[2])))

@@ -69,6 +69,8 @@ def sample(start):
 def run_scenario(scenario):
     result = {"name": scenario["name"], "samples": [], "messages": []}
     first_message = len(messages)
+    for pin, value in scenario.get("set_pins", {}).items():
+        hal.set_p(pin, value)
     for line in scenario.get("mdi", []):
         command.mode(linuxcnc.MODE_MDI)
         command.wait_complete()
@@ -129,6 +131,8 @@ def run_scenario(scenario):
     result["tool_offset"] = list(stat.tool_offset[:3])
     result["gcodes"] = list(stat.gcodes)
     result["duration"] = time.monotonic() - start
+    for pin in scenario.get("set_pins", {}):
+        hal.set_p(pin, "0")
     for step in scenario.get("after", []):
         if step == "clear_fault":
             # The operator has checked the spindle: it holds what LinuxCNC says.
