@@ -1,9 +1,19 @@
 #!/usr/bin/env bash
-# Installs, builds and shows the changer on the sample config: the rack check
-# and the plan of a tool change.
+# Installs what is missing, builds, then runs nc_files/demo.ngc on the
+# simulated mill (config/sim) headless on the real LinuxCNC and reports each
+# tool change. --gui opens the same machine in AXIS instead (needs a display).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/setup.sh
-build/fixed_atc_probe --check --config config/config.json
-echo
-build/fixed_atc_probe --plan --config config/config.json --from 2 --to 5
+scripts/setup.sh >/dev/null
+build/fixed_atc_probe --check --config config/config.json --ini config/sim/fixed_atc_sim.ini | tail -1
+work=$(mktemp -d /tmp/fixed_atc_demo.XXXXXX)
+chmod 755 "$work"
+if [ "${1:-}" = "--gui" ]; then
+  exec tests/integration/run_sim.sh "$work" axis
+fi
+printf '[{"name": "demo", "program": "nc_files/demo.ngc", "timeout": 600}]\n' > "$work/scenarios.json"
+chmod 644 "$work/scenarios.json"
+FATC_SCENARIOS="$work/scenarios.json" FATC_RESULTS="$work/run/results.json" \
+  tests/integration/run_sim.sh "$work/run" "$PWD/tests/integration/driver.py" > "$work/linuxcnc.log" 2>&1 || {
+  echo "LinuxCNC failed; its output is in $work/linuxcnc.log"; exit 1; }
+python3 scripts/demo_report.py "$work/run/results.json"

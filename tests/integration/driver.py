@@ -15,7 +15,7 @@ PINS = ["fixed_atc_probe.chuck", "fixed_atc_probe.state", "fixed_atc_probe.fault
         "fixed_atc_probe.busy", "fixed_atc_probe.tool-in-spindle", "fixed_atc_probe.step-ready",
         "fixed_atc_probe.step-request", "iocontrol.0.tool-prepare", "iocontrol.0.tool-prepared",
         "iocontrol.0.tool-change", "iocontrol.0.tool-changed", "iocontrol.0.tool-number",
-        "motion.probe-input"]
+        "motion.probe-input", "spindle.0.on"]
 
 stat = linuxcnc.stat()
 command = linuxcnc.command()
@@ -60,6 +60,7 @@ def sample(start):
     values = {pin: hal.get_value(pin) for pin in PINS}
     values["t"] = time.monotonic() - start
     values["pos"] = list(stat.actual_position[:3])
+    values["cmd"] = list(stat.position[:3])
     values["tool_in_spindle"] = stat.tool_in_spindle
     values["interp"] = stat.interp_state
     values["paused"] = stat.paused

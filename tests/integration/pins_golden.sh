@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Locks the HAL interface: `loadusr -W fixed_atc_probe; show pin` under halrun
+# must match tests/integration/pins.golden. Also: a bad config makes loadusr -W
+# fail at once with one line naming the problem, not hang.
+#   pins_golden.sh BINARY
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+root=$(cd "$here/../.." && pwd)
+binary=$(readlink -f "$1")
+user=${FATC_SIM_USER:-fatc}
+id "$user" >/dev/null 2>&1 || useradd -m -s /bin/bash "$user"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+chmod 755 "$work"
+for d in "$(dirname "$binary")" "$root"; do
+  while [ "$d" != "/" ]; do chmod o+rx "$d" 2>/dev/null || true; d=$(dirname "$d"); done
+done
+
+cat > "$work/pins.hal" <<HAL
+loadusr -W $binary --config $root/config/config.json --state $work/state.json
+show pin fixed_atc_probe
+HAL
+runuser -u "$user" -- halrun -f "$work/pins.hal" > "$work/out.txt" 2>&1 || { cat "$work/out.txt"; exit 1; }
+# The owner id differs from run to run; the rest is the interface.
+grep 'fixed_atc_probe\.' "$work/out.txt" | awk '{print $2, $3, $4, $5}' > "$work/pins.txt"
+if ! diff -u "$here/pins.golden" "$work/pins.txt"; then
+  echo "FAIL: the pin list changed; if on purpose, update tests/integration/pins.golden, the README and the man page"
+  exit 1
+fi
+echo "ok: $(wc -l < "$work/pins.txt") pins as in pins.golden"
+
+printf '{"safe": 1}\n' > "$work/bad.json"
+chmod 644 "$work/bad.json"
+cat > "$work/bad.hal" <<HAL
+loadusr -W $binary --config $work/bad.json --state $work/state.json
+HAL
+start=$(date +%s)
+if runuser -u "$user" -- timeout 60 halrun -f "$work/bad.hal" > "$work/bad.txt" 2>&1; then
+  echo "FAIL: halrun accepted a bad config"; cat "$work/bad.txt"; exit 1
+fi
+if ! grep -q "fixed_atc_probe: $work/bad.json: safe: expected an object, got 1" "$work/bad.txt"; then
+  echo "FAIL: no clear line about the bad config:"; cat "$work/bad.txt"; exit 1
+fi
+echo "ok: a bad config fails loadusr -W in $(( $(date +%s) - start )) s with: $(grep -m1 'safe:' "$work/bad.txt")"
