@@ -73,8 +73,8 @@ void Changer::unload(int tool) {
 
 void Changer::in_position() { engine_->fsm.process_event(InPosition{}); }
 
-void Changer::probe_result(bool touched, double machine_z) {
-  engine_->fsm.process_event(ProbeResult{touched, machine_z});
+void Changer::probe_result(bool touched, double machine_z, bool tripped_before) {
+  engine_->fsm.process_event(ProbeResult{touched, machine_z, tripped_before});
 }
 
 void Changer::timer_elapsed() {

@@ -29,7 +29,7 @@ class Changer {
   void load(int tool);
   void unload(int tool);
   void in_position();
-  void probe_result(bool touched, double machine_z);
+  void probe_result(bool touched, double machine_z, bool tripped_before = false);
   void timer_elapsed();
   /// Level: whether the spindle stands still now.
   void spindle_stopped(bool stopped);

@@ -26,6 +26,7 @@ struct InPosition {};
 struct ProbeResult {
   bool touched = false;
   double z = 0.0;
+  bool tripped_before = false;  ///< the sensor was already tripped: nothing moved
 };
 /// The timer armed by Ports::start_timer ran out.
 struct TimerElapsed {};

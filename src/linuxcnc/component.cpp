@@ -40,7 +40,9 @@ void Component::poll(Clock::time_point now, std::optional<bool> interpreter_idle
   const bool abort_pin = *pins_->abort;
   if (abort_pin && !last_abort_) abort("the abort pin was raised");
   last_abort_ = abort_pin;
+  interpreter_idle_ = interpreter_idle;
   watch_for_abort(interpreter_idle);
+  serve_operator();
 
   const bool clear = *pins_->clear_fault;
   if (clear && !last_clear_) changer_->clear_fault(*pins_->linuxcnc_tool);
@@ -53,6 +55,7 @@ void Component::poll(Clock::time_point now, std::optional<bool> interpreter_idle
 
   *pins_->prepared = *pins_->tool_prepare;
   serve_executor();
+  start_executor_if_needed();
   // Level handshake, as hal_manualtoolchange: the builtin M6 at the end of the
   // remap raises tool-change only once the sequence is done.
   *pins_->changed = *pins_->tool_change && changer_->status().phase == Phase::idle;
@@ -60,13 +63,12 @@ void Component::poll(Clock::time_point now, std::optional<bool> interpreter_idle
 }
 
 void Component::watch_for_abort(std::optional<bool> interpreter_idle) {
-  // The executor runs inside the interpreter: an idle interpreter while a
-  // sequence still expects steps means the program (or MDI) was aborted.
+  // The executor runs inside the interpreter: an idle interpreter while an
+  // executor still expects steps means the program (or MDI) was aborted.
   const Status& status = changer_->status();
-  const bool sequence_runs = (status.phase == Phase::changing || status.phase == Phase::loading ||
-                              status.phase == Phase::unloading) &&
-                             status.awaiting != Awaiting::operator_choice;
-  if (!interpreter_idle || !*interpreter_idle || !sequence_runs) {
+  const bool sequence_runs = status.phase == Phase::changing || status.phase == Phase::loading ||
+                             status.phase == Phase::unloading;
+  if (!interpreter_idle || !*interpreter_idle || !sequence_runs || !executor_attached_) {
     idle_since_.reset();
     return;
   }
@@ -84,6 +86,7 @@ void Component::abort(const std::string& reason) {
   offered_.reset();
   pending_.reset();
   *pins_->step_ready = 0;
+  executor_attached_ = false;
   if (*pins_->step_request) {
     // It died asking for a step, and motion keeps that output high. The next
     // executor takes this empty step, drops the request and asks afresh.
@@ -93,18 +96,57 @@ void Component::abort(const std::string& reason) {
   }
 }
 
+void Component::serve_operator() {
+  auto rising = [](bool now, bool& last) {
+    const bool edge = now && !last;
+    last = now;
+    return edge;
+  };
+  const bool load = rising(*pins_->load, last_load_);
+  const bool unload = rising(*pins_->unload, last_unload_);
+  if (load || unload) {
+    // The operator flows run the executor over MDI: the machine must be free.
+    std::optional<std::string> why;
+    if (!nml_) why = "no connection to LinuxCNC's task (NML)";
+    else if (!interpreter_idle_ || !*interpreter_idle_) why = "a program or MDI command is running";
+    if (why && changer_->status().phase == Phase::idle) {
+      tell(MessageKind::error, std::string(load ? "load" : "unload") + " refused: " + *why);
+    } else {
+      load ? changer_->load(*pins_->tool_number) : changer_->unload(*pins_->tool_number);
+    }
+  }
+  if (rising(*pins_->continue_, last_continue_)) changer_->operator_continue();
+  if (rising(*pins_->cancel, last_cancel_)) changer_->operator_cancel();
+}
+
+void Component::start_executor_if_needed() {
+  // Operator flows start from an idle machine: a step waiting with no
+  // executor to take it means the executor must be run over MDI.
+  const Phase phase = changer_->status().phase;
+  if (!pending_ || executing_ || offered_ || *pins_->step_request || !nml_) return;
+  if (phase != Phase::loading && phase != Phase::unloading) return;
+  if (starting_until_ && now_ < *starting_until_) return;
+  if (!interpreter_idle_ || !*interpreter_idle_) return;
+  nml_->run_mdi("o<fixed_atc_probe_execute> call [0]");
+  starting_until_ = now_ + std::chrono::seconds(5);
+}
+
 void Component::serve_executor() {
   const bool request = *pins_->step_request;
   if (request && !last_request_) {
+    starting_until_.reset();
+    executor_attached_ = true;
     if (executing_) {
       const Step finished = *executing_;
       executing_.reset();
       if (finished.kind == StepKind::probe) {
-        changer_->probe_result(*pins_->probe, finished.target.z);
+        const double result = *pins_->probe_result;
+        changer_->probe_result(result > 0.5, *pins_->probe_z, result < -0.5);
       } else {
         changer_->in_position();
       }
-    } else if (!offered_) {
+    } else if (!offered_ && !pending_ && changer_->status().phase != Phase::loading &&
+               changer_->status().phase != Phase::unloading) {
       changer_->tool_change(*pins_->number);
     }
   }
@@ -114,6 +156,8 @@ void Component::serve_executor() {
     if (kind != StepKind::done && kind != StepKind::fail && kind != StepKind::wait_operator &&
         kind != kResync) {
       executing_ = offered_;
+    } else if (kind != kResync) {
+      executor_attached_ = false;  // it ends its run after this step
     }
     offered_.reset();
   }
@@ -145,6 +189,7 @@ void Component::show_status() {
   *pins_->busy = status.phase == Phase::changing || status.phase == Phase::loading ||
                  status.phase == Phase::unloading;
   *pins_->tool_in_spindle = changer_->tools().spindle;
+  *pins_->waiting_for_operator = status.awaiting == Awaiting::operator_choice;
 }
 
 void Component::publish(const Step& step) {
@@ -170,7 +215,13 @@ void Component::tell(MessageKind kind, const std::string& text) {
   if (nml_) nml_->tell(kind, text);
 }
 
-void Component::save(const ToolState& state) { io::save_state_file(state_path_, state); }
+void Component::save(const ToolState& state) {
+  io::save_state_file(state_path_, state);
+  for (const auto& [tool, length] : state.lengths) {
+    if (!last_lengths_.count(tool) || last_lengths_.at(tool) != length) *pins_->last_length = length;
+  }
+  last_lengths_ = state.lengths;
+}
 
 void Component::unexpected(const std::string& state, const std::string& event) {
   std::cerr << "fixed_atc_probe: internal error: event " << event << " in " << state << std::endl;

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <chrono>
+#include <map>
 #include <optional>
 #include <string>
 
@@ -21,7 +22,10 @@ class Component : public Ports {
 
   /// `nml` may be null (no LinuxCNC task, as under halrun).
   Component(HalPins* pins, const Config& config, std::string state_path, NmlLink* nml);
-  void attach(Changer* changer) { changer_ = changer; }
+  void attach(Changer* changer) {
+    changer_ = changer;
+    last_lengths_ = changer->tools().lengths;
+  }
   /// `interpreter_idle`: LinuxCNC's interpreter state, when NML is available.
   void poll(Clock::time_point now, std::optional<bool> interpreter_idle);
   /// Whether the next poll should come soon: a sequence runs or a handshake is open.
@@ -37,6 +41,8 @@ class Component : public Ports {
 
  private:
   void serve_executor();
+  void serve_operator();
+  void start_executor_if_needed();
   void watch_for_abort(std::optional<bool> interpreter_idle);
   void abort(const std::string& reason);
   void offer(const Step& step);
@@ -56,6 +62,14 @@ class Component : public Ports {
   bool last_abort_ = false;
   bool last_clear_ = false;
   std::optional<Clock::time_point> idle_since_;  ///< interpreter idle while a sequence runs
+  std::optional<Clock::time_point> starting_until_;  ///< an MDI run of the executor was asked for
+  bool executor_attached_ = false;  ///< an executor runs and expects more steps
+  std::optional<bool> interpreter_idle_;
+  bool last_load_ = false;
+  bool last_unload_ = false;
+  bool last_continue_ = false;
+  bool last_cancel_ = false;
+  std::map<int, double> last_lengths_;
 };
 
 }  // namespace fatc::linuxcnc

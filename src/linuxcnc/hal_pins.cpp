@@ -60,6 +60,16 @@ HalPins* create_pins(const std::string& name, int& id) {
   make(id, HAL_OUT, &p->step_value, n, "step-value");
   make(id, HAL_OUT, &p->units_inch, n, "units-inch");
   make(id, HAL_IN, &p->return_to_xy, n, "return-to-xy");
+  make(id, HAL_IN, &p->probe_z, n, "probe-z");
+  make(id, HAL_IN, &p->probe_result, n, "probe-result");
+  // The operator's buttons, from the GUI panel or any HAL source.
+  make(id, HAL_IN, &p->tool_number, n, "tool-number");
+  make(id, HAL_IN, &p->load, n, "load");
+  make(id, HAL_IN, &p->unload, n, "unload");
+  make(id, HAL_IN, &p->continue_, n, "continue");
+  make(id, HAL_IN, &p->cancel, n, "cancel");
+  make(id, HAL_OUT, &p->waiting_for_operator, n, "waiting-for-operator");
+  make(id, HAL_OUT, &p->last_length, n, "last-length");
   return p;
 }
 

@@ -37,6 +37,15 @@ struct HalPins {
   hal_float_t* step_value;   ///< out: tool length of set-length
   hal_bit_t* return_to_xy;   ///< in: after M6, go back over the XY where it was called
   hal_bit_t* units_inch;     ///< out: the config is in inches (the executor uses G20)
+  hal_float_t* probe_z;      ///< in: machine Z where the probe move stopped (motion.analog-out)
+  hal_float_t* probe_result; ///< in: 1 touched, 0 missed, -1 already tripped (motion.analog-out)
+  hal_s32_t* tool_number;    ///< in: the tool the operator buttons are about
+  hal_bit_t* load;           ///< in: rising edge: load and probe tool-number
+  hal_bit_t* unload;         ///< in: rising edge: unload tool-number
+  hal_bit_t* continue_;      ///< in: rising edge: the operator is done (Continue)
+  hal_bit_t* cancel;         ///< in: rising edge: the operator cancels
+  hal_bit_t* waiting_for_operator; ///< out: a prompt waits for Continue or Cancel
+  hal_float_t* last_length;  ///< out: the last tool length measured
 };
 
 }  // namespace fatc::linuxcnc

@@ -60,6 +60,18 @@ void NmlLink::tell(MessageKind kind, const std::string& text) {
   }
 }
 
+void NmlLink::run_mdi(const std::string& line) {
+  EMC_TASK_SET_MODE mode;
+  mode.mode = EMC_TASK_MODE_MDI;
+  mode.serial_number = ++serial_;
+  channels_->command->write(&mode);
+  EMC_TASK_PLAN_EXECUTE execute;
+  std::strncpy(execute.command, line.c_str(), sizeof execute.command - 1);
+  execute.command[sizeof execute.command - 1] = '\0';
+  execute.serial_number = ++serial_;
+  channels_->command->write(&execute);
+}
+
 std::string nml_file_of(const std::string& ini_path) {
   std::string error;
   const auto ini = io::IniFile::read(ini_path, error);

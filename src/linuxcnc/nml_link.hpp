@@ -21,6 +21,8 @@ class NmlLink {
   bool interpreter_idle() const { return interpreter_idle_; }
   /// An operator message: errors as EMC_OPERATOR_ERROR, the rest as EMC_OPERATOR_DISPLAY.
   void tell(MessageKind kind, const std::string& text);
+  /// Puts task in MDI mode and runs `line` there, as halui does for its MDI commands.
+  void run_mdi(const std::string& line);
 
  private:
   struct Channels;

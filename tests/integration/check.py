@@ -219,6 +219,55 @@ def check_return_to_xy(r, rack):
         fail("tool 3 not in the spindle")
 
 
+def tool_table_length(r, tool):
+    for line in r["tool_table_file"].splitlines():
+        words = line.split()
+        if words and words[0] == "T%d" % tool:
+            return float(next(w[1:] for w in words if w.startswith("Z")))
+    fail("tool %d not in the tool table file" % tool)
+
+
+def check_unload(r, rack):
+    no_fault(r)
+    last = r["samples"][-1]
+    if last["tool_in_spindle"] != 0 or last["fixed_atc_probe.tool-in-spindle"] != 0:
+        fail("after unloading, LinuxCNC says T%d, the changer T%d" % (
+            last["tool_in_spindle"], last["fixed_atc_probe.tool-in-spindle"]))
+    ok("tool 4 unloaded: the spindle is empty for LinuxCNC and the changer")
+    visits_in_order(r["samples"], rack.retrieve_waypoints(4) + [("loading", [rack.c["loading"][a] for a in "xyz"])])
+
+
+def check_load_probe(r, rack):
+    no_fault(r)
+    truth = -70.0 - rack.c["probe_length_compensation_offset"]  # the sim sensor's height
+    length = tool_table_length(r, 4)
+    if abs(length - truth) > 0.005:
+        fail("tool 4's length in the tool table file is %.4f, truth %.4f" % (length, truth))
+    ok("tool 4's length in LinuxCNC's tool table file: %.4f (truth %.4f)" % (length, truth))
+    if abs(r["samples"][-1]["fixed_atc_probe.last-length"] - length) > 1e-6:
+        fail("last-length pin says %.4f" % r["samples"][-1]["fixed_atc_probe.last-length"])
+    if "jogged_to" not in r or abs(r["jogged_to"][2] - (rack.c["loading"]["z"] - 15.0)) > 0.01:
+        fail("the jog during the wait did not happen: %s" % r.get("jogged_to"))
+    ok("jogged to Z %.3f during the wait" % r["jogged_to"][2])
+    last = r["samples"][-1]
+    if last["tool_in_spindle"] != 0:
+        fail("after load and probe the spindle should be empty, LinuxCNC says T%d" % last["tool_in_spindle"])
+    visits_in_order(r["samples"], rack.return_waypoints(4))
+    ok("tool 4 put away in its pocket; the spindle is empty")
+
+
+def check_unload_cancel(r, rack):
+    no_fault(r)
+    last = r["samples"][-1]
+    if last["tool_in_spindle"] != 2 or last["fixed_atc_probe.tool-in-spindle"] != 2:
+        fail("after cancelling, LinuxCNC says T%d, the changer T%d" % (
+            last["tool_in_spindle"], last["fixed_atc_probe.tool-in-spindle"]))
+    ok("unload cancelled: tool 2 stays in the spindle, LinuxCNC knows it")
+    if not any("cancelled" in m for m in r["messages"]):
+        fail("no message saying what is where: %s" % r["messages"])
+    ok("message: %s" % [m for m in r["messages"] if "cancelled" in m][0])
+
+
 def main():
     results = json.load(open(sys.argv[1]))
     rack = Rack(json.load(open(sys.argv[2])))

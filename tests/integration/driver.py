@@ -11,7 +11,7 @@ import time
 import hal
 import linuxcnc
 
-PINS = ["fixed_atc_probe.chuck", "fixed_atc_probe.state", "fixed_atc_probe.fault",
+PINS = ["fixed_atc_probe.chuck", "fixed_atc_probe.waiting-for-operator", "fixed_atc_probe.last-length", "fixed_atc_probe.state", "fixed_atc_probe.fault",
         "fixed_atc_probe.busy", "fixed_atc_probe.tool-in-spindle", "fixed_atc_probe.step-ready",
         "fixed_atc_probe.step-request", "iocontrol.0.tool-prepare", "iocontrol.0.tool-prepared",
         "iocontrol.0.tool-change", "iocontrol.0.tool-changed", "iocontrol.0.tool-number",
@@ -143,6 +143,63 @@ def run_scenario(scenario):
     return result
 
 
+def run_operator(scenario):
+    """An operator at the panel: buttons are HAL pins, waits are on what LinuxCNC
+    and the component report, all sampled like a program run."""
+    result = {"name": scenario["name"], "samples": [], "messages": []}
+    first_message = len(messages)
+    start = time.monotonic()
+
+    def sampled_wait(condition, timeout, what):
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline:
+            stat.poll()
+            drain_errors()
+            result["samples"].append(sample(start))
+            if condition():
+                return
+            time.sleep(0.002)
+        raise TimeoutError("timed out waiting for " + what)
+
+    for step in scenario["operator"]:
+        if "set" in step:
+            for pin, value in step["set"].items():
+                hal.set_p(pin, str(value))
+        elif "press" in step:
+            hal.set_p(step["press"], "1")
+            pressed = time.monotonic()
+            sampled_wait(lambda: time.monotonic() - pressed > 0.1, 5, "the press")
+            hal.set_p(step["press"], "0")
+        elif "wait" in step:
+            pin, value = step["wait"]
+            sampled_wait(lambda: hal.get_value(pin) == value, step.get("timeout", 180),
+                         "%s == %s" % (pin, value))
+        elif "wait_idle" in step:
+            sampled_wait(lambda: hal.get_value("fixed_atc_probe.state") == 1 and
+                         stat.interp_state == linuxcnc.INTERP_IDLE, 180, "the changer idle")
+        elif "jog" in step:
+            axis, distance = step["jog"]
+            command.mode(linuxcnc.MODE_MANUAL)
+            command.wait_complete()
+            target = stat.actual_position[axis] + distance
+            command.jog(linuxcnc.JOG_INCREMENT, False, axis, 20.0, distance)
+            sampled_wait(lambda: abs(stat.actual_position[axis] - target) < 1e-3, 60, "the jog")
+            result["jogged_to"] = list(stat.actual_position[:3])
+        elif "mdi" in step:
+            command.mode(linuxcnc.MODE_MDI)
+            command.wait_complete()
+            command.mdi(step["mdi"])
+            command.wait_complete(60)
+    stat.poll()
+    drain_errors()
+    result["samples"].append(sample(start))
+    result["messages"] = messages[first_message:]
+    result["start_pos"] = result["samples"][0]["pos"]
+    result["duration"] = time.monotonic() - start
+    result["tool_table_file"] = open(os.path.join(os.path.dirname(sys.argv[2]), "sim.tbl")).read()
+    return result
+
+
 def when(action, s, result):
     """An action fires on a condition of the sample: e.g. chuck open, or a pin value."""
     condition = action["when"]
@@ -163,7 +220,8 @@ def main():
     try:
         bring_up()
         for scenario in scenarios:
-            results["scenarios"].append(run_scenario(scenario))
+            run = run_operator if "operator" in scenario else run_scenario
+            results["scenarios"].append(run(scenario))
     except Exception as e:  # the checker reports it; LinuxCNC must still shut down
         results["error"] = "%s: %s" % (type(e).__name__, e)
     json.dump(results, open(os.environ["FATC_RESULTS"], "w"))

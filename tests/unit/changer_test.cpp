@@ -583,3 +583,29 @@ TEST(Diagram, shouldNameEveryFlowAndStateOfTheTables) {
 
 }  // namespace
 }  // namespace fatc
+
+namespace fatc {
+namespace {
+
+TEST(Load, shouldSayTheSensorWasAlreadyTrippedAndWriteNothing) {
+  Simulator sim;
+  const Config config = test::valid_config();
+  ToolState tools = ToolState::fresh(config);
+  tools.spindle = 4;
+  tools.in_pocket.erase(4);
+  Changer changer(config, sim, tools);
+  changer.ready();
+  changer.load(4);
+  sim.run(changer);
+  changer.operator_continue();
+  sim.pending.reset();
+  changer.probe_result(false, -10.0, true);
+  sim.run(changer);
+  EXPECT_TRUE(changer.tools().lengths.empty());
+  EXPECT_NE(sim.messages(MessageKind::error).back().find("already tripped"), std::string::npos);
+  EXPECT_EQ(changer.status().phase, Phase::idle);
+  EXPECT_TRUE(sim.unexpected_events.empty());
+}
+
+}  // namespace
+}  // namespace fatc

@@ -329,7 +329,7 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
       fail.label = c.fault_reason;
       c.publish(fail);
       c.status = Status{Phase::fault, Awaiting::nothing, "fault: " + c.fault_reason};
-      c.tell(MessageKind::error, "fixed_atc_probe fault: " + c.fault_reason + "; " + c.whereabouts() +
+      c.tell(MessageKind::error, "fault: " + c.fault_reason + "; " + c.whereabouts() +
                                      ". Check the spindle and the rack, then clear the fault.");
     }
   };

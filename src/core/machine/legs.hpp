@@ -210,10 +210,12 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
   };
   struct SayNoTouch {
     template <class Fsm, class Source, class Target>
-    void operator()(const ProbeResult&, Fsm& fsm, Source&, Target&) const {
+    void operator()(const ProbeResult& e, Fsm& fsm, Source&, Target&) const {
+      const std::string tool = "probe: tool " + std::to_string(fsm.pocket_tool);
       fsm.ctx->tell(MessageKind::error,
-                    "probe: tool " + std::to_string(fsm.pocket_tool) +
-                        " did not touch the sensor before probe_limit; nothing written");
+                    e.tripped_before
+                        ? tool + ": the touch-off sensor was already tripped; nothing written"
+                        : tool + " did not touch the sensor before probe_limit; nothing written");
     }
   };
 
