@@ -189,7 +189,9 @@ void Component::show_status() {
   *pins_->busy = status.phase == Phase::changing || status.phase == Phase::loading ||
                  status.phase == Phase::unloading;
   *pins_->tool_in_spindle = changer_->tools().spindle;
-  *pins_->waiting_for_operator = status.awaiting == Awaiting::operator_choice;
+  // Only once the executor has ended its run: then the GUI and jogging are free.
+  *pins_->waiting_for_operator =
+      status.awaiting == Awaiting::operator_choice && !executor_attached_ && !offered_;
 }
 
 void Component::publish(const Step& step) {

@@ -223,7 +223,7 @@ def main():
             run = run_operator if "operator" in scenario else run_scenario
             results["scenarios"].append(run(scenario))
     except Exception as e:  # the checker reports it; LinuxCNC must still shut down
-        results["error"] = "%s: %s" % (type(e).__name__, e)
+        results["error"] = "%s: %s (last messages: %s)" % (type(e).__name__, e, messages[-4:])
     json.dump(results, open(os.environ["FATC_RESULTS"], "w"))
 
 
