@@ -268,6 +268,36 @@ def check_unload_cancel(r, rack):
     ok("message: %s" % [m for m in r["messages"] if "cancelled" in m][0])
 
 
+def nothing_moved(r):
+    for s in r["samples"]:
+        if not near(s["pos"], r["start_pos"]):
+            fail("the machine moved to %s" % s["pos"])
+    ok("nothing moved")
+
+
+def check_unload_missing(r, rack):
+    no_fault(r)
+    ok("refused: %s" % [m for m in r["messages"] if "not in the rack" in m][0])
+    nothing_moved(r)
+
+
+def check_load_no_pocket(r, rack):
+    no_fault(r)
+    ok("refused: %s" % [m for m in r["messages"] if "no pocket" in m][0])
+    nothing_moved(r)
+
+
+def check_load_cancel(r, rack):
+    no_fault(r)
+    last = r["samples"][-1]
+    if last["tool_in_spindle"] != 0 or last["fixed_atc_probe.tool-in-spindle"] != 0:
+        fail("after cancelling the load, LinuxCNC says T%d, the changer T%d" % (
+            last["tool_in_spindle"], last["fixed_atc_probe.tool-in-spindle"]))
+    if not any("cancelled" in m and "the spindle is empty" in m for m in r["messages"]):
+        fail("no message saying what is where: %s" % r["messages"])
+    ok("load cancelled at the insert prompt: the spindle is empty, and the message says so")
+
+
 def main():
     results = json.load(open(sys.argv[1]))
     rack = Rack(json.load(open(sys.argv[2])))

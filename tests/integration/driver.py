@@ -166,14 +166,21 @@ def run_operator(scenario):
             for pin, value in step["set"].items():
                 hal.set_p(pin, str(value))
         elif "press" in step:
+            # A press is a pulse the component's 20 ms poll cannot miss: 100 ms
+            # down, then 100 ms up before anything else may press again.
             hal.set_p(step["press"], "1")
             pressed = time.monotonic()
             sampled_wait(lambda: time.monotonic() - pressed > 0.1, 5, "the press")
             hal.set_p(step["press"], "0")
+            released = time.monotonic()
+            sampled_wait(lambda: time.monotonic() - released > 0.1, 5, "the release")
         elif "wait" in step:
             pin, value = step["wait"]
             sampled_wait(lambda: hal.get_value(pin) == value, step.get("timeout", 180),
                          "%s == %s" % (pin, value))
+        elif "wait_message" in step:
+            sampled_wait(lambda: any(step["wait_message"] in m for m in messages[first_message:]), 60,
+                         "a message saying " + step["wait_message"])
         elif "wait_idle" in step:
             sampled_wait(lambda: hal.get_value("fixed_atc_probe.state") == 1 and
                          stat.interp_state == linuxcnc.INTERP_IDLE, 180, "the changer idle")
