@@ -121,17 +121,10 @@ def run_scenario(scenario):
             wait_for(lambda: hal.get_value(pin) == value, 10, pin)
         except TimeoutError:
             pass  # the checker reports what it finds
-    time.sleep(0.3)
-    stat.poll()
-    drain_errors()
-    result["samples"].append(sample(start))
-    result["messages"] = messages[first_message:]
-    result["start_pos"] = result["samples"][0]["pos"]
-    result["tool_table"] = {str(t.id): t.zoffset for t in stat.tool_table if t.id > 0}
-    result["g5x_offset"] = list(stat.g5x_offset[:3])
-    result["tool_offset"] = list(stat.tool_offset[:3])
-    result["gcodes"] = list(stat.gcodes)
-    result["duration"] = time.monotonic() - start
+    # Let the level handshakes fall back before the last sample.
+    wait_for(lambda: not hal.get_value("iocontrol.0.tool-change") and
+             not hal.get_value("iocontrol.0.tool-changed"), 10, "the change handshake to end")
+    finish(result, start, first_message)
     for pin in scenario.get("set_pins", {}):
         hal.set_p(pin, "0")
     for step in scenario.get("after", []):
@@ -197,6 +190,12 @@ def run_operator(scenario):
             command.wait_complete()
             command.mdi(step["mdi"])
             command.wait_complete(60)
+    finish(result, start, first_message)
+    return result
+
+
+def finish(result, start, first_message):
+    """The last sample and what LinuxCNC says after the scenario."""
     stat.poll()
     drain_errors()
     result["samples"].append(sample(start))
@@ -204,7 +203,6 @@ def run_operator(scenario):
     result["start_pos"] = result["samples"][0]["pos"]
     result["duration"] = time.monotonic() - start
     result["tool_table_file"] = open(os.path.join(os.path.dirname(sys.argv[2]), "sim.tbl")).read()
-    return result
 
 
 def when(action, s, result):

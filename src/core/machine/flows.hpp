@@ -22,6 +22,10 @@ struct EntersPhase {
   }
 };
 
+/// To the loading position, Z first: where the operator reaches the spindle.
+struct ToLoadingZ : Moving<to::LoadingZ> {};
+struct ToLoadingXY : Moving<to::LoadingXY> {};
+
 // ================================================================ change (M6)
 struct ChangeFlow_ : Flow<ChangeFlow_> {
   template <class Event, class Parent>
@@ -78,8 +82,6 @@ struct LoadFlow_ : Flow<LoadFlow_> {
     EntersPhase<Phase::loading>::enter(*this);
   }
 
-  struct ToLoadingZ : Moving<to::LoadingZ> {};
-  struct ToLoadingXY : Moving<to::LoadingXY> {};
   struct InsertPrompt {
     std::string operator()(const Context& c) const {
       return "Insert tool " + std::to_string(c.requested_tool) +
@@ -148,8 +150,6 @@ struct UnloadFlow_ : Flow<UnloadFlow_> {
     EntersPhase<Phase::unloading>::enter(*this);
   }
 
-  struct ToLoadingZ : Moving<to::LoadingZ> {};
-  struct ToLoadingXY : Moving<to::LoadingXY> {};
   struct RemovePrompt {
     std::string operator()(const Context& c) const {
       return "Unload tool " + std::to_string(c.requested_tool) +
