@@ -298,6 +298,28 @@ def check_load_cancel(r, rack):
     ok("load cancelled at the insert prompt: the spindle is empty, and the message says so")
 
 
+def probe_failed(r, rack, wanted):
+    no_fault(r)
+    if not any(wanted in m for m in r["messages"]):
+        fail("no message saying '%s': %s" % (wanted, r["messages"]))
+    ok("message: %s" % [m for m in r["messages"] if wanted in m][0])
+    if abs(tool_table_length(r, 2) - 35.0) > 1e-9:
+        fail("tool 2's length changed to %.4f" % tool_table_length(r, 2))
+    ok("nothing written: tool 2 keeps 35.0 in the tool table file")
+    last = r["samples"][-1]
+    if last["tool_in_spindle"] != 2 or abs(last["pos"][2] - rack.c["loading"]["z"]) > TOLERANCE:
+        fail("expected tool 2 in the spindle at loading Z, got T%d at %s" % (last["tool_in_spindle"], last["pos"]))
+    ok("retracted to loading Z with tool 2 still in the spindle")
+
+
+def check_probe_miss(r, rack):
+    probe_failed(r, rack, "did not touch the sensor before probe_limit")
+
+
+def check_probe_tripped(r, rack):
+    probe_failed(r, rack, "the touch-off sensor was already tripped")
+
+
 def main():
     results = json.load(open(sys.argv[1]))
     rack = Rack(json.load(open(sys.argv[2])))
