@@ -320,6 +320,17 @@ def check_probe_tripped(r, rack):
     probe_failed(r, rack, "the touch-off sensor was already tripped")
 
 
+def check_jog_prompt_cancel(r, rack):
+    no_fault(r)
+    wanted = "load of tool 2 cancelled, nothing measured; tool 2 is in the spindle"
+    if not any(wanted in m for m in r["messages"]):
+        fail("no message saying '%s': %s" % (wanted, r["messages"]))
+    ok("message: %s" % wanted)
+    if r["samples"][-1]["tool_in_spindle"] != 2 or abs(tool_table_length(r, 2) - 35.0) > 1e-9:
+        fail("tool 2 should stay in the spindle with its length unchanged")
+    ok("tool 2 stays in the spindle, its length unchanged")
+
+
 def main():
     results = json.load(open(sys.argv[1]))
     rack = Rack(json.load(open(sys.argv[2])))
