@@ -44,12 +44,8 @@ bool refuse_unless_idle(Context& ctx, const std::string& request, bool executor_
     case Phase::fault: why = "the changer is in fault (" + ctx.fault_reason + "); clear it first"; break;
     default: why = "the changer is busy: " + ctx.status.activity; break;
   }
-  if (executor_waits) {
-    Step fail;
-    fail.kind = StepKind::fail;
-    fail.label = request + " refused: " + why;
-    ctx.ports.publish(fail);
-  }
+  // Straight to the ports: a busy flow's activity must not change.
+  if (executor_waits) ctx.ports.publish(failure_step(request + " refused: " + why));
   ctx.tell(MessageKind::error, request + " refused: " + why);
   return true;
 }

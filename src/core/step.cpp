@@ -4,6 +4,13 @@
 
 namespace fatc {
 
+Step failure_step(std::string why) {
+  Step step;
+  step.kind = StepKind::fail;
+  step.label = std::move(why);
+  return step;
+}
+
 bool is_motion(StepKind kind) {
   return kind == StepKind::rapid || kind == StepKind::feed || kind == StepKind::probe;
 }

@@ -34,6 +34,9 @@ struct Step {
   std::string label;      ///< the machinist's name for the target ("side of pocket 3")
 };
 
+/// The step that makes a waiting executor abort its program, saying `why`.
+Step failure_step(std::string why);
+
 bool is_motion(StepKind kind);
 const char* step_kind_name(StepKind kind);
 

@@ -161,11 +161,15 @@ void Component::serve_executor() {
     }
     offered_.reset();
   }
-  if (request && pending_ && !offered_ && !executing_) {
+  offer_pending_if_asked();
+  last_request_ = request;
+}
+
+void Component::offer_pending_if_asked() {
+  if (*pins_->step_request && pending_ && !offered_ && !executing_) {
     offer(*pending_);
     pending_.reset();
   }
-  last_request_ = request;
 }
 
 void Component::offer(const Step& step) {
@@ -197,10 +201,7 @@ void Component::show_status() {
 void Component::publish(const Step& step) {
   pending_ = step;
   // A step published while the executor already asks goes out this turn.
-  if (*pins_->step_request && !offered_ && !executing_) {
-    offer(*pending_);
-    pending_.reset();
-  }
+  offer_pending_if_asked();
 }
 
 void Component::set_chuck_open(bool open) { *pins_->chuck = open; }

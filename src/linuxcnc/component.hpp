@@ -46,6 +46,7 @@ class Component : public Ports {
   void watch_for_abort(std::optional<bool> interpreter_idle);
   void abort(const std::string& reason);
   void offer(const Step& step);
+  void offer_pending_if_asked();
   void show_status();
 
   HalPins* pins_;

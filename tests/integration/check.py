@@ -163,11 +163,7 @@ def check_no_pocket(r, rack):
     if not any(wanted in m for m in r["messages"]):
         fail("no message saying '%s': %s" % (wanted, r["messages"]))
     ok("messages: %s" % r["messages"])
-    start = r["start_pos"]
-    for s in r["samples"]:
-        if not near(s["pos"], start):
-            fail("the machine moved to %s" % s["pos"])
-    ok("nothing moved")
+    nothing_moved(r)
 
 
 def check_feed_hold(r, rack):
@@ -197,8 +193,7 @@ def check_after_abort(r, rack):
     if not any("M6 T1 refused" in m and "fault" in m for m in r["messages"]):
         fail("M6 was not refused with a message while faulted: %s" % r["messages"])
     ok("M6 refused while faulted: %s" % r["messages"])
-    if any(s["pos"] != r["start_pos"] for s in r["samples"]):
-        fail("the machine moved while faulted")
+    nothing_moved(r)
 
 
 def check_after_clear(r, rack):

@@ -245,10 +245,8 @@ struct Operating_ : Flow<Operating_> {
     void operator()(const Request& e, Fsm& fsm, Source&, Target&) const {
       const std::string why = *Refused<Request>::reason(*fsm.ctx, e.tool);
       if constexpr (std::is_same_v<Request, ToolChange>) {
-        Step fail;
-        fail.kind = StepKind::fail;
+        Step fail = failure_step("M6 T" + std::to_string(e.tool) + " refused: " + why);
         fail.tool = e.tool;
-        fail.label = "M6 T" + std::to_string(e.tool) + " refused: " + why;
         fsm.ctx->publish(fail);
         fsm.ctx->status.activity = "idle";
       }
@@ -324,10 +322,7 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
       c.ports.cancel_timer();
       c.close_chuck();
       // An executor still waiting for its next step aborts the program on this.
-      Step fail;
-      fail.kind = StepKind::fail;
-      fail.label = c.fault_reason;
-      c.publish(fail);
+      c.publish(failure_step(c.fault_reason));
       c.status = Status{Phase::fault, Awaiting::nothing, "fault: " + c.fault_reason};
       c.tell(MessageKind::error, "fault: " + c.fault_reason + "; " + c.whereabouts() +
                                      ". Check the spindle and the rack, then clear the fault.");
