@@ -96,7 +96,8 @@ void Changer::operator_continue() {
 }
 
 void Changer::operator_cancel() {
-  if (engine_->context.status.awaiting != Awaiting::operator_choice) {
+  const Status& status = engine_->context.status;
+  if (status.awaiting != Awaiting::operator_choice && !probe_cancellable(status)) {
     engine_->context.tell(MessageKind::info, "Cancel: nothing is waiting for the operator");
     return;
   }

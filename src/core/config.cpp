@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <initializer_list>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -211,6 +212,27 @@ void read_flush(Reader& reader, const Json& root, Config& config) {
   reader.bounded(*flush, "flush", "pause_seconds", config.flush.pause_seconds, 0.0, true, false);
 }
 
+void read_probe_after_change(Reader& reader, const Json& root, Config& config) {
+  if (const auto mode = root.find("probe_after_change"); mode != root.end()) {
+    if (*mode == "off") {
+      config.probe_after_change = ProbeAfterChange::off;
+    } else if (*mode == "measure") {
+      config.probe_after_change = ProbeAfterChange::measure;
+    } else if (*mode == "check") {
+      config.probe_after_change = ProbeAfterChange::check;
+    } else {
+      reader.error("probe_after_change",
+                   "expected \"off\", \"measure\" or \"check\", got " + describe(*mode));
+    }
+  }
+  if (root.contains("probe_check_tolerance")) {
+    double tolerance = 0.0;
+    const std::size_t before = reader.errors.size();
+    reader.bounded(root, "", "probe_check_tolerance", tolerance, 0.0, true, false);
+    if (reader.errors.size() == before) config.probe_check_tolerance = tolerance;
+  }
+}
+
 void check_geometry(Reader& reader, Config& config) {
   if (config.pocket_above_clearance_offset_z <= config.pocket_above_chuck_offset_z) {
     reader.error("pocket_above_clearance_offset_z",
@@ -300,6 +322,26 @@ class DuplicateKeys {
 
 const char* units_name(Units units) { return units == Units::mm ? "mm" : "inch"; }
 
+const char* probe_after_change_name(ProbeAfterChange mode) {
+  switch (mode) {
+    case ProbeAfterChange::off: return "off";
+    case ProbeAfterChange::measure: return "measure";
+    case ProbeAfterChange::check: return "check";
+  }
+  return "?";
+}
+
+std::string format_length(const Config& config, double length) {
+  char buffer[48];
+  std::snprintf(buffer, sizeof buffer, config.units == Units::inch ? "%.5f inch" : "%.4f mm", length);
+  return buffer;
+}
+
+double Config::check_tolerance() const {
+  if (probe_check_tolerance) return *probe_check_tolerance;
+  return units == Units::inch ? 0.004 : 0.1;
+}
+
 double Config::keepout_margin() const {
   if (rack_keepout_margin) return *rack_keepout_margin;
   return std::hypot(pocket_side_offset.x, pocket_side_offset.y) / 2.0;
@@ -332,7 +374,7 @@ ConfigResult parse_config(const std::string& json_text) {
        "pocket_above_chuck_offset_z", "pocket_above_clearance_offset_z", "chuck_seconds", "loading",
        "probe_limit", "safe", "pocket_default", "pockets", "pocket_feed", "probe_seek_feed",
        "probe_latch_feed", "probe_backoff", "flush", "spindle_stop_timeout_seconds",
-       "rack_keepout_margin"});
+       "rack_keepout_margin", "probe_after_change", "probe_check_tolerance", "manual_tools"});
 
   Config config;
   if (const auto units = root.find("units"); units != root.end()) {
@@ -379,6 +421,15 @@ ConfigResult parse_config(const std::string& json_text) {
     const std::size_t before = reader.errors.size();
     reader.bounded(root, "", "rack_keepout_margin", margin, 0.0, false, false);
     if (reader.errors.size() == before) config.rack_keepout_margin = margin;
+  }
+
+  read_probe_after_change(reader, root, config);
+  if (const auto manual = root.find("manual_tools"); manual != root.end()) {
+    if (manual->is_boolean()) {
+      config.manual_tools = manual->get<bool>();
+    } else {
+      reader.error("manual_tools", "expected true or false, got " + describe(*manual));
+    }
   }
 
   // Relations between keys only mean something once every key read cleanly.

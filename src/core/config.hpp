@@ -11,6 +11,13 @@ namespace fatc {
 
 enum class Units { mm, inch };
 
+/// What M6 does with the tool it just put in the spindle.
+enum class ProbeAfterChange {
+  off,      ///< nothing
+  measure,  ///< measure it and write its length
+  check,    ///< measure it and fault if it differs from the stored length
+};
+
 /// How the spindle drops whatever it may hold before it receives a tool.
 struct FlushConfig {
   int pulses = 1;              ///< chuck openings; 0 disables the flush
@@ -43,9 +50,13 @@ struct Config {
   FlushConfig flush;
   double spindle_stop_timeout_seconds = 10.0;
   std::optional<double> rack_keepout_margin;  ///< unset: half the side offset
+  ProbeAfterChange probe_after_change = ProbeAfterChange::off;
+  std::optional<double> probe_check_tolerance;  ///< unset: 0.1 mm or 0.004 inch
+  bool manual_tools = true;  ///< M6 to a tool without pocket hands it over at `loading`
 
   bool has_pocket(int tool) const { return pockets.count(tool) != 0; }
   double keepout_margin() const;
+  double check_tolerance() const;
 };
 
 /// Either a Config or every problem found, one line each, each naming the
@@ -59,5 +70,8 @@ struct ConfigResult {
 ConfigResult parse_config(const std::string& json_text);
 
 const char* units_name(Units units);
+const char* probe_after_change_name(ProbeAfterChange mode);
+/// A length for a message, with the config's unit: "25.0012 mm".
+std::string format_length(const Config& config, double length);
 
 }  // namespace fatc

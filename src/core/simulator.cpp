@@ -134,12 +134,13 @@ void run_with_operator(Simulator& sim, Changer& changer) {
 
 }  // namespace
 
-Simulator plan_change(const Config& config, int from, int to) {
+Simulator plan_change(const Config& config, int from, int to, double sensor_z) {
   Simulator sim;
+  sim.sensor_z = sensor_z;
   Changer changer(config, sim, with_in_spindle(config, from));
   changer.ready();
   changer.tool_change(to);
-  sim.run(changer);
+  run_with_operator(sim, changer);
   return sim;
 }
 

@@ -56,8 +56,10 @@ class Simulator : public Ports {
 
 namespace fatc {
 
-/// The records of M6 T`to` with `from` in the spindle, every other pocket full.
-Simulator plan_change(const Config& config, int from, int to);
+/// The records of M6 T`to` with `from` in the spindle, every other pocket full;
+/// the operator continues at every wait (manual tools) and the sensor, when
+/// `probe_after_change` asks for it, touches at `sensor_z`.
+Simulator plan_change(const Config& config, int from, int to, double sensor_z);
 /// The records of loading `tool` by hand with `from` in the spindle; the operator
 /// continues at every wait and the sensor touches at `sensor_z`.
 Simulator plan_load(const Config& config, int tool, int from, double sensor_z);

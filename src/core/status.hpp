@@ -18,4 +18,11 @@ struct Status {
 
 const char* phase_name(Phase phase);
 
+/// A probe of the load flow runs over MDI: Cancel stops it (the adapter
+/// aborts the motion first). M6 probes run inside the program, which the
+/// operator stops with LinuxCNC's own Stop.
+inline bool probe_cancellable(const Status& status) {
+  return status.phase == Phase::loading && status.awaiting == Awaiting::probe;
+}
+
 }  // namespace fatc

@@ -99,9 +99,9 @@ int check(const Options& options, std::ostream& out, std::ostream& err) {
   for (const auto& entry : config.pockets) {
     const int tool = entry.first;
     const std::string t = std::to_string(tool);
-    violations += report("M6 T" + t + " from empty", config, plan_change(config, 0, tool),
+    violations += report("M6 T" + t + " from empty", config, plan_change(config, 0, tool, config.probe_limit.z),
                          loaded.limits, out);
-    violations += report("M6 T0 from T" + t, config, plan_change(config, tool, 0), loaded.limits, out);
+    violations += report("M6 T0 from T" + t, config, plan_change(config, tool, 0, config.probe_limit.z), loaded.limits, out);
     violations += report("load T" + t, config, plan_load(config, tool, 0, config.probe_limit.z),
                          loaded.limits, out);
     violations += report("unload T" + t, config, plan_unload(config, tool, 0), loaded.limits, out);
@@ -123,7 +123,7 @@ int plan(const Options& options, std::ostream& out, std::ostream& err) {
         << "\n";
     return 1;
   }
-  const Simulator sim = plan_change(config, from, to);
+  const Simulator sim = plan_change(config, from, to, config.probe_limit.z);
   out << "M6 T" << to << " with " << (from == 0 ? std::string("an empty spindle") : "T" + std::to_string(from) + " in the spindle") << "\n";
   int number = 0;
   bool refused = false;

@@ -14,7 +14,9 @@ using Lines = std::vector<std::string>;
 
 /// A changer wired to a Simulator; an unexpected event fails the test.
 struct Rig {
-  explicit Rig(int spindle = 0, std::set<int> out_of_machine = {}) {
+  explicit Rig(int spindle = 0, std::set<int> out_of_machine = {})
+      : Rig(test::valid_config(), spindle, std::move(out_of_machine)) {}
+  Rig(Config with, int spindle, std::set<int> out_of_machine = {}) : config(std::move(with)) {
     ToolState tools = ToolState::fresh(config);
     tools.spindle = spindle;
     tools.in_pocket.erase(spindle);
@@ -59,7 +61,7 @@ struct Rig {
     return sim.run(*changer, 1) == 1;
   }
 
-  Config config = test::valid_config();
+  Config config;
   Simulator sim;
   std::unique_ptr<Changer> changer;
 };
@@ -177,13 +179,14 @@ struct Refusal {
   std::set<int> out;
   int tool;
   const char* why;
+  const char* extra_config = "";
 };
 std::ostream& operator<<(std::ostream& out, const Refusal& r) { return out << r.name; }
 
 class RefusedChange : public ::testing::TestWithParam<Refusal> {};
 
 TEST_P(RefusedChange, shouldFailTheExecutorWithAMessageAndMoveNothing) {
-  Rig rig(GetParam().spindle, GetParam().out);
+  Rig rig(test::valid_config(GetParam().extra_config), GetParam().spindle, GetParam().out);
   rig.changer->tool_change(GetParam().tool);
   ASSERT_EQ(rig.sim.steps().size(), 1u);
   EXPECT_EQ(rig.sim.steps()[0].kind, StepKind::fail);
@@ -196,10 +199,12 @@ TEST_P(RefusedChange, shouldFailTheExecutorWithAMessageAndMoveNothing) {
 
 // clang-format off
 INSTANTIATE_TEST_SUITE_P(Each, RefusedChange, ::testing::Values(
-  Refusal{"no_pocket", 0, {}, 9, "tool 9 has no pocket in the config"},
+  Refusal{"no_pocket", 0, {}, 9, "tool 9 has no pocket in the config (and manual_tools is off)",
+          R"("manual_tools": false)"},
   Refusal{"negative", 0, {}, -1, "T-1 is not a tool number"},
   Refusal{"unloaded", 0, {4}, 4, "tool 4 is not in its pocket (it was unloaded); load it first"},
-  Refusal{"spindle_tool_without_pocket", 9, {}, 2, "tool 9 in the spindle has no pocket in the config"}
+  Refusal{"spindle_tool_without_pocket", 9, {}, 2, "tool 9 in the spindle has no pocket in the config",
+          R"("manual_tools": false)"}
 ));
 // clang-format on
 
@@ -460,6 +465,7 @@ struct Flow {
   int spindle;
   std::set<int> out;
   std::function<void(Changer&)> start;
+  const char* extra_config = "";
 };
 std::ostream& operator<<(std::ostream& out, const Flow& f) { return out << f.name; }
 
@@ -469,7 +475,7 @@ class EveryState : public ::testing::TestWithParam<Flow> {};
 TEST_P(EveryState, shouldFaultSafelyOnAbort) {
   int states = 0;
   for (int cut = 0;; ++cut) {
-    Rig rig(GetParam().spindle, GetParam().out);
+    Rig rig(test::valid_config(GetParam().extra_config), GetParam().spindle, GetParam().out);
     rig.sim.sensor_z = kSensorZ;
     GetParam().start(*rig.changer);
     bool more = true;
@@ -502,7 +508,10 @@ TEST_P(EveryState, shouldFaultSafelyOnAbort) {
 INSTANTIATE_TEST_SUITE_P(Each, EveryState, ::testing::Values(
   Flow{"change_a_to_b", 1, {}, [](Changer& c) { c.tool_change(4); }},
   Flow{"load_with_tool_in_spindle", 1, {5}, [](Changer& c) { c.load(5); }},
-  Flow{"unload_with_tool_in_spindle", 1, {}, [](Changer& c) { c.unload(5); }}
+  Flow{"unload_with_tool_in_spindle", 1, {}, [](Changer& c) { c.unload(5); }},
+  Flow{"change_and_check", 1, {}, [](Changer& c) { c.tool_change(4); }, R"("probe_after_change": "check")"},
+  Flow{"manual_to_manual_and_measure", 9, {}, [](Changer& c) { c.tool_change(8); },
+       R"("probe_after_change": "measure")"}
 ));
 // clang-format on
 
@@ -575,7 +584,8 @@ TEST(Diagram, shouldNameEveryFlowAndStateOfTheTables) {
   const std::string dot = Changer::dot();
   for (const char* name : {"ChangeFlow", "LoadFlow", "UnloadFlow", "ReturnLeg<Before>", "RetrieveLeg",
                            "FlushLeg", "ProbingLeg", "IntoPocket", "GrippingTool", "AwaitingTool",
-                           "Faulted", "MachineNotReady"}) {
+                           "Faulted", "MachineNotReady", "HandOutLeg", "HandInLeg", "MeasureLeg",
+                           "AwaitingRemoval", "Stopped"}) {
     EXPECT_NE(dot.find(name), std::string::npos) << name;
   }
   EXPECT_EQ(dot.rfind("digraph", 0), 0u);
@@ -605,6 +615,220 @@ TEST(Load, shouldSayTheSensorWasAlreadyTrippedAndWriteNothing) {
   EXPECT_NE(sim.messages(MessageKind::error).back().find("already tripped"), std::string::npos);
   EXPECT_EQ(changer.status().phase, Phase::idle);
   EXPECT_TRUE(sim.unexpected_events.empty());
+}
+
+}  // namespace
+}  // namespace fatc
+
+namespace fatc {
+namespace {
+
+// ---------------------------------------------------------------- probe after change
+
+Lines measure_at_sensor(bool writes) {
+  Lines lines{"rapid loading Z", "rapid over the touch-off sensor", "probe touch-off sensor (seek)",
+              "feed back off the sensor", "probe touch-off sensor (latch)"};
+  if (writes) lines.push_back("set-length tool table");
+  lines.push_back("rapid retract from the sensor");
+  lines.push_back("rapid safe Z");
+  return lines;
+}
+
+TEST(ProbeAfterChange, shouldMeasureAndWriteTheRetrievedTool) {
+  Rig rig(test::valid_config(R"("probe_after_change": "measure")"), 0);
+  rig.sim.sensor_z = kSensorZ;
+  rig.changer->tool_change(4);
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.lines(), concat({retrieve(4), measure_at_sensor(true), {"done T4"}}));
+  EXPECT_DOUBLE_EQ(rig.changer->tools().lengths.at(4), 25.0);
+  EXPECT_EQ(rig.changer->status().phase, Phase::idle);
+}
+
+TEST(ProbeAfterChange, shouldPassACheckWithinToleranceAndWriteNothing) {
+  const Config config = test::valid_config(R"("probe_after_change": "check", "probe_check_tolerance": 0.05)");
+  ToolState tools = ToolState::fresh(config);
+  tools.lengths[4] = 25.04;
+  Simulator sim;
+  sim.sensor_z = kSensorZ;
+  Changer changer(config, sim, tools);
+  changer.ready();
+  changer.tool_change(4);
+  sim.run(changer);
+  for (const Step& step : sim.steps()) EXPECT_NE(step.kind, StepKind::set_tool_length);
+  EXPECT_EQ(sim.steps().back().kind, StepKind::done);
+  EXPECT_DOUBLE_EQ(changer.tools().lengths.at(4), 25.04);
+  EXPECT_EQ(sim.messages(MessageKind::info).back(), "tool 4 measures 25.0000 mm, stored 25.0400 mm");
+}
+
+TEST(ProbeAfterChange, shouldFaultWhenTheCheckedLengthDiffers) {
+  const Config config = test::valid_config(R"("probe_after_change": "check")");
+  ToolState tools = ToolState::fresh(config);
+  tools.lengths[4] = 30.0;
+  Simulator sim;
+  sim.sensor_z = kSensorZ;
+  Changer changer(config, sim, tools);
+  changer.ready();
+  changer.tool_change(4);
+  sim.run(changer);
+  EXPECT_EQ(changer.status().phase, Phase::fault);
+  EXPECT_EQ(sim.steps().back().kind, StepKind::fail);
+  EXPECT_NE(sim.steps().back().label.find("tool 4 measures 25.0000 mm but its stored length is "
+                                          "30.0000 mm (probe_check_tolerance 0.1000 mm): tool "
+                                          "broken or pulled out?"),
+            std::string::npos)
+      << sim.steps().back().label;
+  EXPECT_DOUBLE_EQ(changer.tools().lengths.at(4), 30.0) << "a check never writes";
+  EXPECT_EQ(changer.tools().spindle, 4);
+  EXPECT_FALSE(sim.chuck_open);
+}
+
+TEST(ProbeAfterChange, shouldMeasureAToolNeverMeasuredWhenChecking) {
+  Rig rig(test::valid_config(R"("probe_after_change": "check")"), 0);
+  rig.sim.sensor_z = kSensorZ;
+  rig.changer->tool_change(4);
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.lines(), concat({retrieve(4), measure_at_sensor(true), {"done T4"}}));
+  EXPECT_DOUBLE_EQ(rig.changer->tools().lengths.at(4), 25.0);
+}
+
+TEST(ProbeAfterChange, shouldFaultWhenTheToolCannotBeMeasured) {
+  Rig rig(test::valid_config(R"("probe_after_change": "measure")"), 0);
+  rig.changer->tool_change(4);  // sim.sensor_z unset: the probe misses
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.changer->status().phase, Phase::fault);
+  EXPECT_NE(rig.sim.steps().back().label.find("tool 4 could not be measured after the change"),
+            std::string::npos);
+  EXPECT_TRUE(rig.changer->tools().lengths.empty());
+}
+
+TEST(ProbeAfterChange, shouldNotLetCancelStopAProbeInsideAProgram) {
+  Rig rig(test::valid_config(R"("probe_after_change": "measure")"), 0);
+  rig.changer->tool_change(4);
+  while (rig.changer->status().awaiting != Awaiting::probe) ASSERT_TRUE(rig.advance_once());
+  rig.changer->operator_cancel();
+  EXPECT_EQ(rig.changer->status().awaiting, Awaiting::probe);
+  EXPECT_EQ(rig.sim.messages(MessageKind::info).back(), "Cancel: nothing is waiting for the operator");
+}
+
+// ---------------------------------------------------------------- cancel mid-probe (load)
+
+TEST(Load, shouldRetractAndWriteNothingWhenCancelledMidProbe) {
+  Rig rig(4);
+  rig.sim.sensor_z = kSensorZ;
+  rig.changer->load(4);
+  rig.sim.run(*rig.changer);
+  rig.changer->operator_continue();  // probe now
+  ASSERT_EQ(rig.changer->status().awaiting, Awaiting::probe);
+  rig.sim.pending.reset();  // the adapter aborts the probe move first
+  const std::size_t before = rig.sim.records.size();
+  rig.changer->operator_cancel();
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.lines(before), (Lines{"rapid loading Z", "set-tool T4", "done T4"}));
+  EXPECT_TRUE(rig.changer->tools().lengths.empty());
+  EXPECT_EQ(rig.changer->tools().spindle, 4);
+  EXPECT_NE(rig.sim.messages(MessageKind::info).back().find("probe of tool 4 cancelled by the operator; nothing written"),
+            std::string::npos);
+}
+
+// ---------------------------------------------------------------- manual tools
+
+Lines flush() { return {"chuck open", "dwell 0.20", "chuck close", "dwell 0.20"}; }
+Lines at_loading() { return {"rapid loading Z", "rapid loading XY"}; }
+
+TEST(Manual, shouldReturnTheRackToolThenHoldForTheManualTool) {
+  Rig rig(2);
+  rig.changer->tool_change(9);
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.lines(), concat({return_to_pocket(2), at_loading(), flush()}))
+      << "nothing is published at the prompt: the executor keeps the program waiting";
+  EXPECT_EQ(rig.changer->status().phase, Phase::changing);
+  EXPECT_EQ(rig.changer->status().awaiting, Awaiting::operator_choice);
+  EXPECT_NE(rig.sim.messages(MessageKind::prompt).back().find("insert tool 9"), std::string::npos);
+  const std::size_t before = rig.sim.records.size();
+  rig.changer->operator_continue();
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.lines(before), (Lines{"rapid safe Z", "done T9"}));
+  EXPECT_EQ(rig.changer->tools().spindle, 9);
+  EXPECT_EQ(rig.changer->tools().in_pocket.count(2), 1u);
+}
+
+TEST(Manual, shouldHandTheManualToolOutBeforeRetrievingARackTool) {
+  Rig rig(9);
+  rig.changer->tool_change(3);
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.lines(), at_loading());
+  EXPECT_NE(rig.sim.messages(MessageKind::prompt).back().find("remove tool 9"), std::string::npos);
+  const std::size_t before = rig.sim.records.size();
+  rig.changer->operator_continue();
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.lines(before), concat({retrieve(3), {"done T3"}}));
+  EXPECT_EQ(rig.changer->tools().spindle, 3);
+}
+
+TEST(Manual, shouldSwapOneManualToolForAnother) {
+  Rig rig(9);
+  rig.changer->tool_change(8);
+  while (rig.changer->status().phase == Phase::changing) ASSERT_TRUE(rig.advance_once());
+  EXPECT_EQ(rig.lines(), concat({at_loading(), at_loading(), flush(), {"rapid safe Z", "done T8"}}));
+  EXPECT_EQ(rig.changer->tools().spindle, 8);
+}
+
+TEST(Manual, shouldOnlyHandOutForT0) {
+  Rig rig(9);
+  rig.changer->tool_change(0);
+  while (rig.changer->status().phase == Phase::changing) ASSERT_TRUE(rig.advance_once());
+  EXPECT_EQ(rig.lines(), concat({at_loading(), {"done T0"}}));
+  EXPECT_EQ(rig.changer->tools().spindle, 0);
+}
+
+TEST(Manual, shouldMeasureTheManualToolWhenConfigured) {
+  Rig rig(test::valid_config(R"("probe_after_change": "measure")"), 0);
+  rig.sim.sensor_z = kSensorZ;
+  rig.changer->tool_change(9);
+  while (rig.changer->status().phase == Phase::changing) ASSERT_TRUE(rig.advance_once());
+  EXPECT_EQ(rig.lines(), concat({at_loading(), flush(), {"rapid safe Z"},
+                                 measure_at_sensor(true), {"done T9"}}));
+  EXPECT_DOUBLE_EQ(rig.changer->tools().lengths.at(9), 25.0);
+}
+
+TEST(Manual, shouldStopTheProgramWithAnEmptySpindleWhenInsertionIsCancelled) {
+  Rig rig(2);
+  rig.changer->tool_change(9);
+  rig.sim.run(*rig.changer);
+  const std::size_t before = rig.sim.records.size();
+  rig.changer->operator_cancel();
+  rig.sim.run(*rig.changer);
+  const Lines after = rig.lines(before);
+  ASSERT_EQ(after.size(), 2u);
+  EXPECT_EQ(after[0], "set-tool T0") << "LinuxCNC still has tool 2 until it is told";
+  EXPECT_EQ(rig.sim.steps().back().kind, StepKind::fail);
+  EXPECT_EQ(rig.sim.steps().back().label, "M6 T9 cancelled by the operator; the spindle is empty");
+  EXPECT_EQ(rig.sim.messages(MessageKind::error).back(), "M6 T9 cancelled by the operator; the spindle is empty");
+  EXPECT_EQ(rig.changer->status().phase, Phase::idle) << "a cancel is no fault";
+  EXPECT_FALSE(rig.changer->tools().uncertain);
+  EXPECT_EQ(rig.changer->tools().spindle, 0);
+}
+
+TEST(Manual, shouldStopTheProgramKeepingTheToolWhenRemovalIsCancelled) {
+  Rig rig(9);
+  rig.changer->tool_change(3);
+  rig.sim.run(*rig.changer);
+  rig.changer->operator_cancel();
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.sim.steps().back().kind, StepKind::fail);
+  EXPECT_EQ(rig.sim.steps().back().label, "M6 T3 cancelled by the operator; tool 9 is in the spindle");
+  EXPECT_EQ(rig.changer->status().phase, Phase::idle);
+  EXPECT_EQ(rig.changer->tools().spindle, 9);
+}
+
+TEST(Manual, shouldRefuseLoadAndUnloadRequestsWhileHolding) {
+  Rig rig(0);
+  rig.changer->tool_change(9);
+  rig.sim.run(*rig.changer);
+  rig.changer->load(4);
+  EXPECT_NE(rig.sim.messages(MessageKind::error).back().find("load of tool 4 refused: the changer is busy"),
+            std::string::npos);
+  EXPECT_EQ(rig.changer->status().awaiting, Awaiting::operator_choice);
 }
 
 }  // namespace

@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "io/cli.hpp"
@@ -33,9 +36,22 @@ TEST(Cli, shouldPrintThePlanOfAChangeOneStepALine) {
 }
 
 TEST(Cli, shouldExitOneWhenThePlannedChangeIsRefused) {
-  const CliRun r = run({"--plan", "--config", kConfig, "--from", "0", "--to", "42"});
+  nlohmann::json config = nlohmann::json::parse(std::ifstream(kConfig));
+  config["manual_tools"] = false;
+  const std::string path = ::testing::TempDir() + "fatc_manual_tools_off.json";
+  std::ofstream(path) << config.dump();
+  const CliRun r = run({"--plan", "--config", path, "--from", "0", "--to", "42"});
+  std::remove(path.c_str());
   EXPECT_EQ(r.code, 1);
-  EXPECT_NE(r.out.find("tool 42 has no pocket"), std::string::npos);
+  EXPECT_NE(r.out.find("tool 42 has no pocket in the config (and manual_tools is off)"), std::string::npos)
+      << r.out << r.err;
+}
+
+TEST(Cli, shouldPlanAManualToolWithTheOperatorHandingItOver) {
+  const CliRun r = run({"--plan", "--config", kConfig, "--from", "2", "--to", "42"});
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("insert tool 42 into the spindle"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("done       T42"), std::string::npos) << r.out;
 }
 
 TEST(Cli, shouldPassTheCheckOfTheSampleConfig) {

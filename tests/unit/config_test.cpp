@@ -49,6 +49,9 @@ TEST(Config, shouldApplyDocumentedDefaultsToNewKeys) {
   EXPECT_EQ(c.spindle_stop_timeout_seconds, 10.0);
   EXPECT_FALSE(c.rack_keepout_margin);
   EXPECT_EQ(c.keepout_margin(), 20.0) << "half the side offset";
+  EXPECT_EQ(c.probe_after_change, ProbeAfterChange::off);
+  EXPECT_EQ(c.check_tolerance(), 0.1);
+  EXPECT_TRUE(c.manual_tools);
 }
 
 TEST(Config, shouldReadEveryNewKey) {
@@ -61,6 +64,9 @@ TEST(Config, shouldReadEveryNewKey) {
   j["flush"] = {{"pulses", 3}, {"pulse_seconds", 0.1}, {"pause_seconds", 0.3}};
   j["spindle_stop_timeout_seconds"] = 4;
   j["rack_keepout_margin"] = 0.5;
+  j["probe_after_change"] = "check";
+  j["probe_check_tolerance"] = 0.002;
+  j["manual_tools"] = false;
   const auto result = parse_config(j.dump());
   ASSERT_TRUE(result.config) << result.errors.front();
   const Config& c = *result.config;
@@ -74,6 +80,15 @@ TEST(Config, shouldReadEveryNewKey) {
   EXPECT_EQ(c.flush.pause_seconds, 0.3);
   EXPECT_EQ(c.spindle_stop_timeout_seconds, 4.0);
   EXPECT_EQ(c.keepout_margin(), 0.5);
+  EXPECT_EQ(c.probe_after_change, ProbeAfterChange::check);
+  EXPECT_EQ(c.check_tolerance(), 0.002);
+  EXPECT_FALSE(c.manual_tools);
+}
+
+TEST(Config, shouldDefaultTheCheckToleranceInInches) {
+  Json j = Json::parse(test::kValidConfig);
+  j["units"] = "inch";
+  EXPECT_EQ(parse_config(j.dump()).config->check_tolerance(), 0.004);
 }
 
 TEST(Config, shouldReadTheSampleConfigShipped) {
@@ -146,6 +161,9 @@ INSTANTIATE_TEST_SUITE_P(Each, BadConfigs, ::testing::Values(
   BadConfig{"timeout_zero", [](Json& j) { j["spindle_stop_timeout_seconds"] = 0; }, "spindle_stop_timeout_seconds: must be above 0"},
   BadConfig{"margin_negative", [](Json& j) { j["rack_keepout_margin"] = -1; }, "rack_keepout_margin: must be at least 0"},
   BadConfig{"margin_over_side", [](Json& j) { j["rack_keepout_margin"] = 45; }, "rack_keepout_margin: must be smaller than the side offset (40)"},
+  BadConfig{"probe_after_change_word", [](Json& j) { j["probe_after_change"] = "always"; }, "probe_after_change: expected \"off\", \"measure\" or \"check\", got \"always\""},
+  BadConfig{"tolerance_zero", [](Json& j) { j["probe_check_tolerance"] = 0; }, "probe_check_tolerance: must be above 0"},
+  BadConfig{"manual_tools_word", [](Json& j) { j["manual_tools"] = "yes"; }, "manual_tools: expected true or false, got \"yes\""},
   BadConfig{"huge_number", [](Json& j) { j["safe"]["x"] = 1e308 * 10; }, "safe.x: expected a number, got null"}
 ));
 // clang-format on

@@ -30,8 +30,8 @@ TEST(Waypoints, shouldOffsetSideAndHeightsFromThePocket) {
 TEST(KeepOut, shouldAcceptEveryPlannedSequenceOfTheValidConfig) {
   const Config config = test::valid_config();
   for (const auto& [tool, pocket] : config.pockets) {
-    EXPECT_TRUE(check_steps(config, plan_change(config, 0, tool).steps(), std::nullopt).empty());
-    EXPECT_TRUE(check_steps(config, plan_change(config, tool, 0).steps(), std::nullopt).empty());
+    EXPECT_TRUE(check_steps(config, plan_change(config, 0, tool, config.probe_limit.z).steps(), std::nullopt).empty());
+    EXPECT_TRUE(check_steps(config, plan_change(config, tool, 0, config.probe_limit.z).steps(), std::nullopt).empty());
   }
 }
 
@@ -59,7 +59,7 @@ TEST(KeepOut, shouldAllowOnlyTheApproachIntoTheServedPocket) {
 TEST(KeepOut, shouldFlagASafeZTooLowToCrossTheRack) {
   Config config = test::valid_config();
   config.safe.z = -40.0;  // below the above-clearance height of -20
-  const auto violations = check_steps(config, plan_change(config, 0, 1).steps(), std::nullopt);
+  const auto violations = check_steps(config, plan_change(config, 0, 1, config.probe_limit.z).steps(), std::nullopt);
   EXPECT_FALSE(violations.empty());
 }
 
@@ -80,7 +80,7 @@ TEST(SoftLimits, shouldFlagATargetOutsideTheLimits) {
 TEST(SoftLimits, shouldAcceptEveryPlannedStepWithinGenerousLimits) {
   const Config config = test::valid_config();
   const SoftLimits limits{{-10, 400}, {-10, 300}, {-120, 0}};
-  EXPECT_TRUE(check_steps(config, plan_change(config, 2, 5).steps(), limits).empty());
+  EXPECT_TRUE(check_steps(config, plan_change(config, 2, 5, config.probe_limit.z).steps(), limits).empty());
   EXPECT_TRUE(check_steps(config, plan_load(config, 4, 0, -70).steps(), limits).empty());
 }
 

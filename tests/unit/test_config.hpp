@@ -22,6 +22,11 @@ inline const char* const kValidConfig = R"({
               "4": {"x": 200.0}, "5": {"x": 250.0}, "6": {"x": 300.0, "z": -82.5}}
 })";
 
-inline Config valid_config() { return *parse_config(kValidConfig).config; }
+/// The valid config with `extra` keys added at the top level, e.g. R"("manual_tools": false)".
+inline Config valid_config(const std::string& extra = "") {
+  std::string text = kValidConfig;
+  if (!extra.empty()) text.insert(text.rfind('}'), "," + extra);
+  return *parse_config(text).config;
+}
 
 }  // namespace fatc::test

@@ -34,6 +34,8 @@ struct FlowFailed {
 
 struct Finished : msmf::exit_pseudo_state<LegDone> {};
 struct Failed : msmf::exit_pseudo_state<FlowFailed> {};
+/// The operator cancelled inside a program: the program stops, nothing is uncertain.
+struct Stopped : msmf::exit_pseudo_state<LegDone> {};
 
 /// Base of every submachine front: takes the context from its parent on
 /// entry and remembers which tool's pocket it serves.
@@ -81,6 +83,16 @@ struct AskingOperator : msmf::state<> {
     pause.kind = StepKind::wait_operator;
     pause.label = "operator";
     fsm.ctx->publish(pause);
+    fsm.ctx->ask_operator(Prompt{}(*fsm.ctx));
+  }
+};
+
+/// Asks the operator inside a running program (M6): nothing is published, so
+/// the executor keeps waiting for its next step; Continue or Cancel follow.
+template <class Prompt>
+struct HoldingForOperator : msmf::state<> {
+  template <class Event, class Fsm>
+  void on_entry(const Event&, Fsm& fsm) {
     fsm.ctx->ask_operator(Prompt{}(*fsm.ctx));
   }
 };
@@ -195,6 +207,12 @@ struct LoadingXY {
     return move(StepKind::rapid, axis_xy, c.config.loading, "loading XY");
   }
 };
+/// Over the touch-off sensor, at the current Z.
+struct SensorXY {
+  Step operator()(const Context& c, int) const {
+    return move(StepKind::rapid, axis_xy, c.config.probe_limit, "over the touch-off sensor");
+  }
+};
 struct ProbeSeek {
   Step operator()(const Context& c, int) const {
     return move(StepKind::probe, axis_z, c.config.probe_limit, "touch-off sensor (seek)", 0,
@@ -255,6 +273,14 @@ struct Not {
   }
 };
 
+template <class First, class Second>
+struct And {
+  template <class Event, class Fsm, class Source, class Target>
+  bool operator()(const Event& e, Fsm& fsm, Source& s, Target& t) const {
+    return First{}(e, fsm, s, t) && Second{}(e, fsm, s, t);
+  }
+};
+
 struct SpindleHoldsTool {
   template <class Event, class Fsm, class Source, class Target>
   bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
@@ -271,6 +297,32 @@ struct SpindleHoldsOtherTool {
   template <class Event, class Fsm, class Source, class Target>
   bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
     return fsm.ctx->tools.spindle != 0 && fsm.ctx->tools.spindle != fsm.ctx->requested_tool;
+  }
+};
+/// The spindle holds a tool that has a pocket to go back to.
+struct SpindleHoldsRackTool {
+  template <class Event, class Fsm, class Source, class Target>
+  bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+    return fsm.ctx->tools.spindle != 0 && fsm.ctx->config.has_pocket(fsm.ctx->tools.spindle);
+  }
+};
+/// The spindle holds a manual tool: one with no pocket, handed over at `loading`.
+struct SpindleHoldsManualTool {
+  template <class Event, class Fsm, class Source, class Target>
+  bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+    return fsm.ctx->tools.spindle != 0 && !fsm.ctx->config.has_pocket(fsm.ctx->tools.spindle);
+  }
+};
+struct RequestedRackTool {
+  template <class Event, class Fsm, class Source, class Target>
+  bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+    return fsm.ctx->requested_tool != 0 && fsm.ctx->config.has_pocket(fsm.ctx->requested_tool);
+  }
+};
+struct RequestedManualTool {
+  template <class Event, class Fsm, class Source, class Target>
+  bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+    return fsm.ctx->requested_tool != 0 && !fsm.ctx->config.has_pocket(fsm.ctx->requested_tool);
   }
 };
 struct ToolRequested {

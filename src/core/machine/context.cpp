@@ -105,10 +105,15 @@ std::optional<std::string> why_not_change(const Context& ctx, int tool) {
   if (tool < 0) return "T" + std::to_string(tool) + " is not a tool number";
   if (auto busy = why_not_busy(ctx)) return busy;
   if (tool == ctx.tools.spindle) return std::nullopt;
-  if (tool != 0 && !ctx.config.has_pocket(tool)) return tool_name(tool) + " has no pocket in the config";
-  if (tool != 0 && ctx.tools.in_pocket.count(tool) == 0) {
+  const bool manual = !ctx.config.has_pocket(tool);
+  if (tool != 0 && manual && !ctx.config.manual_tools) {
+    return tool_name(tool) + " has no pocket in the config (and manual_tools is off)";
+  }
+  if (tool != 0 && !manual && ctx.tools.in_pocket.count(tool) == 0) {
     return tool_name(tool) + " is not in its pocket (it was unloaded); load it first";
   }
+  const int held = ctx.tools.spindle;
+  if (held != 0 && !ctx.config.has_pocket(held) && ctx.config.manual_tools) return std::nullopt;
   return why_spindle_cannot_be_emptied(ctx);
 }
 

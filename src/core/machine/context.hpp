@@ -29,6 +29,7 @@ class Context {
   double first_touch_z = 0.0;  ///< where the fast probing stage touched
   double latched_z = 0.0;      ///< where the slow probing stage touched
   std::string fault_reason;
+  std::string stop_reason;     ///< why an M6 stops its program without a fault
   Point position;              ///< where the last published moves lead
   unsigned known_axes = 0;     ///< which axes of `position` are known
   bool at_safe() const;

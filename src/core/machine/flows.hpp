@@ -6,7 +6,7 @@
 #include <boost/core/demangle.hpp>
 #include <type_traits>
 
-#include "legs.hpp"
+#include "handover.hpp"
 
 namespace fatc::machine {
 
@@ -21,10 +21,6 @@ struct EntersPhase {
     fsm.ctx->status.phase = P;
   }
 };
-
-/// To the loading position, Z first: where the operator reaches the spindle.
-struct ToLoadingZ : Moving<to::LoadingZ> {};
-struct ToLoadingXY : Moving<to::LoadingXY> {};
 
 // ================================================================ change (M6)
 struct ChangeFlow_ : Flow<ChangeFlow_> {
@@ -55,20 +51,42 @@ struct ChangeFlow_ : Flow<ChangeFlow_> {
     }
   };
 
+  struct ProbesAfterChange {
+    template <class Event, class Fsm, class Source, class Target>
+    bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      return fsm.ctx->config.probe_after_change != ProbeAfterChange::off;
+    }
+  };
+
   using Returning = ReturnLeg<Before>;
+  /// Decides, with the spindle empty, how the requested tool gets into it.
+  struct Fetching : Choosing {};
+  /// Decides whether the tool now in the spindle is measured.
+  struct Measuring : Choosing {};
   using initial_state = WaitingForSpindle;
   // clang-format off
   using transition_table = boost::mpl::vector<
   //    Start                            Event           Next         Action                Guard
-  // +--------------------------------+---------------+------------+---------------------+-----------------------+
-  Row < WaitingForSpindle              , none          , Choosing   , CancelTimer         , SpindleIsStopped      >,
-  Row < WaitingForSpindle              , SpindleStopped, Choosing   , CancelTimer         , none                  >,
-  Row < WaitingForSpindle              , TimerElapsed  , Failed     , SaySpindleDidNotStop, none                  >,
-  Row < Choosing                       , none          , Returning  , none                , SpindleHoldsTool      >,
-  Row < Choosing                       , none          , RetrieveLeg, none                , Not<SpindleHoldsTool> >,
-  Row < Returning::exit_pt<Finished>   , LegDone       , RetrieveLeg, none                , ToolRequested         >,
-  Row < Returning::exit_pt<Finished>   , LegDone       , Finished   , none                , Not<ToolRequested>    >,
-  Row < RetrieveLeg::exit_pt<Finished> , LegDone       , Finished   , none                , none                  >
+  // +--------------------------------+---------------+------------+---------------------+-------------------------+
+  Row < WaitingForSpindle              , none          , Choosing   , CancelTimer         , SpindleIsStopped        >,
+  Row < WaitingForSpindle              , SpindleStopped, Choosing   , CancelTimer         , none                    >,
+  Row < WaitingForSpindle              , TimerElapsed  , Failed     , SaySpindleDidNotStop, none                    >,
+  Row < Choosing                       , none          , Returning  , none                , SpindleHoldsRackTool    >,
+  Row < Choosing                       , none          , HandOutLeg , none                , SpindleHoldsManualTool  >,
+  Row < Choosing                       , none          , Fetching   , none                , Not<SpindleHoldsTool>   >,
+  Row < Returning::exit_pt<Finished>   , LegDone       , Fetching   , none                , none                    >,
+  Row < HandOutLeg::exit_pt<Finished>  , LegDone       , Fetching   , none                , none                    >,
+  Row < HandOutLeg::exit_pt<Stopped>   , LegDone       , Stopped    , none                , none                    >,
+  Row < Fetching                       , none          , RetrieveLeg, none                , RequestedRackTool       >,
+  Row < Fetching                       , none          , HandInLeg  , none                , RequestedManualTool     >,
+  Row < Fetching                       , none          , Finished   , none                , Not<ToolRequested>      >,
+  Row < RetrieveLeg::exit_pt<Finished> , LegDone       , Measuring  , none                , none                    >,
+  Row < HandInLeg::exit_pt<Finished>   , LegDone       , Measuring  , none                , none                    >,
+  Row < HandInLeg::exit_pt<Stopped>    , LegDone       , Stopped    , none                , none                    >,
+  Row < Measuring                      , none          , MeasureLeg , none                , ProbesAfterChange       >,
+  Row < Measuring                      , none          , Finished   , none                , Not<ProbesAfterChange>  >,
+  Row < MeasureLeg::exit_pt<Finished>  , LegDone       , Finished   , none                , none                    >,
+  Row < MeasureLeg::exit_pt<Failed>    , FlowFailed    , Failed     , none                , none                    >
   >;
   // clang-format on
 };
@@ -263,6 +281,16 @@ struct Operating_ : Flow<Operating_> {
       fsm.ctx->publish(done);
     }
   };
+  /// The executor aborts the program with the reason; nothing is uncertain.
+  struct StopProgram {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      Step fail = failure_step(fsm.ctx->stop_reason);
+      fail.tool = fsm.ctx->tools.spindle;
+      fsm.ctx->publish(fail);
+      fsm.ctx->tell(MessageKind::error, fsm.ctx->stop_reason);
+    }
+  };
   struct IsBusy {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
@@ -284,6 +312,7 @@ struct Operating_ : Flow<Operating_> {
   Row < Idle                          , UnloadRequest, UnloadFlow, TakeRequest, Startable                 >,
   Row < ChangeFlow::exit_pt<Finished> , LegDone      , Idle      , AnswerDone , none                      >,
   Row < ChangeFlow::exit_pt<Failed>   , FlowFailed   , Failed    , none       , none                      >,
+  Row < ChangeFlow::exit_pt<Stopped>  , LegDone      , Idle      , StopProgram, none                      >,
   Row < LoadFlow::exit_pt<Finished>   , LegDone      , Idle      , AnswerDone , none                      >,
   Row < UnloadFlow::exit_pt<Finished> , LegDone      , Idle      , AnswerDone , none                      >
   >;

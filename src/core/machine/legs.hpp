@@ -3,9 +3,15 @@
 // The legs every flow is made of: flush the chuck, return a tool to its
 // pocket, retrieve a tool from its pocket, measure a tool on the sensor.
 
+#include <cmath>
+
 #include "common.hpp"
 
 namespace fatc::machine {
+
+/// To the loading position, Z first: where the operator reaches the spindle.
+struct ToLoadingZ : Moving<to::LoadingZ> {};
+struct ToLoadingXY : Moving<to::LoadingXY> {};
 
 // ================================================================ flush
 /// Opens the chuck briefly, `flush.pulses` times, so that whatever the spindle
@@ -177,7 +183,8 @@ using RetrieveLeg = msm::back::state_machine<RetrieveLeg_>;
 // ================================================================ probing
 /// Measures the tool in the spindle on the touch-off sensor: a fast seek, a
 /// back-off, a slow latch; length = latched machine Z minus
-/// probe_length_compensation_offset, written to the tool table.
+/// probe_length_compensation_offset, written to the tool table unless an M6
+/// only checks a length it already has.
 struct ProbingLeg_ : Flow<ProbingLeg_> {
   struct NotMeasured : msmf::exit_pseudo_state<LegDone> {};
 
@@ -194,10 +201,25 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
       return e.touched;
     }
   };
+  struct WritesLength {
+    template <class Event, class Fsm, class Source, class Target>
+    bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      const Context& c = *fsm.ctx;
+      return c.status.phase != Phase::changing ||
+             c.config.probe_after_change != ProbeAfterChange::check ||
+             c.tools.lengths.count(fsm.pocket_tool) == 0;
+    }
+  };
   struct RememberFirstTouch {
     template <class Fsm, class Source, class Target>
     void operator()(const ProbeResult& e, Fsm& fsm, Source&, Target&) const {
       fsm.ctx->first_touch_z = e.z;
+    }
+  };
+  struct RememberLatch {
+    template <class Fsm, class Source, class Target>
+    void operator()(const ProbeResult& e, Fsm& fsm, Source&, Target&) const {
+      fsm.ctx->latched_z = e.z;
     }
   };
   struct RecordLength {
@@ -218,23 +240,95 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
                         : tool + " did not touch the sensor before probe_limit; nothing written");
     }
   };
+  struct SayCancelled {
+    template <class Fsm, class Source, class Target>
+    void operator()(const OperatorCancel&, Fsm& fsm, Source&, Target&) const {
+      fsm.ctx->tell(MessageKind::info, "probe of tool " + std::to_string(fsm.pocket_tool) +
+                                           " cancelled by the operator; nothing written");
+    }
+  };
 
   using initial_state = Seeking;
   // clang-format off
   using transition_table = boost::mpl::vector<
-  //    Start                  Event         Next                   Action              Guard
-  // +----------------------+-------------+----------------------+-------------------+-------------+
-  Row < Seeking              , ProbeResult , BackingOff           , RememberFirstTouch, Touched      >,
-  Row < Seeking              , ProbeResult , RetractingUnmeasured , SayNoTouch        , Not<Touched> >,
-  Row < BackingOff           , InPosition  , Latching             , none              , none         >,
-  Row < Latching             , ProbeResult , WritingLength        , RecordLength      , Touched      >,
-  Row < Latching             , ProbeResult , RetractingUnmeasured , SayNoTouch        , Not<Touched> >,
-  Row < WritingLength        , InPosition  , Retracting           , none              , none         >,
-  Row < Retracting           , InPosition  , Finished             , none              , none         >,
-  Row < RetractingUnmeasured , InPosition  , NotMeasured          , none              , none         >
+  //    Start                  Event           Next                   Action              Guard
+  // +----------------------+---------------+----------------------+-------------------+-----------------------------+
+  Row < Seeking              , ProbeResult   , BackingOff           , RememberFirstTouch, Touched                     >,
+  Row < Seeking              , ProbeResult   , RetractingUnmeasured , SayNoTouch        , Not<Touched>                >,
+  Row < Seeking              , OperatorCancel, RetractingUnmeasured , SayCancelled      , none                        >,
+  Row < BackingOff           , InPosition    , Latching             , none              , none                        >,
+  Row < Latching             , ProbeResult   , WritingLength        , RecordLength      , And<Touched, WritesLength>  >,
+  Row < Latching             , ProbeResult   , Retracting           , RememberLatch     , And<Touched, Not<WritesLength>> >,
+  Row < Latching             , ProbeResult   , RetractingUnmeasured , SayNoTouch        , Not<Touched>                >,
+  Row < Latching             , OperatorCancel, RetractingUnmeasured , SayCancelled      , none                        >,
+  Row < WritingLength        , InPosition    , Retracting           , none              , none                        >,
+  Row < Retracting           , InPosition    , Finished             , none              , none                        >,
+  Row < RetractingUnmeasured , InPosition    , NotMeasured          , none              , none                        >
   >;
   // clang-format on
 };
 using ProbingLeg = msm::back::state_machine<ProbingLeg_>;
+
+// ================================================================ measure after M6
+/// `probe_after_change`: takes the tool just put in the spindle to the sensor
+/// and measures it, or checks it against its stored length; ends at safe Z.
+struct MeasureLeg_ : Flow<MeasureLeg_> {
+  struct OverSensor : Moving<to::SensorXY> {};
+  struct UpToSafeZ : Moving<to::SafeZ> {};
+
+  static double measured(const Context& c) {
+    return c.latched_z - c.config.probe_length_compensation_offset;
+  }
+  struct LengthDiffers {
+    template <class Event, class Fsm, class Source, class Target>
+    bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      const Context& c = *fsm.ctx;
+      return std::abs(measured(c) - c.tools.lengths.at(fsm.pocket_tool)) > c.config.check_tolerance();
+    }
+  };
+  struct SayMeasured {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      fsm.ctx->tell(MessageKind::info, "tool " + std::to_string(fsm.pocket_tool) + " measures " +
+                                           format_length(fsm.ctx->config, measured(*fsm.ctx)) +
+                                           ", stored " +
+                                           format_length(fsm.ctx->config,
+                                                         fsm.ctx->tools.lengths.at(fsm.pocket_tool)));
+    }
+  };
+  struct SayBrokenOrPulledOut {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      Context& c = *fsm.ctx;
+      c.fault_reason = "tool " + std::to_string(fsm.pocket_tool) + " measures " +
+                       format_length(c.config, measured(c)) + " but its stored length is " +
+                       format_length(c.config, c.tools.lengths.at(fsm.pocket_tool)) +
+                       " (probe_check_tolerance " + format_length(c.config, c.config.check_tolerance()) +
+                       "): tool broken or pulled out?";
+    }
+  };
+  struct SayNotMeasured {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      fsm.ctx->fault_reason = "tool " + std::to_string(fsm.pocket_tool) +
+                              " could not be measured after the change (probe_after_change)";
+    }
+  };
+
+  using initial_state = ToLoadingZ;
+  // clang-format off
+  using transition_table = boost::mpl::vector<
+  //    Start                                    Event       Next        Action               Guard
+  // +----------------------------------------+-----------+-----------+--------------------+---------------------+
+  Row < ToLoadingZ                             , InPosition, OverSensor, none               , none                >,
+  Row < OverSensor                             , InPosition, ProbingLeg, none               , none                >,
+  Row < ProbingLeg::exit_pt<Finished>          , LegDone   , UpToSafeZ , SayMeasured        , Not<LengthDiffers>  >,
+  Row < ProbingLeg::exit_pt<Finished>          , LegDone   , Failed    , SayBrokenOrPulledOut, LengthDiffers      >,
+  Row < ProbingLeg::exit_pt<ProbingLeg_::NotMeasured>, LegDone, Failed , SayNotMeasured     , none                >,
+  Row < UpToSafeZ                              , InPosition, Finished  , none               , none                >
+  >;
+  // clang-format on
+};
+using MeasureLeg = msm::back::state_machine<MeasureLeg_>;
 
 }  // namespace fatc::machine
