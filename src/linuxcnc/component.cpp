@@ -80,8 +80,12 @@ void Component::watch_for_abort(std::optional<bool> interpreter_idle) {
 }
 
 void Component::abort(const std::string& reason) {
-  // The executor is gone with the program; nothing it was doing will finish.
   changer_->abort(reason);
+  drop_executor();
+}
+
+void Component::drop_executor() {
+  // The executor is gone with the program; nothing it was doing will finish.
   executing_.reset();
   offered_.reset();
   pending_.reset();
@@ -116,7 +120,15 @@ void Component::serve_operator() {
     }
   }
   if (rising(*pins_->continue_, last_continue_)) changer_->operator_continue();
-  if (rising(*pins_->cancel, last_cancel_)) changer_->operator_cancel();
+  if (rising(*pins_->cancel, last_cancel_)) {
+    if (probe_cancellable(changer_->status()) && nml_) {
+      // The probe runs over MDI: stop it before the changer plans the retract,
+      // which the next executor run then performs.
+      nml_->abort();
+      drop_executor();
+    }
+    changer_->operator_cancel();
+  }
 }
 
 void Component::start_executor_if_needed() {
@@ -193,9 +205,11 @@ void Component::show_status() {
   *pins_->busy = status.phase == Phase::changing || status.phase == Phase::loading ||
                  status.phase == Phase::unloading;
   *pins_->tool_in_spindle = changer_->tools().spindle;
-  // Only once the executor has ended its run: then the GUI and jogging are free.
-  *pins_->waiting_for_operator =
-      status.awaiting == Awaiting::operator_choice && !executor_attached_ && !offered_;
+  // In the operator flows only once the executor has ended its run: then the
+  // GUI and jogging are free. Inside M6 the executor holds the program.
+  const bool executor_free = !executor_attached_ && !offered_;
+  *pins_->waiting_for_operator = status.awaiting == Awaiting::operator_choice &&
+                                 (executor_free || status.phase == Phase::changing);
 }
 
 void Component::publish(const Step& step) {

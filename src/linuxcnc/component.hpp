@@ -45,6 +45,7 @@ class Component : public Ports {
   void start_executor_if_needed();
   void watch_for_abort(std::optional<bool> interpreter_idle);
   void abort(const std::string& reason);
+  void drop_executor();
   void offer(const Step& step);
   void offer_pending_if_asked();
   void show_status();

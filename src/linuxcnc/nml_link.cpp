@@ -72,6 +72,12 @@ void NmlLink::run_mdi(const std::string& line) {
   channels_->command->write(&execute);
 }
 
+void NmlLink::abort() {
+  EMC_TASK_ABORT abort;
+  abort.serial_number = ++serial_;
+  channels_->command->write(&abort);
+}
+
 std::string nml_file_of(const std::string& ini_path) {
   std::string error;
   const auto ini = io::IniFile::read(ini_path, error);

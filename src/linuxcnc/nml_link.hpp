@@ -23,6 +23,8 @@ class NmlLink {
   void tell(MessageKind kind, const std::string& text);
   /// Puts task in MDI mode and runs `line` there, as halui does for its MDI commands.
   void run_mdi(const std::string& line);
+  /// Stops what task runs (program or MDI), as the GUI's Stop does.
+  void abort();
 
  private:
   struct Channels;

@@ -158,14 +158,6 @@ def check_modal(r, rack):
         fail("tool 2 not in the spindle")
 
 
-def check_no_pocket(r, rack):
-    wanted = "tool 7 has no pocket in the config"
-    if not any(wanted in m for m in r["messages"]):
-        fail("no message saying '%s': %s" % (wanted, r["messages"]))
-    ok("messages: %s" % r["messages"])
-    nothing_moved(r)
-
-
 def check_feed_hold(r, rack):
     no_fault(r)
     if "paused_at" not in r or "resumed_at" not in r:
@@ -324,6 +316,144 @@ def check_jog_prompt_cancel(r, rack):
     if r["samples"][-1]["tool_in_spindle"] != 2 or abs(tool_table_length(r, 2) - 35.0) > 1e-9:
         fail("tool 2 should stay in the spindle with its length unchanged")
     ok("tool 2 stays in the spindle, its length unchanged")
+
+
+def loading(rack):
+    return [rack.c["loading"][a] for a in "xyz"]
+
+
+def program_completed(r):
+    if any("abort" in m or "refused" in m for m in r["messages"]):
+        fail("the program did not complete: %s" % r["messages"])
+    ok("the program ran to its end")
+
+
+def check_probe_cancel(r, rack):
+    no_fault(r)
+    wanted = "probe of tool 2 cancelled by the operator; nothing written"
+    if not any(wanted in m for m in r["messages"]):
+        fail("no message saying '%s': %s" % (wanted, r["messages"]))
+    ok("message: %s" % wanted)
+    lowest = min(s["pos"][2] for s in r["samples"])
+    if lowest < -69.0:
+        fail("the probe went on to Z %.3f after Cancel (sensor at -70)" % lowest)
+    ok("the probe stopped at Z %.3f, short of the sensor" % lowest)
+    last = r["samples"][-1]
+    if abs(tool_table_length(r, 2) - 35.0) > 1e-9 or last["tool_in_spindle"] != 2:
+        fail("tool 2 should stay in the spindle with its length unchanged")
+    if abs(last["pos"][2] - rack.c["loading"]["z"]) > TOLERANCE:
+        fail("expected the retract to loading Z, the machine stands at %s" % last["pos"])
+    ok("retracted to loading Z; tool 2 in the spindle, its length unchanged")
+
+
+def check_manual(r, rack):
+    no_fault(r)
+    program_completed(r)
+    tools = distinct(r["samples"], "tool_in_spindle")
+    if tools[-3:] != [2, 7, 2]:
+        fail("tool in spindle went %s, expected ... 2, 7, 2" % tools)
+    ok("tool in spindle went %s" % tools)
+    holds = rising(r["samples"], "fixed_atc_probe.waiting-for-operator")
+    if holds != 2:
+        fail("the program held for the operator %d times, expected 2" % holds)
+    for wanted in ("M6 T7: insert tool 7", "M6 T2: remove tool 7"):
+        if not any(wanted in m for m in r["messages"]):
+            fail("no operator message saying '%s': %s" % (wanted, r["messages"]))
+    ok("held twice, announced: insert tool 7, remove tool 7")
+    held = [s for s in r["samples"] if s["fixed_atc_probe.waiting-for-operator"]]
+    if not all(near(s["pos"], loading(rack)) for s in held):
+        fail("the operator waits were not at loading %s" % loading(rack))
+    if not all(s["interp"] != 1 for s in held):
+        fail("the program was not running during the hold")
+    ok("every hold at loading %s with the program still running" % loading(rack))
+    visits_in_order(r["samples"], rack.return_waypoints(2) + [("loading", loading(rack)),
+                    ("X100 Y100", [100.0, 100.0, rack.safe()[2]]), ("loading", loading(rack))] +
+                    rack.retrieve_waypoints(2))
+    handshake_complete(r)
+
+
+def check_manual_cancel(r, rack):
+    no_fault(r)
+    wanted = "M6 T7 cancelled by the operator; the spindle is empty"
+    if not any(wanted in m for m in r["messages"]):
+        fail("no message saying '%s': %s" % (wanted, r["messages"]))
+    ok("message: %s" % wanted)
+    last = r["samples"][-1]
+    if last["tool_in_spindle"] != 0 or last["fixed_atc_probe.tool-in-spindle"] != 0:
+        fail("after the cancel LinuxCNC says T%d, the changer T%d" % (
+            last["tool_in_spindle"], last["fixed_atc_probe.tool-in-spindle"]))
+    ok("the spindle is empty for LinuxCNC and the changer")
+    if any(near(s["pos"], [1.0, 1.0, rack.c["loading"]["z"]]) or abs(s["pos"][0] - 1.0) < TOLERANCE
+           for s in r["samples"]):
+        fail("the program went on to G0 X1 Y1 after the cancel")
+    if last["interp"] != 1 or last["fixed_atc_probe.state"] != 1:
+        fail("the program should be stopped and the changer idle")
+    ok("the program stopped before its next move; the changer is idle, not faulted")
+
+
+def check_busy_refusals(r, rack):
+    no_fault(r)
+    pressed = [p for p, _ in r.get("pressed", [])]
+    if len(pressed) != 3:
+        fail("the buttons were not all pressed during the program: %s" % pressed)
+    for wanted in ("load refused: a program or MDI command is running",
+                   "unload refused: a program or MDI command is running",
+                   "Continue: nothing is waiting for the operator"):
+        if not any(wanted in m for m in r["messages"]):
+            fail("no message saying '%s': %s" % (wanted, r["messages"]))
+        ok("message: %s" % wanted)
+    if any(s["fixed_atc_probe.state"] != 1 for s in r["samples"]):
+        fail("the changer left idle during the program")
+    nothing_moved(r)
+
+
+def measured_at_sensor(r, rack):
+    sensor = [rack.c["probe_limit"]["x"], rack.c["probe_limit"]["y"]]
+    touches = [s for s in r["samples"] if s["motion.probe-input"]]
+    if not touches or any(math.dist(s["pos"][:2], sensor) > TOLERANCE for s in touches):
+        fail("the tool was not probed over the sensor at %s" % sensor)
+    ok("probed over the sensor at X%.1f Y%.1f" % tuple(sensor))
+
+
+def check_check_first(r, rack):
+    no_fault(r)
+    program_completed(r)
+    measured_at_sensor(r, rack)
+    truth = -70.0 - rack.c["probe_length_compensation_offset"]
+    length = tool_table_length(r, 3)
+    if abs(length - truth) > 0.005:
+        fail("tool 3 was never measured before, so M6 writes it: tool table says %.4f, truth %.4f" % (length, truth))
+    ok("tool 3, never measured, measured after M6: %.4f in the tool table file (truth %.4f)" % (length, truth))
+    if r["samples"][-1]["tool_in_spindle"] != 3:
+        fail("tool 3 not in the spindle")
+
+
+def check_check_pass(r, rack):
+    no_fault(r)
+    program_completed(r)
+    measured_at_sensor(r, rack)
+    said = [m for m in r["messages"] if "tool 3 measures" in m and "stored" in m]
+    if not said:
+        fail("no message with the checked length: %s" % r["messages"])
+    ok("checked: %s" % said[0])
+    if r["samples"][-1]["tool_in_spindle"] != 3:
+        fail("tool 3 not in the spindle")
+    ok("the program went on with tool 3")
+
+
+def check_check_broken(r, rack):
+    last = r["samples"][-1]
+    if not last["fixed_atc_probe.fault"]:
+        fail("a tool 5 mm shorter than stored did not fault: %s" % r["messages"])
+    said = [m for m in r["messages"] if "tool broken or pulled out?" in m]
+    if not said:
+        fail("no message asking 'tool broken or pulled out?': %s" % r["messages"])
+    ok("fault: %s" % said[0])
+    if last["interp"] != 1:
+        fail("the program is still running")
+    if abs(tool_table_length(r, 3) - 25.0) > 0.005:
+        fail("a check must not write: tool 3 now %.4f" % tool_table_length(r, 3))
+    ok("program stopped; tool 3's stored length unchanged (%.4f)" % tool_table_length(r, 3))
 
 
 def main():

@@ -86,18 +86,26 @@ def run_scenario(scenario):
     wait_for(lambda: stat.interp_state != linuxcnc.INTERP_IDLE or stat.exec_state != 0, 30,
              "the program to start")
     acted = set()
+    releases = []  # (time, pin): buttons pressed during the program, released 100 ms later
     deadline = start + scenario.get("timeout", 300)
     while time.monotonic() < deadline:
         stat.poll()
         drain_errors()
         s = sample(start)
         result["samples"].append(s)
+        for at, pin in [r for r in releases if time.monotonic() - r[0] > 0.1]:
+            hal.set_p(pin, "0")
+            releases.remove((at, pin))
         for action in scenario.get("actions", []):
             key = json.dumps(action)
             if key in acted or not when(action, s, result):
                 continue
             acted.add(key)
-            if action["do"] == "pause":
+            if action["do"] == "press":
+                hal.set_p(action["pin"], "1")
+                releases.append((time.monotonic(), action["pin"]))
+                result.setdefault("pressed", []).append([action["pin"], s["t"]])
+            elif action["do"] == "pause":
                 command.auto(linuxcnc.AUTO_PAUSE)
                 result["paused_at"] = s["t"]
             elif action["do"] == "resume":
@@ -112,7 +120,7 @@ def run_scenario(scenario):
                                       "program_units": stat.program_units,
                                       "pos": list(stat.actual_position[:3])}
                 command.abort()
-        if stat.interp_state == linuxcnc.INTERP_IDLE and s["t"] > 0.5:
+        if stat.interp_state == linuxcnc.INTERP_IDLE and s["t"] > 0.5 and not releases:
             break
         time.sleep(0.002)
     if scenario.get("settle_pin"):
@@ -177,6 +185,9 @@ def run_operator(scenario):
         elif "wait_idle" in step:
             sampled_wait(lambda: hal.get_value("fixed_atc_probe.state") == 1 and
                          stat.interp_state == linuxcnc.INTERP_IDLE, 180, "the changer idle")
+        elif "wait_z_below" in step:
+            sampled_wait(lambda: stat.actual_position[2] < step["wait_z_below"], 60,
+                         "Z below %s" % step["wait_z_below"])
         elif "jog" in step:
             axis, distance = step["jog"]
             command.mode(linuxcnc.MODE_MANUAL)
@@ -209,7 +220,15 @@ def when(action, s, result):
     """An action fires on a condition of the sample: e.g. chuck open, or a pin value."""
     condition = action["when"]
     if "pin" in condition:
-        return s[condition["pin"]] == condition["value"]
+        # "nth": the condition's nth start (an operator wait that comes twice).
+        key = "seen %s" % json.dumps(condition)
+        now = s[condition["pin"]] == condition["value"]
+        if now and not result.get(key + " last"):
+            result[key] = result.get(key, 0) + 1
+        result[key + " last"] = now
+        return now and result.get(key, 0) == condition.get("nth", 1)
+    if "after_start" in condition:
+        return s["t"] > condition["after_start"]
     if "program_paused" in condition:
         return s["paused"]
     if "after_paused" in condition:

@@ -14,6 +14,11 @@ mkdir -p "$work"
 rm -f "$work/fixed_atc_state.json" "$work/results.json"
 cp "$root/config/sim/sim.tbl" "$work/"
 cp "${FATC_CONFIG:-$root/config/config.json}" "$work/config.json"
+if [ -n "${FATC_CONFIG_SET:-}" ]; then
+  # Keys to set in the copied config, as a JSON object: one machine, another setting.
+  python3 -c 'import json, sys; c = json.load(open(sys.argv[1])); c.update(json.loads(sys.argv[2]));
+json.dump(c, open(sys.argv[1], "w"), indent=2)' "$work/config.json" "$FATC_CONFIG_SET"
+fi
 sed -e "s|^DISPLAY = .*|DISPLAY = $display|" \
     -e "s|\.\./\.\./nc_files|$root/nc_files|g" \
     -e "s|\.\./\.\./hal/|$root/hal/|" \
