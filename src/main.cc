@@ -1,6 +1,7 @@
 // fixed_atc_probe: a fixed-rack tool changer for LinuxCNC, as a userspace HAL
 // component (default), or a config checker and planner (--check, --plan, --dot).
 #include <hal.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <csignal>
@@ -40,6 +41,15 @@ int run_component(const fatc::io::Options& options) {
       options.state_path.empty() ? options.config_path + ".state" : options.state_path;
   const auto tools = fatc::io::load_state_file(state_path, *config.config);
   if (!tools.state) return fail(tools.error);
+  if (::access(state_path.c_str(), F_OK) != 0) {
+    // A first start writes what it assumes (every pocket full, the spindle
+    // empty) at once: panels can show it, and an unwritable path fails now.
+    try {
+      fatc::io::save_state_file(state_path, *tools.state);
+    } catch (const std::exception& e) {
+      return fail(e.what());
+    }
+  }
 
   // Under LinuxCNC (INI_FILE_NAME set) the status channel must open; under a
   // bare halrun there is none: aborts are only seen on the abort pin and

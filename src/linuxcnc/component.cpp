@@ -210,6 +210,9 @@ void Component::show_status() {
   const bool executor_free = !executor_attached_ && !offered_;
   *pins_->waiting_for_operator = status.awaiting == Awaiting::operator_choice &&
                                  (executor_free || status.phase == Phase::changing);
+  *pins_->awaiting = static_cast<int>(status.awaiting);
+  *pins_->accepting = status.phase == Phase::idle && nml_ && interpreter_idle_ && *interpreter_idle_;
+  *pins_->can_cancel = *pins_->waiting_for_operator || (probe_cancellable(status) && nml_);
 }
 
 void Component::publish(const Step& step) {

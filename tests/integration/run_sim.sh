@@ -21,12 +21,16 @@ json.dump(c, open(sys.argv[1], "w"), indent=2)' "$work/config.json" "$FATC_CONFI
 fi
 sed -e "s|^DISPLAY = .*|DISPLAY = $display|" \
     -e "s|\.\./\.\./nc_files|$root/nc_files|g" \
-    -e "s|\.\./\.\./hal/|$root/hal/|" \
+    -e "s|\.\./\.\./hal/|$root/hal/|g" \
     -e "s|^CONFIG = .*|CONFIG = $work/config.json|" \
     -e "s|^HALFILE = touchoff_sensor.hal|HALFILE = $root/config/sim/touchoff_sensor.hal|" \
     "$root/config/sim/fixed_atc_sim.ini" > "$work/sim.ini"
 if [ -n "${FATC_INI_EXTRA:-}" ]; then
   sed -i "s|^RETURN_TO_XY = .*|$FATC_INI_EXTRA|" "$work/sim.ini"
+fi
+if [ -n "${FATC_APP:-}" ]; then
+  # A program LinuxCNC starts beside its GUI (the GUI test's driver).
+  printf '\n[APPLICATIONS]\nAPP = %s\n' "$FATC_APP" >> "$work/sim.ini"
 fi
 chown -R "$user" "$work"
 # Our binary must be on the PATH of the user LinuxCNC runs as.
@@ -35,6 +39,8 @@ for d in "$bin_dir" "$root"; do
   while [ "$d" != "/" ]; do chmod o+rx "$d" 2>/dev/null || true; d=$(dirname "$d"); done
 done
 cd "$work"
-exec runuser -u "$user" -- env PATH="$bin_dir:$PATH" HOME="$(getent passwd "$user" | cut -d: -f6)" \
+# FATC_WRAP: a command LinuxCNC runs under (the GUI test's D-Bus session).
+exec runuser -u "$user" -- ${FATC_WRAP:-} env PATH="$bin_dir:$PATH" HOME="$(getent passwd "$user" | cut -d: -f6)" \
   FATC_ROOT="$root" FATC_SCENARIOS="${FATC_SCENARIOS:-}" FATC_RESULTS="${FATC_RESULTS:-}" \
+  FATC_ARTIFACTS="${FATC_ARTIFACTS:-}" DISPLAY="${DISPLAY:-}" XAUTHORITY="${XAUTHORITY:-}" \
   RUNTESTS=1 linuxcnc "$work/sim.ini"

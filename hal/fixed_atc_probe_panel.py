@@ -1,0 +1,156 @@
+"""GladeVCP handler of fixed_atc_probe's panel (fixed_atc_probe_panel.ui).
+
+Makes the panel's HAL pins, turns button clicks into the pulses the
+component's rising-edge inputs want, shows what the changer reports in the
+machinist's words, and enables a button only when the component says it can
+act. Pocket occupancy comes from the component's state file and config, the
+paths named in [FIXED_ATC_PROBE] of the INI."""
+import json
+import os
+
+import hal
+from gi.repository import GLib, Gtk
+
+BUTTONS = ("load", "unload", "continue", "cancel", "clear-fault")
+# The component polls every 20 ms at most: high and low phases it cannot miss.
+PULSE_MS = 100
+GAP_MS = 60
+
+PHASES = {0: "Machine off, not homed or in estop", 1: "Idle", 2: "Changing tool",
+          3: "Loading tool", 4: "Unloading tool", 5: "FAULT: check spindle and rack, then Clear fault"}
+STEP_KINDS = {1: "rapid", 2: "feed", 3: "probing", 4: "writing the tool length",
+              5: "telling LinuxCNC the tool in the spindle"}
+
+
+def describe_step(kind, x, y, z, inch):
+    unit = "in" if inch else "mm"
+    if kind in (1, 2, 3):
+        return "%s to X%.3f Y%.3f Z%.3f %s (machine)" % (STEP_KINDS[kind], x, y, z, unit)
+    return STEP_KINDS.get(kind, "")
+
+
+def describe_awaiting(awaiting, kind, x, y, z, inch):
+    if awaiting == 1:
+        return describe_step(kind, x, y, z, inch)
+    if awaiting == 2:
+        return "probing the tool length on the touch-off sensor"
+    if awaiting == 3:
+        return "chuck and dwell"
+    if awaiting == 4:
+        return "waiting for the spindle to stop"
+    if awaiting == 5:
+        return "Waiting for you: see the message, then Continue or Cancel"
+    return ""
+
+
+class Handler:
+    def __init__(self, halcomp, builder):
+        self.comp = halcomp
+        self.builder = builder
+        self.pulses = {}
+        for name in BUTTONS:
+            halcomp.newpin(name, hal.HAL_BIT, hal.HAL_OUT)
+            halcomp.newpin(name + "-enabled", hal.HAL_BIT, hal.HAL_OUT)
+        halcomp.newpin("tool-number", hal.HAL_S32, hal.HAL_OUT)
+        for name in ("state", "awaiting", "tool-in-spindle", "step-kind"):
+            halcomp.newpin(name, hal.HAL_S32, hal.HAL_IN)
+        for name in ("waiting-for-operator", "accepting", "can-cancel", "units-inch"):
+            halcomp.newpin(name, hal.HAL_BIT, hal.HAL_IN)
+        for name in ("last-length", "step-x", "step-y", "step-z"):
+            halcomp.newpin(name, hal.HAL_FLOAT, hal.HAL_IN)
+        self.config_path, self.state_path = self.paths()
+        self.state_stamp = None
+        self.pocket_tools = self.read_pockets()
+        GLib.timeout_add(100, self.refresh)
+
+    @staticmethod
+    def paths():
+        """[FIXED_ATC_PROBE]CONFIG and STATE, relative to the INI as halcmd reads them."""
+        ini = os.environ.get("INI_FILE_NAME")
+        if not ini:
+            return None, None
+        import linuxcnc
+        inifile = linuxcnc.ini(ini)
+        folder = os.path.dirname(os.path.abspath(ini))
+
+        def where(key):
+            value = inifile.find("FIXED_ATC_PROBE", key)
+            return os.path.join(folder, value) if value else None
+        return where("CONFIG"), where("STATE")
+
+    def read_pockets(self):
+        try:
+            with open(self.config_path) as f:
+                return sorted(int(tool) for tool in json.load(f)["pockets"])
+        except (TypeError, OSError, ValueError, KeyError):
+            return []
+
+    def on_tool_number_changed(self, spin):
+        self.comp["tool-number"] = spin.get_value_as_int()
+
+    def on_button_clicked(self, button):
+        name = Gtk.Buildable.get_name(button)
+        if name in self.pulses:
+            # Still high from the click before (Continue twice in quick
+            # succession): the new click needs a low phase to be an edge.
+            GLib.source_remove(self.pulses[name])
+            self.comp[name] = False
+            self.pulses[name] = GLib.timeout_add(GAP_MS, self.press, name)
+        else:
+            self.press(name)
+
+    def press(self, name):
+        self.comp[name] = True
+        self.pulses[name] = GLib.timeout_add(PULSE_MS, self.release, name)
+        return False
+
+    def release(self, name):
+        self.comp[name] = False
+        del self.pulses[name]
+        return False
+
+    def refresh(self):
+        c = self.comp
+        get = self.builder.get_object
+        state = c["state"]
+        get("state_words").set_text(PHASES.get(state, "state %d" % state))
+        get("step_words").set_text(describe_awaiting(c["awaiting"], c["step-kind"], c["step-x"],
+                                                     c["step-y"], c["step-z"], c["units-inch"]))
+        get("spindle_tool").set_text("T%d" % c["tool-in-spindle"] if c["tool-in-spindle"] else "empty")
+        length = c["last-length"]
+        get("last_length").set_text("%.4f %s" % (length, "in" if c["units-inch"] else "mm") if length else "-")
+        self.show_pockets()
+        wanted = c["tool-number"] > 0
+        enabled = {"load": c["accepting"] and wanted, "unload": c["accepting"] and wanted,
+                   "continue": c["waiting-for-operator"], "cancel": c["can-cancel"],
+                   "clear-fault": state == 5}
+        for name, on in enabled.items():
+            get(name).set_sensitive(bool(on))
+            c[name + "-enabled"] = bool(on)
+        return True
+
+    def show_pockets(self):
+        try:
+            stamp = os.stat(self.state_path).st_mtime_ns
+        except (TypeError, OSError):
+            return
+        if stamp == self.state_stamp:
+            return
+        try:
+            with open(self.state_path) as f:
+                state = json.load(f)
+        except (OSError, ValueError):
+            return  # caught mid-write: the next refresh reads it
+        self.state_stamp = stamp
+        full = set(state.get("in_pocket", []))
+        lengths = state.get("lengths", {})
+        lines = []
+        for tool in self.pocket_tools:
+            mark = "in pocket" if tool in full else ("in spindle" if tool == state.get("spindle") else "out")
+            length = lengths.get(str(tool))
+            lines.append("T%-3d %-10s %s" % (tool, mark, "%.4f" % length if length is not None else "not measured"))
+        self.builder.get_object("pockets").set_markup("<tt>%s</tt>" % GLib.markup_escape_text("\n".join(lines)))
+
+
+def get_handlers(halcomp, builder, useropts):
+    return [Handler(halcomp, builder)]

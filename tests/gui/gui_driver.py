@@ -1,0 +1,271 @@
+#!/usr/bin/python3
+"""The GUI test's operator: started by LinuxCNC beside AXIS ([APPLICATIONS]),
+it finds the fixed_atc_probe panel's widgets through AT-SPI, clicks them with
+the X server's test extension like a mouse would, follows the panel's HAL pins
+and LinuxCNC's status, takes screenshots, then quits AXIS.
+Writes FATC_RESULTS (JSON) and the screenshots into FATC_ARTIFACTS.
+
+The panel is a GtkPlug inside AXIS (Tk), which has no accessibility tree to
+hang it on; GTK names the plug's accessible in the _XEMBED_AT_SPI_PATH property
+of its window, and the driver walks the tree from there over D-Bus."""
+import json
+import os
+import sys
+import time
+import traceback
+
+import gi
+gi.require_version("Gdk", "3.0")
+from gi.repository import Gdk, Gio, GLib  # noqa: E402
+
+import hal  # noqa: E402
+import linuxcnc  # noqa: E402
+from Xlib import X, display  # noqa: E402
+from Xlib.ext import xtest  # noqa: E402
+
+STATE_SENSITIVE = 24  # AtspiStateType
+COORDS_SCREEN = 0
+
+PANEL_PINS = ["load-enabled", "unload-enabled", "continue-enabled", "cancel-enabled",
+              "clear-fault-enabled", "load", "unload", "continue", "cancel", "tool-number"]
+
+stat = linuxcnc.stat()
+command = linuxcnc.command()
+errors = linuxcnc.error_channel()
+xdisplay = display.Display()
+result = {"steps": [], "messages": [], "error": None, "screenshots": []}
+
+
+def note(what):
+    stat.poll()
+    entry = {"what": what, "t": time.monotonic(), "tool_in_spindle": stat.tool_in_spindle,
+             "state": hal.get_value("fixed_atc_probe.state")}
+    entry.update({"fatc-panel." + p: hal.get_value("fatc-panel." + p) for p in PANEL_PINS})
+    result["steps"].append(entry)
+
+
+def wait_for(condition, timeout, what):
+    """Waits on what LinuxCNC, HAL or the panel report, generously: shared machines."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        stat.poll()
+        while True:
+            message = errors.poll()
+            if not message:
+                break
+            result["messages"].append(message[1])
+        if condition():
+            return
+        time.sleep(0.02)
+    raise TimeoutError("timed out waiting for " + what)
+
+
+class Accessible:
+    """One node of an application's AT-SPI tree, reached over the a11y bus."""
+    bus = None
+
+    def __init__(self, name, path):
+        self.name, self.path = name, path
+
+    @classmethod
+    def connect(cls):
+        session = Gio.bus_get_sync(Gio.BusType.SESSION)
+        address = session.call_sync("org.a11y.Bus", "/org/a11y/bus", "org.a11y.Bus", "GetAddress",
+                                    None, None, 0, 5000, None).unpack()[0]
+        cls.bus = Gio.DBusConnection.new_for_address_sync(
+            address, Gio.DBusConnectionFlags.AUTHENTICATION_CLIENT |
+            Gio.DBusConnectionFlags.MESSAGE_BUS_CONNECTION, None, None)
+
+    def call(self, interface, method, args=None):
+        return self.bus.call_sync(self.name, self.path, interface, method, args, None, 0, 5000,
+                                  None).unpack()
+
+    def children(self):
+        return [Accessible(n, p) for n, p in self.call("org.a11y.atspi.Accessible", "GetChildren")[0]]
+
+    def role(self):
+        return self.call("org.a11y.atspi.Accessible", "GetRoleName")[0]
+
+    def label(self):
+        return self.call("org.freedesktop.DBus.Properties", "Get",
+                         GLib.Variant("(ss)", ("org.a11y.atspi.Accessible", "Name")))[0]
+
+    def sensitive(self):
+        low, _ = self.call("org.a11y.atspi.Accessible", "GetState")[0]
+        return bool(low & (1 << STATE_SENSITIVE))
+
+    def extents(self):
+        return self.call("org.a11y.atspi.Component", "GetExtents", GLib.Variant("(u)", (COORDS_SCREEN,)))[0]
+
+    def set_value(self, value):
+        self.call("org.freedesktop.DBus.Properties", "Set",
+                  GLib.Variant("(ssv)", ("org.a11y.atspi.Value", "CurrentValue", GLib.Variant("d", value))))
+
+    def find(self, role, label=None):
+        for child in self.children():
+            if child.role() == role and (label is None or child.label() == label):
+                return child
+            found = child.find(role, label)
+            if found:
+                return found
+        return None
+
+
+def panel_plug():
+    """The panel's root accessible, from the property GTK sets on the plug window."""
+    atom = xdisplay.intern_atom("_XEMBED_AT_SPI_PATH")
+
+    def search(window):
+        value = window.get_full_property(atom, X.AnyPropertyType)
+        if value:
+            return value.value.decode() if isinstance(value.value, bytes) else bytes(value.value).decode()
+        for child in window.query_tree().children:
+            found = search(child)
+            if found:
+                return found
+        return None
+    where = search(xdisplay.screen().root)
+    if not where:
+        return None
+    name, path = where.rsplit(":", 1)
+    return Accessible(name, path)
+
+
+def panel_ready():
+    plug = panel_plug()
+    return plug is not None and plug.find("push button", "Load / Probe") is not None
+
+
+def button(name):
+    return panel_plug().find("push button", name)
+
+
+def sensitive(name):
+    return button(name).sensitive()
+
+
+def click(name):
+    """A left click in the middle of the button, through the X server."""
+    x, y, width, height = button(name).extents()
+    x, y = x + width // 2, y + height // 2
+    # From outside the panel, as a hand moves the mouse: GTK only takes the
+    # click of a button the pointer has entered.
+    xtest.fake_input(xdisplay, X.MotionNotify, x=1, y=1)
+    xdisplay.sync()
+    time.sleep(0.05)
+    xtest.fake_input(xdisplay, X.MotionNotify, x=x, y=y)
+    xdisplay.sync()
+    time.sleep(0.05)
+    xtest.fake_input(xdisplay, X.ButtonPress, 1)
+    xdisplay.sync()
+    time.sleep(0.05)
+    xtest.fake_input(xdisplay, X.ButtonRelease, 1)
+    xdisplay.sync()
+    note("clicked " + name)
+
+
+def answer(name):
+    """Clicks Continue or Cancel at a prompt and waits until the prompt is gone."""
+    click(name)
+    wait_for(pin("fatc-panel.continue-enabled", False), 30, "the prompt to close after " + name)
+
+
+def set_tool_number(number):
+    panel_plug().find("spin button").set_value(float(number))
+    wait_for(lambda: hal.get_value("fatc-panel.tool-number") == number, 10, "the tool number")
+    note("tool number %d" % number)
+
+
+def screenshot(name, shown):
+    """The whole screen, once the panel shows `shown` (a button name and
+    whether it is enabled), and the panel alone beside it (`-panel.png`)."""
+    wait_for(lambda: sensitive(shown[0]) == shown[1], 10, "the panel to show " + str(shown))
+    time.sleep(0.3)  # the widget is updated; give GTK one frame to paint it
+    root = Gdk.get_default_root_window()
+    picture = Gdk.pixbuf_get_from_window(root, 0, 0, root.get_width(), root.get_height())
+    path = os.path.join(os.environ["FATC_ARTIFACTS"], name + ".png")
+    picture.savev(path, "png", [], [])
+    x0, y0, x1, y1 = panel_region()
+    panel_path = os.path.join(os.environ["FATC_ARTIFACTS"], name + "-panel.png")
+    picture.new_subpixbuf(x0, y0, x1 - x0, y1 - y0).savev(panel_path, "png", [], [])
+    result["screenshots"].append({"file": path, "panel_file": panel_path, "panel": [x0, y0, x1, y1]})
+
+
+def panel_region(margin=6):
+    """The panel's area on the screen: around every widget it shows."""
+    boxes = []
+
+    def walk(node):
+        for child in node.children():
+            if child.role() in ("push button", "label", "spin button"):
+                x, y, w, h = child.extents()
+                if w > 0 and h > 0:
+                    boxes.append((x, y, x + w, y + h))
+            walk(child)
+    walk(panel_plug())
+    return (min(b[0] for b in boxes) - margin, min(b[1] for b in boxes) - margin,
+            max(b[2] for b in boxes) + margin, max(b[3] for b in boxes) + margin)
+
+
+def pin(name, value):
+    return lambda: hal.get_value(name) == value
+
+
+def run():
+    Accessible.connect()
+    wait_for(panel_ready, 120, "the panel's buttons over AT-SPI")
+    wait_for(lambda: stat.task_state in (linuxcnc.STATE_ESTOP, linuxcnc.STATE_ESTOP_RESET), 60, "task")
+    command.state(linuxcnc.STATE_ESTOP_RESET)
+    command.state(linuxcnc.STATE_ON)
+    wait_for(lambda: stat.task_state == linuxcnc.STATE_ON, 60, "machine on")
+    command.mode(linuxcnc.MODE_MANUAL)
+    command.wait_complete()
+    command.home(-1)
+    wait_for(lambda: all(stat.homed[i] for i in range(stat.joints)), 120, "homing")
+    wait_for(pin("fixed_atc_probe.state", 1), 60, "the changer idle")
+    note("idle, tool number 0")
+    result["idle_tool0_sensitive"] = {b: sensitive(b) for b in ("Load / Probe", "Unload", "Continue", "Cancel")}
+
+    # Unload tool 4, then load it back and measure it, all from the panel.
+    set_tool_number(4)
+    wait_for(pin("fatc-panel.unload-enabled", True), 10, "Unload enabled")
+    click("Unload")
+    wait_for(pin("fatc-panel.continue-enabled", True), 180, "the removal prompt")
+    note("removal prompt")
+    result["waiting_sensitive"] = {b: sensitive(b) for b in ("Load / Probe", "Unload", "Continue", "Cancel")}
+    answer("Continue")
+    wait_for(pin("fatc-panel.load-enabled", True), 180, "idle after the unload")
+    note("unloaded")
+
+    click("Load / Probe")
+    wait_for(pin("fatc-panel.continue-enabled", True), 180, "the insert prompt")
+    note("insert prompt")
+    screenshot("insert_prompt", ("Continue", True))
+    answer("Continue")
+    wait_for(pin("fatc-panel.continue-enabled", True), 180, "the jog prompt")
+    note("jog prompt")
+    answer("Continue")
+    wait_for(lambda: hal.get_value("fixed_atc_probe.awaiting") == 2, 60, "the probe")
+    note("probing")
+    result["probing_sensitive"] = {b: sensitive(b) for b in ("Load / Probe", "Unload", "Continue", "Cancel")}
+    wait_for(pin("fatc-panel.load-enabled", True), 180, "idle after the load")
+    note("loaded")
+    screenshot("after_load", ("Load / Probe", True))
+    result["tool_table_file"] = open(os.path.join(os.getcwd(), "sim.tbl")).read()
+    result["state_file"] = json.load(open(os.path.join(os.getcwd(), "fixed_atc_state.json")))
+
+
+def main():
+    own = hal.component("fatc-gui-driver")  # hal.get_value needs a component of our own
+    own.ready()
+    try:
+        run()
+    except Exception as e:  # the checker reports it; AXIS must still quit
+        result["error"] = "%s: %s\n%s" % (type(e).__name__, e, traceback.format_exc())
+    with open(os.environ["FATC_RESULTS"], "w") as f:
+        json.dump(result, f, indent=1)
+    os.system("axis-remote --quit")
+
+
+if __name__ == "__main__":
+    sys.exit(main())

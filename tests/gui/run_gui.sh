@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# The GUI test: the real AXIS with fixed_atc_probe's panel, on a virtual X
+# server, operated by gui_driver.py through the panel's buttons.
+#   run_gui.sh WORKDIR BINARY
+# Leaves results.json and the screenshots (artifacts) in WORKDIR, then checks them.
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+root=$(cd "$here/../.." && pwd)
+work=$1
+user=${FATC_SIM_USER:-fatc}
+id "$user" >/dev/null 2>&1 || useradd -m -s /bin/bash "$user"
+rm -rf "$work"
+mkdir -p "$work"
+chown "$user" "$work"
+
+# A free display, with a cookie: AXIS's remote control (axis-remote, which the
+# driver quits AXIS with) refuses an X server open to everyone.
+n=90
+while [ -e "/tmp/.X$n-lock" ] || [ -e "/tmp/.X11-unix/X$n" ]; do n=$((n + 1)); done
+export DISPLAY=":$n" XAUTHORITY="$work/Xauthority"
+xauth -f "$XAUTHORITY" add "$DISPLAY" . "$(mcookie)"
+chown "$user" "$XAUTHORITY"
+Xvfb "$DISPLAY" -auth "$XAUTHORITY" -nolisten tcp -screen 0 1400x1000x24 >"$work/xvfb.log" 2>&1 &
+xvfb=$!
+trap 'kill $xvfb 2>/dev/null || true' EXIT
+for _ in $(seq 1 300); do [ -e "/tmp/.X11-unix/X$n" ] && break; sleep 0.1; done
+[ -e "/tmp/.X11-unix/X$n" ] || { echo "FAIL: Xvfb did not start"; cat "$work/xvfb.log"; exit 1; }
+
+# AXIS, the panel and the driver share one D-Bus session: the driver finds the
+# panel's buttons through AT-SPI there.
+FATC_APP="$here/gui_driver.py" FATC_WRAP="dbus-run-session --" \
+  FATC_RESULTS="$work/results.json" FATC_ARTIFACTS="$work" FATC_BINARY="$2" \
+  "$root/tests/integration/run_sim.sh" "$work/sim" axis > "$work/linuxcnc.log" 2>&1 || true
+[ -s "$work/results.json" ] || { echo "FAIL: no results; LinuxCNC said:"; tail -40 "$work/linuxcnc.log"; exit 1; }
+echo "ok: AXIS ran with the panel; results and screenshots in $work"
+python3 "$here/check_gui.py" "$work/results.json"
