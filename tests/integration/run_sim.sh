@@ -42,5 +42,5 @@ cd "$work"
 # FATC_WRAP: a command LinuxCNC runs under (the GUI test's D-Bus session).
 exec runuser -u "$user" -- ${FATC_WRAP:-} env PATH="$bin_dir:$PATH" HOME="$(getent passwd "$user" | cut -d: -f6)" \
   FATC_ROOT="$root" FATC_SCENARIOS="${FATC_SCENARIOS:-}" FATC_RESULTS="${FATC_RESULTS:-}" \
-  FATC_ARTIFACTS="${FATC_ARTIFACTS:-}" DISPLAY="${DISPLAY:-}" XAUTHORITY="${XAUTHORITY:-}" \
+  FATC_ARTIFACTS="${FATC_ARTIFACTS:-}" FATC_BENCH_REPEATS="${FATC_BENCH_REPEATS:-}" DISPLAY="${DISPLAY:-}" XAUTHORITY="${XAUTHORITY:-}" \
   RUNTESTS=1 linuxcnc "$work/sim.ini"

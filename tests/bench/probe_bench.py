@@ -1,0 +1,135 @@
+#!/usr/bin/python3
+"""[DISPLAY]DISPLAY of the probe benchmark: on the simulated mill, measures
+one tool N times with fixed_atc_probe's two-stage probe (seek, back off,
+latch; through the component and its step executor, as an operator's
+Load/Probe does) and N times with the prototype's method (down 0.2 mm per
+move, the sensor read between moves), both from loading Z at the same feed.
+Writes every measurement to FATC_RESULTS; scripts/bench_probe.py prints them.
+
+The simulated sensor is put at a height off the 0.2 mm grid of the stepping
+method, as a real sensor would be."""
+import json
+import os
+import subprocess
+import sys
+import time
+
+sys.path.insert(0, os.path.join(os.environ["FATC_ROOT"], "tests", "integration"))
+import driver  # noqa: E402  (bring-up and waits shared with the integration runs)
+from driver import command, hal, linuxcnc, stat, wait_for  # noqa: E402
+
+SENSOR_Z = -70.0731
+REPEATS = int(os.environ.get("FATC_BENCH_REPEATS") or "10")
+TOOL = 2
+SENSOR_INPUT = "01"  # motion.digital-in-01: the stepping method reads the sensor there
+
+
+def config():
+    return json.load(open(os.path.join(os.path.dirname(sys.argv[2]), "config.json")))
+
+
+def press(pin):
+    # A pulse the component's 20 ms poll cannot miss, as in the integration driver.
+    hal.set_p(pin, "1")
+    time.sleep(0.1)
+    hal.set_p(pin, "0")
+    time.sleep(0.1)
+
+
+def mdi(line, timeout=120):
+    command.mode(linuxcnc.MODE_MDI)
+    command.wait_complete()
+    command.mdi(line)
+    command.wait_complete(timeout)
+    wait_for(lambda: stat.interp_state == linuxcnc.INTERP_IDLE, timeout, line)
+
+
+def two_stage():
+    """Load/Probe of the tool in the spindle; timed from the start of the seek
+    to the tool-table write, read on the pins at 2 ms."""
+    hal.set_p("fixed_atc_probe.tool-number", str(TOOL))
+    press("fixed_atc_probe.load")
+    wait_for(lambda: hal.get_value("fixed_atc_probe.waiting-for-operator"), 120, "the jog prompt")
+    press("fixed_atc_probe.continue")
+    start = None
+    deadline = time.monotonic() + 300
+    while time.monotonic() < deadline:
+        if start is None and hal.get_value("fixed_atc_probe.awaiting") == 2:
+            start = time.monotonic()
+        if (start is not None and hal.get_value("fixed_atc_probe.step-kind") == 4 and
+                hal.get_value("fixed_atc_probe.step-ready")):
+            seconds = time.monotonic() - start
+            length = hal.get_value("fixed_atc_probe.step-value")
+            break
+        time.sleep(0.002)
+    else:
+        raise TimeoutError("the two-stage probe never wrote a length")
+    # The tool goes home to its pocket; fetch it again for the next measurement.
+    wait_for(lambda: hal.get_value("fixed_atc_probe.state") == 1 and
+             stat.interp_state == linuxcnc.INTERP_IDLE, 180, "the load flow to end")
+    mdi("T%d M6" % TOOL, 180)
+    return {"seconds": seconds, "length": length}
+
+
+def stepping(c, feed, program):
+    """The prototype's method from loading Z: one 0.2 mm move, one read of the sensor."""
+    mdi("G53 G0 Z%.4f" % c["loading"]["z"])
+    mdi("G53 G0 X%.4f Y%.4f" % (c["probe_limit"]["x"], c["probe_limit"]["y"]))
+    command.mode(linuxcnc.MODE_AUTO)
+    command.wait_complete()
+    command.program_open(program)
+    command.wait_complete()
+    start = time.monotonic()
+    command.auto(linuxcnc.AUTO_RUN, 0)
+    wait_for(lambda: stat.interp_state != linuxcnc.INTERP_IDLE, 30, "the stepping program to start")
+    wait_for(lambda: stat.interp_state == linuxcnc.INTERP_IDLE, 600, "the stepping program to end")
+    seconds = time.monotonic() - start
+    stat.poll()
+    z = stat.actual_position[2]
+    return {"seconds": seconds, "length": z - c["probe_length_compensation_offset"]}
+
+
+def stepping_program(c, feed, work):
+    path = os.path.join(work, "stepping_probe.ngc")
+    with open(path, "w") as f:
+        f.write("""(The prototype's probe: down 0.2 mm per move, the sensor read between moves)
+(G49: #5422 is then the machine Z, the sim having no work offsets)
+G49 G91
+o100 while [#5422 GT %(limit).4f]
+  G1 Z-0.2 F%(feed).1f
+  M66 P%(input)s L0
+  o101 if [#5399 EQ 1]
+    o100 break
+  o101 endif
+o100 endwhile
+G90
+M2
+""" % {"limit": c["probe_limit"]["z"], "feed": feed, "input": int(SENSOR_INPUT)})
+    return path
+
+
+def main():
+    own = hal.component("fatc-bench")  # hal.get_value needs a component of our own
+    own.ready()
+    results = {"sensor_z": SENSOR_Z, "repeats": REPEATS, "two_stage": [], "stepping": [], "error": None}
+    try:
+        c = config()
+        results["config"] = {k: c.get(k) for k in ("probe_seek_feed", "probe_latch_feed", "probe_backoff",
+                                                  "probe_length_compensation_offset")}
+        results["truth"] = SENSOR_Z - c["probe_length_compensation_offset"]
+        driver.bring_up()
+        hal.set_p("fatc-sensor-z.in1", str(SENSOR_Z))
+        subprocess.run(["halcmd", "net", "fatc-sensor", "motion.digital-in-" + SENSOR_INPUT], check=True)
+        mdi("T%d M6" % TOOL, 180)
+        feed = c.get("probe_seek_feed", 300.0)
+        program = stepping_program(c, feed, os.path.dirname(sys.argv[2]))
+        for _ in range(REPEATS):
+            results["two_stage"].append(two_stage())
+            results["stepping"].append(stepping(c, feed, program))
+    except Exception as e:  # reported by the printer; LinuxCNC must still shut down
+        results["error"] = "%s: %s (last messages: %s)" % (type(e).__name__, e, driver.messages[-4:])
+    json.dump(results, open(os.environ["FATC_RESULTS"], "w"), indent=1)
+
+
+if __name__ == "__main__":
+    main()
