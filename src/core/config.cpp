@@ -324,16 +324,20 @@ const char* units_name(Units units) { return units == Units::mm ? "mm" : "inch";
 
 const char* probe_after_change_name(ProbeAfterChange mode) {
   switch (mode) {
-    case ProbeAfterChange::off: return "off";
-    case ProbeAfterChange::measure: return "measure";
-    case ProbeAfterChange::check: return "check";
+    case ProbeAfterChange::off:
+      return "off";
+    case ProbeAfterChange::measure:
+      return "measure";
+    case ProbeAfterChange::check:
+      return "check";
   }
   return "?";
 }
 
 std::string format_length(const Config& config, double length) {
   char buffer[48];
-  std::snprintf(buffer, sizeof buffer, config.units == Units::inch ? "%.5f inch" : "%.4f mm", length);
+  std::snprintf(buffer, sizeof buffer, config.units == Units::inch ? "%.5f inch" : "%.4f mm",
+                length);
   return buffer;
 }
 
@@ -368,13 +372,29 @@ ConfigResult parse_config(const std::string& json_text) {
   }
   Reader reader;
   reader.errors = duplicates.found;
-  reader.reject_unknown_keys(
-      root, "",
-      {"units", "probe_length_compensation_offset", "probe_retract_offset_z", "pocket_side_offset",
-       "pocket_above_chuck_offset_z", "pocket_above_clearance_offset_z", "chuck_seconds", "loading",
-       "probe_limit", "safe", "pocket_default", "pockets", "pocket_feed", "probe_seek_feed",
-       "probe_latch_feed", "probe_backoff", "flush", "spindle_stop_timeout_seconds",
-       "rack_keepout_margin", "probe_after_change", "probe_check_tolerance", "manual_tools"});
+  reader.reject_unknown_keys(root, "",
+                             {"units",
+                              "probe_length_compensation_offset",
+                              "probe_retract_offset_z",
+                              "pocket_side_offset",
+                              "pocket_above_chuck_offset_z",
+                              "pocket_above_clearance_offset_z",
+                              "chuck_seconds",
+                              "loading",
+                              "probe_limit",
+                              "safe",
+                              "pocket_default",
+                              "pockets",
+                              "pocket_feed",
+                              "probe_seek_feed",
+                              "probe_latch_feed",
+                              "probe_backoff",
+                              "flush",
+                              "spindle_stop_timeout_seconds",
+                              "rack_keepout_margin",
+                              "probe_after_change",
+                              "probe_check_tolerance",
+                              "manual_tools"});
 
   Config config;
   if (const auto units = root.find("units"); units != root.end()) {

@@ -9,7 +9,14 @@ enum class Phase { not_ready = 0, idle = 1, changing = 2, loading = 3, unloading
 
 /// Which event the changer waits for now; adapters deliver only that one. The
 /// values are those of the `awaiting` pin.
-enum class Awaiting { nothing = 0, motion = 1, probe = 2, timer = 3, spindle = 4, operator_choice = 5 };
+enum class Awaiting {
+  nothing = 0,
+  motion = 1,
+  probe = 2,
+  timer = 3,
+  spindle = 4,
+  operator_choice = 5
+};
 
 struct Status {
   Phase phase = Phase::not_ready;

@@ -99,9 +99,10 @@ int check(const Options& options, std::ostream& out, std::ostream& err) {
   for (const auto& entry : config.pockets) {
     const int tool = entry.first;
     const std::string t = std::to_string(tool);
-    violations += report("M6 T" + t + " from empty", config, plan_change(config, 0, tool, config.probe_limit.z),
-                         loaded.limits, out);
-    violations += report("M6 T0 from T" + t, config, plan_change(config, tool, 0, config.probe_limit.z), loaded.limits, out);
+    violations += report("M6 T" + t + " from empty", config,
+                         plan_change(config, 0, tool, config.probe_limit.z), loaded.limits, out);
+    violations += report("M6 T0 from T" + t, config,
+                         plan_change(config, tool, 0, config.probe_limit.z), loaded.limits, out);
     violations += report("load T" + t, config, plan_load(config, tool, 0, config.probe_limit.z),
                          loaded.limits, out);
     violations += report("unload T" + t, config, plan_unload(config, tool, 0), loaded.limits, out);

@@ -211,7 +211,8 @@ void Component::show_status() {
   *pins_->waiting_for_operator = status.awaiting == Awaiting::operator_choice &&
                                  (executor_free || status.phase == Phase::changing);
   *pins_->awaiting = static_cast<int>(status.awaiting);
-  *pins_->accepting = status.phase == Phase::idle && nml_ && interpreter_idle_ && *interpreter_idle_;
+  *pins_->accepting =
+      status.phase == Phase::idle && nml_ && interpreter_idle_ && *interpreter_idle_;
   *pins_->can_cancel = *pins_->waiting_for_operator || (probe_cancellable(status) && nml_);
 }
 

@@ -18,9 +18,11 @@ import gi
 gi.require_version("Gdk", "3.0")
 from gi.repository import Gdk, Gio, GLib  # noqa: E402
 
-import hal  # noqa: E402
-import linuxcnc  # noqa: E402
 from Xlib import X, display  # noqa: E402
+
+sys.path.insert(0, os.path.join(os.environ["FATC_ROOT"], "tests", "integration"))
+import driver  # noqa: E402  (bring-up and waits shared with the integration runs)
+from driver import hal, stat, wait_for  # noqa: E402
 from Xlib.ext import xtest  # noqa: E402
 
 STATE_SENSITIVE = 24  # AtspiStateType
@@ -29,9 +31,6 @@ COORDS_SCREEN = 0
 PANEL_PINS = ["load-enabled", "unload-enabled", "continue-enabled", "cancel-enabled",
               "clear-fault-enabled", "load", "unload", "continue", "cancel", "tool-number"]
 
-stat = linuxcnc.stat()
-command = linuxcnc.command()
-errors = linuxcnc.error_channel()
 xdisplay = display.Display()
 result = {"steps": [], "messages": [], "error": None, "screenshots": []}
 
@@ -42,22 +41,6 @@ def note(what):
              "state": hal.get_value("fixed_atc_probe.state")}
     entry.update({"fatc-panel." + p: hal.get_value("fatc-panel." + p) for p in PANEL_PINS})
     result["steps"].append(entry)
-
-
-def wait_for(condition, timeout, what):
-    """Waits on what LinuxCNC, HAL or the panel report, generously: shared machines."""
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        stat.poll()
-        while True:
-            message = errors.poll()
-            if not message:
-                break
-            result["messages"].append(message[1])
-        if condition():
-            return
-        time.sleep(0.02)
-    raise TimeoutError("timed out waiting for " + what)
 
 
 class Accessible:
@@ -214,15 +197,7 @@ def pin(name, value):
 def run():
     Accessible.connect()
     wait_for(panel_ready, 120, "the panel's buttons over AT-SPI")
-    wait_for(lambda: stat.task_state in (linuxcnc.STATE_ESTOP, linuxcnc.STATE_ESTOP_RESET), 60, "task")
-    command.state(linuxcnc.STATE_ESTOP_RESET)
-    command.state(linuxcnc.STATE_ON)
-    wait_for(lambda: stat.task_state == linuxcnc.STATE_ON, 60, "machine on")
-    command.mode(linuxcnc.MODE_MANUAL)
-    command.wait_complete()
-    command.home(-1)
-    wait_for(lambda: all(stat.homed[i] for i in range(stat.joints)), 120, "homing")
-    wait_for(pin("fixed_atc_probe.state", 1), 60, "the changer idle")
+    driver.bring_up()
     note("idle, tool number 0")
     result["idle_tool0_sensitive"] = {b: sensitive(b) for b in ("Load / Probe", "Unload", "Continue", "Cancel")}
 
@@ -262,6 +237,7 @@ def main():
         run()
     except Exception as e:  # the checker reports it; AXIS must still quit
         result["error"] = "%s: %s\n%s" % (type(e).__name__, e, traceback.format_exc())
+    result["messages"] = driver.messages
     with open(os.environ["FATC_RESULTS"], "w") as f:
         json.dump(result, f, indent=1)
     os.system("axis-remote --quit")

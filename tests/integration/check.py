@@ -255,6 +255,12 @@ def check_unload_cancel(r, rack):
     ok("message: %s" % [m for m in r["messages"] if "cancelled" in m][0])
 
 
+def said(r, wanted):
+    if not any(wanted in m for m in r["messages"]):
+        fail("no message saying '%s': %s" % (wanted, r["messages"]))
+    ok("message: %s" % wanted)
+
+
 def nothing_moved(r):
     for s in r["samples"]:
         if not near(s["pos"], r["start_pos"]):
@@ -310,9 +316,7 @@ def check_probe_tripped(r, rack):
 def check_jog_prompt_cancel(r, rack):
     no_fault(r)
     wanted = "load of tool 2 cancelled, nothing measured; tool 2 is in the spindle"
-    if not any(wanted in m for m in r["messages"]):
-        fail("no message saying '%s': %s" % (wanted, r["messages"]))
-    ok("message: %s" % wanted)
+    said(r, wanted)
     if r["samples"][-1]["tool_in_spindle"] != 2 or abs(tool_table_length(r, 2) - 35.0) > 1e-9:
         fail("tool 2 should stay in the spindle with its length unchanged")
     ok("tool 2 stays in the spindle, its length unchanged")
@@ -331,9 +335,7 @@ def program_completed(r):
 def check_probe_cancel(r, rack):
     no_fault(r)
     wanted = "probe of tool 2 cancelled by the operator; nothing written"
-    if not any(wanted in m for m in r["messages"]):
-        fail("no message saying '%s': %s" % (wanted, r["messages"]))
-    ok("message: %s" % wanted)
+    said(r, wanted)
     lowest = min(s["pos"][2] for s in r["samples"])
     if lowest < -69.0:
         fail("the probe went on to Z %.3f after Cancel (sensor at -70)" % lowest)
@@ -375,9 +377,7 @@ def check_manual(r, rack):
 def check_manual_cancel(r, rack):
     no_fault(r)
     wanted = "M6 T7 cancelled by the operator; the spindle is empty"
-    if not any(wanted in m for m in r["messages"]):
-        fail("no message saying '%s': %s" % (wanted, r["messages"]))
-    ok("message: %s" % wanted)
+    said(r, wanted)
     last = r["samples"][-1]
     if last["tool_in_spindle"] != 0 or last["fixed_atc_probe.tool-in-spindle"] != 0:
         fail("after the cancel LinuxCNC says T%d, the changer T%d" % (
@@ -454,6 +454,16 @@ def check_check_broken(r, rack):
     if abs(tool_table_length(r, 3) - 25.0) > 0.005:
         fail("a check must not write: tool 3 now %.4f" % tool_table_length(r, 3))
     ok("program stopped; tool 3's stored length unchanged (%.4f)" % tool_table_length(r, 3))
+
+
+def check_refuse_when_off(r, rack):
+    no_fault(r)
+    said(r, "load of tool 4 refused: the machine is not on and homed, or is in estop")
+    said(r, "unload of tool 4 refused: the machine is not on and homed, or is in estop")
+    nothing_moved(r)
+    if r["samples"][-1]["fixed_atc_probe.state"] != 1:
+        fail("the changer is not idle after the machine came back on")
+    ok("idle again once the machine is back on and homed")
 
 
 def main():

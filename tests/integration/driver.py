@@ -185,6 +185,13 @@ def run_operator(scenario):
         elif "wait_idle" in step:
             sampled_wait(lambda: hal.get_value("fixed_atc_probe.state") == 1 and
                          stat.interp_state == linuxcnc.INTERP_IDLE, 180, "the changer idle")
+        elif step.get("machine") == "off":
+            command.state(linuxcnc.STATE_OFF)
+            sampled_wait(lambda: stat.task_state == linuxcnc.STATE_OFF and
+                         hal.get_value("fixed_atc_probe.state") == 0, 30, "the machine off")
+        elif step.get("machine") == "on":
+            command.state(linuxcnc.STATE_ON)  # homing survives machine off
+            sampled_wait(lambda: hal.get_value("fixed_atc_probe.state") == 1, 30, "the changer idle")
         elif "wait_z_below" in step:
             sampled_wait(lambda: stat.actual_position[2] < step["wait_z_below"], 60,
                          "Z below %s" % step["wait_z_below"])

@@ -12,6 +12,7 @@ id "$user" >/dev/null 2>&1 || useradd -m -s /bin/bash "$user"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 chmod 755 "$work"
+chown "$user" "$work"  # the component writes its state file there at start
 for d in "$(dirname "$binary")" "$root"; do
   while [ "$d" != "/" ]; do chmod o+rx "$d" 2>/dev/null || true; d=$(dirname "$d"); done
 done

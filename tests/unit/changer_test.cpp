@@ -16,8 +16,10 @@ using Lines = std::vector<std::string>;
 struct Rig {
   explicit Rig(int spindle = 0, std::set<int> out_of_machine = {})
       : Rig(test::valid_config(), spindle, std::move(out_of_machine)) {}
-  Rig(Config with, int spindle, std::set<int> out_of_machine = {}) : config(std::move(with)) {
+  Rig(Config with, int spindle, std::set<int> out_of_machine = {}, std::map<int, double> lengths = {})
+      : config(std::move(with)) {
     ToolState tools = ToolState::fresh(config);
+    tools.lengths = std::move(lengths);
     tools.spindle = spindle;
     tools.in_pocket.erase(spindle);
     for (int tool : out_of_machine) tools.in_pocket.erase(tool);
@@ -645,40 +647,31 @@ TEST(ProbeAfterChange, shouldMeasureAndWriteTheRetrievedTool) {
 }
 
 TEST(ProbeAfterChange, shouldPassACheckWithinToleranceAndWriteNothing) {
-  const Config config = test::valid_config(R"("probe_after_change": "check", "probe_check_tolerance": 0.05)");
-  ToolState tools = ToolState::fresh(config);
-  tools.lengths[4] = 25.04;
-  Simulator sim;
-  sim.sensor_z = kSensorZ;
-  Changer changer(config, sim, tools);
-  changer.ready();
-  changer.tool_change(4);
-  sim.run(changer);
-  for (const Step& step : sim.steps()) EXPECT_NE(step.kind, StepKind::set_tool_length);
-  EXPECT_EQ(sim.steps().back().kind, StepKind::done);
-  EXPECT_DOUBLE_EQ(changer.tools().lengths.at(4), 25.04);
-  EXPECT_EQ(sim.messages(MessageKind::info).back(), "tool 4 measures 25.0000 mm, stored 25.0400 mm");
+  Rig rig(test::valid_config(R"("probe_after_change": "check", "probe_check_tolerance": 0.05)"), 0, {},
+          {{4, 25.04}});
+  rig.sim.sensor_z = kSensorZ;
+  rig.changer->tool_change(4);
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.lines(), concat({retrieve(4), measure_at_sensor(false), {"done T4"}}));
+  EXPECT_DOUBLE_EQ(rig.changer->tools().lengths.at(4), 25.04);
+  EXPECT_EQ(rig.sim.messages(MessageKind::info).back(), "tool 4 measures 25.0000 mm, stored 25.0400 mm");
 }
 
 TEST(ProbeAfterChange, shouldFaultWhenTheCheckedLengthDiffers) {
-  const Config config = test::valid_config(R"("probe_after_change": "check")");
-  ToolState tools = ToolState::fresh(config);
-  tools.lengths[4] = 30.0;
-  Simulator sim;
-  sim.sensor_z = kSensorZ;
-  Changer changer(config, sim, tools);
-  changer.ready();
-  changer.tool_change(4);
-  sim.run(changer);
-  EXPECT_EQ(changer.status().phase, Phase::fault);
+  Rig rig(test::valid_config(R"("probe_after_change": "check")"), 0, {}, {{4, 30.0}});
+  rig.sim.sensor_z = kSensorZ;
+  rig.changer->tool_change(4);
+  rig.sim.run(*rig.changer);
+  const Simulator& sim = rig.sim;
+  EXPECT_EQ(rig.changer->status().phase, Phase::fault);
   EXPECT_EQ(sim.steps().back().kind, StepKind::fail);
   EXPECT_NE(sim.steps().back().label.find("tool 4 measures 25.0000 mm but its stored length is "
                                           "30.0000 mm (probe_check_tolerance 0.1000 mm): tool "
                                           "broken or pulled out?"),
             std::string::npos)
       << sim.steps().back().label;
-  EXPECT_DOUBLE_EQ(changer.tools().lengths.at(4), 30.0) << "a check never writes";
-  EXPECT_EQ(changer.tools().spindle, 4);
+  EXPECT_DOUBLE_EQ(rig.changer->tools().lengths.at(4), 30.0) << "a check never writes";
+  EXPECT_EQ(rig.changer->tools().spindle, 4);
   EXPECT_FALSE(sim.chuck_open);
 }
 

@@ -283,17 +283,17 @@ struct MeasureLeg_ : Flow<MeasureLeg_> {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       const Context& c = *fsm.ctx;
-      return std::abs(measured(c) - c.tools.lengths.at(fsm.pocket_tool)) > c.config.check_tolerance();
+      return std::abs(measured(c) - c.tools.lengths.at(fsm.pocket_tool)) >
+             c.config.check_tolerance();
     }
   };
   struct SayMeasured {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      fsm.ctx->tell(MessageKind::info, "tool " + std::to_string(fsm.pocket_tool) + " measures " +
-                                           format_length(fsm.ctx->config, measured(*fsm.ctx)) +
-                                           ", stored " +
-                                           format_length(fsm.ctx->config,
-                                                         fsm.ctx->tools.lengths.at(fsm.pocket_tool)));
+      fsm.ctx->tell(MessageKind::info,
+                    "tool " + std::to_string(fsm.pocket_tool) + " measures " +
+                        format_length(fsm.ctx->config, measured(*fsm.ctx)) + ", stored " +
+                        format_length(fsm.ctx->config, fsm.ctx->tools.lengths.at(fsm.pocket_tool)));
     }
   };
   struct SayBrokenOrPulledOut {
@@ -303,7 +303,8 @@ struct MeasureLeg_ : Flow<MeasureLeg_> {
       c.fault_reason = "tool " + std::to_string(fsm.pocket_tool) + " measures " +
                        format_length(c.config, measured(c)) + " but its stored length is " +
                        format_length(c.config, c.tools.lengths.at(fsm.pocket_tool)) +
-                       " (probe_check_tolerance " + format_length(c.config, c.config.check_tolerance()) +
+                       " (probe_check_tolerance " +
+                       format_length(c.config, c.config.check_tolerance()) +
                        "): tool broken or pulled out?";
     }
   };
