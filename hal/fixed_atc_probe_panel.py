@@ -9,6 +9,7 @@ import json
 import os
 
 import hal
+import linuxcnc
 from gi.repository import GLib, Gtk
 
 BUTTONS = ("load", "unload", "continue", "cancel", "clear-fault")
@@ -69,7 +70,6 @@ class Handler:
         ini = os.environ.get("INI_FILE_NAME")
         if not ini:
             return None, None
-        import linuxcnc
         inifile = linuxcnc.ini(ini)
         folder = os.path.dirname(os.path.abspath(ini))
 

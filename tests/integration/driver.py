@@ -186,8 +186,8 @@ def run_operator(scenario):
             sampled_wait(lambda: hal.get_value("fixed_atc_probe.state") == 1 and
                          stat.interp_state == linuxcnc.INTERP_IDLE, 180, "the changer idle")
         elif step.get("machine") == "off":
-            command.state(linuxcnc.STATE_OFF)
-            sampled_wait(lambda: stat.task_state == linuxcnc.STATE_OFF and
+            command.state(linuxcnc.STATE_OFF)  # task then reports ESTOP_RESET or OFF
+            sampled_wait(lambda: stat.task_state != linuxcnc.STATE_ON and
                          hal.get_value("fixed_atc_probe.state") == 0, 30, "the machine off")
         elif step.get("machine") == "on":
             command.state(linuxcnc.STATE_ON)  # homing survives machine off
