@@ -322,18 +322,6 @@ class DuplicateKeys {
 
 const char* units_name(Units units) { return units == Units::mm ? "mm" : "inch"; }
 
-const char* probe_after_change_name(ProbeAfterChange mode) {
-  switch (mode) {
-    case ProbeAfterChange::off:
-      return "off";
-    case ProbeAfterChange::measure:
-      return "measure";
-    case ProbeAfterChange::check:
-      return "check";
-  }
-  return "?";
-}
-
 std::string format_length(const Config& config, double length) {
   char buffer[48];
   std::snprintf(buffer, sizeof buffer, config.units == Units::inch ? "%.5f inch" : "%.4f mm",

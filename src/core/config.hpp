@@ -70,7 +70,6 @@ struct ConfigResult {
 ConfigResult parse_config(const std::string& json_text);
 
 const char* units_name(Units units);
-const char* probe_after_change_name(ProbeAfterChange mode);
 /// A length for a message, with the config's unit: "25.0012 mm".
 std::string format_length(const Config& config, double length);
 

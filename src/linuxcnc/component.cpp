@@ -109,10 +109,7 @@ void Component::serve_operator() {
   const bool load = rising(*pins_->load, last_load_);
   const bool unload = rising(*pins_->unload, last_unload_);
   if (load || unload) {
-    // The operator flows run the executor over MDI: the machine must be free.
-    std::optional<std::string> why;
-    if (!nml_) why = "no connection to LinuxCNC's task (NML)";
-    else if (!interpreter_idle_ || !*interpreter_idle_) why = "a program or MDI command is running";
+    const std::optional<std::string> why = why_task_busy();
     if (why && changer_->status().phase == Phase::idle) {
       tell(MessageKind::error, std::string(load ? "load" : "unload") + " refused: " + *why);
     } else {
@@ -131,6 +128,13 @@ void Component::serve_operator() {
   }
 }
 
+std::optional<std::string> Component::why_task_busy() const {
+  // The operator flows run the executor over MDI: task must be free for it.
+  if (!nml_) return std::string("no connection to LinuxCNC's task (NML)");
+  if (!interpreter_idle_ || !*interpreter_idle_) return std::string("a program or MDI command is running");
+  return std::nullopt;
+}
+
 void Component::start_executor_if_needed() {
   // Operator flows start from an idle machine: a step waiting with no
   // executor to take it means the executor must be run over MDI.
@@ -138,7 +142,7 @@ void Component::start_executor_if_needed() {
   if (!pending_ || executing_ || offered_ || *pins_->step_request || !nml_) return;
   if (phase != Phase::loading && phase != Phase::unloading) return;
   if (starting_until_ && now_ < *starting_until_) return;
-  if (!interpreter_idle_ || !*interpreter_idle_) return;
+  if (why_task_busy()) return;
   nml_->run_mdi("o<fixed_atc_probe_execute> call [0]");
   starting_until_ = now_ + std::chrono::seconds(5);
 }
@@ -211,8 +215,7 @@ void Component::show_status() {
   *pins_->waiting_for_operator = status.awaiting == Awaiting::operator_choice &&
                                  (executor_free || status.phase == Phase::changing);
   *pins_->awaiting = static_cast<int>(status.awaiting);
-  *pins_->accepting =
-      status.phase == Phase::idle && nml_ && interpreter_idle_ && *interpreter_idle_;
+  *pins_->accepting = status.phase == Phase::idle && !why_task_busy();
   *pins_->can_cancel = *pins_->waiting_for_operator || (probe_cancellable(status) && nml_);
 }
 

@@ -43,6 +43,8 @@ class Component : public Ports {
   void serve_executor();
   void serve_operator();
   void start_executor_if_needed();
+  /// Why task cannot run the executor over MDI now, or nothing if it can.
+  std::optional<std::string> why_task_busy() const;
   void watch_for_abort(std::optional<bool> interpreter_idle);
   void abort(const std::string& reason);
   void drop_executor();

@@ -71,7 +71,7 @@ def two_stage():
     return {"seconds": seconds, "length": length}
 
 
-def stepping(c, feed, program):
+def stepping(c, program):
     """The prototype's method from loading Z: one 0.2 mm move, one read of the sensor."""
     mdi("G53 G0 Z%.4f" % c["loading"]["z"])
     mdi("G53 G0 X%.4f Y%.4f" % (c["probe_limit"]["x"], c["probe_limit"]["y"]))
@@ -125,7 +125,7 @@ def main():
         program = stepping_program(c, feed, os.path.dirname(sys.argv[2]))
         for _ in range(REPEATS):
             results["two_stage"].append(two_stage())
-            results["stepping"].append(stepping(c, feed, program))
+            results["stepping"].append(stepping(c, program))
     except Exception as e:  # reported by the printer; LinuxCNC must still shut down
         results["error"] = "%s: %s (last messages: %s)" % (type(e).__name__, e, driver.messages[-4:])
     json.dump(results, open(os.environ["FATC_RESULTS"], "w"), indent=1)

@@ -8,7 +8,9 @@ import os
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "integration"))
-from check import fail, ok, tool_table_length  # noqa: E402
+from check import fail, measured_to_truth, ok  # noqa: E402
+
+CONFIG = os.path.join(os.path.dirname(__file__), "..", "..", "config", "config.json")
 
 ENABLED = ("load-enabled", "unload-enabled", "continue-enabled", "cancel-enabled")
 
@@ -49,11 +51,7 @@ def main():
     clicks = [s["what"] for s in r["steps"] if s["what"].startswith("clicked")]
     ok("clicked in AXIS: %s" % ", ".join(c[8:] for c in clicks))
 
-    truth = 25.0  # the simulated sensor at machine Z -70, probe_length_compensation_offset -95
-    length = tool_table_length(r, 4)
-    if abs(length - truth) > 0.005:
-        fail("tool 4's length in the tool table file is %.4f, truth %.4f" % (length, truth))
-    ok("tool 4 measured through the panel: %.4f in LinuxCNC's tool table (truth %.4f)" % (length, truth))
+    measured_to_truth(r, json.load(open(CONFIG)), 4, "measured through the panel")
     state = r["state_file"]
     if 4 not in state["in_pocket"] or state["spindle"] != 0:
         fail("after the load, tool 4 should be in its pocket and the spindle empty: %s" % state)

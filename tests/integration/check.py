@@ -53,6 +53,33 @@ class Rack:
                 ("safe", self.safe())]
 
 
+def loading(rack):
+    return [rack.c["loading"][a] for a in "xyz"]
+
+
+def sensor_truth(config):
+    """The true tool length the simulated sensor (machine Z -70) gives."""
+    return -70.0 - config["probe_length_compensation_offset"]
+
+
+def measured_to_truth(r, config, tool, what):
+    """The length LinuxCNC's tool table file holds for `tool`, within 0.005 of the truth."""
+    truth = sensor_truth(config)
+    length = tool_table_length(r, tool)
+    if abs(length - truth) > 0.005:
+        fail("%s: tool %d's length in the tool table file is %.4f, truth %.4f" % (what, tool, length, truth))
+    ok("%s: tool %d is %.4f in LinuxCNC's tool table file (truth %.4f)" % (what, tool, length, truth))
+    return length
+
+
+def spindle_holds(r, tool, what):
+    """LinuxCNC and the changer agree that the spindle holds `tool` at the end."""
+    last = r["samples"][-1]
+    if last["tool_in_spindle"] != tool or last["fixed_atc_probe.tool-in-spindle"] != tool:
+        fail("%s, LinuxCNC says T%d, the changer T%d" % (
+            what, last["tool_in_spindle"], last["fixed_atc_probe.tool-in-spindle"]))
+
+
 def near(a, b):
     return math.dist(a, b) < TOLERANCE
 
@@ -216,21 +243,14 @@ def tool_table_length(r, tool):
 
 def check_unload(r, rack):
     no_fault(r)
-    last = r["samples"][-1]
-    if last["tool_in_spindle"] != 0 or last["fixed_atc_probe.tool-in-spindle"] != 0:
-        fail("after unloading, LinuxCNC says T%d, the changer T%d" % (
-            last["tool_in_spindle"], last["fixed_atc_probe.tool-in-spindle"]))
+    spindle_holds(r, 0, "after unloading")
     ok("tool 4 unloaded: the spindle is empty for LinuxCNC and the changer")
-    visits_in_order(r["samples"], rack.retrieve_waypoints(4) + [("loading", [rack.c["loading"][a] for a in "xyz"])])
+    visits_in_order(r["samples"], rack.retrieve_waypoints(4) + [("loading", loading(rack))])
 
 
 def check_load_probe(r, rack):
     no_fault(r)
-    truth = -70.0 - rack.c["probe_length_compensation_offset"]  # the sim sensor's height
-    length = tool_table_length(r, 4)
-    if abs(length - truth) > 0.005:
-        fail("tool 4's length in the tool table file is %.4f, truth %.4f" % (length, truth))
-    ok("tool 4's length in LinuxCNC's tool table file: %.4f (truth %.4f)" % (length, truth))
+    length = measured_to_truth(r, rack.c, 4, "load and probe")
     if abs(r["samples"][-1]["fixed_atc_probe.last-length"] - length) > 1e-6:
         fail("last-length pin says %.4f" % r["samples"][-1]["fixed_atc_probe.last-length"])
     if "jogged_to" not in r or abs(r["jogged_to"][2] - (rack.c["loading"]["z"] - 15.0)) > 0.01:
@@ -245,10 +265,7 @@ def check_load_probe(r, rack):
 
 def check_unload_cancel(r, rack):
     no_fault(r)
-    last = r["samples"][-1]
-    if last["tool_in_spindle"] != 2 or last["fixed_atc_probe.tool-in-spindle"] != 2:
-        fail("after cancelling, LinuxCNC says T%d, the changer T%d" % (
-            last["tool_in_spindle"], last["fixed_atc_probe.tool-in-spindle"]))
+    spindle_holds(r, 2, "after cancelling")
     ok("unload cancelled: tool 2 stays in the spindle, LinuxCNC knows it")
     if not any("cancelled" in m for m in r["messages"]):
         fail("no message saying what is where: %s" % r["messages"])
@@ -282,10 +299,7 @@ def check_load_no_pocket(r, rack):
 
 def check_load_cancel(r, rack):
     no_fault(r)
-    last = r["samples"][-1]
-    if last["tool_in_spindle"] != 0 or last["fixed_atc_probe.tool-in-spindle"] != 0:
-        fail("after cancelling the load, LinuxCNC says T%d, the changer T%d" % (
-            last["tool_in_spindle"], last["fixed_atc_probe.tool-in-spindle"]))
+    spindle_holds(r, 0, "after cancelling the load")
     if not any("cancelled" in m and "the spindle is empty" in m for m in r["messages"]):
         fail("no message saying what is where: %s" % r["messages"])
     ok("load cancelled at the insert prompt: the spindle is empty, and the message says so")
@@ -320,10 +334,6 @@ def check_jog_prompt_cancel(r, rack):
     if r["samples"][-1]["tool_in_spindle"] != 2 or abs(tool_table_length(r, 2) - 35.0) > 1e-9:
         fail("tool 2 should stay in the spindle with its length unchanged")
     ok("tool 2 stays in the spindle, its length unchanged")
-
-
-def loading(rack):
-    return [rack.c["loading"][a] for a in "xyz"]
 
 
 def program_completed(r):
@@ -376,15 +386,11 @@ def check_manual(r, rack):
 
 def check_manual_cancel(r, rack):
     no_fault(r)
-    wanted = "M6 T7 cancelled by the operator; the spindle is empty"
-    said(r, wanted)
-    last = r["samples"][-1]
-    if last["tool_in_spindle"] != 0 or last["fixed_atc_probe.tool-in-spindle"] != 0:
-        fail("after the cancel LinuxCNC says T%d, the changer T%d" % (
-            last["tool_in_spindle"], last["fixed_atc_probe.tool-in-spindle"]))
+    said(r, "M6 T7 cancelled by the operator; the spindle is empty")
+    spindle_holds(r, 0, "after the cancel")
     ok("the spindle is empty for LinuxCNC and the changer")
-    if any(near(s["pos"], [1.0, 1.0, rack.c["loading"]["z"]]) or abs(s["pos"][0] - 1.0) < TOLERANCE
-           for s in r["samples"]):
+    last = r["samples"][-1]
+    if any(abs(s["pos"][0] - 1.0) < TOLERANCE for s in r["samples"]):
         fail("the program went on to G0 X1 Y1 after the cancel")
     if last["interp"] != 1 or last["fixed_atc_probe.state"] != 1:
         fail("the program should be stopped and the changer idle")
@@ -419,11 +425,7 @@ def check_check_first(r, rack):
     no_fault(r)
     program_completed(r)
     measured_at_sensor(r, rack)
-    truth = -70.0 - rack.c["probe_length_compensation_offset"]
-    length = tool_table_length(r, 3)
-    if abs(length - truth) > 0.005:
-        fail("tool 3 was never measured before, so M6 writes it: tool table says %.4f, truth %.4f" % (length, truth))
-    ok("tool 3, never measured, measured after M6: %.4f in the tool table file (truth %.4f)" % (length, truth))
+    measured_to_truth(r, rack.c, 3, "never measured before, so M6 measures and writes it")
     if r["samples"][-1]["tool_in_spindle"] != 3:
         fail("tool 3 not in the spindle")
 

@@ -98,6 +98,9 @@ Lines retrieve_from_safe(int t) {
 
 Lines retrieve(int t) { return concat({to_safe(), retrieve_from_safe(t)}); }
 
+Lines flush() { return {"chuck open", "dwell 0.20", "chuck close", "dwell 0.20"}; }
+Lines at_loading() { return {"rapid loading Z", "rapid loading XY"}; }
+
 // ---------------------------------------------------------------- M6
 
 TEST(Change, shouldAnswerAtOnceWithoutMotionWhenTheToolIsAlreadyInTheSpindle) {
@@ -264,8 +267,7 @@ TEST(Load, shouldLoadProbeAndPutAwayWithAnEmptySpindle) {
   rig.sim.sensor_z = kSensorZ;
   rig.changer->load(4);
   rig.sim.run(*rig.changer);
-  EXPECT_EQ(rig.lines(), (Lines{"rapid loading Z", "rapid loading XY", "chuck open", "dwell 0.20",
-                                "chuck close", "dwell 0.20", "wait operator"}));
+  EXPECT_EQ(rig.lines(), concat({at_loading(), flush(), {"wait operator"}}));
   EXPECT_EQ(rig.changer->status().phase, Phase::loading);
   EXPECT_EQ(rig.changer->status().awaiting, Awaiting::operator_choice);
   const std::size_t inserted = rig.sim.records.size();
@@ -307,9 +309,7 @@ TEST(Load, shouldReturnTheToolInTheSpindleFirst) {
   rig.sim.sensor_z = kSensorZ;
   rig.changer->load(4);
   rig.sim.run(*rig.changer);
-  EXPECT_EQ(rig.lines(), concat({return_to_pocket(2),
-                                 {"rapid loading Z", "rapid loading XY", "chuck open", "dwell 0.20",
-                                  "chuck close", "dwell 0.20", "wait operator"}}));
+  EXPECT_EQ(rig.lines(), concat({return_to_pocket(2), at_loading(), flush(), {"wait operator"}}));
 }
 
 TEST(Load, shouldGoStraightToProbingWhenTheToolIsAlreadyInTheSpindle) {
@@ -317,7 +317,7 @@ TEST(Load, shouldGoStraightToProbingWhenTheToolIsAlreadyInTheSpindle) {
   rig.sim.sensor_z = kSensorZ;
   rig.changer->load(4);
   rig.sim.run(*rig.changer);
-  EXPECT_EQ(rig.lines(), (Lines{"rapid loading Z", "rapid loading XY", "wait operator"}));
+  EXPECT_EQ(rig.lines(), concat({at_loading(), {"wait operator"}}));
   EXPECT_NE(rig.changer->status().activity.find("Jog"), std::string::npos);
 }
 
@@ -416,13 +416,11 @@ TEST(Unload, shouldFetchTheToolAndLetTheOperatorTakeIt) {
   Rig rig(0);
   rig.changer->unload(3);
   rig.sim.run(*rig.changer);
-  EXPECT_EQ(rig.lines(), concat({retrieve(3),
-                                 {"rapid loading Z", "rapid loading XY", "set-tool T3", "wait operator"}}));
+  EXPECT_EQ(rig.lines(), concat({retrieve(3), at_loading(), {"set-tool T3", "wait operator"}}));
   const std::size_t before = rig.sim.records.size();
   rig.changer->operator_continue();
   rig.sim.run(*rig.changer);
-  EXPECT_EQ(rig.lines(before), (Lines{"chuck open", "dwell 0.20", "chuck close", "dwell 0.20",
-                                      "set-tool T0", "done T0"}));
+  EXPECT_EQ(rig.lines(before), concat({flush(), {"set-tool T0", "done T0"}}));
   EXPECT_EQ(rig.changer->tools().spindle, 0);
   EXPECT_EQ(rig.changer->tools().in_pocket.count(3), 0u);
 }
@@ -431,15 +429,15 @@ TEST(Unload, shouldReturnTheToolInTheSpindleFirst) {
   Rig rig(1);
   rig.changer->unload(3);
   rig.sim.run(*rig.changer);
-  EXPECT_EQ(rig.lines(), concat({return_to_pocket(1), retrieve_from_safe(3),
-                                 {"rapid loading Z", "rapid loading XY", "set-tool T3", "wait operator"}}));
+  EXPECT_EQ(rig.lines(), concat({return_to_pocket(1), retrieve_from_safe(3), at_loading(),
+                                 {"set-tool T3", "wait operator"}}));
 }
 
 TEST(Unload, shouldGoStraightToLoadingWhenTheToolIsInTheSpindle) {
   Rig rig(3);
   rig.changer->unload(3);
   rig.sim.run(*rig.changer);
-  EXPECT_EQ(rig.lines(), (Lines{"rapid loading Z", "rapid loading XY", "set-tool T3", "wait operator"}));
+  EXPECT_EQ(rig.lines(), concat({at_loading(), {"set-tool T3", "wait operator"}}));
 }
 
 TEST(Unload, shouldKeepTheToolInTheSpindleWhenCancelled) {
@@ -724,9 +722,6 @@ TEST(Load, shouldRetractAndWriteNothingWhenCancelledMidProbe) {
 }
 
 // ---------------------------------------------------------------- manual tools
-
-Lines flush() { return {"chuck open", "dwell 0.20", "chuck close", "dwell 0.20"}; }
-Lines at_loading() { return {"rapid loading Z", "rapid loading XY"}; }
 
 TEST(Manual, shouldReturnTheRackToolThenHoldForTheManualTool) {
   Rig rig(2);

@@ -79,11 +79,13 @@ namespace {
 
 std::string tool_name(int tool) { return "tool " + std::to_string(tool); }
 
-/// The tool in the spindle must be able to go home before anything else.
-std::optional<std::string> why_spindle_cannot_be_emptied(const Context& ctx) {
+/// The tool in the spindle must be able to go home before anything else; a
+/// manual tool only can when M6 may hand it out at `loading` (`manual_tools`).
+std::optional<std::string> why_spindle_cannot_be_emptied(const Context& ctx, bool hand_out) {
   const int held = ctx.tools.spindle;
   if (held == 0) return std::nullopt;
   if (!ctx.config.has_pocket(held)) {
+    if (hand_out) return std::nullopt;
     return tool_name(held) + " in the spindle has no pocket in the config; unload it by hand first";
   }
   if (ctx.tools.in_pocket.count(held) != 0) {
@@ -112,9 +114,7 @@ std::optional<std::string> why_not_change(const Context& ctx, int tool) {
   if (tool != 0 && !manual && ctx.tools.in_pocket.count(tool) == 0) {
     return tool_name(tool) + " is not in its pocket (it was unloaded); load it first";
   }
-  const int held = ctx.tools.spindle;
-  if (held != 0 && !ctx.config.has_pocket(held) && ctx.config.manual_tools) return std::nullopt;
-  return why_spindle_cannot_be_emptied(ctx);
+  return why_spindle_cannot_be_emptied(ctx, ctx.config.manual_tools);
 }
 
 std::optional<std::string> why_not_load(const Context& ctx, int tool) {
@@ -126,7 +126,7 @@ std::optional<std::string> why_not_load(const Context& ctx, int tool) {
   if (ctx.tools.in_pocket.count(tool) != 0) {
     return tool_name(tool) + " is already in its pocket; unload it first";
   }
-  return why_spindle_cannot_be_emptied(ctx);
+  return why_spindle_cannot_be_emptied(ctx, false);
 }
 
 std::optional<std::string> why_not_unload(const Context& ctx, int tool) {
@@ -136,7 +136,7 @@ std::optional<std::string> why_not_unload(const Context& ctx, int tool) {
   if (ctx.tools.spindle == tool) return std::nullopt;
   if (!ctx.config.has_pocket(tool)) return tool_name(tool) + " has no pocket in the config";
   if (ctx.tools.in_pocket.count(tool) == 0) return tool_name(tool) + " is not in the rack";
-  return why_spindle_cannot_be_emptied(ctx);
+  return why_spindle_cannot_be_emptied(ctx, false);
 }
 
 }  // namespace fatc

@@ -7,6 +7,15 @@
 
 namespace fatc::machine {
 
+/// Cancel at a hand-over prompt: the program stops, saying where the tools are.
+struct SayChangeCancelled {
+  template <class Event, class Fsm, class Source, class Target>
+  void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+    fsm.ctx->stop_reason = "M6 T" + std::to_string(fsm.ctx->requested_tool) +
+                           " cancelled by the operator; " + fsm.ctx->whereabouts();
+  }
+};
+
 // ================================================================ hand out
 /// Takes the manual tool in the spindle out of the machine: at `loading`, the
 /// operator removes it.
@@ -28,23 +37,16 @@ struct HandOutLeg_ : Flow<HandOutLeg_> {
       fsm.ctx->record_out_of_machine(fsm.pocket_tool);
     }
   };
-  struct SayCancelled {
-    template <class Event, class Fsm, class Source, class Target>
-    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      fsm.ctx->stop_reason = "M6 T" + std::to_string(fsm.ctx->requested_tool) +
-                             " cancelled by the operator; " + fsm.ctx->whereabouts();
-    }
-  };
 
   using initial_state = ToLoadingZ;
   // clang-format off
   using transition_table = boost::mpl::vector<
-  //    Start            Event             Next             Action             Guard
-  // +----------------+-----------------+----------------+------------------+------+
-  Row < ToLoadingZ     , InPosition      , ToLoadingXY    , none             , none >,
-  Row < ToLoadingXY    , InPosition      , AwaitingRemoval, none             , none >,
-  Row < AwaitingRemoval, OperatorContinue, Finished       , RecordToolRemoved, none >,
-  Row < AwaitingRemoval, OperatorCancel  , Stopped        , SayCancelled     , none >
+  //    Start            Event             Next             Action              Guard
+  // +----------------+-----------------+----------------+-------------------+------+
+  Row < ToLoadingZ     , InPosition      , ToLoadingXY    , none              , none >,
+  Row < ToLoadingXY    , InPosition      , AwaitingRemoval, none              , none >,
+  Row < AwaitingRemoval, OperatorContinue, Finished       , RecordToolRemoved , none >,
+  Row < AwaitingRemoval, OperatorCancel  , Stopped        , SayChangeCancelled, none >
   >;
   // clang-format on
 };
@@ -72,13 +74,6 @@ struct HandInLeg_ : Flow<HandInLeg_> {
       fsm.ctx->record_in_spindle(fsm.pocket_tool);
     }
   };
-  struct SayCancelled {
-    template <class Event, class Fsm, class Source, class Target>
-    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      fsm.ctx->stop_reason = "M6 T" + std::to_string(fsm.pocket_tool) +
-                             " cancelled by the operator; " + fsm.ctx->whereabouts();
-    }
-  };
 
   using initial_state = ToLoadingZ;
   // clang-format off
@@ -89,7 +84,7 @@ struct HandInLeg_ : Flow<HandInLeg_> {
   Row < ToLoadingXY                , InPosition      , FlushLeg             , none              , none >,
   Row < FlushLeg::exit_pt<Finished>, LegDone         , AwaitingTool         , none              , none >,
   Row < AwaitingTool               , OperatorContinue, UpToSafeZ            , RecordToolInserted, none >,
-  Row < AwaitingTool               , OperatorCancel  , ReportingEmptySpindle, SayCancelled      , none >,
+  Row < AwaitingTool               , OperatorCancel  , ReportingEmptySpindle, SayChangeCancelled, none >,
   Row < UpToSafeZ                  , InPosition      , Finished             , none              , none >,
   Row < ReportingEmptySpindle      , InPosition      , Stopped              , none              , none >
   >;
