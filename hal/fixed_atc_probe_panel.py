@@ -17,29 +17,55 @@ BUTTONS = ("load", "unload", "continue", "cancel", "clear-fault")
 PULSE_MS = 100
 GAP_MS = 60
 
-PHASES = {0: "Machine off, not homed or in estop", 1: "Idle", 2: "Changing tool",
-          3: "Loading tool", 4: "Unloading tool", 5: "FAULT: check spindle and rack, then Clear fault"}
-STEP_KINDS = {1: "rapid", 2: "feed", 3: "probing", 4: "writing the tool length",
-              5: "telling LinuxCNC the tool in the spindle"}
+# The component's codes (docs/sequences.md#codes), as src/core/status.hpp and
+# src/core/step.hpp have them; tests/unit/codes_test.cpp fails when they differ.
+# The `state` pin: Phase.
+PHASE_NOT_READY = 0
+PHASE_IDLE = 1
+PHASE_CHANGING = 2
+PHASE_LOADING = 3
+PHASE_UNLOADING = 4
+PHASE_FAULT = 5
+# The `awaiting` pin: Awaiting.
+AWAITING_NOTHING = 0
+AWAITING_MOTION = 1
+AWAITING_PROBE = 2
+AWAITING_TIMER = 3
+AWAITING_SPINDLE = 4
+AWAITING_OPERATOR_CHOICE = 5
+# The `step-kind` pin: StepKind, those the panel names.
+STEP_RAPID = 1
+STEP_FEED = 2
+STEP_PROBE = 3
+STEP_SET_TOOL_LENGTH = 4
+STEP_SET_SPINDLE_TOOL = 5
+
+PHASES = {PHASE_NOT_READY: "Machine off, not homed or in estop", PHASE_IDLE: "Idle",
+          PHASE_CHANGING: "Changing tool", PHASE_LOADING: "Loading tool",
+          PHASE_UNLOADING: "Unloading tool",
+          PHASE_FAULT: "FAULT: check spindle and rack, then Clear fault"}
+STEP_KINDS = {STEP_RAPID: "rapid", STEP_FEED: "feed", STEP_PROBE: "probing",
+              STEP_SET_TOOL_LENGTH: "writing the tool length",
+              STEP_SET_SPINDLE_TOOL: "telling LinuxCNC the tool in the spindle"}
 
 
 def describe_step(kind, x, y, z, inch):
     unit = "in" if inch else "mm"
-    if kind in (1, 2, 3):
+    if kind in (STEP_RAPID, STEP_FEED, STEP_PROBE):
         return "%s to X%.3f Y%.3f Z%.3f %s (machine)" % (STEP_KINDS[kind], x, y, z, unit)
     return STEP_KINDS.get(kind, "")
 
 
 def describe_awaiting(awaiting, kind, x, y, z, inch):
-    if awaiting == 1:
+    if awaiting == AWAITING_MOTION:
         return describe_step(kind, x, y, z, inch)
-    if awaiting == 2:
+    if awaiting == AWAITING_PROBE:
         return "probing the tool length on the touch-off sensor"
-    if awaiting == 3:
+    if awaiting == AWAITING_TIMER:
         return "chuck and dwell"
-    if awaiting == 4:
+    if awaiting == AWAITING_SPINDLE:
         return "waiting for the spindle to stop"
-    if awaiting == 5:
+    if awaiting == AWAITING_OPERATOR_CHOICE:
         return "Waiting for you: see the message, then Continue or Cancel"
     return ""
 
@@ -123,7 +149,7 @@ class Handler:
         wanted = c["tool-number"] > 0
         enabled = {"load": c["accepting"] and wanted, "unload": c["accepting"] and wanted,
                    "continue": c["waiting-for-operator"], "cancel": c["can-cancel"],
-                   "clear-fault": state == 5}
+                   "clear-fault": state == PHASE_FAULT}
         for name, on in enabled.items():
             get(name).set_sensitive(bool(on))
             c[name + "-enabled"] = bool(on)

@@ -33,90 +33,109 @@ void Changer::not_ready() {
   engine_->fsm.process_event(NotReady{});
 }
 
-namespace {
-
-/// Requests are only for an idle changer; anything else gets one message.
-bool refuse_unless_idle(Context& ctx, const std::string& request, bool executor_waits) {
-  if (ctx.status.phase == Phase::idle) return false;
-  std::string why;
-  switch (ctx.status.phase) {
-    case Phase::not_ready: why = "the machine is not on and homed, or is in estop"; break;
-    case Phase::fault: why = "the changer is in fault (" + ctx.fault_reason + "); clear it first"; break;
-    default: why = "the changer is busy: " + ctx.status.activity; break;
-  }
-  // Straight to the ports: a busy flow's activity must not change.
-  if (executor_waits) ctx.ports.publish(failure_step(request + " refused: " + why));
-  ctx.tell(MessageKind::error, request + " refused: " + why);
-  return true;
+void Changer::task_availability(std::optional<std::string> why_busy) {
+  engine_->context.task_busy = std::move(why_busy);
 }
 
-}  // namespace
-
-void Changer::tool_change(int tool) {
-  if (refuse_unless_idle(engine_->context, "M6 T" + std::to_string(tool), true)) return;
-  engine_->fsm.process_event(ToolChange{tool});
+void Changer::spindle_stopped(bool stopped) {
+  engine_->context.spindle_stopped = stopped;
+  engine_->fsm.process_event(SpindleReport{stopped});
 }
 
-void Changer::load(int tool) {
-  if (refuse_unless_idle(engine_->context, "load of tool " + std::to_string(tool), false)) return;
-  engine_->fsm.process_event(LoadRequest{tool});
-}
-
-void Changer::unload(int tool) {
-  if (refuse_unless_idle(engine_->context, "unload of tool " + std::to_string(tool), false)) return;
-  engine_->fsm.process_event(UnloadRequest{tool});
-}
-
+void Changer::tool_change(int tool) { engine_->fsm.process_event(ToolChange{tool}); }
+void Changer::load(int tool) { engine_->fsm.process_event(LoadRequest{tool}); }
+void Changer::unload(int tool) { engine_->fsm.process_event(UnloadRequest{tool}); }
 void Changer::in_position() { engine_->fsm.process_event(InPosition{}); }
+void Changer::command_done() { engine_->fsm.process_event(CommandDone{}); }
 
 void Changer::probe_result(bool touched, double machine_z, bool tripped_before) {
   engine_->fsm.process_event(ProbeResult{touched, machine_z, tripped_before});
 }
 
-void Changer::timer_elapsed() {
-  // A timer that ran out after its state was left is stale, not an event.
-  const Awaiting awaiting = engine_->context.status.awaiting;
-  if (awaiting != Awaiting::timer && awaiting != Awaiting::spindle) return;
-  engine_->fsm.process_event(TimerElapsed{});
-}
-
-void Changer::spindle_stopped(bool stopped) {
-  engine_->context.spindle_stopped = stopped;
-  if (stopped && engine_->context.status.awaiting == Awaiting::spindle) {
-    engine_->fsm.process_event(SpindleStopped{});
-  }
-}
-
-void Changer::operator_continue() {
-  if (engine_->context.status.awaiting != Awaiting::operator_choice) {
-    engine_->context.tell(MessageKind::info, "Continue: nothing is waiting for the operator");
-    return;
-  }
-  engine_->fsm.process_event(OperatorContinue{});
-}
-
-void Changer::operator_cancel() {
-  const Status& status = engine_->context.status;
-  if (status.awaiting != Awaiting::operator_choice && !probe_cancellable(status)) {
-    engine_->context.tell(MessageKind::info, "Cancel: nothing is waiting for the operator");
-    return;
-  }
-  engine_->fsm.process_event(OperatorCancel{});
-}
-
+void Changer::timer_elapsed() { engine_->fsm.process_event(TimerElapsed{}); }
+void Changer::operator_continue() { engine_->fsm.process_event(OperatorContinue{}); }
+void Changer::operator_cancel() { engine_->fsm.process_event(OperatorCancel{}); }
 void Changer::abort(const std::string& reason) { engine_->fsm.process_event(Abort{reason}); }
-
 void Changer::clear_fault(int spindle_tool) {
-  if (engine_->context.status.phase != Phase::fault) {
-    engine_->context.tell(MessageKind::info, "clear fault: there is no fault");
-    return;
-  }
   engine_->fsm.process_event(ClearFault{spindle_tool});
 }
 
-const Status& Changer::status() const { return engine_->context.status; }
+namespace {
+
+template <class Flag>
+bool active(const machine::Machine& fsm) {
+  return fsm.is_flag_active<Flag>();
+}
+
+Phase phase_of(const machine::Machine& fsm) {
+  namespace flag = machine::flag;
+  if (active<flag::Faulted>(fsm)) return Phase::fault;
+  if (active<flag::Changing>(fsm)) return Phase::changing;
+  if (active<flag::Loading>(fsm)) return Phase::loading;
+  if (active<flag::Unloading>(fsm)) return Phase::unloading;
+  if (active<flag::Idle>(fsm)) return Phase::idle;
+  return Phase::not_ready;
+}
+
+Awaiting awaiting_of(const machine::Machine& fsm) {
+  namespace flag = machine::flag;
+  if (active<flag::AwaitsOperator>(fsm)) return Awaiting::operator_choice;
+  if (active<flag::AwaitsProbe>(fsm)) return Awaiting::probe;
+  if (active<flag::AwaitsMotion>(fsm)) return Awaiting::motion;
+  if (active<flag::AwaitsTimer>(fsm)) return Awaiting::timer;
+  if (active<flag::AwaitsSpindle>(fsm)) return Awaiting::spindle;
+  return Awaiting::nothing;
+}
+
+std::string activity_of(const Status& status, const Context& c) {
+  switch (status.phase) {
+    case Phase::not_ready:
+      return "machine off, not homed or in estop";
+    case Phase::idle:
+      return "idle";
+    case Phase::fault:
+      return "fault: " + c.fault_reason;
+    default:
+      break;
+  }
+  switch (status.awaiting) {
+    case Awaiting::motion:
+    case Awaiting::probe:
+      if (c.step.kind == StepKind::set_spindle_tool) {
+        return "telling LinuxCNC the spindle holds tool " + std::to_string(c.step.tool);
+      }
+      if (c.step.kind == StepKind::set_tool_length) {
+        return "writing the length of tool " + std::to_string(c.step.tool) + " to the tool table";
+      }
+      return std::string(step_kind_name(c.step.kind)) + " to " + c.step.label;
+    case Awaiting::timer:
+    case Awaiting::spindle:
+      return c.dwell;
+    case Awaiting::operator_choice:
+      return c.prompt;
+    case Awaiting::nothing:
+      break;
+  }
+  return "";
+}
+
+}  // namespace
+
+Status Changer::status() const {
+  const machine::Machine& fsm = engine_->fsm;
+  const Context& c = engine_->context;
+  Status status;
+  status.phase = phase_of(fsm);
+  status.awaiting = awaiting_of(fsm);
+  status.holds_program = active<machine::flag::HoldsProgram>(fsm);
+  status.probe_cancellable = active<machine::flag::ProbeCancellable>(fsm);
+  status.accepting = status.phase == Phase::idle && !c.task_busy;
+  status.last_length = c.last_length;
+  status.activity = activity_of(status, c);
+  return status;
+}
+
 const ToolState& Changer::tools() const { return engine_->context.tools; }
-bool Changer::is_machine_ready() const { return engine_->context.machine_ready; }
 
 std::string Changer::dot() { return machine::dot_of<machine::Machine_>("fixed_atc_probe"); }
 

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "config.hpp"
@@ -15,7 +16,8 @@ class Engine;
 }
 
 /// The tool changer: a Boost.MSM state machine behind plain calls, one per
-/// event. It never touches the world except through Ports.
+/// event; every decision is a row of its tables. It never touches the world
+/// except through Ports.
 class Changer {
  public:
   Changer(const Config& config, Ports& ports, ToolState tools);
@@ -25,22 +27,25 @@ class Changer {
 
   void ready();
   void not_ready();
+  /// Whether task could run the executor over MDI now; `why_busy` says why not.
+  void task_availability(std::optional<std::string> why_busy);
+  /// The spindle started (false) or stopped (true) turning.
+  void spindle_stopped(bool stopped);
   void tool_change(int tool);
   void load(int tool);
   void unload(int tool);
   void in_position();
+  void command_done();
   void probe_result(bool touched, double machine_z, bool tripped_before = false);
   void timer_elapsed();
-  /// Level: whether the spindle stands still now.
-  void spindle_stopped(bool stopped);
   void operator_continue();
   void operator_cancel();
   void abort(const std::string& reason);
   void clear_fault(int spindle_tool);
 
-  const Status& status() const;
+  /// Computed from the machine's flags on each call.
+  Status status() const;
   const ToolState& tools() const;
-  bool is_machine_ready() const;
 
   /// The state machine as Graphviz, generated from the transition tables.
   static std::string dot();

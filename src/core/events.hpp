@@ -20,24 +20,33 @@ struct LoadRequest {
 struct UnloadRequest {
   int tool = 0;
 };
-/// The executor finished the last published move or command.
+/// The executor finished the last published move.
 struct InPosition {};
+/// The executor finished the last published command (M61, G10): nothing moved.
+struct CommandDone {};
 /// The executor finished a probe move; `z` is the latched machine Z.
 struct ProbeResult {
   bool touched = false;
   double z = 0.0;
   bool tripped_before = false;  ///< the sensor was already tripped: nothing moved
 };
-/// The timer armed by Ports::start_timer ran out.
+/// The timer the current state armed ran out.
 struct TimerElapsed {};
-/// The spindle reports it has stopped.
-struct SpindleStopped {};
+/// The spindle started or stopped turning; Context::spindle_stopped holds the fact.
+struct SpindleReport {
+  bool stopped = true;
+};
 /// The operator pressed Continue (or Done).
 struct OperatorContinue {};
 /// The operator pressed Cancel.
 struct OperatorCancel {};
 /// LinuxCNC aborted the program or the executor failed.
 struct Abort {
+  std::string reason;
+};
+/// An event no state expected, or an exception in an action: a bug. The
+/// changer faults, whatever it was doing.
+struct InternalError {
   std::string reason;
 };
 /// The operator checked the spindle and says what it holds.

@@ -7,13 +7,17 @@ namespace fatc {
 std::string describe(const Record& record) {
   char buffer[96];
   switch (record.kind) {
-    case Record::Kind::step: return describe(record.step);
-    case Record::Kind::chuck: return record.chuck_open ? "chuck      open" : "chuck      close";
+    case Record::Kind::step:
+      return describe(record.step);
+    case Record::Kind::chuck:
+      return record.chuck_open ? "chuck      open" : "chuck      close";
     case Record::Kind::dwell:
       std::snprintf(buffer, sizeof buffer, "dwell      %.2f s", record.seconds);
       return buffer;
-    case Record::Kind::message: return "message    " + record.text;
-    case Record::Kind::save: return "save       tool state";
+    case Record::Kind::message:
+      return "message    " + record.text;
+    case Record::Kind::save:
+      return "save       tool state";
   }
   return "";
 }
@@ -22,7 +26,12 @@ void Simulator::publish(const Step& step) {
   Record record;
   record.step = step;
   records.push_back(record);
-  pending = step;
+  // done, fail and wait_operator end an executor run: nothing to finish. A
+  // refused M6's fail goes to that M6's executor, not to the one running.
+  if (is_motion(step.kind) || step.kind == StepKind::set_tool_length ||
+      step.kind == StepKind::set_spindle_tool) {
+    pending = step;
+  }
 }
 
 void Simulator::set_chuck_open(bool open) {
@@ -39,7 +48,6 @@ void Simulator::start_timer(double seconds) {
   record.seconds = seconds;
   records.push_back(record);
   timer_armed = true;
-  timer_seconds = seconds;
 }
 
 void Simulator::cancel_timer() { timer_armed = false; }
@@ -76,8 +84,9 @@ int Simulator::run(Changer& changer, int limit) {
       const bool touched = sensor_z && *sensor_z >= probe.target.z;
       changer.probe_result(touched, touched ? *sensor_z : probe.target.z);
     } else if (awaiting == Awaiting::motion && pending) {
+      const bool moved = is_motion(pending->kind);
       pending.reset();
-      changer.in_position();
+      moved ? changer.in_position() : changer.command_done();
     } else {
       break;
     }

@@ -30,7 +30,6 @@ class Simulator : public Ports {
   std::optional<double> sensor_z;
   bool chuck_open = false;
   bool timer_armed = false;
-  double timer_seconds = 0.0;
   std::optional<Step> pending;  ///< last published step not yet finished
   std::vector<std::string> unexpected_events;
 

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <optional>
 #include <string>
 
 namespace fatc {
@@ -7,30 +8,31 @@ namespace fatc {
 /// Which flow the changer is in; the value of the `state` pin.
 enum class Phase { not_ready = 0, idle = 1, changing = 2, loading = 3, unloading = 4, fault = 5 };
 
-/// Which event the changer waits for now; adapters deliver only that one. The
-/// values are those of the `awaiting` pin.
+/// What the changer waits for now; the value of the `awaiting` pin.
 enum class Awaiting {
   nothing = 0,
-  motion = 1,
+  motion = 1,  ///< the executor performs a move or a command
   probe = 2,
   timer = 3,
   spindle = 4,
   operator_choice = 5
 };
 
+/// What the changer shows the world. Computed from the state machine's flags
+/// each time it is asked for, never stored, so it cannot drift from the machine.
 struct Status {
   Phase phase = Phase::not_ready;
   Awaiting awaiting = Awaiting::nothing;
-  std::string activity;  ///< what it is doing, in the machinist's words
+  std::string activity;            ///< what it is doing, in the machinist's words
+  bool holds_program = false;      ///< an operator wait inside M6: the executor holds the program
+  bool probe_cancellable = false;  ///< a load-flow probe runs over MDI: Cancel stops it
+  bool accepting = false;          ///< idle, and task is free for a load or unload
+  std::optional<double> last_length;  ///< the last tool length measured
+
+  bool busy() const {
+    return phase == Phase::changing || phase == Phase::loading || phase == Phase::unloading;
+  }
+  bool awaits_operator() const { return awaiting == Awaiting::operator_choice; }
 };
-
-const char* phase_name(Phase phase);
-
-/// A probe of the load flow runs over MDI: Cancel stops it (the adapter
-/// aborts the motion first). M6 probes run inside the program, which the
-/// operator stops with LinuxCNC's own Stop.
-inline bool probe_cancellable(const Status& status) {
-  return status.phase == Phase::loading && status.awaiting == Awaiting::probe;
-}
 
 }  // namespace fatc

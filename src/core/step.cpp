@@ -11,20 +11,37 @@ Step failure_step(std::string why) {
   return step;
 }
 
+Step resync_step() {
+  Step step;
+  step.kind = StepKind::resync;
+  step.label = "resync";
+  return step;
+}
+
 bool is_motion(StepKind kind) {
   return kind == StepKind::rapid || kind == StepKind::feed || kind == StepKind::probe;
 }
 
 const char* step_kind_name(StepKind kind) {
   switch (kind) {
-    case StepKind::rapid: return "rapid";
-    case StepKind::feed: return "feed";
-    case StepKind::probe: return "probe";
-    case StepKind::set_tool_length: return "set-length";
-    case StepKind::set_spindle_tool: return "set-tool";
-    case StepKind::wait_operator: return "wait";
-    case StepKind::done: return "done";
-    case StepKind::fail: return "fail";
+    case StepKind::resync:
+      return "resync";
+    case StepKind::rapid:
+      return "rapid";
+    case StepKind::feed:
+      return "feed";
+    case StepKind::probe:
+      return "probe";
+    case StepKind::set_tool_length:
+      return "set-length";
+    case StepKind::set_spindle_tool:
+      return "set-tool";
+    case StepKind::wait_operator:
+      return "wait";
+    case StepKind::done:
+      return "done";
+    case StepKind::fail:
+      return "fail";
   }
   return "?";
 }

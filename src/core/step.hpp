@@ -7,12 +7,14 @@
 namespace fatc {
 
 /// What the NGC step executor is asked to do next. The numbers are the
-/// values of the `step-kind` pin that nc_files/fixed_atc_probe_executor.ngc reads.
+/// values of the `step-kind` pin that nc_files/fixed_atc_probe_execute.ngc
+/// reads (tests/unit/codes_test.cpp holds the two together).
 enum class StepKind {
-  rapid = 1,             ///< G53 G0 to `target` on `axes`
-  feed = 2,              ///< G53 G1 at `feed` to `target` on `axes`
-  probe = 3,             ///< G38.3 toward `target.z` at `feed`; the result comes back as ProbeResult
-  set_tool_length = 4,   ///< G10 L1 P`tool` Z`value`
+  resync = 0,           ///< nothing to do, ask again: a dead executor's request was left high
+  rapid = 1,            ///< G53 G0 to `target` on `axes`
+  feed = 2,             ///< G53 G1 at `feed` to `target` on `axes`
+  probe = 3,            ///< G38.3 toward `target.z` at `feed`; the result comes back as ProbeResult
+  set_tool_length = 4,  ///< G10 L1 P`tool` Z`value`
   set_spindle_tool = 5,  ///< M61 Q`tool`: tell LinuxCNC what the spindle holds
   wait_operator = 6,     ///< end this executor run; the operator acts, Continue runs the next
   done = 7,              ///< the sequence is over; `tool` is in the spindle
@@ -36,6 +38,8 @@ struct Step {
 
 /// The step that makes a waiting executor abort its program, saying `why`.
 Step failure_step(std::string why);
+/// Nothing to do: the executor asks again.
+Step resync_step();
 
 bool is_motion(StepKind kind);
 const char* step_kind_name(StepKind kind);

@@ -8,12 +8,6 @@
 #include "nml_link.hpp"
 
 namespace fatc::linuxcnc {
-namespace {
-
-/// step-kind 0: nothing to do, ask again (resynchronises after an abort).
-constexpr StepKind kResync = static_cast<StepKind>(0);
-
-}  // namespace
 
 Component::Component(HalPins* pins, const Config& config, std::string state_path, NmlLink* nml)
     : pins_(pins), nml_(nml), state_path_(std::move(state_path)) {
@@ -22,230 +16,154 @@ Component::Component(HalPins* pins, const Config& config, std::string state_path
   *pins_->chuck = 0;
 }
 
-bool Component::active() const {
-  return offered_ || executing_ || pending_ || deadline_ || last_request_ ||
-         (changer_ && changer_->status().phase != Phase::idle &&
-          changer_->status().phase != Phase::not_ready && changer_->status().phase != Phase::fault);
-}
+bool Component::active() const { return link_.active() || deadline_ || changer_->status().busy(); }
 
 void Component::poll(Clock::time_point now, std::optional<bool> interpreter_idle) {
   now_ = now;
+  read_machine(interpreter_idle);
+  read_executor(interpreter_idle);
+  read_operator();
+  if (deadline_ && now >= *deadline_) {
+    deadline_.reset();
+    changer_->timer_elapsed();
+  }
+  start_executor_if_needed();
+  write_pins();
+}
+
+void Component::read_machine(std::optional<bool> interpreter_idle) {
   const bool ready = *pins_->machine_on && *pins_->all_homed;
   if (machine_ready_ != ready) {
     machine_ready_ = ready;
     ready ? changer_->ready() : changer_->not_ready();
   }
-  changer_->spindle_stopped(*pins_->spindle_stopped);
-
-  const bool abort_pin = *pins_->abort;
-  if (abort_pin && !last_abort_) abort("the abort pin was raised");
-  last_abort_ = abort_pin;
-  interpreter_idle_ = interpreter_idle;
-  watch_for_abort(interpreter_idle);
-  serve_operator();
-
-  const bool clear = *pins_->clear_fault;
-  if (clear && !last_clear_) changer_->clear_fault(*pins_->linuxcnc_tool);
-  last_clear_ = clear;
-
-  if (deadline_ && now >= *deadline_) {
-    deadline_.reset();
-    changer_->timer_elapsed();
+  const bool stopped = *pins_->spindle_stopped;
+  if (spindle_stopped_ != stopped) {
+    spindle_stopped_ = stopped;
+    changer_->spindle_stopped(stopped);
   }
-
-  *pins_->prepared = *pins_->tool_prepare;
-  serve_executor();
-  start_executor_if_needed();
-  // Level handshake, as hal_manualtoolchange: the builtin M6 at the end of the
-  // remap raises tool-change only once the sequence is done.
-  *pins_->changed = *pins_->tool_change && changer_->status().phase == Phase::idle;
-  show_status();
+  // The operator flows run the executor over MDI: task must be free for it.
+  task_free_ = nml_ && interpreter_idle.value_or(false);
+  if (!nml_) {
+    changer_->task_availability("no connection to LinuxCNC's task (NML)");
+  } else if (!task_free_) {
+    changer_->task_availability("a program or MDI command is running");
+  } else {
+    changer_->task_availability(std::nullopt);
+  }
+  if (abort_.rose(*pins_->abort)) abort("the abort pin was raised");
 }
 
-void Component::watch_for_abort(std::optional<bool> interpreter_idle) {
-  // The executor runs inside the interpreter: an idle interpreter while an
-  // executor still expects steps means the program (or MDI) was aborted.
-  const Status& status = changer_->status();
-  const bool sequence_runs = status.phase == Phase::changing || status.phase == Phase::loading ||
-                             status.phase == Phase::unloading;
-  if (!interpreter_idle || !*interpreter_idle || !sequence_runs || !executor_attached_) {
-    idle_since_.reset();
-    return;
+void Component::read_executor(std::optional<bool> interpreter_idle) {
+  LinkInputs in;
+  in.step_request = *pins_->step_request;
+  in.call = static_cast<int>(std::lround(*pins_->executor_call));
+  in.number = *pins_->number;
+  in.probe_result = *pins_->probe_result;
+  in.probe_z = *pins_->probe_z;
+  in.tool_prepare = *pins_->tool_prepare;
+  in.tool_change = *pins_->tool_change;
+  in.interpreter_idle = interpreter_idle;
+  for (const LinkEvent& e : link_.read(in, now_)) {
+    switch (e.kind) {
+      case LinkEvent::Kind::tool_change:
+        changer_->tool_change(e.tool);
+        break;
+      case LinkEvent::Kind::in_position:
+        changer_->in_position();
+        break;
+      case LinkEvent::Kind::command_done:
+        changer_->command_done();
+        break;
+      case LinkEvent::Kind::probe_result:
+        changer_->probe_result(e.touched, e.z, e.tripped_before);
+        break;
+      case LinkEvent::Kind::executor_lost:
+        abort(e.reason);
+        break;
+    }
   }
-  if (!idle_since_) idle_since_ = now_;
-  if (now_ - *idle_since_ >= std::chrono::milliseconds(200)) {
-    idle_since_.reset();
-    abort("LinuxCNC aborted the program during the sequence");
+}
+
+void Component::read_operator() {
+  if (load_.rose(*pins_->load)) changer_->load(*pins_->tool_number);
+  if (unload_.rose(*pins_->unload)) changer_->unload(*pins_->tool_number);
+  if (continue_.rose(*pins_->continue_)) changer_->operator_continue();
+  if (cancel_.rose(*pins_->cancel)) {
+    if (changer_->status().probe_cancellable && nml_) {
+      // The probe runs over MDI: stop it before the changer plans the retract,
+      // which the next executor run then performs.
+      nml_->abort();
+      link_.drop();
+    }
+    changer_->operator_cancel();
   }
+  if (clear_.rose(*pins_->clear_fault)) changer_->clear_fault(*pins_->linuxcnc_tool);
 }
 
 void Component::abort(const std::string& reason) {
   changer_->abort(reason);
-  drop_executor();
-}
-
-void Component::drop_executor() {
   // The executor is gone with the program; nothing it was doing will finish.
-  executing_.reset();
-  offered_.reset();
-  pending_.reset();
-  *pins_->step_ready = 0;
-  executor_attached_ = false;
-  if (*pins_->step_request) {
-    // It died asking for a step, and motion keeps that output high. The next
-    // executor takes this empty step, drops the request and asks afresh.
-    Step resync;
-    resync.kind = kResync;
-    offer(resync);
-  }
-}
-
-void Component::serve_operator() {
-  auto rising = [](bool now, bool& last) {
-    const bool edge = now && !last;
-    last = now;
-    return edge;
-  };
-  const bool load = rising(*pins_->load, last_load_);
-  const bool unload = rising(*pins_->unload, last_unload_);
-  if (load || unload) {
-    const std::optional<std::string> why = why_task_busy();
-    if (why && changer_->status().phase == Phase::idle) {
-      tell(MessageKind::error, std::string(load ? "load" : "unload") + " refused: " + *why);
-    } else {
-      load ? changer_->load(*pins_->tool_number) : changer_->unload(*pins_->tool_number);
-    }
-  }
-  if (rising(*pins_->continue_, last_continue_)) changer_->operator_continue();
-  if (rising(*pins_->cancel, last_cancel_)) {
-    if (probe_cancellable(changer_->status()) && nml_) {
-      // The probe runs over MDI: stop it before the changer plans the retract,
-      // which the next executor run then performs.
-      nml_->abort();
-      drop_executor();
-    }
-    changer_->operator_cancel();
-  }
-}
-
-std::optional<std::string> Component::why_task_busy() const {
-  // The operator flows run the executor over MDI: task must be free for it.
-  if (!nml_) return std::string("no connection to LinuxCNC's task (NML)");
-  if (!interpreter_idle_ || !*interpreter_idle_) return std::string("a program or MDI command is running");
-  return std::nullopt;
+  link_.drop();
 }
 
 void Component::start_executor_if_needed() {
   // Operator flows start from an idle machine: a step waiting with no
   // executor to take it means the executor must be run over MDI.
   const Phase phase = changer_->status().phase;
-  if (!pending_ || executing_ || offered_ || *pins_->step_request || !nml_) return;
   if (phase != Phase::loading && phase != Phase::unloading) return;
-  if (starting_until_ && now_ < *starting_until_) return;
-  if (why_task_busy()) return;
-  nml_->run_mdi("o<fixed_atc_probe_execute> call [0]");
-  starting_until_ = now_ + std::chrono::seconds(5);
+  if (!task_free_ || !link_.needs_run(now_)) return;
+  nml_->run_mdi("o<fixed_atc_probe_execute> call [" +
+                std::to_string(static_cast<int>(ExecutorCall::operator_flow)) + "]");
+  link_.run_started(now_);
 }
 
-void Component::serve_executor() {
-  const bool request = *pins_->step_request;
-  if (request && !last_request_) {
-    starting_until_.reset();
-    executor_attached_ = true;
-    if (executing_) {
-      const Step finished = *executing_;
-      executing_.reset();
-      if (finished.kind == StepKind::probe) {
-        const double result = *pins_->probe_result;
-        changer_->probe_result(result > 0.5, *pins_->probe_z, result < -0.5);
-      } else {
-        changer_->in_position();
-      }
-    } else if (!offered_ && !pending_ && changer_->status().phase != Phase::loading &&
-               changer_->status().phase != Phase::unloading) {
-      changer_->tool_change(*pins_->number);
-    }
-  }
-  if (!request && last_request_ && offered_) {
-    *pins_->step_ready = 0;
-    const StepKind kind = offered_->kind;
-    if (kind != StepKind::done && kind != StepKind::fail && kind != StepKind::wait_operator &&
-        kind != kResync) {
-      executing_ = offered_;
-    } else if (kind != kResync) {
-      executor_attached_ = false;  // it ends its run after this step
-    }
-    offered_.reset();
-  }
-  offer_pending_if_asked();
-  last_request_ = request;
-}
+void Component::write_pins() {
+  const Status status = changer_->status();
+  const LinkOutputs out = link_.write(status.phase == Phase::idle);
+  *pins_->step_kind = static_cast<int>(out.step.kind);
+  *pins_->step_axes = static_cast<int>(out.step.axes);
+  *pins_->step_x = out.step.target.x;
+  *pins_->step_y = out.step.target.y;
+  *pins_->step_z = out.step.target.z;
+  *pins_->step_feed = out.step.feed;
+  *pins_->step_tool = out.step.tool;
+  *pins_->step_value = out.step.value;
+  *pins_->step_ready = out.step_ready;
+  *pins_->prepared = out.prepared;
+  *pins_->changed = out.changed;
 
-void Component::offer_pending_if_asked() {
-  if (*pins_->step_request && pending_ && !offered_ && !executing_) {
-    offer(*pending_);
-    pending_.reset();
-  }
-}
-
-void Component::offer(const Step& step) {
-  *pins_->step_kind = static_cast<int>(step.kind);
-  *pins_->step_axes = static_cast<int>(step.axes);
-  *pins_->step_x = step.target.x;
-  *pins_->step_y = step.target.y;
-  *pins_->step_z = step.target.z;
-  *pins_->step_feed = step.feed;
-  *pins_->step_tool = step.tool;
-  *pins_->step_value = step.value;
-  *pins_->step_ready = 1;
-  offered_ = step;
-}
-
-void Component::show_status() {
-  const Status& status = changer_->status();
   *pins_->state = static_cast<int>(status.phase);
   *pins_->ready = status.phase == Phase::idle;
   *pins_->fault = status.phase == Phase::fault;
-  *pins_->busy = status.phase == Phase::changing || status.phase == Phase::loading ||
-                 status.phase == Phase::unloading;
+  *pins_->busy = status.busy();
   *pins_->tool_in_spindle = changer_->tools().spindle;
-  // In the operator flows only once the executor has ended its run: then the
-  // GUI and jogging are free. Inside M6 the executor holds the program.
-  const bool executor_free = !executor_attached_ && !offered_;
-  *pins_->waiting_for_operator = status.awaiting == Awaiting::operator_choice &&
-                                 (executor_free || status.phase == Phase::changing);
   *pins_->awaiting = static_cast<int>(status.awaiting);
-  *pins_->accepting = status.phase == Phase::idle && !why_task_busy();
-  *pins_->can_cancel = *pins_->waiting_for_operator || (probe_cancellable(status) && nml_);
-}
-
-void Component::publish(const Step& step) {
-  pending_ = step;
-  // A step published while the executor already asks goes out this turn.
-  offer_pending_if_asked();
+  *pins_->accepting = status.accepting;
+  if (status.last_length) *pins_->last_length = *status.last_length;
+  // An operator flow waits for the operator once its executor run has ended
+  // (the GUI and jogging are then free); M6 holds its program meanwhile.
+  *pins_->waiting_for_operator =
+      status.awaits_operator() && (!link_.attached() || status.holds_program);
+  *pins_->can_cancel = *pins_->waiting_for_operator || (status.probe_cancellable && nml_);
 }
 
 void Component::set_chuck_open(bool open) { *pins_->chuck = open; }
 
 void Component::start_timer(double seconds) {
-  deadline_ = now_ + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+  deadline_ =
+      now_ + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
 }
 
-void Component::cancel_timer() { deadline_.reset(); }
-
 void Component::tell(MessageKind kind, const std::string& text) {
-  const char* tag = kind == MessageKind::error ? "error" : kind == MessageKind::prompt ? "operator" : "info";
+  const char* tag = kind == MessageKind::error    ? "error"
+                    : kind == MessageKind::prompt ? "operator"
+                                                  : "info";
   std::cerr << "fixed_atc_probe: " << tag << ": " << text << std::endl;
   if (nml_) nml_->tell(kind, text);
 }
 
-void Component::save(const ToolState& state) {
-  io::save_state_file(state_path_, state);
-  for (const auto& [tool, length] : state.lengths) {
-    if (!last_lengths_.count(tool) || last_lengths_.at(tool) != length) *pins_->last_length = length;
-  }
-  last_lengths_ = state.lengths;
-}
+void Component::save(const ToolState& state) { io::save_state_file(state_path_, state); }
 
 void Component::unexpected(const std::string& state, const std::string& event) {
   std::cerr << "fixed_atc_probe: internal error: event " << event << " in " << state << std::endl;

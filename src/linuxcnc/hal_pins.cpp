@@ -1,6 +1,6 @@
-#include "hal_pins_detail.hpp"
-
 #include <stdexcept>
+
+#include "hal_pins_detail.hpp"
 
 namespace fatc::linuxcnc {
 namespace {
@@ -14,7 +14,8 @@ void make(int id, hal_pin_dir_t dir, hal_bit_t** pin, const std::string& prefix,
 void make(int id, hal_pin_dir_t dir, hal_s32_t** pin, const std::string& prefix, const char* name) {
   check(hal_pin_s32_newf(dir, pin, id, "%s.%s", prefix.c_str(), name), prefix, name);
 }
-void make(int id, hal_pin_dir_t dir, hal_float_t** pin, const std::string& prefix, const char* name) {
+void make(int id, hal_pin_dir_t dir, hal_float_t** pin, const std::string& prefix,
+          const char* name) {
   check(hal_pin_float_newf(dir, pin, id, "%s.%s", prefix.c_str(), name), prefix, name);
 }
 
@@ -48,6 +49,7 @@ HalPins* create_pins(const std::string& name, int& id) {
   make(id, HAL_OUT, &p->tool_in_spindle, n, "tool-in-spindle");
   // The step executor's handshake.
   make(id, HAL_IN, &p->step_request, n, "step-request");
+  make(id, HAL_IN, &p->executor_call, n, "executor-call");
   make(id, HAL_IN, &p->abort, n, "abort");
   make(id, HAL_OUT, &p->step_ready, n, "step-ready");
   make(id, HAL_OUT, &p->step_kind, n, "step-kind");

@@ -7,48 +7,50 @@
 namespace fatc::linuxcnc {
 
 struct HalPins {
-  hal_s32_t* number;         ///< in: tool being prepared (iocontrol.0.tool-prep-number)
-  hal_bit_t* tool_prepare;   ///< in: iocontrol.0.tool-prepare
-  hal_bit_t* prepared;       ///< out: iocontrol.0.tool-prepared
-  hal_bit_t* tool_change;    ///< in: iocontrol.0.tool-change
-  hal_bit_t* changed;        ///< out: iocontrol.0.tool-changed; high until tool-change drops
-  hal_bit_t* chuck;          ///< out: true opens the chuck
-  hal_bit_t* probe;          ///< in: the touch-off sensor
-  hal_bit_t* spindle_stopped;///< in: the spindle stands still
-  hal_bit_t* machine_on;     ///< in: machine on and out of estop
-  hal_bit_t* all_homed;      ///< in: every joint homed
-  hal_bit_t* clear_fault;    ///< in: rising edge clears a fault; linuxcnc-tool is then in the spindle
+  hal_s32_t* number;           ///< in: tool being prepared (iocontrol.0.tool-prep-number)
+  hal_bit_t* tool_prepare;     ///< in: iocontrol.0.tool-prepare
+  hal_bit_t* prepared;         ///< out: iocontrol.0.tool-prepared
+  hal_bit_t* tool_change;      ///< in: iocontrol.0.tool-change
+  hal_bit_t* changed;          ///< out: iocontrol.0.tool-changed; high until tool-change drops
+  hal_bit_t* chuck;            ///< out: true opens the chuck
+  hal_bit_t* probe;            ///< in: the touch-off sensor
+  hal_bit_t* spindle_stopped;  ///< in: the spindle stands still
+  hal_bit_t* machine_on;       ///< in: machine on and out of estop
+  hal_bit_t* all_homed;        ///< in: every joint homed
+  hal_bit_t* clear_fault;  ///< in: rising edge clears a fault; linuxcnc-tool is then in the spindle
   hal_s32_t* linuxcnc_tool;  ///< in: iocontrol.0.tool-number
-  hal_s32_t* state;          ///< out: 0 not ready, 1 idle, 2 changing, 3 loading, 4 unloading, 5 fault
-  hal_bit_t* ready;          ///< out: idle and able to change tools
-  hal_bit_t* busy;           ///< out: running a sequence
-  hal_bit_t* fault;          ///< out: in fault
-  hal_s32_t* tool_in_spindle;///< out: what the changer knows is in the spindle
-  hal_bit_t* step_request;   ///< in: the executor asks for its next step (motion.digital-out-M)
-  hal_bit_t* abort;          ///< in: a rising edge aborts the running sequence
-  hal_bit_t* step_ready;     ///< out: a step is on the step pins (motion.digital-in-N)
-  hal_s32_t* step_kind;      ///< out: StepKind
-  hal_s32_t* step_axes;      ///< out: 3 = XY, 4 = Z, 7 = XYZ
-  hal_float_t* step_x;       ///< out: machine X of the move
+  hal_s32_t* state;  ///< out: 0 not ready, 1 idle, 2 changing, 3 loading, 4 unloading, 5 fault
+  hal_bit_t* ready;  ///< out: idle and able to change tools
+  hal_bit_t* busy;   ///< out: running a sequence
+  hal_bit_t* fault;  ///< out: in fault
+  hal_s32_t* tool_in_spindle;  ///< out: what the changer knows is in the spindle
+  hal_bit_t* step_request;     ///< in: the executor asks for its next step (motion.digital-out-M)
+  hal_float_t*
+      executor_call;      ///< in: 1 the executor runs inside M6, 2 over MDI (motion.analog-out)
+  hal_bit_t* abort;       ///< in: a rising edge aborts the running sequence
+  hal_bit_t* step_ready;  ///< out: a step is on the step pins (motion.digital-in-N)
+  hal_s32_t* step_kind;   ///< out: StepKind
+  hal_s32_t* step_axes;   ///< out: 3 = XY, 4 = Z, 7 = XYZ
+  hal_float_t* step_x;    ///< out: machine X of the move
   hal_float_t* step_y;
   hal_float_t* step_z;
-  hal_float_t* step_feed;    ///< out: units per minute
-  hal_s32_t* step_tool;      ///< out: tool of set-length, set-tool, done
-  hal_float_t* step_value;   ///< out: tool length of set-length
-  hal_bit_t* return_to_xy;   ///< in: after M6, go back over the XY where it was called
-  hal_bit_t* units_inch;     ///< out: the config is in inches (the executor uses G20)
-  hal_float_t* probe_z;      ///< in: machine Z where the probe move stopped (motion.analog-out)
-  hal_float_t* probe_result; ///< in: 1 touched, 0 missed, -1 already tripped (motion.analog-out)
-  hal_s32_t* tool_number;    ///< in: the tool the operator buttons are about
-  hal_bit_t* load;           ///< in: rising edge: load and probe tool-number
-  hal_bit_t* unload;         ///< in: rising edge: unload tool-number
-  hal_bit_t* continue_;      ///< in: rising edge: the operator is done (Continue)
-  hal_bit_t* cancel;         ///< in: rising edge: the operator cancels
-  hal_bit_t* waiting_for_operator; ///< out: a prompt waits for Continue or Cancel
-  hal_float_t* last_length;  ///< out: the last tool length measured
-  hal_s32_t* awaiting;       ///< out: 0 nothing, 1 motion, 2 probe, 3 timer, 4 spindle, 5 operator
-  hal_bit_t* accepting;      ///< out: load and unload would be accepted now
-  hal_bit_t* can_cancel;     ///< out: cancel would act now (an operator wait or a load-flow probe)
+  hal_float_t* step_feed;     ///< out: units per minute
+  hal_s32_t* step_tool;       ///< out: tool of set-length, set-tool, done
+  hal_float_t* step_value;    ///< out: tool length of set-length
+  hal_bit_t* return_to_xy;    ///< in: after M6, go back over the XY where it was called
+  hal_bit_t* units_inch;      ///< out: the config is in inches (the executor uses G20)
+  hal_float_t* probe_z;       ///< in: machine Z where the probe move stopped (motion.analog-out)
+  hal_float_t* probe_result;  ///< in: 1 touched, 0 missed, -1 already tripped (motion.analog-out)
+  hal_s32_t* tool_number;     ///< in: the tool the operator buttons are about
+  hal_bit_t* load;            ///< in: rising edge: load and probe tool-number
+  hal_bit_t* unload;          ///< in: rising edge: unload tool-number
+  hal_bit_t* continue_;       ///< in: rising edge: the operator is done (Continue)
+  hal_bit_t* cancel;          ///< in: rising edge: the operator cancels
+  hal_bit_t* waiting_for_operator;  ///< out: a prompt waits for Continue or Cancel
+  hal_float_t* last_length;         ///< out: the last tool length measured
+  hal_s32_t* awaiting;    ///< out: 0 nothing, 1 motion, 2 probe, 3 timer, 4 spindle, 5 operator
+  hal_bit_t* accepting;   ///< out: load and unload would be accepted now
+  hal_bit_t* can_cancel;  ///< out: cancel would act now (an operator wait or a load-flow probe)
 };
 
 }  // namespace fatc::linuxcnc

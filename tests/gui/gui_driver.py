@@ -147,10 +147,17 @@ def click(name):
     note("clicked " + name)
 
 
-def answer(name):
-    """Clicks Continue or Cancel at a prompt and waits until the prompt is gone."""
+def answer(name, next_prompt=None):
+    """Clicks Continue or Cancel at a prompt and waits until the changer moved
+    on: the prompt closes or, where one prompt follows another, the next is
+    said (the MDI step between them can be quicker than the panel's refresh)."""
+    said = len(driver.messages)
     click(name)
-    wait_for(pin("fatc-panel.continue-enabled", False), 30, "the prompt to close after " + name)
+    if next_prompt:
+        wait_for(lambda: any(next_prompt in m for m in driver.messages[said:]), 30,
+                 "the prompt '%s' after %s" % (next_prompt, name))
+    else:
+        wait_for(pin("fatc-panel.continue-enabled", False), 30, "the prompt to close after " + name)
 
 
 def set_tool_number(number):
@@ -216,7 +223,7 @@ def run():
     wait_for(pin("fatc-panel.continue-enabled", True), 180, "the insert prompt")
     note("insert prompt")
     screenshot("insert_prompt", ("Continue", True))
-    answer("Continue")
+    answer("Continue", next_prompt="Jog it closer")
     wait_for(pin("fatc-panel.continue-enabled", True), 180, "the jog prompt")
     note("jog prompt")
     answer("Continue")

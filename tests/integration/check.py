@@ -402,8 +402,8 @@ def check_busy_refusals(r, rack):
     pressed = [p for p, _ in r.get("pressed", [])]
     if len(pressed) != 3:
         fail("the buttons were not all pressed during the program: %s" % pressed)
-    for wanted in ("load refused: a program or MDI command is running",
-                   "unload refused: a program or MDI command is running",
+    for wanted in ("load of tool 4 refused: a program or MDI command is running",
+                   "unload of tool 4 refused: a program or MDI command is running",
                    "Continue: nothing is waiting for the operator"):
         if not any(wanted in m for m in r["messages"]):
             fail("no message saying '%s': %s" % (wanted, r["messages"]))

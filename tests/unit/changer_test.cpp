@@ -74,7 +74,7 @@ Lines concat(std::initializer_list<Lines> parts) {
   return all;
 }
 
-// The sequences of DESIGN.md, spelled out once, for pocket `t` of the test config.
+// The sequences of docs/sequences.md, spelled out once, for pocket `t` of the test config.
 Lines to_safe() { return {"rapid safe Z", "rapid safe XY"}; }
 
 Lines return_to_pocket(int t) {
@@ -390,7 +390,8 @@ TEST_P(RefusedLoad, shouldSayWhyAndMoveNothing) {
   rig.changer->load(GetParam().tool);
   EXPECT_TRUE(rig.sim.steps().empty());
   ASSERT_EQ(rig.sim.messages(MessageKind::error).size(), 1u);
-  EXPECT_EQ(rig.sim.messages(MessageKind::error)[0], GetParam().why);
+  EXPECT_EQ(rig.sim.messages(MessageKind::error)[0],
+            "load of tool " + std::to_string(GetParam().tool) + " refused: " + GetParam().why);
 }
 
 // clang-format off
@@ -407,7 +408,8 @@ TEST(Load, shouldRefuseWhileTheSpindleTurns) {
   rig.changer->spindle_stopped(false);
   rig.changer->load(4);
   EXPECT_TRUE(rig.sim.steps().empty());
-  EXPECT_EQ(rig.sim.messages(MessageKind::error).at(0), "the spindle is turning; stop it first");
+  EXPECT_EQ(rig.sim.messages(MessageKind::error).at(0),
+            "load of tool 4 refused: the spindle is turning; stop it first");
 }
 
 // ---------------------------------------------------------------- unload
@@ -455,7 +457,7 @@ TEST(Unload, shouldRefuseAToolThatIsNotInTheRack) {
   Rig rig(0, {3});
   rig.changer->unload(3);
   EXPECT_TRUE(rig.sim.steps().empty());
-  EXPECT_EQ(rig.sim.messages(MessageKind::error).at(0), "tool 3 is not in the rack");
+  EXPECT_EQ(rig.sim.messages(MessageKind::error).at(0), "unload of tool 3 refused: tool 3 is not in the rack");
 }
 
 // ---------------------------------------------------------------- faults

@@ -6,6 +6,8 @@
 #include <boost/msm/back/state_machine.hpp>
 #include <boost/msm/front/functor_row.hpp>
 #include <boost/msm/front/state_machine_def.hpp>
+#include <cctype>
+#include <type_traits>
 
 #include "../events.hpp"
 #include "../geometry.hpp"
@@ -15,8 +17,28 @@ namespace fatc::machine {
 
 namespace msm = boost::msm;
 namespace msmf = boost::msm::front;
+using msmf::Internal;
 using msmf::none;
 using msmf::Row;
+
+/// Flags the states carry; the status view is computed from them
+/// (`is_flag_active`), so what the pins show is what the machine is in.
+namespace flag {
+struct NotReady {};
+struct Idle {};
+struct Faulted {};
+struct Busy {};          ///< a flow runs
+struct Changing {};      ///< the M6 flow
+struct Loading {};       ///< the load-and-probe flow
+struct Unloading {};     ///< the unload flow
+struct AwaitsMotion {};  ///< the executor performs a move or a command
+struct AwaitsProbe {};   ///< the executor performs a probe move
+struct AwaitsTimer {};
+struct AwaitsSpindle {};
+struct AwaitsOperator {};    ///< Continue or Cancel
+struct HoldsProgram {};      ///< an operator wait inside M6: the program holds
+struct ProbeCancellable {};  ///< a probe over MDI that Cancel stops
+}  // namespace flag
 
 /// A submachine finished; raised by its exit point `Finished`.
 struct LegDone {
@@ -34,8 +56,8 @@ struct FlowFailed {
 
 struct Finished : msmf::exit_pseudo_state<LegDone> {};
 struct Failed : msmf::exit_pseudo_state<FlowFailed> {};
-/// The operator cancelled inside a program: the program stops, nothing is uncertain.
-struct Stopped : msmf::exit_pseudo_state<LegDone> {};
+/// The operator cancelled: the flow ends early, nothing is uncertain.
+struct Cancelled : msmf::exit_pseudo_state<LegDone> {};
 
 /// Base of every submachine front: takes the context from its parent on
 /// entry and remembers which tool's pocket it serves.
@@ -54,36 +76,65 @@ struct Flow : msmf::state_machine_def<Derived> {
 
 // ---------------------------------------------------------------- kinds of state
 
-/// Publishes the step `Target` computes on entry, then waits for InPosition
-/// (or ProbeResult, for a probe step).
+/// Publishes the move `Target` computes on entry, then waits for InPosition.
 template <class Target>
 struct Moving : msmf::state<> {
+  using flag_list = boost::mpl::vector1<flag::AwaitsMotion>;
   template <class Event, class Fsm>
   void on_entry(const Event&, Fsm& fsm) {
-    fsm.ctx->status.awaiting = Awaiting::motion;
-    fsm.ctx->publish(Target{}(*fsm.ctx, fsm.pocket_tool));
+    fsm.ctx->publish(Target{}(*fsm.ctx, fsm));
+  }
+};
+
+/// Publishes the command (M61, G10) `Target` computes on entry, then waits
+/// for CommandDone.
+template <class Target>
+struct Commanding : Moving<Target> {};
+
+/// Publishes the probe move `Target` computes on entry, then waits for
+/// ProbeResult. `Cancellable`: the operator may stop it (it runs over MDI).
+template <class Target, bool Cancellable>
+struct Probing : msmf::state<> {
+  using flag_list =
+      std::conditional_t<Cancellable,
+                         boost::mpl::vector2<flag::AwaitsProbe, flag::ProbeCancellable>,
+                         boost::mpl::vector1<flag::AwaitsProbe>>;
+  template <class Event, class Fsm>
+  void on_entry(const Event&, Fsm& fsm) {
+    fsm.ctx->publish(Target{}(*fsm.ctx, fsm));
+  }
+};
+
+/// Stands still while its timer runs; leaving it stops the timer, so no
+/// TimerElapsed outlives the state that asked for it.
+struct Timed : msmf::state<> {
+  using flag_list = boost::mpl::vector1<flag::AwaitsTimer>;
+  template <class Event, class Fsm>
+  void on_exit(const Event&, Fsm& fsm) {
+    fsm.ctx->ports.cancel_timer();
   }
 };
 
 /// Stands still for `Seconds` of the config, then TimerElapsed.
 template <class Seconds>
-struct Waiting : msmf::state<> {
+struct Waiting : Timed {
   template <class Event, class Fsm>
   void on_entry(const Event&, Fsm& fsm) {
-    fsm.ctx->wait(Seconds{}(fsm.ctx->config), fsm.ctx->status.activity);
+    fsm.ctx->wait(Seconds{}(fsm.ctx->config), Seconds::what);
   }
 };
 
 /// Ends the executor run and asks the operator; Continue or Cancel follow.
 template <class Prompt>
 struct AskingOperator : msmf::state<> {
+  using flag_list = boost::mpl::vector1<flag::AwaitsOperator>;
   template <class Event, class Fsm>
   void on_entry(const Event&, Fsm& fsm) {
     Step pause;
     pause.kind = StepKind::wait_operator;
     pause.label = "operator";
     fsm.ctx->publish(pause);
-    fsm.ctx->ask_operator(Prompt{}(*fsm.ctx));
+    fsm.ctx->ask_operator(Prompt{}(*fsm.ctx, fsm));
   }
 };
 
@@ -91,25 +142,48 @@ struct AskingOperator : msmf::state<> {
 /// the executor keeps waiting for its next step; Continue or Cancel follow.
 template <class Prompt>
 struct HoldingForOperator : msmf::state<> {
+  using flag_list = boost::mpl::vector2<flag::AwaitsOperator, flag::HoldsProgram>;
   template <class Event, class Fsm>
   void on_entry(const Event&, Fsm& fsm) {
-    fsm.ctx->ask_operator(Prompt{}(*fsm.ctx));
+    fsm.ctx->ask_operator(Prompt{}(*fsm.ctx, fsm));
   }
 };
 
+/// How an operator flow asks: it ends the executor run, so the GUI and
+/// jogging are free while the operator works.
+struct EndingTheRun {
+  template <class Prompt>
+  using Asking = AskingOperator<Prompt>;
+  static std::string lead(const Context&) { return ""; }
+  static constexpr const char* on_cancel = "Cancel to stop";
+};
+/// How M6 asks: the program holds at `loading` until the operator answers.
+struct HoldingTheProgram {
+  template <class Prompt>
+  using Asking = HoldingForOperator<Prompt>;
+  static std::string lead(const Context& c) {
+    return "M6 T" + std::to_string(c.requested_tool) + ": ";
+  }
+  static constexpr const char* on_cancel = "Cancel stops the program";
+};
+
+/// One question to the operator: "<lead><what>, then press Continue (<on cancel>)".
+template <class How>
+std::string question(const Context& c, const std::string& what) {
+  std::string text = How::lead(c) + what + ", then press Continue (" + How::on_cancel + ")";
+  if (How::lead(c).empty() && !text.empty()) text[0] = static_cast<char>(std::toupper(text[0]));
+  return text;
+}
+
 /// A state that decides at once, through guarded anonymous rows.
-struct Choosing : msmf::state<> {};
+struct Decision : msmf::state<> {};
 
 // ---------------------------------------------------------------- durations
 
+/// The chuck's dwell, where the tool settles in the pocket or the spindle.
 struct ChuckSeconds {
+  static constexpr const char* what = "letting the tool settle";
   double operator()(const Config& c) const { return c.chuck_seconds; }
-};
-struct FlushPulseSeconds {
-  double operator()(const Config& c) const { return c.flush.pulse_seconds; }
-};
-struct FlushPauseSeconds {
-  double operator()(const Config& c) const { return c.flush.pause_seconds; }
 };
 
 // ---------------------------------------------------------------- targets
@@ -134,115 +208,143 @@ inline std::string of_pocket(const char* what, int tool) {
 }
 
 struct SafeZ {
-  Step operator()(const Context& c, int) const {
+  template <class Leg>
+  Step operator()(const Context& c, const Leg&) const {
     return move(StepKind::rapid, axis_z, c.config.safe, "safe Z");
   }
 };
 struct SafeXY {
-  Step operator()(const Context& c, int) const {
+  template <class Leg>
+  Step operator()(const Context& c, const Leg&) const {
     return move(StepKind::rapid, axis_xy, c.config.safe, "safe XY");
   }
 };
 /// Straight up from the pocket or its side, still within its approach.
 struct SafeZOverPocket {
-  Step operator()(const Context& c, int tool) const {
+  template <class Leg>
+  Step operator()(const Context& c, const Leg& leg) const {
+    const int tool = leg.pocket_tool;
     return move(StepKind::rapid, axis_z, c.config.safe, "safe Z", tool, true);
   }
 };
 struct SideAtSafeZ {
-  Step operator()(const Context& c, int tool) const {
+  template <class Leg>
+  Step operator()(const Context& c, const Leg& leg) const {
+    const int tool = leg.pocket_tool;
     const Point side = pocket_waypoints(c.config, tool).side;
     return move(StepKind::rapid, axis_xy, side, of_pocket("over the side", tool), tool);
   }
 };
 struct Side {
-  Step operator()(const Context& c, int tool) const {
+  template <class Leg>
+  Step operator()(const Context& c, const Leg& leg) const {
+    const int tool = leg.pocket_tool;
     return move(StepKind::rapid, axis_z, pocket_waypoints(c.config, tool).side,
                 of_pocket("side", tool), tool, true);
   }
 };
 struct SlowlyToSide {
-  Step operator()(const Context& c, int tool) const {
+  template <class Leg>
+  Step operator()(const Context& c, const Leg& leg) const {
+    const int tool = leg.pocket_tool;
     return move(StepKind::feed, axis_xy, pocket_waypoints(c.config, tool).side,
                 of_pocket("side", tool), tool, true, c.config.pocket_feed);
   }
 };
 struct SlowlyIntoPocket {
-  Step operator()(const Context& c, int tool) const {
+  template <class Leg>
+  Step operator()(const Context& c, const Leg& leg) const {
+    const int tool = leg.pocket_tool;
     return move(StepKind::feed, axis_xy, pocket_waypoints(c.config, tool).pocket,
                 "pocket " + std::to_string(tool), tool, true, c.config.pocket_feed);
   }
 };
 struct SlowlyDownToPocket {
-  Step operator()(const Context& c, int tool) const {
+  template <class Leg>
+  Step operator()(const Context& c, const Leg& leg) const {
+    const int tool = leg.pocket_tool;
     return move(StepKind::feed, axis_z, pocket_waypoints(c.config, tool).pocket,
                 "pocket " + std::to_string(tool), tool, true, c.config.pocket_feed);
   }
 };
 struct PocketAtSafeZ {
-  Step operator()(const Context& c, int tool) const {
+  template <class Leg>
+  Step operator()(const Context& c, const Leg& leg) const {
+    const int tool = leg.pocket_tool;
     return move(StepKind::rapid, axis_xy, pocket_waypoints(c.config, tool).pocket,
                 "over pocket " + std::to_string(tool), tool);
   }
 };
 struct AboveChuck {
-  Step operator()(const Context& c, int tool) const {
+  template <class Leg>
+  Step operator()(const Context& c, const Leg& leg) const {
+    const int tool = leg.pocket_tool;
     return move(StepKind::rapid, axis_z, pocket_waypoints(c.config, tool).above_chuck,
                 of_pocket("above-chuck", tool), tool, true);
   }
 };
 struct AboveClearance {
-  Step operator()(const Context& c, int tool) const {
+  template <class Leg>
+  Step operator()(const Context& c, const Leg& leg) const {
+    const int tool = leg.pocket_tool;
     return move(StepKind::rapid, axis_z, pocket_waypoints(c.config, tool).above_clearance,
                 of_pocket("above-clearance", tool), tool, true);
   }
 };
 struct LoadingZ {
-  Step operator()(const Context& c, int) const {
+  template <class Leg>
+  Step operator()(const Context& c, const Leg&) const {
     return move(StepKind::rapid, axis_z, c.config.loading, "loading Z");
   }
 };
 struct LoadingXY {
-  Step operator()(const Context& c, int) const {
+  template <class Leg>
+  Step operator()(const Context& c, const Leg&) const {
     return move(StepKind::rapid, axis_xy, c.config.loading, "loading XY");
   }
 };
 /// Over the touch-off sensor, at the current Z.
 struct SensorXY {
-  Step operator()(const Context& c, int) const {
+  template <class Leg>
+  Step operator()(const Context& c, const Leg&) const {
     return move(StepKind::rapid, axis_xy, c.config.probe_limit, "over the touch-off sensor");
   }
 };
 struct ProbeSeek {
-  Step operator()(const Context& c, int) const {
-    return move(StepKind::probe, axis_z, c.config.probe_limit, "touch-off sensor (seek)", 0,
-                false, c.config.probe_seek_feed);
+  template <class Leg>
+  Step operator()(const Context& c, const Leg&) const {
+    return move(StepKind::probe, axis_z, c.config.probe_limit, "touch-off sensor (seek)", 0, false,
+                c.config.probe_seek_feed);
   }
 };
 struct ProbeBackOff {
-  Step operator()(const Context& c, int) const {
+  template <class Leg>
+  Step operator()(const Context& c, const Leg& leg) const {
     Point above = c.config.probe_limit;
-    above.z = c.first_touch_z + c.config.probe_backoff;
+    above.z = leg.first_touch_z + c.config.probe_backoff;
     return move(StepKind::feed, axis_z, above, "back off the sensor", 0, false,
                 c.config.probe_seek_feed);
   }
 };
 struct ProbeLatch {
-  Step operator()(const Context& c, int) const {
-    return move(StepKind::probe, axis_z, c.config.probe_limit, "touch-off sensor (latch)", 0,
-                false, c.config.probe_latch_feed);
+  template <class Leg>
+  Step operator()(const Context& c, const Leg&) const {
+    return move(StepKind::probe, axis_z, c.config.probe_limit, "touch-off sensor (latch)", 0, false,
+                c.config.probe_latch_feed);
   }
 };
 struct RetractFromSensor {
-  Step operator()(const Context& c, int) const {
+  template <class Leg>
+  Step operator()(const Context& c, const Leg& leg) const {
     Point up = c.config.probe_limit;
-    up.z = c.latched_z + c.config.probe_retract_offset_z;
+    up.z = leg.latched_z + c.config.probe_retract_offset_z;
     return move(StepKind::rapid, axis_z, up, "retract from the sensor");
   }
 };
 /// Tells LinuxCNC (M61) what the spindle holds now.
 struct SpindleTool {
-  Step operator()(const Context& c, int) const {
+  template <class Leg>
+  Step operator()(const Context& c, const Leg&) const {
     Step step;
     step.kind = StepKind::set_spindle_tool;
     step.tool = c.tools.spindle;
@@ -251,7 +353,9 @@ struct SpindleTool {
   }
 };
 struct ToolLength {
-  Step operator()(const Context& c, int tool) const {
+  template <class Leg>
+  Step operator()(const Context& c, const Leg& leg) const {
+    const int tool = leg.pocket_tool;
     Step step;
     step.kind = StepKind::set_tool_length;
     step.tool = tool;
@@ -334,16 +438,24 @@ struct ToolRequested {
 
 // ---------------------------------------------------------------- actions
 
+/// The operator put the tool the leg serves into the spindle.
+struct RecordToolInserted {
+  template <class Event, class Fsm, class Source, class Target>
+  void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+    fsm.ctx->record_in_spindle(fsm.pocket_tool);
+  }
+};
+/// The operator took the tool the leg serves out of the machine.
+struct RecordToolRemoved {
+  template <class Event, class Fsm, class Source, class Target>
+  void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+    fsm.ctx->record_out_of_machine(fsm.pocket_tool);
+  }
+};
 struct CloseChuck {
   template <class Event, class Fsm, class Source, class Target>
   void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
     fsm.ctx->close_chuck();
-  }
-};
-struct CancelTimer {
-  template <class Event, class Fsm, class Source, class Target>
-  void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-    fsm.ctx->ports.cancel_timer();
   }
 };
 

@@ -9,40 +9,33 @@ bool Context::at_safe() const {
          position.z == config.safe.z;
 }
 
-void Context::publish(const Step& step) {
-  if (step.kind == StepKind::rapid || step.kind == StepKind::feed) {
-    if (step.axes & axis_x) position.x = step.target.x;
-    if (step.axes & axis_y) position.y = step.target.y;
-    if (step.axes & axis_z) position.z = step.target.z;
-    known_axes |= step.axes;
-  } else if (step.kind == StepKind::probe) {
+void Context::publish(const Step& next) {
+  if (next.kind == StepKind::rapid || next.kind == StepKind::feed) {
+    if (next.axes & axis_x) position.x = next.target.x;
+    if (next.axes & axis_y) position.y = next.target.y;
+    if (next.axes & axis_z) position.z = next.target.z;
+    known_axes |= next.axes;
+  } else if (next.kind == StepKind::probe) {
     known_axes &= ~static_cast<unsigned>(axis_z);  // the probe stops wherever it touches
-  } else if (step.kind == StepKind::wait_operator || step.kind == StepKind::fail) {
+  } else if (next.kind == StepKind::wait_operator || next.kind == StepKind::fail) {
     known_axes = 0;  // the operator may jog; a failed sequence may stop anywhere
   }
-  status.activity = std::string(step_kind_name(step.kind)) + " to " + step.label;
-  if (step.kind == StepKind::probe) status.awaiting = Awaiting::probe;
-  if (step.kind == StepKind::fail) status.activity = "failed: " + step.label;
-  ports.publish(step);
+  step = next;
+  ports.publish(next);
 }
 
-void Context::open_chuck(const std::string& where) {
-  status.activity = "chuck open " + where;
-  ports.set_chuck_open(true);
-}
+void Context::open_chuck() { ports.set_chuck_open(true); }
 
 void Context::close_chuck() { ports.set_chuck_open(false); }
 
-void Context::wait(double seconds, const std::string& activity) {
-  status.activity = activity;
-  status.awaiting = Awaiting::timer;
+void Context::wait(double seconds, std::string what) {
+  dwell = std::move(what);
   ports.start_timer(seconds);
 }
 
-void Context::ask_operator(const std::string& prompt) {
-  status.activity = prompt;
-  status.awaiting = Awaiting::operator_choice;
-  ports.tell(MessageKind::prompt, prompt);
+void Context::ask_operator(const std::string& question) {
+  prompt = question;
+  ports.tell(MessageKind::prompt, question);
 }
 
 void Context::record_in_spindle(int tool) {
@@ -65,12 +58,14 @@ void Context::record_out_of_machine(int tool) {
 
 void Context::record_length(int tool, double length) {
   tools.lengths[tool] = length;
+  last_length = length;
   ports.save(tools);
 }
 
 std::string Context::whereabouts() const {
-  std::string text = tools.spindle == 0 ? std::string("the spindle is empty")
-                                        : "tool " + std::to_string(tools.spindle) + " is in the spindle";
+  std::string text = tools.spindle == 0
+                         ? std::string("the spindle is empty")
+                         : "tool " + std::to_string(tools.spindle) + " is in the spindle";
   if (tools.uncertain) text += " (last known; not certain)";
   return text;
 }
@@ -118,6 +113,7 @@ std::optional<std::string> why_not_change(const Context& ctx, int tool) {
 }
 
 std::optional<std::string> why_not_load(const Context& ctx, int tool) {
+  if (ctx.task_busy) return ctx.task_busy;
   if (tool <= 0) return "load needs a tool number above 0, got " + std::to_string(tool);
   if (auto busy = why_not_busy(ctx)) return busy;
   if (!ctx.spindle_stopped) return std::string("the spindle is turning; stop it first");
@@ -130,6 +126,7 @@ std::optional<std::string> why_not_load(const Context& ctx, int tool) {
 }
 
 std::optional<std::string> why_not_unload(const Context& ctx, int tool) {
+  if (ctx.task_busy) return ctx.task_busy;
   if (tool <= 0) return "unload needs a tool number above 0, got " + std::to_string(tool);
   if (auto busy = why_not_busy(ctx)) return busy;
   if (!ctx.spindle_stopped) return std::string("the spindle is turning; stop it first");

@@ -5,7 +5,7 @@
 
 #include "../config.hpp"
 #include "../ports.hpp"
-#include "../status.hpp"
+#include "../step.hpp"
 #include "../tool_state.hpp"
 
 namespace fatc {
@@ -20,24 +20,27 @@ class Context {
   const Config& config;
   Ports& ports;
   ToolState tools;
-  Status status;
 
-  int requested_tool = 0;      ///< the tool the current request is about
-  bool machine_ready = false;  ///< latest Ready/NotReady
-  bool spindle_stopped = true; ///< latest spindle report
-  int flush_pulses_done = 0;
-  double first_touch_z = 0.0;  ///< where the fast probing stage touched
-  double latched_z = 0.0;      ///< where the slow probing stage touched
+  int requested_tool = 0;       ///< the tool the current request is about
+  bool machine_ready = false;   ///< latest Ready/NotReady
+  bool spindle_stopped = true;  ///< latest SpindleReport
+  /// Why task cannot run the executor over MDI now (a program runs, no NML), if it cannot.
+  std::optional<std::string> task_busy;
   std::string fault_reason;
-  std::string stop_reason;     ///< why an M6 stops its program without a fault
-  Point position;              ///< where the last published moves lead
-  unsigned known_axes = 0;     ///< which axes of `position` are known
+  Point position;           ///< where the last published moves lead
+  unsigned known_axes = 0;  ///< which axes of `position` are known
   bool at_safe() const;
 
+  // What the status view's activity is derived from.
+  Step step;                          ///< the last published step
+  std::string dwell;                  ///< what the running timer waits for
+  std::string prompt;                 ///< the last question put to the operator
+  std::optional<double> last_length;  ///< the last length a probe measured
+
   void publish(const Step& step);
-  void open_chuck(const std::string& where);
+  void open_chuck();
   void close_chuck();
-  void wait(double seconds, const std::string& activity);
+  void wait(double seconds, std::string what);
   void ask_operator(const std::string& prompt);
   void tell(MessageKind kind, const std::string& text) { ports.tell(kind, text); }
 

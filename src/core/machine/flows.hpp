@@ -10,32 +10,27 @@
 
 namespace fatc::machine {
 
-struct Before {};  ///< the return of whatever the spindle held before
-struct PutAway {}; ///< the return of the tool the flow is about
-
-/// Sets the `state` pin's phase when a flow is entered.
-template <Phase P>
-struct EntersPhase {
-  template <class Fsm>
-  static void enter(Fsm& fsm) {
-    fsm.ctx->status.phase = P;
-  }
-};
+struct Before {};   ///< the return of whatever the spindle held before
+struct PutAway {};  ///< the return of the tool the flow is about
 
 // ================================================================ change (M6)
+/// M6: empty the spindle (its tool back to its pocket, or handed out), then
+/// fetch the requested tool (from its pocket, or handed in), then measure it
+/// if `probe_after_change` asks. docs/sequences.md#m6.
 struct ChangeFlow_ : Flow<ChangeFlow_> {
-  template <class Event, class Parent>
-  void on_entry(const Event& e, Parent& parent) {
-    Flow::on_entry(e, parent);
-    EntersPhase<Phase::changing>::enter(*this);
-  }
+  using flag_list = boost::mpl::vector2<flag::Busy, flag::Changing>;
 
   struct WaitingForSpindle : msmf::state<> {
+    using flag_list = boost::mpl::vector1<flag::AwaitsSpindle>;
     template <class Event, class Fsm>
     void on_entry(const Event&, Fsm& fsm) {
       if (fsm.ctx->spindle_stopped) return;  // leaves at once through the anonymous row
-      fsm.ctx->wait(fsm.ctx->config.spindle_stop_timeout_seconds, "waiting for the spindle to stop");
-      fsm.ctx->status.awaiting = Awaiting::spindle;
+      fsm.ctx->wait(fsm.ctx->config.spindle_stop_timeout_seconds,
+                    "waiting for the spindle to stop");
+    }
+    template <class Event, class Fsm>
+    void on_exit(const Event&, Fsm& fsm) {
+      fsm.ctx->ports.cancel_timer();
     }
   };
   struct SpindleIsStopped {
@@ -50,7 +45,6 @@ struct ChangeFlow_ : Flow<ChangeFlow_> {
       fsm.ctx->fault_reason = "the spindle did not stop within spindle_stop_timeout_seconds";
     }
   };
-
   struct ProbesAfterChange {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
@@ -59,131 +53,107 @@ struct ChangeFlow_ : Flow<ChangeFlow_> {
   };
 
   using Returning = ReturnLeg<Before>;
-  /// Decides, with the spindle empty, how the requested tool gets into it.
-  struct Fetching : Choosing {};
-  /// Decides whether the tool now in the spindle is measured.
-  struct Measuring : Choosing {};
+  struct DecidingHowToEmpty : Decision {};
+  /// The spindle is empty: how does the requested tool get into it?
+  struct DecidingHowToFetch : Decision {};
+  struct DecidingToMeasure : Decision {};
   using initial_state = WaitingForSpindle;
   // clang-format off
   using transition_table = boost::mpl::vector<
-  //    Start                            Event           Next         Action                Guard
-  // +--------------------------------+---------------+------------+---------------------+-------------------------+
-  Row < WaitingForSpindle              , none          , Choosing   , CancelTimer         , SpindleIsStopped        >,
-  Row < WaitingForSpindle              , SpindleStopped, Choosing   , CancelTimer         , none                    >,
-  Row < WaitingForSpindle              , TimerElapsed  , Failed     , SaySpindleDidNotStop, none                    >,
-  Row < Choosing                       , none          , Returning  , none                , SpindleHoldsRackTool    >,
-  Row < Choosing                       , none          , HandOutLeg , none                , SpindleHoldsManualTool  >,
-  Row < Choosing                       , none          , Fetching   , none                , Not<SpindleHoldsTool>   >,
-  Row < Returning::exit_pt<Finished>   , LegDone       , Fetching   , none                , none                    >,
-  Row < HandOutLeg::exit_pt<Finished>  , LegDone       , Fetching   , none                , none                    >,
-  Row < HandOutLeg::exit_pt<Stopped>   , LegDone       , Stopped    , none                , none                    >,
-  Row < Fetching                       , none          , RetrieveLeg, none                , RequestedRackTool       >,
-  Row < Fetching                       , none          , HandInLeg  , none                , RequestedManualTool     >,
-  Row < Fetching                       , none          , Finished   , none                , Not<ToolRequested>      >,
-  Row < RetrieveLeg::exit_pt<Finished> , LegDone       , Measuring  , none                , none                    >,
-  Row < HandInLeg::exit_pt<Finished>   , LegDone       , Measuring  , none                , none                    >,
-  Row < HandInLeg::exit_pt<Stopped>    , LegDone       , Stopped    , none                , none                    >,
-  Row < Measuring                      , none          , MeasureLeg , none                , ProbesAfterChange       >,
-  Row < Measuring                      , none          , Finished   , none                , Not<ProbesAfterChange>  >,
-  Row < MeasureLeg::exit_pt<Finished>  , LegDone       , Finished   , none                , none                    >,
-  Row < MeasureLeg::exit_pt<Failed>    , FlowFailed    , Failed     , none                , none                    >
+  //    Start                            Event           Next                Action                Guard
+  // +--------------------------------+---------------+-------------------+---------------------+-------------------------+
+  Row < WaitingForSpindle              , none          , DecidingHowToEmpty, none                , SpindleIsStopped        >,
+  Row < WaitingForSpindle              , SpindleReport , DecidingHowToEmpty, none                , SpindleIsStopped        >,
+  Row < WaitingForSpindle              , TimerElapsed  , Failed            , SaySpindleDidNotStop, none                    >,
+  Row < DecidingHowToEmpty             , none          , Returning         , none                , SpindleHoldsRackTool    >,
+  Row < DecidingHowToEmpty             , none          , HandOutLeg        , none                , SpindleHoldsManualTool  >,
+  Row < DecidingHowToEmpty             , none          , DecidingHowToFetch, none                , Not<SpindleHoldsTool>   >,
+  Row < Returning::exit_pt<Finished>   , LegDone       , DecidingHowToFetch, none                , none                    >,
+  Row < HandOutLeg::exit_pt<Finished>  , LegDone       , DecidingHowToFetch, none                , none                    >,
+  Row < HandOutLeg::exit_pt<Cancelled> , LegDone       , Cancelled         , none                , none                    >,
+  Row < DecidingHowToFetch             , none          , RetrieveLeg       , none                , RequestedRackTool       >,
+  Row < DecidingHowToFetch             , none          , HandInLeg         , none                , RequestedManualTool     >,
+  Row < DecidingHowToFetch             , none          , Finished          , none                , Not<ToolRequested>      >,
+  Row < RetrieveLeg::exit_pt<Finished> , LegDone       , DecidingToMeasure , none                , none                    >,
+  Row < HandInLeg::exit_pt<Finished>   , LegDone       , DecidingToMeasure , none                , none                    >,
+  Row < HandInLeg::exit_pt<Cancelled>  , LegDone       , Cancelled         , none                , none                    >,
+  Row < DecidingToMeasure              , none          , MeasureLeg        , none                , ProbesAfterChange       >,
+  Row < DecidingToMeasure              , none          , Finished          , none                , Not<ProbesAfterChange>  >,
+  Row < MeasureLeg::exit_pt<Finished>  , LegDone       , Finished          , none                , none                    >,
+  Row < MeasureLeg::exit_pt<Failed>    , FlowFailed    , Failed            , none                , none                    >
   >;
   // clang-format on
 };
 using ChangeFlow = msm::back::state_machine<ChangeFlow_>;
 
-// ================================================================ load and probe
-struct LoadFlow_ : Flow<LoadFlow_> {
-  template <class Event, class Parent>
-  void on_entry(const Event& e, Parent& parent) {
-    Flow::on_entry(e, parent);
-    EntersPhase<Phase::loading>::enter(*this);
-  }
+/// Tells LinuxCNC (M61) what the spindle holds; `Which` tells uses apart.
+template <class Which>
+struct ReportingSpindleTool : Commanding<to::SpindleTool> {};
+struct AfterInsertion {};
+struct AtTheEnd {};
 
-  struct InsertPrompt {
-    std::string operator()(const Context& c) const {
-      return "Insert tool " + std::to_string(c.requested_tool) +
-             " into the spindle, then press Continue (Cancel to stop)";
-    }
-  };
+// ================================================================ load and probe
+/// The operator loads a tool by hand at `loading`; it is measured on the
+/// sensor and put away in its pocket. docs/sequences.md#load-and-probe.
+struct LoadFlow_ : Flow<LoadFlow_> {
+  using flag_list = boost::mpl::vector2<flag::Busy, flag::Loading>;
+
   struct JogPrompt {
-    std::string operator()(const Context& c) const {
+    template <class Leg>
+    std::string operator()(const Context& c, const Leg&) const {
       return "Tool " + std::to_string(c.requested_tool) +
              " is in the spindle. Jog it closer to the touch-off sensor if you like, then press "
              "Continue to probe (Cancel to stop)";
     }
   };
-  struct AwaitingTool : AskingOperator<InsertPrompt> {};
-  struct ReportingTool : Moving<to::SpindleTool> {};
   struct AwaitingProbe : AskingOperator<JogPrompt> {};
-  struct ReportingFinalTool : Moving<to::SpindleTool> {};
-
-  struct RecordToolInserted {
-    template <class Event, class Fsm, class Source, class Target>
-    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      fsm.ctx->record_in_spindle(fsm.ctx->requested_tool);
-    }
-  };
   struct SayCancelled {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       fsm.ctx->tell(MessageKind::info, "load of tool " + std::to_string(fsm.ctx->requested_tool) +
-                                           " cancelled, nothing measured; " + fsm.ctx->whereabouts());
+                                           " cancelled, nothing measured; " +
+                                           fsm.ctx->whereabouts());
     }
   };
 
   using Returning = ReturnLeg<Before>;
+  using Inserting = InsertLeg<EndingTheRun>;
+  using Probe = ProbingLeg<OverMdi>;
   using PuttingAway = ReturnLeg<PutAway>;
-  using initial_state = Choosing;
+  using ReportingTool = ReportingSpindleTool<AfterInsertion>;
+  using ReportingFinalTool = ReportingSpindleTool<AtTheEnd>;
+  struct DecidingToReturn : Decision {};
+  using initial_state = DecidingToReturn;
   // clang-format off
   using transition_table = boost::mpl::vector<
-  //    Start                              Event            Next                Action              Guard
-  // +----------------------------------+----------------+-------------------+-------------------+-----------------------------+
-  Row < Choosing                         , none           , Returning         , none              , SpindleHoldsOtherTool       >,
-  Row < Choosing                         , none           , ToLoadingZ        , none              , Not<SpindleHoldsOtherTool>  >,
-  Row < Returning::exit_pt<Finished>     , LegDone        , ToLoadingZ        , none              , none                        >,
-  Row < ToLoadingZ                       , InPosition     , ToLoadingXY       , none              , none                        >,
-  Row < ToLoadingXY                      , InPosition     , FlushLeg          , none              , Not<RequestedToolInSpindle> >,
-  Row < ToLoadingXY                      , InPosition     , AwaitingProbe     , none              , RequestedToolInSpindle      >,
-  Row < FlushLeg::exit_pt<Finished>      , LegDone        , AwaitingTool      , none              , none                        >,
-  Row < AwaitingTool                     , OperatorContinue, ReportingTool    , RecordToolInserted, none                        >,
-  Row < AwaitingTool                     , OperatorCancel , ReportingFinalTool, SayCancelled      , none                        >,
-  Row < ReportingTool                    , InPosition     , AwaitingProbe     , none              , none                        >,
-  Row < AwaitingProbe                    , OperatorContinue, ProbingLeg       , none              , none                        >,
-  Row < AwaitingProbe                    , OperatorCancel , ReportingFinalTool, SayCancelled      , none                        >,
-  Row < ProbingLeg::exit_pt<Finished>    , LegDone        , PuttingAway       , none              , none                        >,
-  Row < ProbingLeg::exit_pt<ProbingLeg_::NotMeasured>, LegDone, ReportingFinalTool, none          , none                        >,
-  Row < PuttingAway::exit_pt<Finished>   , LegDone        , ReportingFinalTool, none              , none                        >,
-  Row < ReportingFinalTool               , InPosition     , Finished          , none              , none                        >
+  //    Start                              Event             Next                Action        Guard
+  // +----------------------------------+-----------------+-------------------+-------------+-----------------------------+
+  Row < DecidingToReturn                 , none            , Returning         , none        , SpindleHoldsOtherTool       >,
+  Row < DecidingToReturn                 , none            , ToLoadingZ        , none        , Not<SpindleHoldsOtherTool>  >,
+  Row < Returning::exit_pt<Finished>     , LegDone         , ToLoadingZ        , none        , none                        >,
+  Row < ToLoadingZ                       , InPosition      , ToLoadingXY       , none        , none                        >,
+  Row < ToLoadingXY                      , InPosition      , Inserting         , none        , Not<RequestedToolInSpindle> >,
+  Row < ToLoadingXY                      , InPosition      , AwaitingProbe     , none        , RequestedToolInSpindle      >,
+  Row < Inserting::exit_pt<Finished>     , LegDone         , ReportingTool     , none        , none                        >,
+  Row < Inserting::exit_pt<Cancelled>    , LegDone         , ReportingFinalTool, SayCancelled, none                        >,
+  Row < ReportingTool                    , CommandDone     , AwaitingProbe     , none        , none                        >,
+  Row < AwaitingProbe                    , OperatorContinue, Probe             , none        , none                        >,
+  Row < AwaitingProbe                    , OperatorCancel  , ReportingFinalTool, SayCancelled, none                        >,
+  Row < Probe::exit_pt<Finished>         , LegDone         , PuttingAway       , none        , none                        >,
+  Row < Probe::exit_pt<Probe::NotMeasured>, LegDone        , ReportingFinalTool, none        , none                        >,
+  Row < PuttingAway::exit_pt<Finished>   , LegDone         , ReportingFinalTool, none        , none                        >,
+  Row < ReportingFinalTool               , CommandDone     , Finished          , none        , none                        >
   >;
   // clang-format on
 };
 using LoadFlow = msm::back::state_machine<LoadFlow_>;
 
 // ================================================================ unload
+/// The requested tool is fetched (if not in the spindle already) and taken
+/// out by the operator at `loading`. docs/sequences.md#unload.
 struct UnloadFlow_ : Flow<UnloadFlow_> {
-  template <class Event, class Parent>
-  void on_entry(const Event& e, Parent& parent) {
-    Flow::on_entry(e, parent);
-    EntersPhase<Phase::unloading>::enter(*this);
-  }
+  using flag_list = boost::mpl::vector2<flag::Busy, flag::Unloading>;
 
-  struct RemovePrompt {
-    std::string operator()(const Context& c) const {
-      return "Unload tool " + std::to_string(c.requested_tool) +
-             " now: release and remove it, then press Continue (Cancel keeps it in the spindle)";
-    }
-  };
-  struct ReportingTool : Moving<to::SpindleTool> {};
-  struct AwaitingRemoval : AskingOperator<RemovePrompt> {};
-  struct ReportingFinalTool : Moving<to::SpindleTool> {};
-
-  struct RecordToolRemoved {
-    template <class Event, class Fsm, class Source, class Target>
-    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      fsm.ctx->record_out_of_machine(fsm.ctx->requested_tool);
-    }
-  };
   struct SayCancelled {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
@@ -199,76 +169,125 @@ struct UnloadFlow_ : Flow<UnloadFlow_> {
   };
 
   using Returning = ReturnLeg<Before>;
-  using initial_state = Choosing;
+  using Removing = RemoveLeg<EndingTheRun>;
+  using ReportingTool = ReportingSpindleTool<AfterInsertion>;
+  using ReportingFinalTool = ReportingSpindleTool<AtTheEnd>;
+  struct DecidingWhereToStart : Decision {};
+  using initial_state = DecidingWhereToStart;
   // clang-format off
   using transition_table = boost::mpl::vector<
-  //    Start                            Event             Next                Action             Guard
-  // +--------------------------------+-----------------+-------------------+------------------+------------------------+
-  Row < Choosing                       , none            , ToLoadingZ        , none             , RequestedToolInSpindle >,
-  Row < Choosing                       , none            , Returning         , none             , SpindleHoldsOtherTool  >,
-  Row < Choosing                       , none            , RetrieveLeg       , none             , SpindleEmpty           >,
-  Row < Returning::exit_pt<Finished>   , LegDone         , RetrieveLeg       , none             , none                   >,
-  Row < RetrieveLeg::exit_pt<Finished> , LegDone         , ToLoadingZ        , none             , none                   >,
-  Row < ToLoadingZ                     , InPosition      , ToLoadingXY       , none             , none                   >,
-  Row < ToLoadingXY                    , InPosition      , ReportingTool     , none             , none                   >,
-  Row < ReportingTool                  , InPosition      , AwaitingRemoval   , none             , none                   >,
-  Row < AwaitingRemoval                , OperatorContinue, FlushLeg          , RecordToolRemoved, none                   >,
-  Row < AwaitingRemoval                , OperatorCancel  , ReportingFinalTool, SayCancelled     , none                   >,
-  Row < FlushLeg::exit_pt<Finished>    , LegDone         , ReportingFinalTool, none             , none                   >,
-  Row < ReportingFinalTool             , InPosition      , Finished          , none             , none                   >
+  //    Start                            Event         Next                Action        Guard
+  // +--------------------------------+-------------+-------------------+-------------+------------------------+
+  Row < DecidingWhereToStart           , none        , ToLoadingZ        , none        , RequestedToolInSpindle >,
+  Row < DecidingWhereToStart           , none        , Returning         , none        , SpindleHoldsOtherTool  >,
+  Row < DecidingWhereToStart           , none        , RetrieveLeg       , none        , SpindleEmpty           >,
+  Row < Returning::exit_pt<Finished>   , LegDone     , RetrieveLeg       , none        , none                   >,
+  Row < RetrieveLeg::exit_pt<Finished> , LegDone     , ToLoadingZ        , none        , none                   >,
+  Row < ToLoadingZ                     , InPosition  , ToLoadingXY       , none        , none                   >,
+  Row < ToLoadingXY                    , InPosition  , ReportingTool     , none        , none                   >,
+  Row < ReportingTool                  , CommandDone , Removing          , none        , none                   >,
+  Row < Removing::exit_pt<Finished>    , LegDone     , FlushLeg          , none        , none                   >,
+  Row < Removing::exit_pt<Cancelled>   , LegDone     , ReportingFinalTool, SayCancelled, none                   >,
+  Row < FlushLeg::exit_pt<Finished>    , LegDone     , ReportingFinalTool, none        , none                   >,
+  Row < ReportingFinalTool             , CommandDone , Finished          , none        , none                   >
   >;
   // clang-format on
 };
 using UnloadFlow = msm::back::state_machine<UnloadFlow_>;
 
+// ================================================================ requests and refusals
+inline std::string request_name(const ToolChange& e) { return "M6 T" + std::to_string(e.tool); }
+inline std::string request_name(const LoadRequest& e) {
+  return "load of tool " + std::to_string(e.tool);
+}
+inline std::string request_name(const UnloadRequest& e) {
+  return "unload of tool " + std::to_string(e.tool);
+}
+
+inline std::optional<std::string> why_not(const Context& c, const ToolChange& e) {
+  return why_not_change(c, e.tool);
+}
+inline std::optional<std::string> why_not(const Context& c, const LoadRequest& e) {
+  return why_not_load(c, e.tool);
+}
+inline std::optional<std::string> why_not(const Context& c, const UnloadRequest& e) {
+  return why_not_unload(c, e.tool);
+}
+
+/// Refuses a request, saying why `Because` gives. An M6's executor waits for a
+/// step: it gets one that fails its program with the same words.
+template <class Because>
+struct Refuse {
+  template <class Request, class Fsm, class Source, class Target>
+  void operator()(const Request& e, Fsm& fsm, Source&, Target&) const {
+    const std::string text = request_name(e) + " refused: " + Because{}(fsm, e);
+    if constexpr (std::is_same_v<Request, ToolChange>) {
+      Step fail = failure_step(text);
+      fail.tool = e.tool;
+      // Straight to the executor: the flow running (if any) goes on as it was.
+      fsm.ctx->ports.publish(fail);
+    }
+    fsm.ctx->tell(MessageKind::error, text);
+  }
+};
+struct BecauseNotPossible {
+  template <class Fsm, class Request>
+  std::string operator()(Fsm& fsm, const Request& e) const {
+    return *why_not(*fsm.ctx, e);
+  }
+};
+struct BecauseNotReady {
+  template <class Fsm, class Request>
+  std::string operator()(Fsm&, const Request&) const {
+    return "the machine is not on and homed, or is in estop";
+  }
+};
+struct BecauseFaulted {
+  template <class Fsm, class Request>
+  std::string operator()(Fsm& fsm, const Request&) const {
+    return "the changer is in fault (" + fsm.ctx->fault_reason + "); clear it first";
+  }
+};
+struct BecauseBusy {
+  template <class Fsm, class Request>
+  std::string operator()(Fsm& fsm, const Request&) const {
+    const std::string tool = std::to_string(fsm.ctx->requested_tool);
+    if (fsm.template is_flag_active<flag::Loading>())
+      return "the changer is busy loading tool " + tool;
+    if (fsm.template is_flag_active<flag::Unloading>())
+      return "the changer is busy unloading tool " + tool;
+    return "the changer is busy changing to tool " + tool;
+  }
+};
+/// The three requests, refused for one reason: a state's internal rows.
+template <class Because>
+using RefusesRequests = boost::mpl::vector<msmf::Internal<ToolChange, Refuse<Because>, none>,
+                                           msmf::Internal<LoadRequest, Refuse<Because>, none>,
+                                           msmf::Internal<UnloadRequest, Refuse<Because>, none>>;
+
 // ================================================================ operating
 /// The machine on and homed: idle, or running one flow.
 struct Operating_ : Flow<Operating_> {
   struct Idle : msmf::state<> {
-    template <class Event, class Fsm>
-    void on_entry(const Event&, Fsm& fsm) {
-      fsm.ctx->status = Status{Phase::idle, Awaiting::nothing, "idle"};
-    }
+    using flag_list = boost::mpl::vector1<flag::Idle>;
   };
 
-  template <class Request>
   struct Refused {
-    template <class Fsm, class Source, class Target>
-    bool operator()(const Request& e, Fsm& fsm, Source&, Target&) const {
-      return reason(*fsm.ctx, e.tool).has_value();
-    }
-    static std::optional<std::string> reason(const Context& ctx, int tool);
-  };
-  struct TakeRequest {
     template <class Request, class Fsm, class Source, class Target>
-    void operator()(const Request& e, Fsm& fsm, Source&, Target&) const {
-      fsm.ctx->requested_tool = e.tool;
+    bool operator()(const Request& e, Fsm& fsm, Source&, Target&) const {
+      return why_not(*fsm.ctx, e).has_value();
     }
   };
   struct AlreadyInSpindle {
     template <class Fsm, class Source, class Target>
     bool operator()(const ToolChange& e, Fsm& fsm, Source&, Target&) const {
-      return !Refused<ToolChange>::reason(*fsm.ctx, e.tool) && e.tool == fsm.ctx->tools.spindle;
+      return e.tool == fsm.ctx->tools.spindle;
     }
   };
-  struct Startable {
-    template <class Request, class Fsm, class Source, class Target>
-    bool operator()(const Request& e, Fsm& fsm, Source&, Target&) const {
-      return !Refused<Request>::reason(*fsm.ctx, e.tool) &&
-             !(std::is_same_v<Request, ToolChange> && e.tool == fsm.ctx->tools.spindle);
-    }
-  };
-  struct Refuse {
+  struct TakeRequest {
     template <class Request, class Fsm, class Source, class Target>
     void operator()(const Request& e, Fsm& fsm, Source&, Target&) const {
-      const std::string why = *Refused<Request>::reason(*fsm.ctx, e.tool);
-      if constexpr (std::is_same_v<Request, ToolChange>) {
-        Step fail = failure_step("M6 T" + std::to_string(e.tool) + " refused: " + why);
-        fail.tool = e.tool;
-        fsm.ctx->publish(fail);
-        fsm.ctx->status.activity = "idle";
-      }
-      fsm.ctx->tell(MessageKind::error, why);
+      fsm.ctx->requested_tool = e.tool;
     }
   };
   struct AnswerDone {
@@ -281,56 +300,43 @@ struct Operating_ : Flow<Operating_> {
       fsm.ctx->publish(done);
     }
   };
-  /// The executor aborts the program with the reason; nothing is uncertain.
+  /// The operator cancelled an M6: the executor stops the program, saying where
+  /// the tools are; nothing is uncertain.
   struct StopProgram {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      Step fail = failure_step(fsm.ctx->stop_reason);
-      fail.tool = fsm.ctx->tools.spindle;
-      fsm.ctx->publish(fail);
-      fsm.ctx->tell(MessageKind::error, fsm.ctx->stop_reason);
-    }
-  };
-  struct IsBusy {
-    template <class Event, class Fsm, class Source, class Target>
-    bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      return fsm.ctx->status.phase != Phase::idle;
+      Context& c = *fsm.ctx;
+      const std::string why = "M6 T" + std::to_string(c.requested_tool) +
+                              " cancelled by the operator; " + c.whereabouts();
+      Step fail = failure_step(why);
+      fail.tool = c.tools.spindle;
+      c.publish(fail);
+      c.tell(MessageKind::error, why);
     }
   };
 
   using initial_state = Idle;
   // clang-format off
   using transition_table = boost::mpl::vector<
-  //    Start                           Event          Next        Action       Guard
-  // +-------------------------------+--------------+-----------+------------+---------------------------+
-  Row < Idle                          , ToolChange   , none      , Refuse     , Refused<ToolChange>       >,
-  Row < Idle                          , ToolChange   , none      , AnswerDone , AlreadyInSpindle          >,
-  Row < Idle                          , ToolChange   , ChangeFlow, TakeRequest, Startable                 >,
-  Row < Idle                          , LoadRequest  , none      , Refuse     , Refused<LoadRequest>      >,
-  Row < Idle                          , LoadRequest  , LoadFlow  , TakeRequest, Startable                 >,
-  Row < Idle                          , UnloadRequest, none      , Refuse     , Refused<UnloadRequest>    >,
-  Row < Idle                          , UnloadRequest, UnloadFlow, TakeRequest, Startable                 >,
-  Row < ChangeFlow::exit_pt<Finished> , LegDone      , Idle      , AnswerDone , none                      >,
-  Row < ChangeFlow::exit_pt<Failed>   , FlowFailed   , Failed    , none       , none                      >,
-  Row < ChangeFlow::exit_pt<Stopped>  , LegDone      , Idle      , StopProgram, none                      >,
-  Row < LoadFlow::exit_pt<Finished>   , LegDone      , Idle      , AnswerDone , none                      >,
-  Row < UnloadFlow::exit_pt<Finished> , LegDone      , Idle      , AnswerDone , none                      >
+  //    Start                            Event          Next        Action                      Guard
+  // +--------------------------------+--------------+-----------+---------------------------+-----------------------------------+
+  Row < Idle                           , ToolChange   , none      , Refuse<BecauseNotPossible>, Refused                           >,
+  Row < Idle                           , ToolChange   , none      , AnswerDone                , And<Not<Refused>, AlreadyInSpindle> >,
+  Row < Idle                           , ToolChange   , ChangeFlow, TakeRequest               , And<Not<Refused>, Not<AlreadyInSpindle>> >,
+  Row < Idle                           , LoadRequest  , none      , Refuse<BecauseNotPossible>, Refused                           >,
+  Row < Idle                           , LoadRequest  , LoadFlow  , TakeRequest               , Not<Refused>                      >,
+  Row < Idle                           , UnloadRequest, none      , Refuse<BecauseNotPossible>, Refused                           >,
+  Row < Idle                           , UnloadRequest, UnloadFlow, TakeRequest               , Not<Refused>                      >,
+  Row < ChangeFlow::exit_pt<Finished>  , LegDone      , Idle      , AnswerDone                , none                              >,
+  Row < ChangeFlow::exit_pt<Failed>    , FlowFailed   , Failed    , none                      , none                              >,
+  Row < ChangeFlow::exit_pt<Cancelled> , LegDone      , Idle      , StopProgram               , none                              >,
+  Row < LoadFlow::exit_pt<Finished>    , LegDone      , Idle      , AnswerDone                , none                              >,
+  Row < UnloadFlow::exit_pt<Finished>  , LegDone      , Idle      , AnswerDone                , none                              >
   >;
+  /// Idle answers every request above; these answer them while a flow runs.
+  using internal_transition_table = RefusesRequests<BecauseBusy>;
   // clang-format on
 };
-
-template <>
-inline std::optional<std::string> Operating_::Refused<ToolChange>::reason(const Context& c, int t) {
-  return why_not_change(c, t);
-}
-template <>
-inline std::optional<std::string> Operating_::Refused<LoadRequest>::reason(const Context& c, int t) {
-  return why_not_load(c, t);
-}
-template <>
-inline std::optional<std::string> Operating_::Refused<UnloadRequest>::reason(const Context& c, int t) {
-  return why_not_unload(c, t);
-}
 using Operating = msm::back::state_machine<Operating_>;
 
 // ================================================================ top
@@ -339,25 +345,29 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
   Context* ctx;
 
   struct MachineNotReady : msmf::state<> {
-    template <class Event, class Fsm>
-    void on_entry(const Event&, Fsm& fsm) {
-      fsm.ctx->status = Status{Phase::not_ready, Awaiting::nothing, "machine off, not homed or in estop"};
-    }
+    using flag_list = boost::mpl::vector1<flag::NotReady>;
+    using internal_transition_table = RefusesRequests<BecauseNotReady>;
   };
   struct Faulted : msmf::state<> {
+    using flag_list = boost::mpl::vector1<flag::Faulted>;
+    using internal_transition_table = RefusesRequests<BecauseFaulted>;
     template <class Event, class Fsm>
     void on_entry(const Event&, Fsm& fsm) {
       Context& c = *fsm.ctx;
-      c.ports.cancel_timer();
       c.close_chuck();
       // An executor still waiting for its next step aborts the program on this.
       c.publish(failure_step(c.fault_reason));
-      c.status = Status{Phase::fault, Awaiting::nothing, "fault: " + c.fault_reason};
       c.tell(MessageKind::error, "fault: " + c.fault_reason + "; " + c.whereabouts() +
                                      ". Check the spindle and the rack, then clear the fault.");
     }
   };
 
+  struct IsBusy {
+    template <class Event, class Fsm, class Source, class Target>
+    bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      return fsm.template is_flag_active<flag::Busy>();
+    }
+  };
   struct SpindleUncertain {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
@@ -375,7 +385,9 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event& e, Fsm& fsm, Source&, Target&) const {
       Context& c = *fsm.ctx;
-      if constexpr (std::is_same_v<Event, Abort>) c.fault_reason = e.reason;
+      if constexpr (std::is_same_v<Event, Abort> || std::is_same_v<Event, InternalError>) {
+        c.fault_reason = e.reason;
+      }
       if constexpr (std::is_same_v<Event, NotReady>) {
         c.fault_reason = "the machine went off, lost homing or entered estop during a sequence";
       }
@@ -399,27 +411,54 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
       c.tell(MessageKind::info, "fault cleared; " + c.whereabouts());
     }
   };
-  using IsBusy = Operating_::IsBusy;
+  template <class Words>
+  struct Say {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      fsm.ctx->tell(MessageKind::info, Words::text);
+    }
+  };
+  struct NothingWaitsToContinue {
+    static constexpr const char* text = "Continue: nothing is waiting for the operator";
+  };
+  struct NothingWaitsToCancel {
+    static constexpr const char* text = "Cancel: nothing is waiting for the operator";
+  };
+  struct ThereIsNoFault {
+    static constexpr const char* text = "clear fault: there is no fault";
+  };
 
   using initial_state = MachineNotReady;
   // clang-format off
   using transition_table = boost::mpl::vector<
-  //    Start                          Event        Next       Action           Guard
-  // +------------------------------+------------+----------+----------------+-----------------------+
-  Row < MachineNotReady              , Ready      , Operating, none           , Not<SpindleUncertain> >,
-  Row < MachineNotReady              , Ready      , Faulted  , SayUncertain   , SpindleUncertain      >,
-  Row < MachineNotReady              , Abort      , none     , none           , none                  >,
-  Row < MachineNotReady              , NotReady   , none     , none           , none                  >,
-  Row < Operating                    , NotReady   , MachineNotReady, none     , Not<IsBusy>           >,
-  Row < Operating                    , NotReady   , Faulted  , MarkInterrupted, IsBusy                >,
-  Row < Operating                    , Abort      , none     , none           , Not<IsBusy>           >,
-  Row < Operating                    , Abort      , Faulted  , MarkInterrupted, IsBusy                >,
-  Row < Operating::exit_pt<Failed>   , FlowFailed , Faulted  , none           , none                  >,
-  Row < Faulted                      , ClearFault , Operating, ClearTheFault  , MachineIsReady        >,
-  Row < Faulted                      , ClearFault , MachineNotReady, ClearTheFault  , Not<MachineIsReady>   >,
-  Row < Faulted                      , Abort      , none     , none           , none                  >,
-  Row < Faulted                      , Ready      , none     , none           , none                  >,
-  Row < Faulted                      , NotReady   , none     , none           , none                  >
+  //    Start                        Event           Next              Action            Guard
+  // +----------------------------+---------------+-----------------+-----------------+-----------------------+
+  Row < MachineNotReady            , Ready         , Operating       , none            , Not<SpindleUncertain> >,
+  Row < MachineNotReady            , Ready         , Faulted         , SayUncertain    , SpindleUncertain      >,
+  Row < MachineNotReady            , NotReady      , none            , none            , none                  >,
+  Row < MachineNotReady            , Abort         , none            , none            , none                  >,
+  Row < MachineNotReady            , InternalError , Faulted         , MarkInterrupted , none                  >,
+  Row < Operating                  , Ready         , none            , none            , none                  >,
+  Row < Operating                  , NotReady      , MachineNotReady , none            , Not<IsBusy>           >,
+  Row < Operating                  , NotReady      , Faulted         , MarkInterrupted , IsBusy                >,
+  Row < Operating                  , Abort         , none            , none            , Not<IsBusy>           >,
+  Row < Operating                  , Abort         , Faulted         , MarkInterrupted , IsBusy                >,
+  Row < Operating                  , InternalError , Faulted         , MarkInterrupted , none                  >,
+  Row < Operating::exit_pt<Failed> , FlowFailed    , Faulted         , none            , none                  >,
+  Row < Faulted                    , ClearFault    , Operating       , ClearTheFault   , MachineIsReady        >,
+  Row < Faulted                    , ClearFault    , MachineNotReady , ClearTheFault   , Not<MachineIsReady>   >,
+  Row < Faulted                    , Ready         , none            , none            , none                  >,
+  Row < Faulted                    , NotReady      , none            , none            , none                  >,
+  Row < Faulted                    , Abort         , none            , none            , none                  >,
+  Row < Faulted                    , InternalError , none            , none            , none                  >
+  >;
+  /// What no state above answers: the operator pressed a button that has
+  /// nothing to act on, or the spindle started or stopped (a fact the guards read).
+  using internal_transition_table = boost::mpl::vector<
+  Internal < OperatorContinue, Say<NothingWaitsToContinue>, none >,
+  Internal < OperatorCancel  , Say<NothingWaitsToCancel>  , none >,
+  Internal < ClearFault      , Say<ThereIsNoFault>        , none >,
+  Internal < SpindleReport   , none                       , none >
   >;
   // clang-format on
 
@@ -427,13 +466,14 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
   void no_transition(const Event& e, Fsm& fsm, int state) {
     ctx->ports.unexpected("state #" + std::to_string(state),
                           boost::core::demangle(typeid(e).name()));
-    fsm.process_event(Abort{"internal error: unexpected " + boost::core::demangle(typeid(e).name())});
+    fsm.process_event(
+        InternalError{"internal error: unexpected " + boost::core::demangle(typeid(e).name())});
   }
   template <class Fsm, class Event>
   void exception_caught(const Event& e, Fsm& fsm, std::exception& error) {
     ctx->ports.unexpected(std::string("exception: ") + error.what(),
                           boost::core::demangle(typeid(e).name()));
-    fsm.process_event(Abort{std::string("internal error: ") + error.what()});
+    fsm.process_event(InternalError{std::string("internal error: ") + error.what()});
   }
 };
 using Machine = msm::back::state_machine<Machine_>;

@@ -1,92 +1,108 @@
 #pragma once
 
-// Manual tools (`manual_tools`): M6 to or from a tool that has no pocket. The
-// program holds at `loading` while the operator hands the tool over.
+// The operator hands a tool over at `loading`: into the spindle, or out of
+// it. The load and unload flows ask with the executor run ended
+// (EndingTheRun); M6 with a manual tool (`manual_tools`, a tool with no
+// pocket) asks while the program holds (HoldingTheProgram).
+// docs/sequences.md#manual-tools.
 
 #include "legs.hpp"
 
 namespace fatc::machine {
 
-/// Cancel at a hand-over prompt: the program stops, saying where the tools are.
-struct SayChangeCancelled {
-  template <class Event, class Fsm, class Source, class Target>
-  void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-    fsm.ctx->stop_reason = "M6 T" + std::to_string(fsm.ctx->requested_tool) +
-                           " cancelled by the operator; " + fsm.ctx->whereabouts();
-  }
-};
+// ================================================================ insert
+/// Flushes the chuck, then the operator inserts the requested tool.
+template <class How>
+struct InsertLeg_ : Flow<InsertLeg_<How>> {
+  struct InsertPrompt {
+    template <class Leg>
+    std::string operator()(const Context& c, const Leg& leg) const {
+      return question<How>(c,
+                           "insert tool " + std::to_string(leg.pocket_tool) + " into the spindle");
+    }
+  };
+  struct AwaitingTool : How::template Asking<InsertPrompt> {};
 
-// ================================================================ hand out
-/// Takes the manual tool in the spindle out of the machine: at `loading`, the
-/// operator removes it.
-struct HandOutLeg_ : Flow<HandOutLeg_> {
+  using initial_state = FlushLeg;
+  // clang-format off
+  using transition_table = boost::mpl::vector<
+  //    Start                        Event             Next          Action              Guard
+  // +----------------------------+-----------------+-------------+-------------------+------+
+  Row < FlushLeg::exit_pt<Finished>, LegDone         , AwaitingTool, none              , none >,
+  Row < AwaitingTool               , OperatorContinue, Finished    , RecordToolInserted, none >,
+  Row < AwaitingTool               , OperatorCancel  , Cancelled   , none              , none >
+  >;
+  // clang-format on
+};
+template <class How>
+using InsertLeg = msm::back::state_machine<InsertLeg_<How>>;
+
+// ================================================================ remove
+/// The operator takes the tool in the spindle out.
+template <class How>
+struct RemoveLeg_ : Flow<RemoveLeg_<How>> {
   static int served_tool(const Context& ctx) { return ctx.tools.spindle; }
 
   struct RemovePrompt {
-    std::string operator()(const Context& c) const {
-      return "M6 T" + std::to_string(c.requested_tool) + ": remove tool " +
-             std::to_string(c.tools.spindle) +
-             " (it has no pocket) from the spindle, then press Continue (Cancel stops the program)";
+    template <class Leg>
+    std::string operator()(const Context& c, const Leg& leg) const {
+      return question<How>(c,
+                           "remove tool " + std::to_string(leg.pocket_tool) + " from the spindle");
     }
   };
-  struct AwaitingRemoval : HoldingForOperator<RemovePrompt> {};
+  struct AwaitingRemoval : How::template Asking<RemovePrompt> {};
 
-  struct RecordToolRemoved {
-    template <class Event, class Fsm, class Source, class Target>
-    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      fsm.ctx->record_out_of_machine(fsm.pocket_tool);
-    }
-  };
+  using initial_state = AwaitingRemoval;
+  // clang-format off
+  using transition_table = boost::mpl::vector<
+  //    Start            Event             Next       Action             Guard
+  // +----------------+-----------------+----------+------------------+------+
+  Row < AwaitingRemoval, OperatorContinue, Finished , RecordToolRemoved, none >,
+  Row < AwaitingRemoval, OperatorCancel  , Cancelled, none             , none >
+  >;
+  // clang-format on
+};
+template <class How>
+using RemoveLeg = msm::back::state_machine<RemoveLeg_<How>>;
 
+// ================================================================ hand out (M6)
+/// Takes the manual tool in the spindle out of the machine at `loading`.
+struct HandOutLeg_ : Flow<HandOutLeg_> {
+  using Removing = RemoveLeg<HoldingTheProgram>;
   using initial_state = ToLoadingZ;
   // clang-format off
   using transition_table = boost::mpl::vector<
-  //    Start            Event             Next             Action              Guard
-  // +----------------+-----------------+----------------+-------------------+------+
-  Row < ToLoadingZ     , InPosition      , ToLoadingXY    , none              , none >,
-  Row < ToLoadingXY    , InPosition      , AwaitingRemoval, none              , none >,
-  Row < AwaitingRemoval, OperatorContinue, Finished       , RecordToolRemoved , none >,
-  Row < AwaitingRemoval, OperatorCancel  , Stopped        , SayChangeCancelled, none >
+  //    Start                         Event       Next         Action  Guard
+  // +-----------------------------+-----------+------------+-------+------+
+  Row < ToLoadingZ                  , InPosition, ToLoadingXY, none  , none >,
+  Row < ToLoadingXY                 , InPosition, Removing   , none  , none >,
+  Row < Removing::exit_pt<Finished> , LegDone   , Finished   , none  , none >,
+  Row < Removing::exit_pt<Cancelled>, LegDone   , Cancelled  , none  , none >
   >;
   // clang-format on
 };
 using HandOutLeg = msm::back::state_machine<HandOutLeg_>;
 
-// ================================================================ hand in
-/// Puts the requested manual tool in the spindle: at `loading`, after a flush,
-/// the operator inserts it; then up to safe Z.
+// ================================================================ hand in (M6)
+/// Puts the requested manual tool in the spindle at `loading`, then up to
+/// safe Z.
 struct HandInLeg_ : Flow<HandInLeg_> {
-  struct InsertPrompt {
-    std::string operator()(const Context& c) const {
-      return "M6 T" + std::to_string(c.requested_tool) + ": insert tool " +
-             std::to_string(c.requested_tool) +
-             " into the spindle, then press Continue (Cancel stops the program)";
-    }
-  };
-  struct AwaitingTool : HoldingForOperator<InsertPrompt> {};
+  using Inserting = InsertLeg<HoldingTheProgram>;
   struct UpToSafeZ : Moving<to::SafeZ> {};
   /// LinuxCNC still has the tool the program started the M6 with.
-  struct ReportingEmptySpindle : Moving<to::SpindleTool> {};
-
-  struct RecordToolInserted {
-    template <class Event, class Fsm, class Source, class Target>
-    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      fsm.ctx->record_in_spindle(fsm.pocket_tool);
-    }
-  };
+  struct ReportingEmptySpindle : Commanding<to::SpindleTool> {};
 
   using initial_state = ToLoadingZ;
   // clang-format off
   using transition_table = boost::mpl::vector<
-  //    Start                        Event             Next                   Action              Guard
-  // +----------------------------+-----------------+----------------------+-------------------+------+
-  Row < ToLoadingZ                 , InPosition      , ToLoadingXY          , none              , none >,
-  Row < ToLoadingXY                , InPosition      , FlushLeg             , none              , none >,
-  Row < FlushLeg::exit_pt<Finished>, LegDone         , AwaitingTool         , none              , none >,
-  Row < AwaitingTool               , OperatorContinue, UpToSafeZ            , RecordToolInserted, none >,
-  Row < AwaitingTool               , OperatorCancel  , ReportingEmptySpindle, SayChangeCancelled, none >,
-  Row < UpToSafeZ                  , InPosition      , Finished             , none              , none >,
-  Row < ReportingEmptySpindle      , InPosition      , Stopped              , none              , none >
+  //    Start                          Event        Next                   Action  Guard
+  // +------------------------------+------------+----------------------+-------+------+
+  Row < ToLoadingZ                   , InPosition , ToLoadingXY          , none  , none >,
+  Row < ToLoadingXY                  , InPosition , Inserting            , none  , none >,
+  Row < Inserting::exit_pt<Finished> , LegDone    , UpToSafeZ            , none  , none >,
+  Row < Inserting::exit_pt<Cancelled>, LegDone    , ReportingEmptySpindle, none  , none >,
+  Row < UpToSafeZ                    , InPosition , Finished             , none  , none >,
+  Row < ReportingEmptySpindle        , CommandDone, Cancelled            , none  , none >
   >;
   // clang-format on
 };

@@ -2,6 +2,7 @@
 
 // The legs every flow is made of: flush the chuck, return a tool to its
 // pocket, retrieve a tool from its pocket, measure a tool on the sensor.
+// docs/sequences.md is the contract these tables follow.
 
 #include <cmath>
 
@@ -15,53 +16,57 @@ struct ToLoadingXY : Moving<to::LoadingXY> {};
 
 // ================================================================ flush
 /// Opens the chuck briefly, `flush.pulses` times, so that whatever the spindle
-/// may still hold drops before it receives a tool. Ends with the chuck closed.
+/// may still hold drops before it receives a tool (docs/sequences.md#flush).
+/// Ends with the chuck closed.
 struct FlushLeg_ : Flow<FlushLeg_> {
+  int pulses_done = 0;
+
   template <class Event, class Parent>
   void on_entry(const Event& e, Parent& parent) {
     Flow::on_entry(e, parent);
-    ctx->flush_pulses_done = 0;
+    pulses_done = 0;
   }
 
-  struct PulseOpen : msmf::state<> {
+  struct PulseOpen : Timed {
     template <class Event, class Fsm>
     void on_entry(const Event&, Fsm& fsm) {
-      ++fsm.ctx->flush_pulses_done;
-      fsm.ctx->open_chuck("(flush)");
-      fsm.ctx->wait(fsm.ctx->config.flush.pulse_seconds, "flushing the chuck");
+      ++fsm.pulses_done;
+      fsm.ctx->open_chuck();
+      fsm.ctx->wait(fsm.ctx->config.flush.pulse_seconds, "flushing the chuck (open)");
     }
   };
-  struct PulseClosed : msmf::state<> {
+  struct PulseClosed : Timed {
     template <class Event, class Fsm>
     void on_entry(const Event&, Fsm& fsm) {
       fsm.ctx->close_chuck();
-      fsm.ctx->wait(fsm.ctx->config.flush.pause_seconds, "flushing the chuck");
+      fsm.ctx->wait(fsm.ctx->config.flush.pause_seconds, "flushing the chuck (closed)");
     }
   };
   struct PulsesLeft {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      return fsm.ctx->flush_pulses_done < fsm.ctx->config.flush.pulses;
+      return fsm.pulses_done < fsm.ctx->config.flush.pulses;
     }
   };
 
-  using initial_state = Choosing;
+  struct DecidingToPulse : Decision {};
+  using initial_state = DecidingToPulse;
   // clang-format off
   using transition_table = boost::mpl::vector<
-  //    Start          Event           Next          Action  Guard
-  // +-------------+---------------+-------------+-------+-----------------+
-  Row < Choosing    , none          , PulseOpen   , none  , PulsesLeft      >,
-  Row < Choosing    , none          , Finished    , none  , Not<PulsesLeft> >,
-  Row < PulseOpen   , TimerElapsed  , PulseClosed , none  , none            >,
-  Row < PulseClosed , TimerElapsed  , PulseOpen   , none  , PulsesLeft      >,
-  Row < PulseClosed , TimerElapsed  , Finished    , none  , Not<PulsesLeft> >
+  //    Start             Event           Next          Action  Guard
+  // +----------------+---------------+-------------+-------+-----------------+
+  Row < DecidingToPulse, none          , PulseOpen   , none  , PulsesLeft      >,
+  Row < DecidingToPulse, none          , Finished    , none  , Not<PulsesLeft> >,
+  Row < PulseOpen      , TimerElapsed  , PulseClosed , none  , none            >,
+  Row < PulseClosed    , TimerElapsed  , PulseOpen   , none  , PulsesLeft      >,
+  Row < PulseClosed    , TimerElapsed  , Finished    , none  , Not<PulsesLeft> >
   >;
   // clang-format on
 };
 using FlushLeg = msm::back::state_machine<FlushLeg_>;
 
 // ================================================================ return
-/// Puts the tool in the spindle back into its own pocket (DESIGN.md, "Return").
+/// Puts the tool in the spindle back into its own pocket (docs/sequences.md#return).
 /// `Which` only tells two uses within one flow apart.
 template <class Which>
 struct ReturnLeg_ : Flow<ReturnLeg_<Which>> {
@@ -72,11 +77,12 @@ struct ReturnLeg_ : Flow<ReturnLeg_<Which>> {
   struct OverSide : Moving<to::SideAtSafeZ> {};
   struct DownToSide : Moving<to::Side> {};
   struct IntoPocket : Moving<to::SlowlyIntoPocket> {};
-  struct ReleasingTool : Waiting<ChuckSeconds> {
+  struct ReleasingTool : Timed {
     template <class Event, class Fsm>
-    void on_entry(const Event& e, Fsm& fsm) {
-      fsm.ctx->open_chuck("at pocket " + std::to_string(fsm.pocket_tool));
-      Waiting::on_entry(e, fsm);
+    void on_entry(const Event&, Fsm& fsm) {
+      fsm.ctx->open_chuck();
+      fsm.ctx->wait(fsm.ctx->config.chuck_seconds,
+                    "releasing tool " + std::to_string(fsm.pocket_tool) + " into its pocket");
     }
   };
   struct UpToAboveChuck : Moving<to::AboveChuck> {};
@@ -113,28 +119,29 @@ template <class Which>
 using ReturnLeg = msm::back::state_machine<ReturnLeg_<Which>>;
 
 // ================================================================ retrieve
-/// Takes the requested tool out of its pocket (DESIGN.md, "Retrieve").
+/// Takes the requested tool out of its pocket (docs/sequences.md#retrieve).
 struct RetrieveLeg_ : Flow<RetrieveLeg_> {
   struct ToSafeZ : Moving<to::SafeZ> {};
   struct ToSafeXY : Moving<to::SafeXY> {};
   struct OverPocket : Moving<to::PocketAtSafeZ> {};
   struct DownToClearance : Moving<to::AboveClearance> {};
   struct DownToAboveChuck : Moving<to::AboveChuck> {};
-  struct OpeningChuck : Waiting<ChuckSeconds> {
+  struct OpeningChuck : Timed {
     template <class Event, class Fsm>
-    void on_entry(const Event& e, Fsm& fsm) {
-      fsm.ctx->open_chuck("above pocket " + std::to_string(fsm.pocket_tool));
-      Waiting::on_entry(e, fsm);
+    void on_entry(const Event&, Fsm& fsm) {
+      fsm.ctx->open_chuck();
+      fsm.ctx->wait(fsm.ctx->config.chuck_seconds,
+                    "opening the chuck above pocket " + std::to_string(fsm.pocket_tool));
     }
   };
   struct SlowlyDownToPocket : Moving<to::SlowlyDownToPocket> {};
   struct Settling : Waiting<ChuckSeconds> {};
-  struct GrippingTool : Waiting<ChuckSeconds> {
+  struct GrippingTool : Timed {
     template <class Event, class Fsm>
-    void on_entry(const Event& e, Fsm& fsm) {
+    void on_entry(const Event&, Fsm& fsm) {
       fsm.ctx->close_chuck();
-      fsm.ctx->status.activity = "gripping tool " + std::to_string(fsm.pocket_tool);
-      Waiting::on_entry(e, fsm);
+      fsm.ctx->wait(fsm.ctx->config.chuck_seconds,
+                    "gripping tool " + std::to_string(fsm.pocket_tool));
     }
   };
   struct SlowlyOutToSide : Moving<to::SlowlyToSide> {};
@@ -155,13 +162,15 @@ struct RetrieveLeg_ : Flow<RetrieveLeg_> {
     }
   };
 
-  using initial_state = Choosing;
+  /// A return just before ended at safe: no need to go there again.
+  struct DecidingToGoToSafe : Decision {};
+  using initial_state = DecidingToGoToSafe;
   // clang-format off
   using transition_table = boost::mpl::vector<
   //    Start                                Event          Next                 Action               Guard
   // +------------------------------------+--------------+--------------------+--------------------+--------------------+
-  Row < Choosing                           , none         , ToSafeZ            , none               , Not<AlreadyAtSafe> >,
-  Row < Choosing                           , none         , OverPocket         , none               , AlreadyAtSafe      >,
+  Row < DecidingToGoToSafe                 , none         , ToSafeZ            , none               , Not<AlreadyAtSafe> >,
+  Row < DecidingToGoToSafe                 , none         , OverPocket         , none               , AlreadyAtSafe      >,
   Row < ToSafeZ                            , InPosition   , ToSafeXY           , none               , none >,
   Row < ToSafeXY                           , InPosition   , OverPocket         , none               , none >,
   Row < OverPocket                         , InPosition   , DownToClearance    , none               , none >,
@@ -181,17 +190,37 @@ struct RetrieveLeg_ : Flow<RetrieveLeg_> {
 using RetrieveLeg = msm::back::state_machine<RetrieveLeg_>;
 
 // ================================================================ probing
-/// Measures the tool in the spindle on the touch-off sensor: a fast seek, a
-/// back-off, a slow latch; length = latched machine Z minus
-/// probe_length_compensation_offset, written to the tool table unless an M6
-/// only checks a length it already has.
-struct ProbingLeg_ : Flow<ProbingLeg_> {
+/// The load flow runs the probe over MDI: the operator may cancel it, and it
+/// always writes the length.
+struct OverMdi {
+  static constexpr bool cancellable = true;
+  static bool writes_length(const Context&, int) { return true; }
+};
+/// M6 (`probe_after_change`) runs the probe inside the program, which the
+/// operator stops with LinuxCNC's Stop; `check` only compares a stored length.
+struct InsideProgram {
+  static constexpr bool cancellable = false;
+  static bool writes_length(const Context& c, int tool) {
+    return c.config.probe_after_change != ProbeAfterChange::check ||
+           c.tools.lengths.count(tool) == 0;
+  }
+};
+
+/// Measures the tool in the spindle on the touch-off sensor
+/// (docs/sequences.md#probing): a fast seek, a back-off, a slow latch;
+/// length = latched machine Z minus probe_length_compensation_offset, written
+/// to the tool table when `Run` says so.
+template <class Run>
+struct ProbingLeg_ : Flow<ProbingLeg_<Run>> {
+  double first_touch_z = 0.0;  ///< where the seek touched
+  double latched_z = 0.0;      ///< where the latch touched
+
   struct NotMeasured : msmf::exit_pseudo_state<LegDone> {};
 
-  struct Seeking : Moving<to::ProbeSeek> {};
+  struct Seeking : Probing<to::ProbeSeek, Run::cancellable> {};
   struct BackingOff : Moving<to::ProbeBackOff> {};
-  struct Latching : Moving<to::ProbeLatch> {};
-  struct WritingLength : Moving<to::ToolLength> {};
+  struct Latching : Probing<to::ProbeLatch, Run::cancellable> {};
+  struct WritingLength : Commanding<to::ToolLength> {};
   struct Retracting : Moving<to::RetractFromSensor> {};
   struct RetractingUnmeasured : Moving<to::LoadingZ> {};
 
@@ -204,28 +233,26 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
   struct WritesLength {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      const Context& c = *fsm.ctx;
-      return c.status.phase != Phase::changing ||
-             c.config.probe_after_change != ProbeAfterChange::check ||
-             c.tools.lengths.count(fsm.pocket_tool) == 0;
+      return Run::writes_length(*fsm.ctx, fsm.pocket_tool);
     }
   };
   struct RememberFirstTouch {
     template <class Fsm, class Source, class Target>
     void operator()(const ProbeResult& e, Fsm& fsm, Source&, Target&) const {
-      fsm.ctx->first_touch_z = e.z;
+      fsm.first_touch_z = e.z;
     }
   };
   struct RememberLatch {
     template <class Fsm, class Source, class Target>
     void operator()(const ProbeResult& e, Fsm& fsm, Source&, Target&) const {
-      fsm.ctx->latched_z = e.z;
+      fsm.latched_z = e.z;
+      fsm.ctx->last_length = e.z - fsm.ctx->config.probe_length_compensation_offset;
     }
   };
   struct RecordLength {
     template <class Fsm, class Source, class Target>
     void operator()(const ProbeResult& e, Fsm& fsm, Source&, Target&) const {
-      fsm.ctx->latched_z = e.z;
+      fsm.latched_z = e.z;
       fsm.ctx->record_length(fsm.pocket_tool,
                              e.z - fsm.ctx->config.probe_length_compensation_offset);
     }
@@ -247,6 +274,12 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
                                            " cancelled by the operator; nothing written");
     }
   };
+  struct CancelStopsProbe {
+    template <class Event, class Fsm, class Source, class Target>
+    bool operator()(const Event&, Fsm&, Source&, Target&) const {
+      return Run::cancellable;
+    }
+  };
 
   using initial_state = Seeking;
   // clang-format off
@@ -255,45 +288,45 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
   // +----------------------+---------------+----------------------+-------------------+-----------------------------+
   Row < Seeking              , ProbeResult   , BackingOff           , RememberFirstTouch, Touched                     >,
   Row < Seeking              , ProbeResult   , RetractingUnmeasured , SayNoTouch        , Not<Touched>                >,
-  Row < Seeking              , OperatorCancel, RetractingUnmeasured , SayCancelled      , none                        >,
+  Row < Seeking              , OperatorCancel, RetractingUnmeasured , SayCancelled      , CancelStopsProbe            >,
   Row < BackingOff           , InPosition    , Latching             , none              , none                        >,
   Row < Latching             , ProbeResult   , WritingLength        , RecordLength      , And<Touched, WritesLength>  >,
   Row < Latching             , ProbeResult   , Retracting           , RememberLatch     , And<Touched, Not<WritesLength>> >,
   Row < Latching             , ProbeResult   , RetractingUnmeasured , SayNoTouch        , Not<Touched>                >,
-  Row < Latching             , OperatorCancel, RetractingUnmeasured , SayCancelled      , none                        >,
-  Row < WritingLength        , InPosition    , Retracting           , none              , none                        >,
+  Row < Latching             , OperatorCancel, RetractingUnmeasured , SayCancelled      , CancelStopsProbe            >,
+  Row < WritingLength        , CommandDone   , Retracting           , none              , none                        >,
   Row < Retracting           , InPosition    , Finished             , none              , none                        >,
   Row < RetractingUnmeasured , InPosition    , NotMeasured          , none              , none                        >
   >;
   // clang-format on
 };
-using ProbingLeg = msm::back::state_machine<ProbingLeg_>;
+template <class Run>
+using ProbingLeg = msm::back::state_machine<ProbingLeg_<Run>>;
 
 // ================================================================ measure after M6
 /// `probe_after_change`: takes the tool just put in the spindle to the sensor
 /// and measures it, or checks it against its stored length; ends at safe Z.
 struct MeasureLeg_ : Flow<MeasureLeg_> {
+  using Probe = ProbingLeg<InsideProgram>;
   struct OverSensor : Moving<to::SensorXY> {};
   struct UpToSafeZ : Moving<to::SafeZ> {};
 
-  static double measured(const Context& c) {
-    return c.latched_z - c.config.probe_length_compensation_offset;
-  }
   struct LengthDiffers {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       const Context& c = *fsm.ctx;
-      return std::abs(measured(c) - c.tools.lengths.at(fsm.pocket_tool)) >
+      return std::abs(*c.last_length - c.tools.lengths.at(fsm.pocket_tool)) >
              c.config.check_tolerance();
     }
   };
   struct SayMeasured {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      const Context& c = *fsm.ctx;
       fsm.ctx->tell(MessageKind::info,
                     "tool " + std::to_string(fsm.pocket_tool) + " measures " +
-                        format_length(fsm.ctx->config, measured(*fsm.ctx)) + ", stored " +
-                        format_length(fsm.ctx->config, fsm.ctx->tools.lengths.at(fsm.pocket_tool)));
+                        format_length(c.config, *c.last_length) + ", stored " +
+                        format_length(c.config, c.tools.lengths.at(fsm.pocket_tool)));
     }
   };
   struct SayBrokenOrPulledOut {
@@ -301,7 +334,7 @@ struct MeasureLeg_ : Flow<MeasureLeg_> {
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       Context& c = *fsm.ctx;
       c.fault_reason = "tool " + std::to_string(fsm.pocket_tool) + " measures " +
-                       format_length(c.config, measured(c)) + " but its stored length is " +
+                       format_length(c.config, *c.last_length) + " but its stored length is " +
                        format_length(c.config, c.tools.lengths.at(fsm.pocket_tool)) +
                        " (probe_check_tolerance " +
                        format_length(c.config, c.config.check_tolerance()) +
@@ -319,14 +352,14 @@ struct MeasureLeg_ : Flow<MeasureLeg_> {
   using initial_state = ToLoadingZ;
   // clang-format off
   using transition_table = boost::mpl::vector<
-  //    Start                                    Event       Next        Action               Guard
-  // +----------------------------------------+-----------+-----------+--------------------+---------------------+
-  Row < ToLoadingZ                             , InPosition, OverSensor, none               , none                >,
-  Row < OverSensor                             , InPosition, ProbingLeg, none               , none                >,
-  Row < ProbingLeg::exit_pt<Finished>          , LegDone   , UpToSafeZ , SayMeasured        , Not<LengthDiffers>  >,
-  Row < ProbingLeg::exit_pt<Finished>          , LegDone   , Failed    , SayBrokenOrPulledOut, LengthDiffers      >,
-  Row < ProbingLeg::exit_pt<ProbingLeg_::NotMeasured>, LegDone, Failed , SayNotMeasured     , none                >,
-  Row < UpToSafeZ                              , InPosition, Finished  , none               , none                >
+  //    Start                                 Event       Next        Action                Guard
+  // +-------------------------------------+-----------+-----------+---------------------+--------------------+
+  Row < ToLoadingZ                          , InPosition, OverSensor, none                , none               >,
+  Row < OverSensor                          , InPosition, Probe     , none                , none               >,
+  Row < Probe::exit_pt<Finished>            , LegDone   , UpToSafeZ , SayMeasured         , Not<LengthDiffers> >,
+  Row < Probe::exit_pt<Finished>            , LegDone   , Failed    , SayBrokenOrPulledOut, LengthDiffers      >,
+  Row < Probe::exit_pt<Probe::NotMeasured>  , LegDone   , Failed    , SayNotMeasured      , none               >,
+  Row < UpToSafeZ                           , InPosition, Finished  , none                , none               >
   >;
   // clang-format on
 };
