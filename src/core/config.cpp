@@ -9,6 +9,8 @@
 #include <set>
 #include <sstream>
 
+#include "json_text.hpp"
+
 namespace fatc {
 namespace {
 
@@ -20,18 +22,36 @@ std::string format_number(double value) {
   return out.str();
 }
 
-std::string join_path(const std::string& parent, const std::string& key) {
-  return parent.empty() ? key : parent + "." + key;
-}
+/// Most problems listed; the rest are only counted (a file of 100,000
+/// unknown keys gets 20 lines, at once).
+constexpr std::size_t kMaxErrors = 20;
+/// Unknown keys longer than this get no "did you mean".
+constexpr std::size_t kMaxSuggestedKeyLength = 64;
+/// A fixed rack with more pockets than this is a mistake, and checking every
+/// pair of pockets and every planned move against every pocket is quadratic.
+constexpr std::size_t kMaxPockets = 200;
 
-std::string describe(const Json& value) {
-  if (value.is_null()) return "null";
-  if (value.is_boolean()) return value.get<bool>() ? "true" : "false";
-  if (value.is_object()) return "an object";
-  if (value.is_array()) return "an array";
-  if (value.is_string()) return value.dump();
-  return value.dump();
-}
+/// What a number may be, declared where the key is read.
+struct Range {
+  double min;
+  double max;
+  const char* unit;  ///< "length" (the config's unit), "seconds", "feed" (units/min), or ""
+};
+
+// Same bounds in mm and inch: wide enough for any machine in either, narrow
+// enough that nothing overflows (a coordinate plus an offset) or means nothing
+// (a side offset of 1e-300, a feed of 5e-324, a timeout whose deadline
+// overflows std::chrono).
+constexpr Range kCoordinate{-100000.0, 100000.0, "length"};
+constexpr Range kOffset{0.001, 1000.0, "length"};
+constexpr Range kSideComponent{-1000.0, 1000.0, "length"};
+constexpr Range kMargin{0.0, 1000.0, "length"};
+constexpr Range kTolerance{0.0001, 100.0, "length"};
+constexpr Range kFeed{0.01, 100000.0, "feed"};
+constexpr Range kPulse{0.01, 60.0, "seconds"};
+constexpr Range kTimeout{0.01, 3600.0, "seconds"};
+/// The side offset's length (x and y combined).
+constexpr double kMinSideOffset = 0.1;
 
 std::size_t edit_distance(const std::string& a, const std::string& b) {
   std::vector<std::size_t> row(b.size() + 1);
@@ -52,19 +72,32 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
 class Reader {
  public:
   std::vector<std::string> errors;
+  std::size_t unlisted = 0;  ///< problems past kMaxErrors
+  Units units = Units::mm;
 
   void error(const std::string& path, const std::string& what) {
+    if (errors.size() >= kMaxErrors) {
+      ++unlisted;
+      return;
+    }
     errors.push_back((path.empty() ? std::string("config") : path) + ": " + what);
   }
+  bool full() const { return errors.size() >= kMaxErrors; }
+  std::size_t count() const { return errors.size() + unlisted; }
 
   void reject_unknown_keys(const Json& object, const std::string& path,
                            std::initializer_list<const char*> known) {
     for (const auto& item : object.items()) {
       const std::string& key = item.key();
       if (std::any_of(known.begin(), known.end(), [&](const char* k) { return key == k; })) continue;
+      if (full()) {
+        ++unlisted;
+        continue;
+      }
       std::string best;
       std::size_t best_distance = std::numeric_limits<std::size_t>::max();
       for (const char* candidate : known) {
+        if (key.size() > kMaxSuggestedKeyLength) break;
         const std::size_t d = edit_distance(key, candidate);
         if (d < best_distance) {
           best_distance = d;
@@ -101,17 +134,32 @@ class Reader {
     return value;
   }
 
-  /// Like number(), with a lower bound: strictly above it, or at least it.
-  void bounded(const Json& object, const std::string& path, const char* key, double& target,
-               double bound, bool strictly, bool required) {
+  std::string unit_of(const Range& range) const {
+    const std::string unit = range.unit;
+    if (unit == "length") return std::string(" ") + units_name(units);
+    if (unit == "feed") return std::string(" ") + units_name(units) + "/min";
+    if (unit.empty()) return "";
+    return " " + unit;
+  }
+
+  /// number() within `range`; nullopt and one message naming the range otherwise.
+  std::optional<double> ranged(const Json& object, const std::string& path, const char* key,
+                               const Range& range, bool required) {
     const auto value = number(object, path, key, required);
-    if (!value) return;
-    if (strictly ? *value <= bound : *value < bound) {
-      error(join_path(path, key), std::string("must be ") + (strictly ? "above " : "at least ") +
-                                      format_number(bound) + ", got " + format_number(*value));
-      return;
+    if (!value) return std::nullopt;
+    if (*value < range.min || *value > range.max) {
+      error(join_path(path, key), "must be from " + format_number(range.min) + " to " +
+                                      format_number(range.max) + unit_of(range) + ", got " +
+                                      format_number(*value));
+      return std::nullopt;
     }
-    target = *value;
+    return value;
+  }
+
+  /// ranged() into `target`, left as it was when absent or refused.
+  void read(const Json& object, const std::string& path, const char* key, double& target,
+            const Range& range, bool required) {
+    if (const auto value = ranged(object, path, key, range, required)) target = *value;
   }
 
   const Json* object(const Json& parent, const std::string& path, const char* key, bool required) {
@@ -134,8 +182,9 @@ class Reader {
 
   PartialPoint partial_point(const Json& object, const std::string& path) {
     reject_unknown_keys(object, path, {"x", "y", "z"});
-    return {number(object, path, "x", false), number(object, path, "y", false),
-            number(object, path, "z", false)};
+    return {ranged(object, path, "x", kCoordinate, false),
+            ranged(object, path, "y", kCoordinate, false),
+            ranged(object, path, "z", kCoordinate, false)};
   }
 
   std::optional<Point> point(const Json& parent, const std::string& path, const char* key) {
@@ -143,36 +192,37 @@ class Reader {
     if (!object) return std::nullopt;
     const std::string here = join_path(path, key);
     reject_unknown_keys(*object, here, {"x", "y", "z"});
-    const auto x = number(*object, here, "x", true);
-    const auto y = number(*object, here, "y", true);
-    const auto z = number(*object, here, "z", true);
+    const auto x = ranged(*object, here, "x", kCoordinate, true);
+    const auto y = ranged(*object, here, "y", kCoordinate, true);
+    const auto z = ranged(*object, here, "z", kCoordinate, true);
     if (!x || !y || !z) return std::nullopt;
     return Point{*x, *y, *z};
   }
 };
-
-std::optional<int> tool_number(const std::string& key) {
-  if (key.empty() || key.size() > 9 || key[0] == '0') return std::nullopt;
-  if (!std::all_of(key.begin(), key.end(), [](char c) { return c >= '0' && c <= '9'; })) {
-    return std::nullopt;
-  }
-  return std::stoi(key);
-}
 
 void read_pockets(Reader& reader, const Json& root, Config& config) {
   Reader::PartialPoint fallback;
   if (const Json* defaults = reader.object(root, "", "pocket_default", false)) {
     fallback = reader.partial_point(*defaults, "pocket_default");
   }
+  const auto defaults = root.find("pocket_default");
+  auto default_given = [&](const char* axis) {
+    return defaults != root.end() && (!defaults->is_object() || defaults->contains(axis));
+  };
   const Json* pockets = reader.object(root, "", "pockets", true);
   if (!pockets) return;
   if (pockets->empty()) {
     reader.error("pockets", "no pockets defined; add at least one, e.g. \"1\": {\"x\": 10}");
     return;
   }
+  if (pockets->size() > kMaxPockets) {
+    reader.error("pockets", "must hold at most " + std::to_string(kMaxPockets) + " pockets, got " +
+                                std::to_string(pockets->size()));
+    return;
+  }
   for (const auto& item : pockets->items()) {
-    const std::string here = "pockets." + item.key();
-    const auto tool = tool_number(item.key());
+    const std::string here = join_path("pockets", item.key());
+    const auto tool = tool_number_key(item.key());
     if (!tool) {
       reader.error(here, "the key must be a tool number, a positive integer like \"7\"");
       continue;
@@ -187,7 +237,11 @@ void read_pockets(Reader& reader, const Json& root, Config& config) {
                      const char* axis) {
       if (mine) return *mine;
       if (common) return *common;
-      reader.error(join_path(here, axis), std::string("missing, and pocket_default has no ") + axis);
+      // A pocket_default that has the axis but failed was reported once already.
+      if (!default_given(axis)) {
+        reader.error(join_path(here, axis),
+                     std::string("missing, and pocket_default has no ") + axis);
+      }
       complete = false;
       return 0.0;
     };
@@ -208,8 +262,8 @@ void read_flush(Reader& reader, const Json& root, Config& config) {
       config.flush.pulses = static_cast<int>(*pulses);
     }
   }
-  reader.bounded(*flush, "flush", "pulse_seconds", config.flush.pulse_seconds, 0.0, true, false);
-  reader.bounded(*flush, "flush", "pause_seconds", config.flush.pause_seconds, 0.0, true, false);
+  reader.read(*flush, "flush", "pulse_seconds", config.flush.pulse_seconds, kPulse, false);
+  reader.read(*flush, "flush", "pause_seconds", config.flush.pause_seconds, kPulse, false);
 }
 
 void read_probe_after_change(Reader& reader, const Json& root, Config& config) {
@@ -225,12 +279,8 @@ void read_probe_after_change(Reader& reader, const Json& root, Config& config) {
                    "expected \"off\", \"measure\" or \"check\", got " + describe(*mode));
     }
   }
-  if (root.contains("probe_check_tolerance")) {
-    double tolerance = 0.0;
-    const std::size_t before = reader.errors.size();
-    reader.bounded(root, "", "probe_check_tolerance", tolerance, 0.0, true, false);
-    if (reader.errors.size() == before) config.probe_check_tolerance = tolerance;
-  }
+  config.probe_check_tolerance =
+      reader.ranged(root, "", "probe_check_tolerance", kTolerance, false);
 }
 
 void check_geometry(Reader& reader, Config& config) {
@@ -244,6 +294,10 @@ void check_geometry(Reader& reader, Config& config) {
   if (side == 0.0) {
     reader.error("pocket_side_offset", "must not be zero in both x and y: the side is where the "
                                        "spindle slows down before entering a pocket");
+  } else if (side < kMinSideOffset) {
+    reader.error("pocket_side_offset", "must be at least " + format_number(kMinSideOffset) + " " +
+                                           units_name(config.units) +
+                                           " long (x and y combined), got " + format_number(side));
   }
   for (auto a = config.pockets.begin(); a != config.pockets.end(); ++a) {
     for (auto b = std::next(a); b != config.pockets.end(); ++b) {
@@ -264,59 +318,12 @@ void check_geometry(Reader& reader, Config& config) {
                                             format_number(side) + "), got " +
                                             format_number(*config.rack_keepout_margin));
   }
-}
-
-/// Names and line/column of a JSON syntax error, from the byte offset.
-std::string syntax_error(const std::string& text, const nlohmann::json::parse_error& e) {
-  std::size_t line = 1;
-  std::size_t column = 1;
-  const std::size_t end = std::min<std::size_t>(e.byte == 0 ? 0 : e.byte - 1, text.size());
-  for (std::size_t i = 0; i < end; ++i) {
-    if (text[i] == '\n') {
-      ++line;
-      column = 1;
-    } else {
-      ++column;
-    }
+  if (config.probe_latch_feed > config.probe_seek_feed) {
+    reader.error("probe_latch_feed", "must not be above probe_seek_feed (" +
+                                         format_number(config.probe_seek_feed) + "), got " +
+                                         format_number(config.probe_latch_feed));
   }
-  std::string what = e.what();
-  const auto colon = what.rfind(": ");
-  if (colon != std::string::npos) what = what.substr(colon + 2);
-  return "line " + std::to_string(line) + ", column " + std::to_string(column) +
-         ": invalid JSON: " + what;
 }
-
-/// nlohmann keeps the last of two equal keys; a config must not lose one
-/// silently. Watches the parse and notes every key an object already had.
-class DuplicateKeys {
- public:
-  std::vector<std::string> found;
-
-  Json::parser_callback_t callback() {
-    return [this](int, Json::parse_event_t event, Json& parsed) {
-      if (event == Json::parse_event_t::object_start) {
-        levels_.emplace_back();
-      } else if (event == Json::parse_event_t::object_end && !levels_.empty()) {
-        levels_.pop_back();
-      } else if (event == Json::parse_event_t::key && !levels_.empty()) {
-        const std::string key = parsed.get<std::string>();
-        std::string path;
-        for (std::size_t i = 0; i + 1 < levels_.size(); ++i) path = join_path(path, levels_[i].last_key);
-        path = join_path(path, key);
-        if (!levels_.back().keys.insert(key).second) found.push_back(path + ": appears twice");
-        levels_.back().last_key = key;
-      }
-      return true;
-    };
-  }
-
- private:
-  struct Level {
-    std::set<std::string> keys;
-    std::string last_key;
-  };
-  std::vector<Level> levels_;
-};
 
 }  // namespace
 
@@ -341,25 +348,17 @@ double Config::keepout_margin() const {
 
 ConfigResult parse_config(const std::string& json_text) {
   ConfigResult result;
-  Json root;
-  DuplicateKeys duplicates;
-  try {
-    root = Json::parse(json_text, duplicates.callback());
-  } catch (const Json::parse_error& e) {
-    result.errors.push_back(syntax_error(json_text, e));
-    return result;
-  } catch (const Json::exception& e) {
-    std::string what = e.what();
-    what = what.substr(what.find("] ") + 2);
-    result.errors.push_back("config: invalid JSON: " + what);
+  JsonText parsed = parse_json_text(json_text);
+  if (!parsed.value) {
+    result.errors = std::move(parsed.errors);
     return result;
   }
+  const Json& root = *parsed.value;
   if (!root.is_object()) {
     result.errors.push_back("config: expected a JSON object at the top, got " + describe(root));
     return result;
   }
   Reader reader;
-  reader.errors = duplicates.found;
   reader.reject_unknown_keys(root, "",
                              {"units",
                               "probe_length_compensation_offset",
@@ -394,21 +393,21 @@ ConfigResult parse_config(const std::string& json_text) {
       reader.error("units", "expected \"mm\" or \"inch\", got " + describe(*units));
     }
   }
-  if (const auto v = reader.number(root, "", "probe_length_compensation_offset", true)) {
-    config.probe_length_compensation_offset = *v;
-  }
-  reader.bounded(root, "", "probe_retract_offset_z", config.probe_retract_offset_z, 0.0, true, true);
+  reader.units = config.units;
+  reader.read(root, "", "probe_length_compensation_offset", config.probe_length_compensation_offset,
+              kCoordinate, true);
+  reader.read(root, "", "probe_retract_offset_z", config.probe_retract_offset_z, kOffset, true);
   if (const Json* side = reader.object(root, "", "pocket_side_offset", true)) {
     reader.reject_unknown_keys(*side, "pocket_side_offset", {"x", "y"});
-    const auto x = reader.number(*side, "pocket_side_offset", "x", true);
-    const auto y = reader.number(*side, "pocket_side_offset", "y", true);
+    const auto x = reader.ranged(*side, "pocket_side_offset", "x", kSideComponent, true);
+    const auto y = reader.ranged(*side, "pocket_side_offset", "y", kSideComponent, true);
     if (x && y) config.pocket_side_offset = {*x, *y};
   }
-  reader.bounded(root, "", "pocket_above_chuck_offset_z", config.pocket_above_chuck_offset_z, 0.0,
-                 true, true);
-  reader.bounded(root, "", "pocket_above_clearance_offset_z",
-                 config.pocket_above_clearance_offset_z, 0.0, true, true);
-  reader.bounded(root, "", "chuck_seconds", config.chuck_seconds, 0.0, true, true);
+  reader.read(root, "", "pocket_above_chuck_offset_z", config.pocket_above_chuck_offset_z, kOffset,
+              true);
+  reader.read(root, "", "pocket_above_clearance_offset_z", config.pocket_above_clearance_offset_z,
+              kOffset, true);
+  reader.read(root, "", "chuck_seconds", config.chuck_seconds, kPulse, true);
   const auto loading = reader.point(root, "", "loading");
   const auto probe_limit = reader.point(root, "", "probe_limit");
   const auto safe = reader.point(root, "", "safe");
@@ -417,19 +416,14 @@ ConfigResult parse_config(const std::string& json_text) {
   if (safe) config.safe = *safe;
   read_pockets(reader, root, config);
 
-  reader.bounded(root, "", "pocket_feed", config.pocket_feed, 0.0, true, false);
-  reader.bounded(root, "", "probe_seek_feed", config.probe_seek_feed, 0.0, true, false);
-  reader.bounded(root, "", "probe_latch_feed", config.probe_latch_feed, 0.0, true, false);
-  reader.bounded(root, "", "probe_backoff", config.probe_backoff, 0.0, true, false);
+  reader.read(root, "", "pocket_feed", config.pocket_feed, kFeed, false);
+  reader.read(root, "", "probe_seek_feed", config.probe_seek_feed, kFeed, false);
+  reader.read(root, "", "probe_latch_feed", config.probe_latch_feed, kFeed, false);
+  reader.read(root, "", "probe_backoff", config.probe_backoff, kOffset, false);
   read_flush(reader, root, config);
-  reader.bounded(root, "", "spindle_stop_timeout_seconds", config.spindle_stop_timeout_seconds, 0.0,
-                 true, false);
-  double margin = 0.0;
-  if (root.contains("rack_keepout_margin")) {
-    const std::size_t before = reader.errors.size();
-    reader.bounded(root, "", "rack_keepout_margin", margin, 0.0, false, false);
-    if (reader.errors.size() == before) config.rack_keepout_margin = margin;
-  }
+  reader.read(root, "", "spindle_stop_timeout_seconds", config.spindle_stop_timeout_seconds,
+              kTimeout, false);
+  config.rack_keepout_margin = reader.ranged(root, "", "rack_keepout_margin", kMargin, false);
 
   read_probe_after_change(reader, root, config);
   if (const auto manual = root.find("manual_tools"); manual != root.end()) {
@@ -441,11 +435,14 @@ ConfigResult parse_config(const std::string& json_text) {
   }
 
   // Relations between keys only mean something once every key read cleanly.
-  if (reader.errors.empty()) check_geometry(reader, config);
-  if (reader.errors.empty()) {
+  if (reader.count() == 0) check_geometry(reader, config);
+  if (reader.count() == 0) {
     result.config = config;
   } else {
     result.errors = reader.errors;
+    if (reader.unlisted > 0) {
+      result.errors.push_back("and " + std::to_string(reader.unlisted) + " more problems");
+    }
   }
   return result;
 }

@@ -1,10 +1,16 @@
 #include "cli.hpp"
 
+#include <sys/stat.h>
+
+#include <cerrno>
 #include <cstdio>
+#include <map>
 #include <ostream>
+#include <set>
 
 #include "core/changer.hpp"
 #include "core/geometry.hpp"
+#include "core/quote.hpp"
 #include "core/simulator.hpp"
 #include "files.hpp"
 #include "ini.hpp"
@@ -13,10 +19,11 @@ namespace fatc::io {
 
 const char* const kUsage =
     "usage: fixed_atc_probe --config FILE [--state FILE]          run as a HAL component\n"
-    "       fixed_atc_probe --check --config FILE [--ini FILE]    check config and rack geometry\n"
+    "       fixed_atc_probe --check --config FILE [--ini FILE] [--state FILE]\n"
+    "                                     check config, state, INI and rack geometry\n"
     "       fixed_atc_probe --plan --config FILE --from A --to B [--ini FILE]\n"
-    "                                                             print the steps of M6 from A to B\n"
-    "       fixed_atc_probe --dot                                 the state machine as Graphviz\n";
+    "                                     print the steps of M6 from A to B\n"
+    "       fixed_atc_probe --dot         the state machine as Graphviz\n";
 
 namespace {
 
@@ -37,24 +44,52 @@ std::string format_point(double x, double y, double z) {
 struct Loaded {
   std::optional<Config> config;
   std::optional<SoftLimits> limits;
+  int problems = 0;  ///< lines written to `err`
 };
 
+/// Reads the config and, if given, the INI; every problem one line on `err`.
 Loaded load(const Options& options, std::ostream& err) {
   Loaded loaded;
-  auto result = load_config_file(options.config_path);
+  const auto result = load_config_file(options.config_path);
   for (const auto& error : result.errors) err << error << "\n";
-  if (!result.config) return loaded;
-  if (!options.ini_path.empty()) {
+  loaded.problems += static_cast<int>(result.errors.size());
+  loaded.config = result.config;
+  if (options.ini_path) {
     std::string error;
-    const auto ini = IniFile::read(options.ini_path, error);
-    if (ini) loaded.limits = soft_limits(*ini, result.config->units, error);
+    const auto ini = IniFile::read(*options.ini_path, error);
+    // Without a valid config the INI is still checked, its numbers as in mm.
+    if (ini) {
+      loaded.limits = soft_limits(*ini, loaded.config ? loaded.config->units : Units::mm, error);
+    }
     if (!loaded.limits) {
       err << error << "\n";
-      return loaded;
+      ++loaded.problems;
     }
   }
-  loaded.config = result.config;
   return loaded;
+}
+
+/// --check of the state file: what the component would read at start.
+int check_state(const Options& options, const std::optional<Config>& config, std::ostream& out,
+                std::ostream& err) {
+  const std::string& path = options.state_path;
+  struct stat st;
+  if (::stat(path.c_str(), &st) != 0 && errno == ENOENT) {
+    out << shown_path(path)
+        << ": no state saved yet: the component starts with every pocket full\n";
+    return 0;
+  }
+  const ToolStateResult state = config ? load_state_file(path, *config) : load_state_file(path);
+  if (!state.state) {
+    err << state.error << "\n";
+    return 1;
+  }
+  const ToolState& tools = *state.state;
+  out << shown_path(path) << ": spindle "
+      << (tools.spindle == 0 ? std::string("empty") : "T" + std::to_string(tools.spindle)) << ", "
+      << tools.in_pocket.size() << " tools in their pockets, " << tools.lengths.size() << " lengths"
+      << (tools.uncertain ? ", uncertain (an interrupted sequence)" : "") << "\n";
+  return 0;
 }
 
 /// Prints each violation of one planned sequence; returns how many.
@@ -71,9 +106,10 @@ int report(const std::string& name, const Config& config, const Simulator& sim,
 
 int check(const Options& options, std::ostream& out, std::ostream& err) {
   const Loaded loaded = load(options, err);
+  const int problems = loaded.problems + check_state(options, loaded.config, out, err);
   if (!loaded.config) return 1;
   const Config& config = *loaded.config;
-  out << options.config_path << ": units " << units_name(config.units) << ", "
+  out << shown_path(options.config_path) << ": units " << units_name(config.units) << ", "
       << config.pockets.size() << " pockets, keep-out margin " << config.keepout_margin() << "\n\n";
   out << "station                          x          y          z\n";
   out << "safe                  " << format_point(config.safe.x, config.safe.y, config.safe.z) << "\n";
@@ -110,18 +146,18 @@ int check(const Options& options, std::ostream& out, std::ostream& err) {
   }
   out << sequences << " sequences checked, " << violations << " violation"
       << (violations == 1 ? "" : "s") << "\n";
-  return violations == 0 ? 0 : 1;
+  return violations == 0 && problems == 0 ? 0 : 1;
 }
 
 int plan(const Options& options, std::ostream& out, std::ostream& err) {
   const Loaded loaded = load(options, err);
-  if (!loaded.config) return 1;
+  if (!loaded.config || loaded.problems > 0) return 1;
   const Config& config = *loaded.config;
   const int from = *options.from_tool;
   const int to = *options.to_tool;
   if (from != 0 && !config.has_pocket(from)) {
-    err << "--from " << from << ": tool " << from << " has no pocket in " << options.config_path
-        << "\n";
+    err << "--from " << from << ": tool " << from << " has no pocket in "
+        << shown_path(options.config_path) << "\n";
     return 1;
   }
   const Simulator sim = plan_change(config, from, to, config.probe_limit.z);
@@ -142,51 +178,92 @@ int plan(const Options& options, std::ostream& out, std::ostream& err) {
 }  // namespace
 
 std::optional<Options> parse_options(const std::vector<std::string>& args, std::string& error) {
+  using Mode = Options::Mode;
   Options options;
+  std::optional<std::string> mode_flag;      ///< the one of --check, --plan, --dot, --help given
+  std::map<std::string, std::string> given;  ///< option -> its value, each at most once
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& arg = args[i];
-    auto value = [&](const char* name) -> std::optional<std::string> {
-      if (i + 1 >= args.size()) {
-        error = std::string(name) + " needs a value";
+    static const std::map<std::string, Mode> modes = {{"--check", Mode::check},
+                                                      {"--plan", Mode::plan},
+                                                      {"--dot", Mode::dot},
+                                                      {"--help", Mode::help},
+                                                      {"-h", Mode::help}};
+    if (const auto mode = modes.find(arg); mode != modes.end()) {
+      if (mode_flag) {
+        error = *mode_flag == arg ? arg + " given twice"
+                                  : *mode_flag + " and " + arg + " cannot be combined";
         return std::nullopt;
       }
-      return args[++i];
-    };
-    if (arg == "--check") {
-      options.mode = Options::Mode::check;
-    } else if (arg == "--plan") {
-      options.mode = Options::Mode::plan;
-    } else if (arg == "--dot") {
-      options.mode = Options::Mode::dot;
-    } else if (arg == "--help" || arg == "-h") {
-      options.mode = Options::Mode::help;
-    } else if (arg == "--config" || arg == "--state" || arg == "--ini") {
-      const auto text = value(arg.c_str());
-      if (!text) return std::nullopt;
-      (arg == "--config" ? options.config_path : arg == "--state" ? options.state_path : options.ini_path) = *text;
-    } else if (arg == "--from" || arg == "--to") {
-      const auto text = value(arg.c_str());
-      if (!text) return std::nullopt;
-      const auto tool = tool_argument(*text);
-      if (!tool) {
-        error = arg + ": expected a tool number (0 for none), got \"" + *text + "\"";
+      mode_flag = arg;
+      options.mode = mode->second;
+      continue;
+    }
+    if (arg != "--config" && arg != "--state" && arg != "--ini" && arg != "--from" &&
+        arg != "--to") {
+      error = "unknown argument " + quote(arg);
+      return std::nullopt;
+    }
+    if (i + 1 >= args.size()) {
+      error = arg + " needs a value";
+      return std::nullopt;
+    }
+    const std::string& text = args[++i];
+    if (const auto before = given.find(arg); before != given.end()) {
+      error = arg + " given twice (" + quote(before->second) + " and " + quote(text) + ")";
+      return std::nullopt;
+    }
+    given[arg] = text;
+    const bool tool = arg == "--from" || arg == "--to";
+    if (text.empty()) {
+      error = arg + ": expected " + (tool ? "a tool number" : "a file path") + ", got nothing";
+      return std::nullopt;
+    }
+    if (text.rfind("--", 0) == 0) {
+      error = arg + " needs a value, got the option " + quote(text);
+      return std::nullopt;
+    }
+    if (tool) {
+      const auto number = tool_argument(text);
+      if (!number) {
+        error = arg + ": expected a tool number (0 for none), got " + quote(text);
         return std::nullopt;
       }
-      (arg == "--from" ? options.from_tool : options.to_tool) = *tool;
+      (arg == "--from" ? options.from_tool : options.to_tool) = *number;
+    } else if (arg == "--config") {
+      options.config_path = text;
+    } else if (arg == "--state") {
+      options.state_path = text;
     } else {
-      error = "unknown argument \"" + arg + "\"";
+      options.ini_path = text;
+    }
+  }
+  // An option the mode would not read is refused, not ignored.
+  const std::string mode_name =
+      mode_flag ? *mode_flag : "the component (no --check, --plan, --dot)";
+  const std::map<std::string, std::set<Mode>> used_by = {
+      {"--config", {Mode::component, Mode::check, Mode::plan}},
+      {"--state", {Mode::component, Mode::check}},
+      {"--ini", {Mode::check, Mode::plan}},
+      {"--from", {Mode::plan}},
+      {"--to", {Mode::plan}}};
+  for (const auto& [option, modes] : used_by) {
+    if (given.count(option) != 0 && modes.count(options.mode) == 0) {
+      error = option + " is not used by " + mode_name;
       return std::nullopt;
     }
   }
-  const bool needs_config = options.mode == Options::Mode::component ||
-                            options.mode == Options::Mode::check || options.mode == Options::Mode::plan;
+  const bool needs_config = used_by.at("--config").count(options.mode) != 0;
   if (needs_config && options.config_path.empty()) {
     error = "--config FILE is required";
     return std::nullopt;
   }
-  if (options.mode == Options::Mode::plan && (!options.from_tool || !options.to_tool)) {
+  if (options.mode == Mode::plan && (!options.from_tool || !options.to_tool)) {
     error = "--plan needs --from A and --to B";
     return std::nullopt;
+  }
+  if (used_by.at("--state").count(options.mode) != 0 && options.state_path.empty()) {
+    options.state_path = options.config_path + ".state";
   }
   return options;
 }

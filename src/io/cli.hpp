@@ -11,18 +11,21 @@ namespace fatc::io {
 struct Options {
   enum class Mode { component, check, plan, dot, help } mode = Mode::component;
   std::string config_path;
-  std::string state_path;
-  std::string ini_path;
+  std::string state_path;  ///< component and --check: CONFIG.state unless --state is given
+  std::optional<std::string> ini_path;
   std::optional<int> from_tool;
   std::optional<int> to_tool;
 };
 
-/// Parses argv; nullopt and one line in `error` on a usage mistake.
+/// Parses argv; nullopt and one line in `error` on a usage mistake: an
+/// unknown, repeated or empty option, two modes at once, an option the mode
+/// does not use.
 std::optional<Options> parse_options(const std::vector<std::string>& args, std::string& error);
 
 extern const char* const kUsage;
 
-/// --check: 0 valid, 1 invalid. --plan: 0 printed, 1 refused or invalid. --dot: 0.
+/// --check: 0 when config, state and INI are valid and no planned move breaks
+/// the keep-out or the soft limits, 1 otherwise. --plan: 0 printed, 1 refused or invalid. --dot: 0.
 int run_tool_mode(const Options& options, std::ostream& out, std::ostream& err);
 
 }  // namespace fatc::io

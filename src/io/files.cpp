@@ -1,26 +1,53 @@
 #include "files.hpp"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
+
+#include "core/quote.hpp"
 
 namespace fatc::io {
 namespace {
 
-std::optional<std::string> read_text(const std::string& path, std::string& error) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    error = path + ": cannot open (" + std::strerror(errno) + ")";
-    return std::nullopt;
+std::string why(int error) { return std::string("(") + std::strerror(error) + ")"; }
+
+/// What a non-regular file is, for "expected a regular file, got ...".
+const char* kind_of(mode_t mode) {
+  if (S_ISDIR(mode)) return "a directory";
+  if (S_ISFIFO(mode)) return "a FIFO";
+  if (S_ISCHR(mode)) return "a character device";
+  if (S_ISBLK(mode)) return "a block device";
+  if (S_ISSOCK(mode)) return "a socket";
+  return "something that is not a file";
+}
+
+/// One line when `st` is not a regular file of at most kMaxFileBytes.
+std::string refusal(const std::string& path, const struct stat& st) {
+  if (!S_ISREG(st.st_mode)) {
+    return shown_path(path) + ": expected a regular file, got " + kind_of(st.st_mode);
   }
-  std::ostringstream text;
-  text << in.rdbuf();
-  return text.str();
+  if (static_cast<unsigned long long>(st.st_size) > kMaxFileBytes) {
+    return shown_path(path) + ": expected a file of at most 1 MiB, got " +
+           std::to_string(st.st_size) + " bytes";
+  }
+  return "";
+}
+
+/// Closes a descriptor on every way out.
+struct Descriptor {
+  int fd;
+  ~Descriptor() {
+    if (fd >= 0) ::close(fd);
+  }
+};
+
+bool missing(const std::string& path) {
+  struct stat st;
+  return !path.empty() && ::stat(path.c_str(), &st) != 0 && errno == ENOENT;
 }
 
 std::string folder_of(const std::string& path) {
@@ -36,7 +63,7 @@ void write_all(int fd, const std::string& text, const std::string& path) {
     const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
     if (n < 0) {
       if (errno == EINTR) continue;
-      throw std::runtime_error(path + ": cannot write (" + std::strerror(errno) + ")");
+      throw std::runtime_error(shown_path(path) + ": cannot write " + why(errno));
     }
     written += static_cast<std::size_t>(n);
   }
@@ -44,31 +71,89 @@ void write_all(int fd, const std::string& text, const std::string& path) {
 
 }  // namespace
 
+std::string shown_path(const std::string& path) {
+  return path.empty() ? std::string("\"\" (an empty path)") : escape(path, 200);
+}
+
+std::optional<std::string> read_small_file(const std::string& path, std::string& error) {
+  if (path.empty()) {
+    error = shown_path(path) + ": expected a file path, got nothing";
+    return std::nullopt;
+  }
+  // Refuse devices and FIFOs before opening them at all (opening some devices
+  // does something), then again on what was opened, in case it changed.
+  struct stat st;
+  if (::stat(path.c_str(), &st) != 0) {
+    error = shown_path(path) + ": cannot open " + why(errno);
+    return std::nullopt;
+  }
+  if (std::string refused = refusal(path, st); !refused.empty()) {
+    error = refused;
+    return std::nullopt;
+  }
+  // O_NONBLOCK: a FIFO swapped in after the stat cannot make open() wait.
+  const Descriptor file{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC)};
+  if (file.fd < 0) {
+    error = shown_path(path) + ": cannot open " + why(errno);
+    return std::nullopt;
+  }
+  if (::fstat(file.fd, &st) != 0) {
+    error = shown_path(path) + ": cannot read " + why(errno);
+    return std::nullopt;
+  }
+  if (std::string refused = refusal(path, st); !refused.empty()) {
+    error = refused;
+    return std::nullopt;
+  }
+  std::string text(kMaxFileBytes + 1, '\0');
+  std::size_t size = 0;
+  while (size < text.size()) {
+    const ssize_t n = ::read(file.fd, &text[size], text.size() - size);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) {
+      error = shown_path(path) + ": cannot read " + why(errno);
+      return std::nullopt;
+    }
+    if (n == 0) break;
+    size += static_cast<std::size_t>(n);
+  }
+  if (size > kMaxFileBytes) {  // it grew while we read
+    error = shown_path(path) + ": expected a file of at most 1 MiB, got more";
+    return std::nullopt;
+  }
+  text.resize(size);
+  return text;
+}
+
 ConfigResult load_config_file(const std::string& path) {
   ConfigResult result;
   std::string error;
-  const auto text = read_text(path, error);
+  const auto text = read_small_file(path, error);
   if (!text) {
     result.errors.push_back(error);
     return result;
   }
   result = parse_config(*text);
-  for (auto& message : result.errors) message = path + ": " + message;
+  for (auto& message : result.errors) message = shown_path(path) + ": " + message;
+  return result;
+}
+
+ToolStateResult load_state_file(const std::string& path) {
+  std::string error;
+  const auto text = read_small_file(path, error);
+  if (!text) return {std::nullopt, error};
+  auto result = tool_state_from_json(*text);
+  if (!result.state) return {std::nullopt, shown_path(path) + ": " + result.error};
   return result;
 }
 
 ToolStateResult load_state_file(const std::string& path, const Config& config) {
-  if (::access(path.c_str(), F_OK) != 0 && errno == ENOENT) return {ToolState::fresh(config), ""};
-  std::string error;
-  const auto text = read_text(path, error);
-  if (!text) return {std::nullopt, error};
-  auto result = tool_state_from_json(*text);
-  if (!result.state) return {std::nullopt, path + ": " + result.error};
-  const ToolState& state = *result.state;
-  auto unknown = [&](int tool) { return tool != 0 && !config.has_pocket(tool); };
-  for (const int tool : state.in_pocket) {
-    if (unknown(tool)) {
-      return {std::nullopt, path + ": in_pocket: tool " + std::to_string(tool) +
+  if (missing(path)) return {ToolState::fresh(config), ""};
+  auto result = load_state_file(path);
+  if (!result.state) return result;
+  for (const int tool : result.state->in_pocket) {
+    if (!config.has_pocket(tool)) {
+      return {std::nullopt, shown_path(path) + ": in_pocket: tool " + std::to_string(tool) +
                                 " is recorded in a pocket that config.json does not have"};
     }
   }
@@ -77,11 +162,19 @@ ToolStateResult load_state_file(const std::string& path, const Config& config) {
 
 void save_state_file(const std::string& path, const ToolState& state) {
   const std::string temporary = path + ".tmp";
-  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) throw std::runtime_error(temporary + ": cannot create (" + std::strerror(errno) + ")");
+  // A writer killed between create and rename leaves its temporary file: it
+  // is removed, not reused (it may be a symlink someone put there).
+  if (::unlink(temporary.c_str()) != 0 && errno != ENOENT) {
+    throw std::runtime_error(shown_path(temporary) + ": cannot remove the old temporary file " +
+                             why(errno));
+  }
+  const int fd =
+      ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
+  if (fd < 0) throw std::runtime_error(shown_path(temporary) + ": cannot create " + why(errno));
   try {
     write_all(fd, to_json(state), temporary);
-    if (::fsync(fd) != 0) throw std::runtime_error(temporary + ": fsync failed (" + std::strerror(errno) + ")");
+    if (::fsync(fd) != 0)
+      throw std::runtime_error(shown_path(temporary) + ": fsync failed " + why(errno));
   } catch (...) {
     ::close(fd);
     ::unlink(temporary.c_str());
@@ -89,9 +182,9 @@ void save_state_file(const std::string& path, const ToolState& state) {
   }
   ::close(fd);
   if (::rename(temporary.c_str(), path.c_str()) != 0) {
-    const std::string why = std::strerror(errno);
+    const std::string reason = why(errno);
     ::unlink(temporary.c_str());
-    throw std::runtime_error(path + ": cannot replace (" + why + ")");
+    throw std::runtime_error(shown_path(path) + ": cannot replace " + reason);
   }
   // The rename itself must reach the disk before we call the state saved.
   const int folder = ::open(folder_of(path).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);

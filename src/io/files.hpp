@@ -9,6 +9,17 @@
 
 namespace fatc::io {
 
+/// Largest config, state or INI file read: real ones are a few kilobytes.
+constexpr std::size_t kMaxFileBytes = 1024 * 1024;
+
+/// The whole text of a regular file of at most kMaxFileBytes; nullopt and one
+/// line in `error` ("PATH: expected a regular file, got a FIFO") otherwise.
+/// Never blocks: a FIFO is opened non-blocking and refused before any read.
+std::optional<std::string> read_small_file(const std::string& path, std::string& error);
+
+/// A file path for a message: control characters escaped, cut short if huge.
+std::string shown_path(const std::string& path);
+
 /// Reads and validates a config.json; every message starts with the file's path.
 ConfigResult load_config_file(const std::string& path);
 
@@ -16,9 +27,15 @@ ConfigResult load_config_file(const std::string& path);
 /// full, spindle empty); anything unreadable or inconsistent with the config
 /// is an error naming the file, never a silent reset.
 ToolStateResult load_state_file(const std::string& path, const Config& config);
+/// The same without a config to compare with (--check of a state file next to
+/// a broken config): everything but the pockets the config must have.
+ToolStateResult load_state_file(const std::string& path);
 
-/// Writes the tool state crash-safe: temporary file, fsync, rename, fsync of
-/// the folder. Throws std::runtime_error naming the file on failure.
+/// Writes the tool state crash-safe: a fresh temporary file next to it (PATH.tmp,
+/// whatever a killed writer left there removed first, never followed if a
+/// symlink), fsync, rename over PATH, fsync of the folder. A reader sees the
+/// old file or the new one, never a part. Throws std::runtime_error naming
+/// the file on failure.
 void save_state_file(const std::string& path, const ToolState& state);
 
 }  // namespace fatc::io

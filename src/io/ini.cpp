@@ -1,78 +1,198 @@
 #include "ini.hpp"
 
+#include <strings.h>
+#include <sys/mman.h>
+#include <unistd.h>
+
 #include <cerrno>
+#include <cmath>
+#include <cstdlib>
 #include <cstring>
-#include <fstream>
+#include <inifile.hh>
+
+#include "core/quote.hpp"
+#include "files.hpp"
 
 namespace fatc::io {
 namespace {
 
-std::string trim(const std::string& text) {
-  const auto first = text.find_first_not_of(" \t\r");
-  if (first == std::string::npos) return "";
-  const auto last = text.find_last_not_of(" \t\r");
-  return text.substr(first, last - first + 1);
+/// LinuxCNC's reader, with the protected lookup EmcIniFile::FindLinearUnits uses.
+class LinuxCncIni : public ::IniFile {
+ public:
+  explicit LinuxCncIni(std::FILE* file) : ::IniFile(0, file) {}
+  ErrorCode linear_units(double* result) {
+    return Find(result, kLinearUnits, "LINEAR_UNITS", "TRAJ");
+  }
+  static bool is_unit_name(const std::string& text) {
+    for (const StrDoublePair* unit = kLinearUnits; unit->pStr != nullptr; ++unit) {
+      if (::strcasecmp(text.c_str(), unit->pStr) == 0) return true;
+    }
+    return false;
+  }
+
+ private:
+  // The table of EmcIniFile::linearUnitsMap (emcIniFile.cc, LinuxCNC 2.9).
+  static inline StrDoublePair kLinearUnits[] = {
+      {"mm", 1.0},        {"metric", 1.0},        {"in", 1 / 25.4},
+      {"inch", 1 / 25.4}, {"imperial", 1 / 25.4}, {nullptr, 0.0}};
+};
+
+/// A file holding `text` that nobody else can change: an anonymous memfd,
+/// or an unlinked temporary file where memfds are not allowed.
+std::FILE* private_copy(const std::string& text) {
+  int fd = ::memfd_create("fixed_atc_probe.ini", MFD_CLOEXEC);
+  std::FILE* file = fd >= 0 ? ::fdopen(fd, "w+") : std::tmpfile();
+  if (file == nullptr) {
+    if (fd >= 0) ::close(fd);
+    return nullptr;
+  }
+  if (std::fwrite(text.data(), 1, text.size(), file) != text.size() || std::fflush(file) != 0) {
+    std::fclose(file);
+    return nullptr;
+  }
+  std::rewind(file);
+  return file;
 }
+
+/// Where a carriage return is not part of a line ending: LinuxCNC refuses the
+/// whole file then ("ambiguous carriage returns") and every key reads as missing.
+std::string lone_carriage_return(const std::string& text) {
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '\r' && i + 1 < text.size() && text[i + 1] != '\n') {
+      return describe(position_of(text, i)) +
+             ": expected a line ending, found a carriage return inside a line (LinuxCNC refuses "
+             "the file)";
+    }
+  }
+  return "";
+}
+
+/// "[AXIS_X]MIN_LIMIT (line 12)", or without the line when it is not there.
+std::string key_name(const std::string& section, const std::string& key, int line) {
+  return "[" + section + "]" + key + (line > 0 ? " (line " + std::to_string(line) + ")" : "");
+}
+
+/// The largest limit that means something: LinuxCNC's own "no limit" default.
+constexpr double kNoLimit = 1e99;
 
 }  // namespace
 
 std::optional<IniFile> IniFile::read(const std::string& path, std::string& error) {
-  std::ifstream in(path);
-  if (!in) {
-    error = path + ": cannot open (" + std::strerror(errno) + ")";
+  const auto text = read_small_file(path, error);
+  if (!text) return std::nullopt;
+  return from_text(*text, shown_path(path), error);
+}
+
+std::optional<IniFile> IniFile::from_text(const std::string& text, const std::string& name,
+                                          std::string& error) {
+  for (const std::string& problem : {nul_byte_problem(text), lone_carriage_return(text)}) {
+    if (!problem.empty()) {
+      error = name + ": " + problem;
+      return std::nullopt;
+    }
+  }
+  std::FILE* file = private_copy(text);
+  if (file == nullptr) {
+    error = name + ": cannot make a private copy to read (" + std::strerror(errno) + ")";
     return std::nullopt;
   }
   IniFile ini;
-  ini.path_ = path;
-  std::string line;
-  std::string section;
-  while (std::getline(in, line)) {
-    const std::string text = trim(line);
-    if (text.empty() || text[0] == '#' || text[0] == ';') continue;
-    if (text.front() == '[' && text.back() == ']') {
-      section = text.substr(1, text.size() - 2);
-      continue;
-    }
-    const auto equals = text.find('=');
-    if (equals == std::string::npos) continue;
-    const std::string key = trim(text.substr(0, equals));
-    // LinuxCNC keeps the first of repeated keys for single values.
-    ini.values_[section].emplace(key, trim(text.substr(equals + 1)));
-  }
+  ini.path_ = name;
+  ini.file_.reset(file, [](std::FILE* f) { std::fclose(f); });
   return ini;
 }
 
+std::optional<std::string> IniFile::get(const std::string& section, const std::string& key,
+                                        int& line) const {
+  line = 0;
+  LinuxCncIni reader(file_.get());
+  if (!reader.IsOpen()) return std::nullopt;
+  const char* value = reader.Find(key.c_str(), section.c_str(), 1, &line);
+  if (value == nullptr) {
+    line = 0;
+    return std::nullopt;
+  }
+  return std::string(value);
+}
+
 std::optional<std::string> IniFile::get(const std::string& section, const std::string& key) const {
-  const auto s = values_.find(section);
-  if (s == values_.end()) return std::nullopt;
-  const auto k = s->second.find(key);
-  if (k == s->second.end()) return std::nullopt;
-  return k->second;
+  int line = 0;
+  return get(section, key, line);
+}
+
+std::optional<double> IniFile::number(const std::string& section, const std::string& key) const {
+  LinuxCncIni reader(file_.get());
+  double value = 0.0;
+  if (reader.Find(&value, key.c_str(), section.c_str()) != ::IniFile::ERR_NONE) return std::nullopt;
+  return value;
+}
+
+std::optional<double> IniFile::linear_units() const {
+  LinuxCncIni reader(file_.get());
+  double value = 0.0;
+  if (reader.linear_units(&value) != ::IniFile::ERR_NONE) return std::nullopt;
+  return value;
 }
 
 std::optional<SoftLimits> soft_limits(const IniFile& ini, Units units, std::string& error) {
-  double scale = 1.0;
-  const auto linear = ini.get("TRAJ", "LINEAR_UNITS").value_or("mm");
-  const bool ini_in_inch = linear == "inch" || linear == "in" || linear == "imperial";
-  if (ini_in_inch && units == Units::mm) scale = 25.4;
-  if (!ini_in_inch && units == Units::inch) scale = 1.0 / 25.4;
+  int line = 0;
+  const auto unit_text = ini.get("TRAJ", "LINEAR_UNITS", line);
+  const std::string unit_key = ini.path() + ": " + key_name("TRAJ", "LINEAR_UNITS", line);
+  if (!unit_text) {
+    error = unit_key + ": missing (LinuxCNC does not start without it: mm, inch, ...)";
+    return std::nullopt;
+  }
+  // LinuxCNC takes a number of machine units per mm (sscanf: "1.0 mm" is 1)
+  // or one of its unit names; anything else stops it.
+  const auto per_mm = ini.linear_units();
+  char* end = nullptr;
+  std::strtod(unit_text->c_str(), &end);
+  const bool clean_number = !unit_text->empty() && end != nullptr && *end == '\0';
+  if (!per_mm || !(clean_number || LinuxCncIni::is_unit_name(*unit_text))) {
+    error = unit_key + ": expected mm, metric, in, inch, imperial or machine units per mm, got " +
+            quote(*unit_text);
+    return std::nullopt;
+  }
+  if (!std::isfinite(*per_mm) || *per_mm < 0.001 || *per_mm > 1000.0) {
+    error =
+        unit_key + ": expected machine units per mm from 0.001 to 1000, got " + quote(*unit_text);
+    return std::nullopt;
+  }
+  const double to_config = (units == Units::inch ? 1.0 / 25.4 : 1.0) / *per_mm;
+
   SoftLimits limits;
   AxisLimits* axes[] = {&limits.x, &limits.y, &limits.z};
   const char* names[] = {"AXIS_X", "AXIS_Y", "AXIS_Z"};
   for (int i = 0; i < 3; ++i) {
-    for (const char* key : {"MIN_LIMIT", "MAX_LIMIT"}) {
-      const auto text = ini.get(names[i], key);
-      double value = 0.0;
-      try {
-        if (!text) throw std::invalid_argument("missing");
-        value = std::stod(*text);
-      } catch (const std::exception&) {
-        error = ini.path() + ": [" + names[i] + "]" + key + ": expected a number, got " +
-                (text ? "\"" + *text + "\"" : std::string("nothing"));
+    double found[2] = {0.0, 0.0};
+    int lines[2] = {0, 0};
+    const char* keys[] = {"MIN_LIMIT", "MAX_LIMIT"};
+    for (int k = 0; k < 2; ++k) {
+      const auto text = ini.get(names[i], keys[k], lines[k]);
+      const std::string where = ini.path() + ": " + key_name(names[i], keys[k], lines[k]);
+      if (!text) {
+        error = where + ": missing or empty (LinuxCNC would take no limit there)";
         return std::nullopt;
       }
-      (std::string(key) == "MIN_LIMIT" ? axes[i]->min : axes[i]->max) = value * scale;
+      const auto value = ini.number(names[i], keys[k]);
+      if (!value) {
+        error = where + ": expected a number, got " + quote(*text);
+        return std::nullopt;
+      }
+      if (!std::isfinite(*value) || std::fabs(*value) > kNoLimit) {
+        error = where + ": expected a finite number from -1e99 to 1e99, got " + quote(*text);
+        return std::nullopt;
+      }
+      found[k] = *value;
     }
+    if (found[0] > found[1]) {
+      error = ini.path() + ": " + key_name(names[i], "MIN_LIMIT", lines[0]) +
+              ": must not be above MAX_LIMIT (" + *ini.get(names[i], "MAX_LIMIT") + "), got " +
+              *ini.get(names[i], "MIN_LIMIT");
+      return std::nullopt;
+    }
+    axes[i]->min = found[0] * to_config;
+    axes[i]->max = found[1] * to_config;
   }
   return limits;
 }

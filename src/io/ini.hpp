@@ -1,6 +1,7 @@
 #pragma once
 
-#include <map>
+#include <cstdio>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -9,21 +10,41 @@
 
 namespace fatc::io {
 
-/// A LinuxCNC INI file: [SECTION] then KEY = VALUE; '#' and ';' start comments.
+/// A LinuxCNC INI file, read by LinuxCNC's own reader (IniFile of
+/// liblinuxcncini): what get() finds is what LinuxCNC finds, first of
+/// repeated keys, comments only at the start of a line, and so on.
 class IniFile {
  public:
-  /// nullopt and `error` set when the file cannot be read.
+  /// nullopt and one line in `error` when the file cannot be read, is no
+  /// regular file, is over 1 MiB, or has a NUL byte or a lone carriage return.
   static std::optional<IniFile> read(const std::string& path, std::string& error);
+  /// The same from text already in memory; `name` stands for the path in messages.
+  static std::optional<IniFile> from_text(const std::string& text, const std::string& name,
+                                          std::string& error);
+
   std::optional<std::string> get(const std::string& section, const std::string& key) const;
+  /// get(), and the line the key is on (0 when it is not there).
+  std::optional<std::string> get(const std::string& section, const std::string& key,
+                                 int& line) const;
+  /// `[SECTION]KEY` as LinuxCNC parses a number from it (boost::lexical_cast<double>,
+  /// as its IniFile::Find<double>): nullopt when missing or not a number.
+  std::optional<double> number(const std::string& section, const std::string& key) const;
+  /// [TRAJ]LINEAR_UNITS as LinuxCNC reads it (EmcIniFile::FindLinearUnits: a
+  /// number, or mm, metric, in, inch, imperial): machine units per mm.
+  std::optional<double> linear_units() const;
+
   const std::string& path() const { return path_; }
 
  private:
   std::string path_;
-  std::map<std::string, std::map<std::string, std::string>> values_;
+  std::shared_ptr<std::FILE> file_;  ///< a private copy of the text (memfd), never changed
 };
 
 /// The soft limits of axes X, Y and Z ([AXIS_n] MIN_LIMIT/MAX_LIMIT), converted
-/// from [TRAJ]LINEAR_UNITS into `units`. nullopt and `error` when any is missing.
+/// from [TRAJ]LINEAR_UNITS into `units`. nullopt and one line in `error`
+/// ("PATH: [AXIS_X]MIN_LIMIT (line 12): expected a number, got \"nan\"") when
+/// any is missing, is no number to LinuxCNC, or makes no sense as a limit
+/// (not finite, beyond 1e99, MIN above MAX, LINEAR_UNITS unknown).
 std::optional<SoftLimits> soft_limits(const IniFile& ini, Units units, std::string& error);
 
 }  // namespace fatc::io

@@ -1,11 +1,13 @@
+#include "io/cli.hpp"
+
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
-
-#include "io/cli.hpp"
 
 namespace fatc {
 namespace {
@@ -78,6 +80,125 @@ TEST(Cli, shouldExitTwoOnUsageMistakes) {
   EXPECT_EQ(run({"--plan", "--config", kConfig}).code, 2);
   EXPECT_EQ(run({"--check"}).code, 2);
   EXPECT_EQ(run({"--bogus"}).err, "unknown argument \"--bogus\"");
+}
+
+TEST(Cli, shouldRefuseAnOptionGivenTwice) {
+  const CliRun r = run({"--check", "--config", "a.json", "--config", "b.json"});
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err, "--config given twice (\"a.json\" and \"b.json\")");
+  EXPECT_EQ(run({"--check", "--check", "--config", kConfig}).err, "--check given twice");
+}
+
+TEST(Cli, shouldRefuseTwoModesAtOnce) {
+  EXPECT_EQ(run({"--check", "--plan", "--config", kConfig}).err,
+            "--check and --plan cannot be combined");
+  EXPECT_EQ(run({"--dot", "--help"}).err, "--dot and --help cannot be combined");
+}
+
+TEST(Cli, shouldRefuseAnEmptyPathInsteadOfSkippingTheFile) {
+  const CliRun r = run({"--check", "--config", kConfig, "--ini", ""});
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err, "--ini: expected a file path, got nothing");
+  EXPECT_EQ(run({"--config", ""}).err, "--config: expected a file path, got nothing");
+}
+
+TEST(Cli, shouldRefuseAnOptionWhereAValueBelongs) {
+  EXPECT_EQ(run({"--config", "--check"}).err, "--config needs a value, got the option \"--check\"");
+}
+
+TEST(Cli, shouldRefuseAnOptionTheModeDoesNotRead) {
+  EXPECT_EQ(run({"--check", "--config", kConfig, "--from", "1"}).err,
+            "--from is not used by --check");
+  EXPECT_EQ(run({"--config", kConfig, "--ini", "m.ini"}).err,
+            "--ini is not used by the component (no --check, --plan, --dot)");
+  EXPECT_EQ(run({"--plan", "--config", kConfig, "--from", "1", "--to", "2", "--state", "s"}).err,
+            "--state is not used by --plan");
+  EXPECT_EQ(run({"--dot", "--config", kConfig}).err, "--config is not used by --dot");
+}
+
+TEST(Cli, shouldEscapeAnUnknownArgument) {
+  EXPECT_EQ(run({"--\x1b[2Jbogus"}).err, "unknown argument \"--\\x1b[2Jbogus\"");
+}
+
+TEST(Cli, shouldCheckTheStateFileNextToTheConfigByDefault) {
+  std::string error;
+  const auto options = io::parse_options({"--check", "--config", "/x/config.json"}, error);
+  ASSERT_TRUE(options) << error;
+  EXPECT_EQ(options->state_path, "/x/config.json.state");
+  const auto component = io::parse_options({"--config", "/x/config.json"}, error);
+  EXPECT_EQ(component->state_path, "/x/config.json.state") << "the same file the component reads";
+}
+
+/// A folder with files for one --check run.
+class CheckRun : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    char pattern[] = "/tmp/fatc_check_XXXXXX";
+    folder_ = ::mkdtemp(pattern);
+  }
+  void TearDown() override { std::filesystem::remove_all(folder_); }
+  std::string file(const std::string& name, const std::string& text) {
+    const std::string path = folder_ + "/" + name;
+    std::ofstream(path) << text;
+    return path;
+  }
+  std::string folder_;
+};
+
+const char* const kGoodState =
+    R"({"version": 1, "spindle": 3, "uncertain": false, "in_pocket": [1, 2, 4, 5, 6], "lengths": {"3": 17.5}})";
+
+TEST_F(CheckRun, shouldReadTheStateAndSayWhatItHolds) {
+  const std::string state = file("state.json", kGoodState);
+  const CliRun r = run({"--check", "--config", kConfig, "--state", state});
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find(state + ": spindle T3, 5 tools in their pockets, 1 lengths"),
+            std::string::npos)
+      << r.out;
+}
+
+TEST_F(CheckRun, shouldFailOnABadStateEvenWhenTheConfigIsGood) {
+  const std::string state = file("state.json", R"({"version": 1, "spindle": 1e309})");
+  const CliRun r = run({"--check", "--config", kConfig, "--state", state});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.err, state + ": line 1, column 31: invalid JSON: number overflow parsing '1e309'\n");
+  EXPECT_NE(r.out.find("24 sequences checked, 0 violations"), std::string::npos) << r.out;
+}
+
+TEST_F(CheckRun, shouldSayWhatIsWrongInEachOfTheThreeFiles) {
+  const std::string config = file("config.json", R"({"chuck_seconds": 1e10})");
+  const std::string state = file("state.json", R"({"version": 1, "spindle": 0, "spindle": 2})");
+  const std::string ini = file("machine.ini", "[TRAJ]\nLINEAR_UNITS = furlong\n");
+  const CliRun r = run({"--check", "--config", config, "--state", state, "--ini", ini});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find(config + ": chuck_seconds: must be from 0.01 to 60 seconds, got 1e+10\n"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find(ini + ": [TRAJ]LINEAR_UNITS (line 2): expected mm, metric, in, inch, "
+                             "imperial or machine units per mm, got \"furlong\"\n"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find(state + ": spindle: appears twice\n"), std::string::npos) << r.err;
+}
+
+TEST_F(CheckRun, shouldSayMinAboveMaxInOneLineNotOnceAWaypoint) {
+  const std::string ini = file(
+      "machine.ini",
+      "[TRAJ]\nLINEAR_UNITS = mm\n[AXIS_X]\nMIN_LIMIT = 500\nMAX_LIMIT = -10\n"
+      "[AXIS_Y]\nMIN_LIMIT = -10\nMAX_LIMIT = 300\n[AXIS_Z]\nMIN_LIMIT = -120\nMAX_LIMIT = 0\n");
+  const CliRun r = run({"--check", "--config", kConfig, "--ini", ini});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.err,
+            ini + ": [AXIS_X]MIN_LIMIT (line 4): must not be above MAX_LIMIT (-10), got 500\n");
+}
+
+TEST_F(CheckRun, shouldPassTheSampleConfigOnTheSimulatedMill) {
+  const CliRun r =
+      run({"--check", "--config", kConfig, "--ini", FATC_SOURCE_DIR "/config/sim/fixed_atc_sim.ini",
+           "--state", folder_ + "/none.json"});
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find("none.json: no state saved yet"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("24 sequences checked, 0 violations"), std::string::npos) << r.out;
 }
 
 TEST(Cli, shouldPrintTheDiagram) {

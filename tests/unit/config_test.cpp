@@ -144,25 +144,25 @@ INSTANTIATE_TEST_SUITE_P(Each, BadConfigs, ::testing::Values(
   BadConfig{"bool_number", [](Json& j) { j["chuck_seconds"] = true; }, "chuck_seconds: expected a number, got true"},
   BadConfig{"null_number", [](Json& j) { j["safe"]["z"] = nullptr; }, "safe.z: expected a number, got null"},
   BadConfig{"safe_not_object", [](Json& j) { j["safe"] = "home"; }, "safe: expected an object, got \"home\""},
-  BadConfig{"chuck_zero", [](Json& j) { j["chuck_seconds"] = 0; }, "chuck_seconds: must be above 0"},
-  BadConfig{"above_chuck_negative", [](Json& j) { j["pocket_above_chuck_offset_z"] = -1; }, "pocket_above_chuck_offset_z: must be above 0"},
+  BadConfig{"chuck_zero", [](Json& j) { j["chuck_seconds"] = 0; }, "chuck_seconds: must be from 0.01 to 60 seconds, got 0"},
+  BadConfig{"above_chuck_negative", [](Json& j) { j["pocket_above_chuck_offset_z"] = -1; }, "pocket_above_chuck_offset_z: must be from 0.001 to 1000 mm, got -1"},
   BadConfig{"clearance_below_chuck", [](Json& j) { j["pocket_above_clearance_offset_z"] = 10; }, "pocket_above_clearance_offset_z: must be above pocket_above_chuck_offset_z (20)"},
   BadConfig{"side_offset_zero", [](Json& j) { j["pocket_side_offset"] = {{"x", 0}, {"y", 0}}; }, "pocket_side_offset: must not be zero"},
   BadConfig{"pockets_too_close", [](Json& j) { j["pockets"]["2"]["x"] = 70; }, "pockets.2: only 20 from pocket 1, closer than the side offset (40)"},
   BadConfig{"probe_limit_above_loading", [](Json& j) { j["probe_limit"]["z"] = 0; }, "probe_limit.z: must not be above loading.z (-10)"},
   BadConfig{"units_unknown", [](Json& j) { j["units"] = "cm"; }, "units: expected \"mm\" or \"inch\", got \"cm\""},
-  BadConfig{"feed_zero", [](Json& j) { j["pocket_feed"] = 0; }, "pocket_feed: must be above 0"},
-  BadConfig{"latch_negative", [](Json& j) { j["probe_latch_feed"] = -5; }, "probe_latch_feed: must be above 0"},
-  BadConfig{"backoff_zero", [](Json& j) { j["probe_backoff"] = 0; }, "probe_backoff: must be above 0"},
-  BadConfig{"retract_zero", [](Json& j) { j["probe_retract_offset_z"] = 0; }, "probe_retract_offset_z: must be above 0"},
+  BadConfig{"feed_zero", [](Json& j) { j["pocket_feed"] = 0; }, "pocket_feed: must be from 0.01 to 100000 mm/min, got 0"},
+  BadConfig{"latch_negative", [](Json& j) { j["probe_latch_feed"] = -5; }, "probe_latch_feed: must be from 0.01 to 100000 mm/min, got -5"},
+  BadConfig{"backoff_zero", [](Json& j) { j["probe_backoff"] = 0; }, "probe_backoff: must be from 0.001 to 1000 mm, got 0"},
+  BadConfig{"retract_zero", [](Json& j) { j["probe_retract_offset_z"] = 0; }, "probe_retract_offset_z: must be from 0.001 to 1000 mm, got 0"},
   BadConfig{"flush_fraction", [](Json& j) { j["flush"] = {{"pulses", 1.5}}; }, "flush.pulses: must be a whole number from 0 to 20"},
   BadConfig{"flush_unknown", [](Json& j) { j["flush"] = {{"pulse", 1}}; }, "flush.pulse: unknown key, did you mean \"pulses\"?"},
-  BadConfig{"flush_pause_zero", [](Json& j) { j["flush"] = {{"pause_seconds", 0}}; }, "flush.pause_seconds: must be above 0"},
-  BadConfig{"timeout_zero", [](Json& j) { j["spindle_stop_timeout_seconds"] = 0; }, "spindle_stop_timeout_seconds: must be above 0"},
-  BadConfig{"margin_negative", [](Json& j) { j["rack_keepout_margin"] = -1; }, "rack_keepout_margin: must be at least 0"},
+  BadConfig{"flush_pause_zero", [](Json& j) { j["flush"] = {{"pause_seconds", 0}}; }, "flush.pause_seconds: must be from 0.01 to 60 seconds, got 0"},
+  BadConfig{"timeout_zero", [](Json& j) { j["spindle_stop_timeout_seconds"] = 0; }, "spindle_stop_timeout_seconds: must be from 0.01 to 3600 seconds, got 0"},
+  BadConfig{"margin_negative", [](Json& j) { j["rack_keepout_margin"] = -1; }, "rack_keepout_margin: must be from 0 to 1000 mm, got -1"},
   BadConfig{"margin_over_side", [](Json& j) { j["rack_keepout_margin"] = 45; }, "rack_keepout_margin: must be smaller than the side offset (40)"},
   BadConfig{"probe_after_change_word", [](Json& j) { j["probe_after_change"] = "always"; }, "probe_after_change: expected \"off\", \"measure\" or \"check\", got \"always\""},
-  BadConfig{"tolerance_zero", [](Json& j) { j["probe_check_tolerance"] = 0; }, "probe_check_tolerance: must be above 0"},
+  BadConfig{"tolerance_zero", [](Json& j) { j["probe_check_tolerance"] = 0; }, "probe_check_tolerance: must be from 0.0001 to 100 mm, got 0"},
   BadConfig{"manual_tools_word", [](Json& j) { j["manual_tools"] = "yes"; }, "manual_tools: expected true or false, got \"yes\""},
   BadConfig{"huge_number", [](Json& j) { j["safe"]["x"] = 1e308 * 10; }, "safe.x: expected a number, got null"}
 ));
@@ -180,7 +180,8 @@ TEST(Config, shouldRejectANumberTooLargeForADouble) {
       std::string(test::kValidConfig).find("\"chuck_seconds\": 0.5"), 20, "\"chuck_seconds\": 1e999");
   const auto result = parse_config(text);
   ASSERT_FALSE(result.config);
-  EXPECT_EQ(result.errors.front(), "config: invalid JSON: number overflow parsing '1e999'");
+  EXPECT_EQ(result.errors.front(),
+            "line 7, column 24: invalid JSON: number overflow parsing '1e999'");
 }
 
 TEST(Config, shouldRejectAKeyGivenTwice) {

@@ -49,8 +49,8 @@ TEST_P(CorruptState, shouldNameWhatIsWrong) {
 
 // clang-format off
 INSTANTIATE_TEST_SUITE_P(Each, CorruptState, ::testing::Values(
-  Corruption{"", "state: not valid JSON"},
-  Corruption{"{\"version\": 1, \"spindle\": 3", "state: not valid JSON"},
+  Corruption{"", "line 1, column 1: invalid JSON: syntax error while parsing value - unexpected end of input"},
+  Corruption{"{\"version\": 1, \"spindle\": 3", "line 1, column 28: invalid JSON: syntax error while parsing object - unexpected end of input"},
   Corruption{"[]", "state: expected a JSON object"},
   Corruption{"{\"version\": 2, \"spindle\": 0, \"uncertain\": false, \"in_pocket\": [], \"lengths\": {}}", "version: expected 1, got 2"},
   Corruption{"{\"version\": 1, \"uncertain\": false, \"in_pocket\": [], \"lengths\": {}}", "spindle: missing"},
@@ -101,7 +101,7 @@ TEST_F(StateFile, shouldNameTheFileWhenCorruptNeverReset) {
   std::ofstream(path_) << "{\"version\": 1, \"spindle\": ";
   const auto result = io::load_state_file(path_, test::valid_config());
   ASSERT_FALSE(result.state);
-  EXPECT_EQ(result.error.rfind(path_ + ": state: not valid JSON", 0), 0u) << result.error;
+  EXPECT_EQ(result.error.rfind(path_ + ": line 1, column 27: invalid JSON", 0), 0u) << result.error;
 }
 
 TEST_F(StateFile, shouldRefuseAPocketTheConfigDoesNotHave) {

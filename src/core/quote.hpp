@@ -1,0 +1,36 @@
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+
+namespace fatc {
+
+/// How many characters of user text a message shows before "…".
+constexpr std::size_t kQuotedLength = 60;
+
+/// User text made safe to print inside a message: control characters, escape
+/// sequences, invalid UTF-8 and direction overrides become visible escapes
+/// (\n, \x1b, \u{202e}), a backslash is doubled, and anything past
+/// `max_chars` characters is cut off with "…". No quotes around it: for JSON
+/// paths and file paths.
+std::string escape(std::string_view text, std::size_t max_chars = kQuotedLength);
+
+/// escape() in double quotes, a double quote inside escaped: every piece of user text a message
+/// repeats (values, arguments, INI values) goes through here.
+std::string quote(std::string_view text, std::size_t max_chars = kQuotedLength);
+
+/// Line and column (both from 1, the column counted in bytes) of `offset` in `text`.
+struct TextPosition {
+  std::size_t line = 1;
+  std::size_t column = 1;
+};
+TextPosition position_of(std::string_view text, std::size_t offset);
+/// "line 3, column 7"
+std::string describe(const TextPosition& position);
+
+/// "line L, column C: NUL byte, ..." when `text` has a NUL byte (readers in C
+/// would silently stop there); empty otherwise.
+std::string nul_byte_problem(std::string_view text);
+
+}  // namespace fatc
