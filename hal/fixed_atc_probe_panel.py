@@ -79,14 +79,22 @@ class Handler:
             halcomp.newpin(name, hal.HAL_BIT, hal.HAL_OUT)
             halcomp.newpin(name + "-enabled", hal.HAL_BIT, hal.HAL_OUT)
         halcomp.newpin("tool-number", hal.HAL_S32, hal.HAL_OUT)
-        for name in ("state", "awaiting", "tool-in-spindle", "step-kind"):
+        for name in ("state", "awaiting", "tool-in-spindle", "step-kind", "cut-off-pocket"):
             halcomp.newpin(name, hal.HAL_S32, hal.HAL_IN)
+        halcomp.newpin("confirm-tool", hal.HAL_S32, hal.HAL_OUT)
+        halcomp.newpin("confirm-pocket", hal.HAL_S32, hal.HAL_OUT)
+        halcomp["confirm-tool"] = -1
+        halcomp["confirm-pocket"] = -1
         for name in ("waiting-for-operator", "accepting", "can-cancel", "units-inch"):
             halcomp.newpin(name, hal.HAL_BIT, hal.HAL_IN)
         for name in ("last-length", "step-x", "step-y", "step-z"):
             halcomp.newpin(name, hal.HAL_FLOAT, hal.HAL_IN)
         self.config_path, self.state_path = self.paths()
         self.state_stamp = None
+        self.status_path = self.state_path + ".status" if self.state_path else None
+        self.status_stamp = None
+        self.status = None
+        self.was_faulted = False
         self.pocket_tools = self.read_pockets()
         GLib.timeout_add(100, self.refresh)
 
@@ -140,8 +148,17 @@ class Handler:
         get = self.builder.get_object
         state = c["state"]
         get("state_words").set_text(PHASES.get(state, "state %d" % state))
-        get("step_words").set_text(describe_awaiting(c["awaiting"], c["step-kind"], c["step-x"],
-                                                     c["step-y"], c["step-z"], c["units-inch"]))
+        status = self.read_status()
+        if status is not None:
+            # The words themselves: the prompt, the fault, what moves where.
+            get("step_words").set_text(status.get("activity", ""))
+            # Prompts are the activity already: the last other message.
+            said = [m["text"] for m in status.get("messages", []) if m.get("kind") != "prompt"]
+            get("said_words").set_text(said[-1] if said else " ")
+        else:
+            get("step_words").set_text(describe_awaiting(c["awaiting"], c["step-kind"], c["step-x"],
+                                                         c["step-y"], c["step-z"], c["units-inch"]))
+        self.show_recovery(state == PHASE_FAULT)
         get("spindle_tool").set_text("T%d" % c["tool-in-spindle"] if c["tool-in-spindle"] else "empty")
         length = c["last-length"]
         get("last_length").set_text("%.4f %s" % (length, "in" if c["units-inch"] else "mm") if length else "-")
@@ -154,6 +171,37 @@ class Handler:
             get(name).set_sensitive(bool(on))
             c[name + "-enabled"] = bool(on)
         return True
+
+    def read_status(self):
+        """The component's words (STATE.status): None when it cannot be read."""
+        try:
+            stamp = os.stat(self.status_path).st_mtime_ns
+        except (TypeError, OSError):
+            return None
+        if stamp != self.status_stamp:
+            try:
+                with open(self.status_path) as f:
+                    self.status = json.load(f)
+                self.status_stamp = stamp
+            except (OSError, ValueError):
+                pass  # replaced while read: the next refresh reads it
+        return self.status
+
+    def show_recovery(self, faulted):
+        """In fault: what the operator confirms before Clear fault."""
+        get = self.builder.get_object
+        c = self.comp
+        if faulted and not self.was_faulted:
+            # Offer the last known tool; the operator corrects it if need be.
+            get("confirm_tool").set_value(c["tool-in-spindle"])
+            get("confirm_pocket").set_active(False)
+        self.was_faulted = faulted
+        get("recovery").set_visible(faulted)
+        pocket = c["cut-off-pocket"]
+        get("confirm_pocket").set_visible(faulted and pocket > 0)
+        get("confirm_pocket").set_label("Pocket %d holds its tool" % pocket)
+        c["confirm-tool"] = get("confirm_tool").get_value_as_int() if faulted else -1
+        c["confirm-pocket"] = (1 if get("confirm_pocket").get_active() else 0) if faulted and pocket > 0 else -1
 
     def show_pockets(self):
         try:

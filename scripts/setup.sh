@@ -8,7 +8,9 @@ packages=(build-essential cmake pkg-config libboost-dev nlohmann-json3-dev libgt
           linuxcnc-uspace linuxcnc-uspace-dev graphviz python3
           # the GladeVCP panel, and the GUI test: AXIS on a virtual X server
           python3-gi gir1.2-gtk-3.0 gir1.2-gtksource-3.0 xvfb xauth dbus-daemon at-spi2-core
-          python3-xlib)
+          python3-xlib
+          # the fuzz test (tests/fuzz/run.sh): clang with libFuzzer and the sanitizers
+          clang libclang-rt-14-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -22,3 +24,8 @@ fi
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build build -j"$(nproc)"
+# The realtime chuck guard the HAL snippet loads, into LinuxCNC's modules.
+guard=$(mktemp -d)
+cp src/rt/fatc_chuck_guard.comp "$guard/"
+(cd "$guard" && halcompile --install fatc_chuck_guard.comp >/dev/null)
+rm -rf "$guard"

@@ -16,6 +16,7 @@
 #include "core/changer.hpp"
 #include "io/cli.hpp"
 #include "io/files.hpp"
+#include "io/ini.hpp"
 #include "linuxcnc/component.hpp"
 #include "linuxcnc/hal_pins.hpp"
 #include "linuxcnc/nml_link.hpp"
@@ -54,10 +55,16 @@ int run_component(const fatc::io::Options& options) {
   // Under LinuxCNC (INI_FILE_NAME set) the status channel must open; under a
   // bare halrun there is none: aborts are only seen on the abort pin and
   // messages only on stderr.
+  // Its soft limits are the second check of every move, behind --check.
   std::unique_ptr<fatc::linuxcnc::NmlLink> nml;
-  if (const char* ini = std::getenv("INI_FILE_NAME")) {
+  std::optional<fatc::SoftLimits> limits;
+  if (const char* ini_path = std::getenv("INI_FILE_NAME")) {
     std::string error;
-    nml = fatc::linuxcnc::NmlLink::open(fatc::linuxcnc::nml_file_of(ini), error);
+    const auto ini = fatc::io::IniFile::read(ini_path, error);
+    if (!ini) return fail(error);
+    limits = fatc::io::soft_limits(*ini, config.config->units, error);
+    if (!limits) return fail(error);
+    nml = fatc::linuxcnc::NmlLink::open(fatc::linuxcnc::nml_file_of(ini_path), error);
     if (!nml) return fail(error);
   }
 
@@ -74,6 +81,7 @@ int run_component(const fatc::io::Options& options) {
 
   fatc::linuxcnc::Component component(pins, *config.config, state_path, nml.get());
   fatc::Changer changer(*config.config, component, *tools.state);
+  changer.soft_limits(limits);
   component.attach(&changer);
   auto interpreter_idle = [&]() -> std::optional<bool> {
     if (!nml || !nml->poll()) return std::nullopt;

@@ -10,6 +10,7 @@ class Engine {
  public:
   Engine(const Config& config, Ports& ports, ToolState tools)
       : context(config, ports, std::move(tools)), fsm(&context) {
+    context.refuse_step = [this](const std::string& why) { fsm.process_event(UnsafeStep{why}); };
     fsm.start();
   }
   Context context;
@@ -32,6 +33,12 @@ void Changer::not_ready() {
   engine_->context.machine_ready = false;
   engine_->fsm.process_event(NotReady{});
 }
+
+void Changer::soft_limits(std::optional<SoftLimits> limits) {
+  engine_->context.limits = std::move(limits);
+}
+
+void Changer::plan_only() { engine_->context.check_moves = false; }
 
 void Changer::task_availability(std::optional<std::string> why_busy) {
   engine_->context.task_busy = std::move(why_busy);
@@ -56,8 +63,8 @@ void Changer::timer_elapsed() { engine_->fsm.process_event(TimerElapsed{}); }
 void Changer::operator_continue() { engine_->fsm.process_event(OperatorContinue{}); }
 void Changer::operator_cancel() { engine_->fsm.process_event(OperatorCancel{}); }
 void Changer::abort(const std::string& reason) { engine_->fsm.process_event(Abort{reason}); }
-void Changer::clear_fault(int spindle_tool) {
-  engine_->fsm.process_event(ClearFault{spindle_tool});
+void Changer::clear_fault(int spindle_tool, std::optional<bool> pocket_holds_tool) {
+  engine_->fsm.process_event(ClearFault{spindle_tool, pocket_holds_tool});
 }
 
 namespace {
@@ -136,6 +143,9 @@ Status Changer::status() const {
 }
 
 const ToolState& Changer::tools() const { return engine_->context.tools; }
+const std::optional<InProgress>& Changer::cut_off() const {
+  return engine_->context.tools.in_progress;
+}
 
 std::string Changer::dot() { return machine::dot_of<machine::Machine_>("fixed_atc_probe"); }
 

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "config.hpp"
+#include "geometry.hpp"
 #include "ports.hpp"
 #include "status.hpp"
 #include "tool_state.hpp"
@@ -27,6 +28,11 @@ class Changer {
 
   void ready();
   void not_ready();
+  /// The running machine's soft limits: every move is checked against them
+  /// and the rack keep-out before it is published.
+  void soft_limits(std::optional<SoftLimits> limits);
+  /// Planning only: publish every move, safe or not, so that a plan shows all.
+  void plan_only();
   /// Whether task could run the executor over MDI now; `why_busy` says why not.
   void task_availability(std::optional<std::string> why_busy);
   /// The spindle started (false) or stopped (true) turning.
@@ -41,7 +47,11 @@ class Changer {
   void operator_continue();
   void operator_cancel();
   void abort(const std::string& reason);
-  void clear_fault(int spindle_tool);
+  /// The operator's confirmation after a fault: what the spindle holds and,
+  /// if a sequence was cut off at a pocket, whether that pocket holds its tool.
+  void clear_fault(int spindle_tool, std::optional<bool> pocket_holds_tool = std::nullopt);
+  /// What was under way when the changer last stopped or faulted, if anything.
+  const std::optional<InProgress>& cut_off() const;
 
   /// Computed from the machine's flags on each call.
   Status status() const;

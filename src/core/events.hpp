@@ -1,5 +1,6 @@
 #pragma once
 
+#include <optional>
 #include <string>
 
 namespace fatc {
@@ -49,9 +50,16 @@ struct Abort {
 struct InternalError {
   std::string reason;
 };
-/// The operator checked the spindle and says what it holds.
+/// A step the changer was about to publish breaks the rack keep-out or the
+/// machine's soft limits: it was not published.
+struct UnsafeStep {
+  std::string reason;
+};
+/// The operator checked the spindle and says what it holds, and, when a
+/// sequence was cut off at a pocket, whether that pocket holds its tool.
 struct ClearFault {
   int spindle_tool = 0;
+  std::optional<bool> pocket_holds_tool;
 };
 
 }  // namespace fatc

@@ -53,10 +53,44 @@ std::string format(const char* pattern, double value) {
 
 PocketWaypoints pocket_waypoints(const Config& config, int tool) {
   const Point pocket = config.pockets.at(tool);
-  return {pocket,
-          {pocket.x + config.pocket_side_offset.x, pocket.y + config.pocket_side_offset.y, pocket.z},
-          {pocket.x, pocket.y, pocket.z + config.pocket_above_chuck_offset_z},
-          {pocket.x, pocket.y, pocket.z + config.pocket_above_clearance_offset_z}};
+  return {
+      pocket,
+      {pocket.x + config.pocket_side_offset.x, pocket.y + config.pocket_side_offset.y, pocket.z},
+      {pocket.x, pocket.y, pocket.z + config.pocket_above_chuck_offset_z},
+      {pocket.x, pocket.y, pocket.z + config.pocket_above_clearance_offset_z}};
+}
+
+std::vector<std::string> check_move(const Config& config, const Point& from, unsigned known,
+                                    const Step& step, const std::optional<SoftLimits>& limits) {
+  std::vector<std::string> problems;
+  if (!is_motion(step.kind)) return problems;
+  Point target = from;
+  if (step.axes & axis_x) target.x = step.target.x;
+  if (step.axes & axis_y) target.y = step.target.y;
+  if (step.axes & axis_z) target.z = step.target.z;
+  if (limits) {
+    const char* names[] = {"X", "Y", "Z"};
+    const double values[] = {target.x, target.y, target.z};
+    const AxisLimits axes[] = {limits->x, limits->y, limits->z};
+    for (int axis = 0; axis < 3; ++axis) {
+      if (!(step.axes & (1u << axis))) continue;
+      if (values[axis] < axes[axis].min - 1e-9 || values[axis] > axes[axis].max + 1e-9) {
+        problems.push_back(std::string(names[axis]) + format("=%.3f", values[axis]) +
+                           " is outside the soft limits " + format("%.3f", axes[axis].min) +
+                           " .. " + format("%.3f", axes[axis].max));
+      }
+    }
+  }
+  // The keep-out needs the start of the move: only once every axis is known.
+  if (known == axis_xyz) {
+    for (const auto& [tool, pocket] : config.pockets) {
+      if (!passes_through(from, target, column_of(config, pocket))) continue;
+      if (tool == step.pocket && step.approach) continue;
+      problems.push_back("passes through the rack at pocket " + std::to_string(tool) +
+                         (tool == step.pocket ? " outside its approach" : ""));
+    }
+  }
+  return problems;
 }
 
 std::vector<Violation> check_steps(const Config& config, const std::vector<Step>& steps,
@@ -67,34 +101,12 @@ std::vector<Violation> check_steps(const Config& config, const std::vector<Step>
   for (std::size_t i = 0; i < steps.size(); ++i) {
     const Step& step = steps[i];
     if (!is_motion(step.kind)) continue;
-    Point target = position;
-    if (step.axes & axis_x) target.x = step.target.x;
-    if (step.axes & axis_y) target.y = step.target.y;
-    if (step.axes & axis_z) target.z = step.target.z;
-
-    if (limits) {
-      const char* names[] = {"X", "Y", "Z"};
-      const double values[] = {target.x, target.y, target.z};
-      const AxisLimits axes[] = {limits->x, limits->y, limits->z};
-      for (int axis = 0; axis < 3; ++axis) {
-        if (!(step.axes & (1u << axis))) continue;
-        if (values[axis] < axes[axis].min - 1e-9 || values[axis] > axes[axis].max + 1e-9) {
-          violations.push_back({i, std::string(names[axis]) + format("=%.3f", values[axis]) +
-                                       " is outside the soft limits " +
-                                       format("%.3f", axes[axis].min) + " .. " +
-                                       format("%.3f", axes[axis].max)});
-        }
-      }
+    for (auto& what : check_move(config, position, known, step, limits)) {
+      violations.push_back({i, std::move(what)});
     }
-    if (known == axis_xyz) {
-      for (const auto& [tool, pocket] : config.pockets) {
-        if (!passes_through(position, target, column_of(config, pocket))) continue;
-        if (tool == step.pocket && step.approach) continue;
-        violations.push_back({i, "passes through the rack at pocket " + std::to_string(tool) +
-                                     (tool == step.pocket ? " outside its approach" : "")});
-      }
-    }
-    position = target;
+    if (step.axes & axis_x) position.x = step.target.x;
+    if (step.axes & axis_y) position.y = step.target.y;
+    if (step.axes & axis_z) position.z = step.target.z;
     known |= step.axes;
   }
   return violations;

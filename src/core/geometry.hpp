@@ -39,6 +39,11 @@ struct Violation {
 /// Config::keepout_margin(), up to its above_clearance height): only the
 /// approach moves of the pocket being served may enter that pocket's column,
 /// and no move may enter any other.
+/// The problems of one move from `from` (of which the axes `known` are
+/// known), against the same rules; empty when it is safe.
+std::vector<std::string> check_move(const Config& config, const Point& from, unsigned known,
+                                    const Step& step, const std::optional<SoftLimits>& limits);
+
 std::vector<Violation> check_steps(const Config& config, const std::vector<Step>& steps,
                                    const std::optional<SoftLimits>& limits);
 

@@ -60,9 +60,10 @@ void Simulator::tell(MessageKind kind, const std::string& text) {
   records.push_back(record);
 }
 
-void Simulator::save(const ToolState&) {
+void Simulator::save(const ToolState& state) {
   Record record;
   record.kind = Record::Kind::save;
+  record.saved = state;
   records.push_back(record);
   ++saves;
 }
@@ -147,6 +148,7 @@ Simulator plan_change(const Config& config, int from, int to, double sensor_z) {
   Simulator sim;
   sim.sensor_z = sensor_z;
   Changer changer(config, sim, with_in_spindle(config, from));
+  changer.plan_only();
   changer.ready();
   changer.tool_change(to);
   run_with_operator(sim, changer);
@@ -159,6 +161,7 @@ Simulator plan_load(const Config& config, int tool, int from, double sensor_z) {
   ToolState tools = with_in_spindle(config, from);
   if (from != tool) tools.in_pocket.erase(tool);
   Changer changer(config, sim, tools);
+  changer.plan_only();
   changer.ready();
   changer.load(tool);
   run_with_operator(sim, changer);
@@ -168,6 +171,7 @@ Simulator plan_load(const Config& config, int tool, int from, double sensor_z) {
 Simulator plan_unload(const Config& config, int tool, int from) {
   Simulator sim;
   Changer changer(config, sim, with_in_spindle(config, from));
+  changer.plan_only();
   changer.ready();
   changer.unload(tool);
   run_with_operator(sim, changer);

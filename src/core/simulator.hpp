@@ -16,6 +16,7 @@ struct Record {
   double seconds = 0.0;
   MessageKind message_kind = MessageKind::info;
   std::string text;
+  ToolState saved;  ///< for a save
 };
 
 std::string describe(const Record& record);

@@ -10,7 +10,10 @@
 namespace fatc::linuxcnc {
 
 Component::Component(HalPins* pins, const Config& config, std::string state_path, NmlLink* nml)
-    : pins_(pins), nml_(nml), state_path_(std::move(state_path)) {
+    : pins_(pins),
+      nml_(nml),
+      state_path_(std::move(state_path)),
+      status_file_(state_path_ + ".status") {
   *pins_->units_inch = config.units == Units::inch;
   *pins_->step_ready = 0;
   *pins_->chuck = 0;
@@ -28,7 +31,9 @@ void Component::poll(Clock::time_point now, std::optional<bool> interpreter_idle
     changer_->timer_elapsed();
   }
   start_executor_if_needed();
+  sync_linuxcnc_tool();
   write_pins();
+  status_file_.write(changer_->status(), changer_->cut_off());
 }
 
 void Component::read_machine(std::optional<bool> interpreter_idle) {
@@ -98,7 +103,27 @@ void Component::read_operator() {
     }
     changer_->operator_cancel();
   }
-  if (clear_.rose(*pins_->clear_fault)) changer_->clear_fault(*pins_->linuxcnc_tool);
+  if (clear_.rose(*pins_->clear_fault)) {
+    const int tool = *pins_->confirm_tool >= 0 ? *pins_->confirm_tool : *pins_->linuxcnc_tool;
+    const int pocket = *pins_->confirm_pocket;
+    changer_->clear_fault(tool, pocket < 0 ? std::nullopt : std::optional<bool>(pocket == 1));
+    sync_wanted_ = true;
+  }
+}
+
+void Component::sync_linuxcnc_tool() {
+  // LinuxCNC starts with an empty spindle, and an operator's confirmation
+  // changes what the spindle holds: tell LinuxCNC what the changer knows,
+  // once the machine is idle. Nothing is sent while the changer is unsure.
+  if (!sync_wanted_ || !task_free_ || changer_->status().phase != Phase::idle) return;
+  sync_wanted_ = false;
+  const int tool = changer_->tools().spindle;
+  if (*pins_->linuxcnc_tool == tool) return;
+  nml_->run_mdi("M61 Q" + std::to_string(tool));
+  tell(MessageKind::info,
+       "told LinuxCNC the spindle holds " +
+           (tool == 0 ? std::string("nothing") : "tool " + std::to_string(tool)) +
+           ", as the changer recorded it");
 }
 
 void Component::abort(const std::string& reason) {
@@ -146,6 +171,9 @@ void Component::write_pins() {
   *pins_->waiting_for_operator =
       status.awaits_operator() && (!link_.attached() || status.holds_program);
   *pins_->can_cancel = *pins_->waiting_for_operator || (status.probe_cancellable && nml_);
+  const auto& cut_off = changer_->cut_off();
+  *pins_->cut_off_pocket = cut_off && status.phase == Phase::fault ? cut_off->pocket : 0;
+  *pins_->heartbeat = !*pins_->heartbeat;
 }
 
 void Component::set_chuck_open(bool open) { *pins_->chuck = open; }
@@ -161,6 +189,7 @@ void Component::tell(MessageKind kind, const std::string& text) {
                                                   : "info";
   std::cerr << "fixed_atc_probe: " << tag << ": " << text << std::endl;
   if (nml_) nml_->tell(kind, text);
+  status_file_.said(kind, text);
 }
 
 void Component::save(const ToolState& state) { io::save_state_file(state_path_, state); }

@@ -7,6 +7,7 @@
 #include "core/changer.hpp"
 #include "core/executor_link.hpp"
 #include "core/ports.hpp"
+#include "io/status_file.hpp"
 
 namespace fatc::linuxcnc {
 
@@ -52,6 +53,7 @@ class Component : public Ports {
   void read_operator();
   void abort(const std::string& reason);
   void start_executor_if_needed();
+  void sync_linuxcnc_tool();
   void write_pins();
 
   HalPins* pins_;
@@ -64,6 +66,8 @@ class Component : public Ports {
   std::optional<bool> machine_ready_;
   std::optional<bool> spindle_stopped_;
   bool task_free_ = false;
+  bool sync_wanted_ = true;  ///< LinuxCNC's tool in spindle must be brought in line
+  io::StatusFile status_file_;
   Edge abort_, clear_, load_, unload_, continue_, cancel_;
 };
 

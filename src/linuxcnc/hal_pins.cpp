@@ -40,6 +40,13 @@ HalPins* create_pins(const std::string& name, int& id) {
   make(id, HAL_IN, &p->machine_on, n, "machine-on");
   make(id, HAL_IN, &p->all_homed, n, "all-homed");
   make(id, HAL_IN, &p->clear_fault, n, "clear-fault");
+  make(id, HAL_IN, &p->confirm_tool, n, "confirm-tool");
+  make(id, HAL_IN, &p->confirm_pocket, n, "confirm-pocket");
+  make(id, HAL_OUT, &p->cut_off_pocket, n, "cut-off-pocket");
+  make(id, HAL_OUT, &p->heartbeat, n, "heartbeat");
+  // Until a GUI says otherwise: the spindle holds LinuxCNC's tool, the pocket is not asked.
+  *p->confirm_tool = -1;
+  *p->confirm_pocket = -1;
   make(id, HAL_IN, &p->linuxcnc_tool, n, "linuxcnc-tool");
   // What the changer is doing.
   make(id, HAL_OUT, &p->state, n, "state");

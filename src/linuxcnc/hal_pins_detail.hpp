@@ -17,7 +17,11 @@ struct HalPins {
   hal_bit_t* spindle_stopped;  ///< in: the spindle stands still
   hal_bit_t* machine_on;       ///< in: machine on and out of estop
   hal_bit_t* all_homed;        ///< in: every joint homed
-  hal_bit_t* clear_fault;  ///< in: rising edge clears a fault; linuxcnc-tool is then in the spindle
+  hal_bit_t* clear_fault;    ///< in: rising edge clears a fault with the operator's confirmation
+  hal_s32_t* confirm_tool;   ///< in: the spindle holds this tool (0 empty); -1: LinuxCNC's tool
+  hal_s32_t* confirm_pocket; ///< in: the cut-off pocket holds its tool: 1 yes, 0 no, -1 not said
+  hal_s32_t* cut_off_pocket; ///< out: the pocket a cut-off sequence involved, 0 none
+  hal_bit_t* heartbeat;      ///< out: toggles every poll; gates the chuck in HAL
   hal_s32_t* linuxcnc_tool;  ///< in: iocontrol.0.tool-number
   hal_s32_t* state;  ///< out: 0 not ready, 1 idle, 2 changing, 3 loading, 4 unloading, 5 fault
   hal_bit_t* ready;  ///< out: idle and able to change tools

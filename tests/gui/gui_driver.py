@@ -161,7 +161,7 @@ def answer(name, next_prompt=None):
 
 
 def set_tool_number(number):
-    panel_plug().find("spin button").set_value(float(number))
+    panel_plug().find("spin button", "Tool number").set_value(float(number))
     wait_for(lambda: hal.get_value("fatc-panel.tool-number") == number, 10, "the tool number")
     note("tool number %d" % number)
 
@@ -189,7 +189,7 @@ def panel_region(margin=6):
         for child in node.children():
             if child.role() in ("push button", "label", "spin button"):
                 x, y, w, h = child.extents()
-                if w > 0 and h > 0:
+                if w > 0 and h > 0 and x >= 0 and y >= 0:  # hidden widgets lie far off
                     boxes.append((x, y, x + w, y + h))
             walk(child)
     walk(panel_plug())

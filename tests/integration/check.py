@@ -112,6 +112,16 @@ def distinct(samples, key):
     return values
 
 
+def chuck_gate_follows(samples):
+    """While the component runs, hal/fixed_atc_probe.hal's gate passes its chuck request."""
+    # The gate runs in the servo thread: one sample may still show the last period.
+    for s, later in zip(samples, samples[1:]):
+        if all(x["fatc-chuck-guard.chuck"] != x["fixed_atc_probe.chuck"] for x in (s, later)):
+            fail("fatc-chuck (%s) differs from the component's chuck (%s) at t=%.3f" %
+                 (s["fatc-chuck-guard.chuck"], s["fixed_atc_probe.chuck"], s["t"]))
+    ok("the chuck gate passed every chuck request of the live component")
+
+
 def chuck_only_at_pockets(samples, rack):
     for s in samples:
         if not s["fixed_atc_probe.chuck"]:
@@ -159,6 +169,7 @@ def check_changes(r, rack):
         fail("the chuck opened %d times, expected %d" % (openings, expected))
     ok("the chuck opened %d times: nothing moved for the repeated T3" % openings)
     chuck_only_at_pockets(r["samples"], rack)
+    chuck_gate_follows(r["samples"])
     handshake_complete(r)
 
 
@@ -183,6 +194,13 @@ def check_modal(r, rack):
     ok("the program's next move was relative and in inches: %s" % snap["pos"])
     if r["samples"][-1]["tool_in_spindle"] != 2:
         fail("tool 2 not in the spindle")
+    busy = [s for s in r["samples"] if s["fixed_atc_probe.busy"]]
+    if any(s["iocontrol.0.coolant-flood"] for s in busy):
+        fail("flood coolant was on while the changer moved")
+    after = [s for s in r["samples"] if busy and s["t"] > busy[-1]["t"]]
+    if not any(s["iocontrol.0.coolant-flood"] for s in after):
+        fail("flood coolant (M8 before M6) was not restored after the change")
+    ok("flood coolant off during the change (%d samples), restored after it" % len(busy))
 
 
 def check_feed_hold(r, rack):
@@ -466,6 +484,139 @@ def check_refuse_when_off(r, rack):
     if r["samples"][-1]["fixed_atc_probe.state"] != 1:
         fail("the changer is not idle after the machine came back on")
     ok("idle again once the machine is back on and homed")
+
+
+CUT_OFF = {"sequence": "M6 T3", "step": "returning tool 1 to pocket 1", "pocket": 1}
+
+
+def first_after(samples, t, condition):
+    return next((s for s in samples if s["t"] >= t and condition(s)), None)
+
+
+def check_kill_mid_change(r, rack):
+    if "killed_at" not in r:
+        fail("the component was not killed (the chuck never opened a 3rd time?): %s" % r["messages"])
+    kill, at = r["kill_sample"], r["killed_at"]
+    before = [s for s in r["samples"] if s["t"] < kill["t"]]
+    after = [s for s in r["samples"] if s["t"] >= at]
+    # The 3rd opening: T1's retrieval opens twice (flush, open), its return once.
+    if kill["tool_in_spindle"] != 1 or not near(kill["pos"], rack.pocket(1)):
+        fail("the kill was not at the return of tool 1: LinuxCNC T%d at %s" % (kill["tool_in_spindle"], kill["pos"]))
+    ok("killed pid %d at t=%.3f with the chuck open at pocket 1, returning tool 1 (in M6 T3)" %
+       (r["killed_pid"], at))
+    chuck_gate_follows(before)
+    closed = first_after(r["samples"], at, lambda s: not s["fatc-chuck-guard.chuck"])
+    if closed is None or closed["t"] - at > 0.6:
+        fail("the chuck guard did not close the chuck within 0.6 s of the kill (%s)" %
+             ("never" if closed is None else "%.3f s" % (closed["t"] - at)))
+    dead = first_after(r["samples"], at, lambda s: not s["fatc-chuck-guard.alive"])
+    if dead is None or dead["t"] - at > 0.6:
+        fail("fatc-chuck-guard.alive did not fall within 0.6 s of the kill")
+    reopened = [s for s in r["samples"] if s["t"] >= closed["t"] and s["fatc-chuck-guard.chuck"]]
+    if reopened:
+        fail("the chuck opened again at t=%.3f after the guard closed it" % reopened[0]["t"])
+    stuck = all(s["fixed_atc_probe.chuck"] for s in after)
+    ok("the chuck guard closed the chuck %.3f s after the kill, alive fell after %.3f s "
+       "(the dead component's chuck request stays %s)" % (closed["t"] - at, dead["t"] - at,
+                                                          "true" if stuck else "mixed"))
+    stopped = first_after(r["samples"], at, lambda s: s["interp"] == 1)
+    if stopped is None or stopped["t"] - at > 3.0:
+        fail("the program did not stop within 3 s of the kill (%s): %s" %
+             ("never" if stopped is None else "%.3f s" % (stopped["t"] - at), r["messages"]))
+    said(r, "stopped answering")
+    if any("STEP_TIMEOUT" in m for m in r["messages"]):
+        fail("the executor waited for STEP_TIMEOUT instead: %s" % r["messages"])
+    ok("the program stopped %.3f s after the kill" % (stopped["t"] - at))
+    # The kill comes while the chuck is open at the pocket, where the machine
+    # stands: the abort has no move to stop, so nothing may move after it.
+    for s in after:
+        if not near(s["pos"], kill["pos"]):
+            fail("the machine moved to %s at t=%.3f after the kill" % (s["pos"], s["t"]))
+    ok("nothing moved after the kill (%d samples at %s)" % (len(after), kill["pos"]))
+    last = r["samples"][-1]
+    if last["tool_in_spindle"] != 1:
+        fail("LinuxCNC should still say T1 (nobody told it otherwise), says T%d" % last["tool_in_spindle"])
+    progress = r["snapshots"]["after_kill"]["state_file"].get("in_progress")
+    if progress != CUT_OFF:
+        fail("the state file does not say what was cut off: %s" % progress)
+    ok("LinuxCNC still says T1; the state file says in_progress %s" % progress)
+
+
+def program_samples(r, name):
+    run = r["programs"][name]
+    return [s for s in r["samples"] if run["began"] <= s["t"] <= run["ended"]]
+
+
+def check_restart_after_kill(r, rack):
+    restart = r.get("restart")
+    if not restart:
+        fail("the component was not restarted: %s" % r["messages"])
+    dead, new = restart["dead"], restart["new"]
+    if restart["registered_after_unload"]:
+        ok("halcmd unloadusr/unload left the dead %s (pid %d) registered: they only SIGTERM its pid" %
+           (dead["type"], dead["pid"]))
+    if restart["registered_after_hal_exit"]:
+        fail("the dead component is still registered after hal_exit(%d)" % dead["id"])
+    if not new or new["pid"] == dead["pid"] or restart["pid_new"] != [new["pid"]] or new["state"] != "ready":
+        fail("the component did not come back: %s, processes %s" % (new, restart["pid_new"]))
+    ok("restarted in %.2f s: pid %d (was %d), %s" % (restart["load_seconds"], new["pid"], dead["pid"],
+                                                   restart["commands"][0]))
+    linked = {p: sig for p, sig in restart["links_before"].items() if sig}
+    lost = {p: (sig, restart["links_after"].get(p)) for p, sig in linked.items()
+            if restart["links_after"].get(p) != sig}
+    if lost or set(restart["links_after"]) != set(restart["links_before"]):
+        fail("the restarted component's pins are not wired as before: %s" % lost)
+    ok("all %d pins are back on the signals they were on before the kill" % len(linked))
+
+    before = r["snapshots"]["before_restart"]
+    if before["tool_in_spindle"] != 1:
+        fail("before the restart LinuxCNC should say T1, says T%d" % before["tool_in_spindle"])
+    faulted = r["snapshots"]["faulted"]
+    pins, status = faulted["pins"], faulted["status_file"]
+    if not pins["fixed_atc_probe.fault"] or pins["fixed_atc_probe.cut-off-pocket"] != 1:
+        fail("after the restart: fault=%s cut-off-pocket=%s" %
+             (pins["fixed_atc_probe.fault"], pins["fixed_atc_probe.cut-off-pocket"]))
+    if status.get("phase") != "fault" or status.get("cut_off") != CUT_OFF:
+        fail("the status file says %s, cut_off %s" % (status.get("phase"), status.get("cut_off")))
+    said(r, "cut off during M6 T3, returning tool 1 to pocket 1; pocket 1 may or may not hold its tool")
+    ok("came up faulted: cut-off-pocket 1, status file cut_off %s" % status["cut_off"])
+    if not pins["fatc-chuck-guard.alive"] or pins["fatc-chuck-guard.chuck"]:
+        fail("after the restart the guard should be alive with the chuck closed: %s" % pins)
+    ok("the chuck guard is alive again, the chuck closed")
+
+    refused = program_samples(r, "refused")
+    if not any("M6 T3 refused" in m and "fault" in m for m in r["messages"]):
+        fail("T3 M6 was not refused while faulted: %s" % r["messages"])
+    ok("T3 M6 refused while faulted: %s" % [m for m in r["messages"] if "M6 T3 refused" in m][0])
+    for s in refused:
+        if not near(s["pos"], refused[0]["pos"]) or s["fatc-chuck-guard.chuck"]:
+            fail("something moved during the refused program: %s, chuck %s" % (s["pos"], s["fatc-chuck-guard.chuck"]))
+    if r["snapshots"]["after_refusal"]["tool_in_spindle"] != 1:
+        fail("the refusal changed LinuxCNC's tool")
+    ok("nothing moved during the refused program (%d samples); LinuxCNC still says T1" % len(refused))
+
+    said(r, "told LinuxCNC the spindle holds nothing")
+    confirmed = r["snapshots"]["confirmed"]
+    state = confirmed["state_file"]
+    if confirmed["pins"]["fixed_atc_probe.state"] != 1 or confirmed["tool_in_spindle"] != 0:
+        fail("after the confirm: state %s, LinuxCNC T%s" % (confirmed["pins"]["fixed_atc_probe.state"],
+                                                          confirmed["tool_in_spindle"]))
+    if state.get("spindle") != 0 or 1 not in state.get("in_pocket", []) or "in_progress" in state or \
+            state.get("uncertain"):
+        fail("the state file after the confirm: %s" % state)
+    ok("confirmed (spindle empty, pocket 1 holds its tool): idle %.2f s after Clear fault, "
+       "LinuxCNC's tool 1 -> 0 by the component's M61, state file spindle 0, in_pocket %s" %
+       (r["idle_after_confirm_at"] - r["confirmed_at"], state["in_pocket"]))
+
+    tools = distinct(r["samples"], "tool_in_spindle")
+    if tools != [1, 0, 3]:
+        fail("LinuxCNC's tool in spindle went %s, expected 1, 0, 3" % tools)
+    change = program_samples(r, "after_confirm")
+    if any(s["fixed_atc_probe.fault"] for s in change):
+        fail("fixed_atc_probe faulted during T3 M6 after the confirm: %s" % r["messages"])
+    visits_in_order(change, rack.retrieve_waypoints(3))
+    spindle_holds(r, 3, "after T3 M6")
+    ok("T3 M6 ran after the confirm: LinuxCNC and the changer say T3")
 
 
 def main():

@@ -15,7 +15,7 @@ PINS = ["fixed_atc_probe.chuck", "fixed_atc_probe.waiting-for-operator", "fixed_
         "fixed_atc_probe.busy", "fixed_atc_probe.tool-in-spindle", "fixed_atc_probe.step-ready",
         "fixed_atc_probe.step-request", "iocontrol.0.tool-prepare", "iocontrol.0.tool-prepared",
         "iocontrol.0.tool-change", "iocontrol.0.tool-changed", "iocontrol.0.tool-number",
-        "motion.probe-input", "spindle.0.on"]
+        "motion.probe-input", "spindle.0.on", "iocontrol.0.coolant-flood", "fatc-chuck-guard.chuck"]
 
 stat = linuxcnc.stat()
 command = linuxcnc.command()

@@ -1,9 +1,10 @@
+#include "core/changer.hpp"
+
 #include <gtest/gtest.h>
 
 #include <functional>
 #include <memory>
 
-#include "core/changer.hpp"
 #include "core/simulator.hpp"
 #include "test_config.hpp"
 
@@ -16,7 +17,8 @@ using Lines = std::vector<std::string>;
 struct Rig {
   explicit Rig(int spindle = 0, std::set<int> out_of_machine = {})
       : Rig(test::valid_config(), spindle, std::move(out_of_machine)) {}
-  Rig(Config with, int spindle, std::set<int> out_of_machine = {}, std::map<int, double> lengths = {})
+  Rig(Config with, int spindle, std::set<int> out_of_machine = {},
+      std::map<int, double> lengths = {})
       : config(std::move(with)) {
     ToolState tools = ToolState::fresh(config);
     tools.lengths = std::move(lengths);
@@ -37,18 +39,23 @@ struct Rig {
       switch (r.kind) {
         case Record::Kind::step:
           if (r.step.kind == StepKind::done || r.step.kind == StepKind::set_spindle_tool) {
-            out.push_back(std::string(step_kind_name(r.step.kind)) + " T" + std::to_string(r.step.tool));
+            out.push_back(std::string(step_kind_name(r.step.kind)) + " T" +
+                          std::to_string(r.step.tool));
           } else {
             out.push_back(std::string(step_kind_name(r.step.kind)) + " " + r.step.label);
           }
           break;
-        case Record::Kind::chuck: out.push_back(r.chuck_open ? "chuck open" : "chuck close"); break;
+        case Record::Kind::chuck:
+          out.push_back(r.chuck_open ? "chuck open" : "chuck close");
+          break;
         case Record::Kind::dwell:
           std::snprintf(buffer, sizeof buffer, "dwell %.2f", r.seconds);
           out.push_back(buffer);
           break;
-        case Record::Kind::message: break;
-        case Record::Kind::save: break;
+        case Record::Kind::message:
+          break;
+        case Record::Kind::save:
+          break;
       }
     }
     return out;
@@ -79,11 +86,12 @@ Lines to_safe() { return {"rapid safe Z", "rapid safe XY"}; }
 
 Lines return_to_pocket(int t) {
   const std::string p = std::to_string(t);
-  return concat({to_safe(),
-                 {"rapid over the side of pocket " + p, "rapid side of pocket " + p,
-                  "feed pocket " + p, "chuck open", "dwell 0.50", "rapid above-chuck of pocket " + p,
-                  "chuck close", "rapid above-clearance of pocket " + p},
-                 to_safe()});
+  return concat(
+      {to_safe(),
+       {"rapid over the side of pocket " + p, "rapid side of pocket " + p, "feed pocket " + p,
+        "chuck open", "dwell 0.50", "rapid above-chuck of pocket " + p, "chuck close",
+        "rapid above-clearance of pocket " + p},
+       to_safe()});
 }
 
 /// Retrieval after a return, which already ended at safe.
@@ -144,11 +152,36 @@ TEST(Change, shouldOnlyReturnForT0) {
   EXPECT_EQ(rig.changer->tools().spindle, 0);
 }
 
-TEST(Change, shouldSaveTheToolStateWhenTheSpindleEmptiesAndWhenItFills) {
+TEST(Change, shouldSaveWhatIsUnderWayBeforeItMovesAndWhereTheToolsAreAfterEachChange) {
   Rig rig(2);
   rig.changer->tool_change(5);
   rig.sim.run(*rig.changer);
-  EXPECT_EQ(rig.sim.saves, 2);
+  // Each save, in order: what runs, what it does, the spindle, and whether
+  // the pockets of the two tools hold them; then the record before it.
+  Lines saves;
+  std::size_t first_move = 0;
+  for (std::size_t i = 0; i < rig.sim.records.size(); ++i) {
+    const Record& r = rig.sim.records[i];
+    if (r.kind == Record::Kind::step && first_move == 0) first_move = i;
+    if (r.kind != Record::Kind::save) continue;
+    const ToolState& t = r.saved;
+    std::string line = t.in_progress ? t.in_progress->sequence + ": " + t.in_progress->step : "-";
+    line += " | spindle " + std::to_string(t.spindle) + " | pocket 2 " +
+            (t.in_pocket.count(2) ? "full" : "empty") + ", pocket 5 " +
+            (t.in_pocket.count(5) ? "full" : "empty");
+    saves.push_back(line);
+    if (saves.size() == 2) {
+      EXPECT_EQ(first_move, 0u) << "the return was recorded after the machine moved";
+    }
+  }
+  EXPECT_EQ(
+      saves,
+      (Lines{"M6 T5: starting | spindle 2 | pocket 2 empty, pocket 5 full",
+             "M6 T5: returning tool 2 to pocket 2 | spindle 2 | pocket 2 empty, pocket 5 full",
+             "M6 T5: returning tool 2 to pocket 2 | spindle 0 | pocket 2 full, pocket 5 full",
+             "M6 T5: fetching tool 5 from pocket 5 | spindle 0 | pocket 2 full, pocket 5 full",
+             "M6 T5: fetching tool 5 from pocket 5 | spindle 5 | pocket 2 full, pocket 5 empty",
+             "- | spindle 5 | pocket 2 full, pocket 5 empty"}));
 }
 
 TEST(Change, shouldOpenTheChuckOnlyAtAPocketOrAboveItsChuck) {
@@ -170,7 +203,8 @@ TEST(Change, shouldMoveSlowlyOnlyIntoAndOutOfThePocket) {
   rig.changer->tool_change(6);
   rig.sim.run(*rig.changer);
   for (const auto& step : rig.sim.motion_steps()) {
-    const bool slow = step.label.rfind("pocket ", 0) == 0 || step.label.rfind("side of pocket", 0) == 0;
+    const bool slow =
+        step.label.rfind("pocket ", 0) == 0 || step.label.rfind("side of pocket", 0) == 0;
     if (step.kind == StepKind::feed) {
       EXPECT_TRUE(slow) << step.label;
       EXPECT_EQ(step.feed, rig.config.pocket_feed);
@@ -195,7 +229,8 @@ TEST_P(RefusedChange, shouldFailTheExecutorWithAMessageAndMoveNothing) {
   rig.changer->tool_change(GetParam().tool);
   ASSERT_EQ(rig.sim.steps().size(), 1u);
   EXPECT_EQ(rig.sim.steps()[0].kind, StepKind::fail);
-  EXPECT_NE(rig.sim.steps()[0].label.find(GetParam().why), std::string::npos) << rig.sim.steps()[0].label;
+  EXPECT_NE(rig.sim.steps()[0].label.find(GetParam().why), std::string::npos)
+      << rig.sim.steps()[0].label;
   ASSERT_EQ(rig.sim.messages(MessageKind::error).size(), 1u);
   EXPECT_NE(rig.sim.messages(MessageKind::error)[0].find(GetParam().why), std::string::npos);
   EXPECT_EQ(rig.changer->status().phase, Phase::idle);
@@ -277,13 +312,13 @@ TEST(Load, shouldLoadProbeAndPutAwayWithAnEmptySpindle) {
   const std::size_t jogged = rig.sim.records.size();
   rig.changer->operator_continue();
   rig.sim.run(*rig.changer);
-  EXPECT_EQ(rig.lines(jogged),
-            concat({{"probe touch-off sensor (seek)", "feed back off the sensor",
-                     "probe touch-off sensor (latch)", "set-length tool table",
-                     "rapid retract from the sensor"},
-                    return_to_pocket(4),
-                    {"set-tool T0", "done T0"}}));
-  EXPECT_DOUBLE_EQ(rig.changer->tools().lengths.at(4), kSensorZ - rig.config.probe_length_compensation_offset);
+  EXPECT_EQ(rig.lines(jogged), concat({{"probe touch-off sensor (seek)", "feed back off the sensor",
+                                        "probe touch-off sensor (latch)", "set-length tool table",
+                                        "rapid retract from the sensor"},
+                                       return_to_pocket(4),
+                                       {"set-tool T0", "done T0"}}));
+  EXPECT_DOUBLE_EQ(rig.changer->tools().lengths.at(4),
+                   kSensorZ - rig.config.probe_length_compensation_offset);
   EXPECT_EQ(rig.changer->tools().spindle, 0);
   EXPECT_EQ(rig.changer->tools().in_pocket.count(4), 1u);
   EXPECT_EQ(rig.changer->status().phase, Phase::idle);
@@ -295,7 +330,8 @@ TEST(Load, shouldWriteTheLengthItMeasuredIntoTheToolTableStep) {
   rig.changer->load(4);
   for (int i = 0; i < 3; ++i) {
     rig.sim.run(*rig.changer);
-    if (rig.changer->status().awaiting == Awaiting::operator_choice) rig.changer->operator_continue();
+    if (rig.changer->status().awaiting == Awaiting::operator_choice)
+      rig.changer->operator_continue();
   }
   for (const auto& step : rig.sim.steps()) {
     if (step.kind != StepKind::set_tool_length) continue;
@@ -331,7 +367,8 @@ TEST(Load, shouldLeaveTheSpindleEmptyWhenCancelledBeforeInsertion) {
   EXPECT_EQ(rig.lines(before), (Lines{"set-tool T0", "done T0"}));
   EXPECT_EQ(rig.changer->tools().spindle, 0);
   EXPECT_TRUE(rig.changer->tools().lengths.empty());
-  EXPECT_NE(rig.sim.messages(MessageKind::info).back().find("the spindle is empty"), std::string::npos);
+  EXPECT_NE(rig.sim.messages(MessageKind::info).back().find("the spindle is empty"),
+            std::string::npos);
 }
 
 TEST(Load, shouldKeepTheToolInTheSpindleUnmeasuredWhenCancelledBeforeProbing) {
@@ -346,7 +383,8 @@ TEST(Load, shouldKeepTheToolInTheSpindleUnmeasuredWhenCancelledBeforeProbing) {
   EXPECT_EQ(rig.lines(before), (Lines{"set-tool T4", "done T4"}));
   EXPECT_EQ(rig.changer->tools().spindle, 4);
   EXPECT_TRUE(rig.changer->tools().lengths.empty());
-  EXPECT_NE(rig.sim.messages(MessageKind::info).back().find("tool 4 is in the spindle"), std::string::npos);
+  EXPECT_NE(rig.sim.messages(MessageKind::info).back().find("tool 4 is in the spindle"),
+            std::string::npos);
 }
 
 TEST(Load, shouldRetractAndWriteNothingWhenTheSensorIsNeverTouched) {
@@ -356,9 +394,11 @@ TEST(Load, shouldRetractAndWriteNothingWhenTheSensorIsNeverTouched) {
   const std::size_t before = rig.sim.records.size();
   rig.changer->operator_continue();
   rig.sim.run(*rig.changer);
-  EXPECT_EQ(rig.lines(before), (Lines{"probe touch-off sensor (seek)", "rapid loading Z", "set-tool T4", "done T4"}));
+  EXPECT_EQ(rig.lines(before),
+            (Lines{"probe touch-off sensor (seek)", "rapid loading Z", "set-tool T4", "done T4"}));
   EXPECT_TRUE(rig.changer->tools().lengths.empty());
-  EXPECT_NE(rig.sim.messages(MessageKind::error).back().find("did not touch the sensor"), std::string::npos);
+  EXPECT_NE(rig.sim.messages(MessageKind::error).back().find("did not touch the sensor"),
+            std::string::npos);
   EXPECT_EQ(rig.changer->status().phase, Phase::idle);
 }
 
@@ -431,7 +471,9 @@ TEST(Unload, shouldReturnTheToolInTheSpindleFirst) {
   Rig rig(1);
   rig.changer->unload(3);
   rig.sim.run(*rig.changer);
-  EXPECT_EQ(rig.lines(), concat({return_to_pocket(1), retrieve_from_safe(3), at_loading(),
+  EXPECT_EQ(rig.lines(), concat({return_to_pocket(1),
+                                 retrieve_from_safe(3),
+                                 at_loading(),
                                  {"set-tool T3", "wait operator"}}));
 }
 
@@ -457,7 +499,8 @@ TEST(Unload, shouldRefuseAToolThatIsNotInTheRack) {
   Rig rig(0, {3});
   rig.changer->unload(3);
   EXPECT_TRUE(rig.sim.steps().empty());
-  EXPECT_EQ(rig.sim.messages(MessageKind::error).at(0), "unload of tool 3 refused: tool 3 is not in the rack");
+  EXPECT_EQ(rig.sim.messages(MessageKind::error).at(0),
+            "unload of tool 3 refused: tool 3 is not in the rack");
 }
 
 // ---------------------------------------------------------------- faults
@@ -525,7 +568,8 @@ TEST(Fault, shouldFaultWhenTheMachineGoesOffDuringASequence) {
   EXPECT_EQ(rig.changer->status().phase, Phase::fault);
   EXPECT_TRUE(rig.changer->tools().uncertain);
   rig.changer->clear_fault(1);
-  EXPECT_EQ(rig.changer->status().phase, Phase::not_ready) << "cleared, but the machine is still off";
+  EXPECT_EQ(rig.changer->status().phase, Phase::not_ready)
+      << "cleared, but the machine is still off";
   rig.changer->ready();
   EXPECT_EQ(rig.changer->status().phase, Phase::idle);
 }
@@ -584,10 +628,10 @@ TEST(Operator, shouldIgnoreContinueWhenNothingWaits) {
 
 TEST(Diagram, shouldNameEveryFlowAndStateOfTheTables) {
   const std::string dot = Changer::dot();
-  for (const char* name : {"ChangeFlow", "LoadFlow", "UnloadFlow", "ReturnLeg<Before>", "RetrieveLeg",
-                           "FlushLeg", "ProbingLeg", "IntoPocket", "GrippingTool", "AwaitingTool",
-                           "Faulted", "MachineNotReady", "HandOutLeg", "HandInLeg", "MeasureLeg",
-                           "AwaitingRemoval", "Stopped"}) {
+  for (const char* name :
+       {"ChangeFlow", "LoadFlow", "UnloadFlow", "ReturnLeg<Before>", "RetrieveLeg", "FlushLeg",
+        "ProbingLeg", "IntoPocket", "GrippingTool", "AwaitingTool", "Faulted", "MachineNotReady",
+        "HandOutLeg", "HandInLeg", "MeasureLeg", "AwaitingRemoval", "Stopped"}) {
     EXPECT_NE(dot.find(name), std::string::npos) << name;
   }
   EXPECT_EQ(dot.rfind("digraph", 0), 0u);
@@ -647,14 +691,15 @@ TEST(ProbeAfterChange, shouldMeasureAndWriteTheRetrievedTool) {
 }
 
 TEST(ProbeAfterChange, shouldPassACheckWithinToleranceAndWriteNothing) {
-  Rig rig(test::valid_config(R"("probe_after_change": "check", "probe_check_tolerance": 0.05)"), 0, {},
-          {{4, 25.04}});
+  Rig rig(test::valid_config(R"("probe_after_change": "check", "probe_check_tolerance": 0.05)"), 0,
+          {}, {{4, 25.04}});
   rig.sim.sensor_z = kSensorZ;
   rig.changer->tool_change(4);
   rig.sim.run(*rig.changer);
   EXPECT_EQ(rig.lines(), concat({retrieve(4), measure_at_sensor(false), {"done T4"}}));
   EXPECT_DOUBLE_EQ(rig.changer->tools().lengths.at(4), 25.04);
-  EXPECT_EQ(rig.sim.messages(MessageKind::info).back(), "tool 4 measures 25.0000 mm, stored 25.0400 mm");
+  EXPECT_EQ(rig.sim.messages(MessageKind::info).back(),
+            "tool 4 measures 25.0000 mm, stored 25.0400 mm");
 }
 
 TEST(ProbeAfterChange, shouldFaultWhenTheCheckedLengthDiffers) {
@@ -700,7 +745,8 @@ TEST(ProbeAfterChange, shouldNotLetCancelStopAProbeInsideAProgram) {
   while (rig.changer->status().awaiting != Awaiting::probe) ASSERT_TRUE(rig.advance_once());
   rig.changer->operator_cancel();
   EXPECT_EQ(rig.changer->status().awaiting, Awaiting::probe);
-  EXPECT_EQ(rig.sim.messages(MessageKind::info).back(), "Cancel: nothing is waiting for the operator");
+  EXPECT_EQ(rig.sim.messages(MessageKind::info).back(),
+            "Cancel: nothing is waiting for the operator");
 }
 
 // ---------------------------------------------------------------- cancel mid-probe (load)
@@ -719,7 +765,9 @@ TEST(Load, shouldRetractAndWriteNothingWhenCancelledMidProbe) {
   EXPECT_EQ(rig.lines(before), (Lines{"rapid loading Z", "set-tool T4", "done T4"}));
   EXPECT_TRUE(rig.changer->tools().lengths.empty());
   EXPECT_EQ(rig.changer->tools().spindle, 4);
-  EXPECT_NE(rig.sim.messages(MessageKind::info).back().find("probe of tool 4 cancelled by the operator; nothing written"),
+  EXPECT_NE(rig.sim.messages(MessageKind::info)
+                .back()
+                .find("probe of tool 4 cancelled by the operator; nothing written"),
             std::string::npos);
 }
 
@@ -759,7 +807,8 @@ TEST(Manual, shouldSwapOneManualToolForAnother) {
   Rig rig(9);
   rig.changer->tool_change(8);
   while (rig.changer->status().phase == Phase::changing) ASSERT_TRUE(rig.advance_once());
-  EXPECT_EQ(rig.lines(), concat({at_loading(), at_loading(), flush(), {"rapid safe Z", "done T8"}}));
+  EXPECT_EQ(rig.lines(),
+            concat({at_loading(), at_loading(), flush(), {"rapid safe Z", "done T8"}}));
   EXPECT_EQ(rig.changer->tools().spindle, 8);
 }
 
@@ -776,8 +825,9 @@ TEST(Manual, shouldMeasureTheManualToolWhenConfigured) {
   rig.sim.sensor_z = kSensorZ;
   rig.changer->tool_change(9);
   while (rig.changer->status().phase == Phase::changing) ASSERT_TRUE(rig.advance_once());
-  EXPECT_EQ(rig.lines(), concat({at_loading(), flush(), {"rapid safe Z"},
-                                 measure_at_sensor(true), {"done T9"}}));
+  EXPECT_EQ(
+      rig.lines(),
+      concat({at_loading(), flush(), {"rapid safe Z"}, measure_at_sensor(true), {"done T9"}}));
   EXPECT_DOUBLE_EQ(rig.changer->tools().lengths.at(9), 25.0);
 }
 
@@ -793,7 +843,8 @@ TEST(Manual, shouldStopTheProgramWithAnEmptySpindleWhenInsertionIsCancelled) {
   EXPECT_EQ(after[0], "set-tool T0") << "LinuxCNC still has tool 2 until it is told";
   EXPECT_EQ(rig.sim.steps().back().kind, StepKind::fail);
   EXPECT_EQ(rig.sim.steps().back().label, "M6 T9 cancelled by the operator; the spindle is empty");
-  EXPECT_EQ(rig.sim.messages(MessageKind::error).back(), "M6 T9 cancelled by the operator; the spindle is empty");
+  EXPECT_EQ(rig.sim.messages(MessageKind::error).back(),
+            "M6 T9 cancelled by the operator; the spindle is empty");
   EXPECT_EQ(rig.changer->status().phase, Phase::idle) << "a cancel is no fault";
   EXPECT_FALSE(rig.changer->tools().uncertain);
   EXPECT_EQ(rig.changer->tools().spindle, 0);
@@ -806,7 +857,8 @@ TEST(Manual, shouldStopTheProgramKeepingTheToolWhenRemovalIsCancelled) {
   rig.changer->operator_cancel();
   rig.sim.run(*rig.changer);
   EXPECT_EQ(rig.sim.steps().back().kind, StepKind::fail);
-  EXPECT_EQ(rig.sim.steps().back().label, "M6 T3 cancelled by the operator; tool 9 is in the spindle");
+  EXPECT_EQ(rig.sim.steps().back().label,
+            "M6 T3 cancelled by the operator; tool 9 is in the spindle");
   EXPECT_EQ(rig.changer->status().phase, Phase::idle);
   EXPECT_EQ(rig.changer->tools().spindle, 9);
 }
@@ -816,7 +868,9 @@ TEST(Manual, shouldRefuseLoadAndUnloadRequestsWhileHolding) {
   rig.changer->tool_change(9);
   rig.sim.run(*rig.changer);
   rig.changer->load(4);
-  EXPECT_NE(rig.sim.messages(MessageKind::error).back().find("load of tool 4 refused: the changer is busy"),
+  EXPECT_NE(rig.sim.messages(MessageKind::error)
+                .back()
+                .find("load of tool 4 refused: the changer is busy"),
             std::string::npos);
   EXPECT_EQ(rig.changer->status().awaiting, Awaiting::operator_choice);
 }

@@ -10,6 +10,13 @@ bool Context::at_safe() const {
 }
 
 void Context::publish(const Step& next) {
+  // The second layer behind --check: every move, before it goes out.
+  const auto problems = check_moves ? check_move(config, position, known_axes, next, limits)
+                                    : std::vector<std::string>{};
+  if (!problems.empty()) {
+    refuse_step("unsafe step not sent: " + describe(next) + ": " + problems.front());
+    return;
+  }
   if (next.kind == StepKind::rapid || next.kind == StepKind::feed) {
     if (next.axes & axis_x) position.x = next.target.x;
     if (next.axes & axis_y) position.y = next.target.y;
@@ -36,6 +43,24 @@ void Context::wait(double seconds, std::string what) {
 void Context::ask_operator(const std::string& question) {
   prompt = question;
   ports.tell(MessageKind::prompt, question);
+}
+
+void Context::begin_sequence(const std::string& sequence) {
+  tools.in_progress = InProgress{sequence, "starting", 0};
+  ports.save(tools);
+}
+
+void Context::record_progress(const std::string& step, int pocket) {
+  if (!tools.in_progress) return;
+  tools.in_progress->step = step;
+  tools.in_progress->pocket = pocket;
+  ports.save(tools);
+}
+
+void Context::end_sequence() {
+  if (!tools.in_progress) return;
+  tools.in_progress.reset();
+  ports.save(tools);
 }
 
 void Context::record_in_spindle(int tool) {
@@ -67,6 +92,13 @@ std::string Context::whereabouts() const {
                          ? std::string("the spindle is empty")
                          : "tool " + std::to_string(tools.spindle) + " is in the spindle";
   if (tools.uncertain) text += " (last known; not certain)";
+  if (tools.in_progress) {
+    text += "; cut off during " + tools.in_progress->sequence + ", " + tools.in_progress->step;
+    if (tools.in_progress->pocket != 0) {
+      text +=
+          "; pocket " + std::to_string(tools.in_progress->pocket) + " may or may not hold its tool";
+    }
+  }
   return text;
 }
 

@@ -1,9 +1,11 @@
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 
 #include "../config.hpp"
+#include "../geometry.hpp"
 #include "../ports.hpp"
 #include "../step.hpp"
 #include "../tool_state.hpp"
@@ -27,6 +29,13 @@ class Context {
   /// Why task cannot run the executor over MDI now (a program runs, no NML), if it cannot.
   std::optional<std::string> task_busy;
   std::string fault_reason;
+  /// The running machine's soft limits, when the adapter knows them.
+  std::optional<SoftLimits> limits;
+  /// Off only for planning (--check, --plan), which reports every violation of
+  /// a whole sequence instead of stopping at the first.
+  bool check_moves = true;
+  /// Raises UnsafeStep in the machine (queued behind the current event).
+  std::function<void(const std::string&)> refuse_step;
   Point position;           ///< where the last published moves lead
   unsigned known_axes = 0;  ///< which axes of `position` are known
   bool at_safe() const;
@@ -43,6 +52,12 @@ class Context {
   void wait(double seconds, std::string what);
   void ask_operator(const std::string& prompt);
   void tell(MessageKind kind, const std::string& text) { ports.tell(kind, text); }
+
+  /// A sequence starts: saved before anything moves, cleared when it ends,
+  /// so that a restart after a crash knows it was cut off, and where.
+  void begin_sequence(const std::string& sequence);
+  void record_progress(const std::string& step, int pocket);
+  void end_sequence();
 
   void record_in_spindle(int tool);
   void record_in_pocket(int tool);

@@ -288,11 +288,13 @@ struct Operating_ : Flow<Operating_> {
     template <class Request, class Fsm, class Source, class Target>
     void operator()(const Request& e, Fsm& fsm, Source&, Target&) const {
       fsm.ctx->requested_tool = e.tool;
+      fsm.ctx->begin_sequence(request_name(e));
     }
   };
   struct AnswerDone {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      fsm.ctx->end_sequence();
       Step done;
       done.kind = StepKind::done;
       done.tool = fsm.ctx->tools.spindle;
@@ -306,6 +308,7 @@ struct Operating_ : Flow<Operating_> {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       Context& c = *fsm.ctx;
+      c.end_sequence();
       const std::string why = "M6 T" + std::to_string(c.requested_tool) +
                               " cancelled by the operator; " + c.whereabouts();
       Step fail = failure_step(why);
@@ -395,17 +398,29 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
       c.ports.save(c.tools);
     }
   };
+  struct RecordUnsafeStep {
+    template <class Fsm, class Source, class Target>
+    void operator()(const UnsafeStep& e, Fsm& fsm, Source&, Target&) const {
+      fsm.ctx->fault_reason = e.reason;
+    }
+  };
   struct SayUncertain {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      fsm.ctx->fault_reason = "the last sequence was interrupted (saved state says uncertain)";
+      fsm.ctx->fault_reason = "the last sequence was cut off (the saved tool state is uncertain)";
     }
   };
+  /// The operator says what the spindle holds and, for a sequence that was
+  /// cut off at a pocket, whether that pocket holds its tool. Nothing moves.
   struct ClearTheFault {
     template <class Fsm, class Source, class Target>
     void operator()(const ClearFault& e, Fsm& fsm, Source&, Target&) const {
       Context& c = *fsm.ctx;
+      const int pocket = c.tools.in_progress ? c.tools.in_progress->pocket : 0;
+      if (pocket != 0 && e.pocket_holds_tool == true) c.tools.in_pocket.insert(pocket);
+      if (pocket != 0 && e.pocket_holds_tool == false) c.tools.in_pocket.erase(pocket);
       c.tools.uncertain = false;
+      c.tools.in_progress.reset();
       c.fault_reason.clear();
       c.record_in_spindle(e.spindle_tool);
       c.tell(MessageKind::info, "fault cleared; " + c.whereabouts());
@@ -444,6 +459,7 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
   Row < Operating                  , Abort         , none            , none            , Not<IsBusy>           >,
   Row < Operating                  , Abort         , Faulted         , MarkInterrupted , IsBusy                >,
   Row < Operating                  , InternalError , Faulted         , MarkInterrupted , none                  >,
+  Row < Operating                  , UnsafeStep    , Faulted         , RecordUnsafeStep, none                  >,
   Row < Operating::exit_pt<Failed> , FlowFailed    , Faulted         , none            , none                  >,
   Row < Faulted                    , ClearFault    , Operating       , ClearTheFault   , MachineIsReady        >,
   Row < Faulted                    , ClearFault    , MachineNotReady , ClearTheFault   , Not<MachineIsReady>   >,

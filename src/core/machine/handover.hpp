@@ -68,6 +68,11 @@ using RemoveLeg = msm::back::state_machine<RemoveLeg_<How>>;
 // ================================================================ hand out (M6)
 /// Takes the manual tool in the spindle out of the machine at `loading`.
 struct HandOutLeg_ : Flow<HandOutLeg_> {
+  template <class Event, class Parent>
+  void on_entry(const Event& e, Parent& parent) {
+    Flow::on_entry(e, parent);
+    ctx->record_progress("handing tool " + std::to_string(ctx->tools.spindle) + " out at loading", 0);
+  }
   using Removing = RemoveLeg<HoldingTheProgram>;
   using initial_state = ToLoadingZ;
   // clang-format off
@@ -87,6 +92,11 @@ using HandOutLeg = msm::back::state_machine<HandOutLeg_>;
 /// Puts the requested manual tool in the spindle at `loading`, then up to
 /// safe Z.
 struct HandInLeg_ : Flow<HandInLeg_> {
+  template <class Event, class Parent>
+  void on_entry(const Event& e, Parent& parent) {
+    Flow::on_entry(e, parent);
+    ctx->record_progress("handing tool " + std::to_string(pocket_tool) + " in at loading", 0);
+  }
   using Inserting = InsertLeg<HoldingTheProgram>;
   struct UpToSafeZ : Moving<to::SafeZ> {};
   /// LinuxCNC still has the tool the program started the M6 with.

@@ -71,6 +71,13 @@ using FlushLeg = msm::back::state_machine<FlushLeg_>;
 template <class Which>
 struct ReturnLeg_ : Flow<ReturnLeg_<Which>> {
   static int served_tool(const Context& ctx) { return ctx.tools.spindle; }
+  template <class Event, class Parent>
+  void on_entry(const Event& e, Parent& parent) {
+    Flow<ReturnLeg_<Which>>::on_entry(e, parent);
+    const int tool = this->pocket_tool;
+    this->ctx->record_progress(
+        "returning tool " + std::to_string(tool) + " to pocket " + std::to_string(tool), tool);
+  }
 
   struct ToSafeZ : Moving<to::SafeZ> {};
   struct ToSafeXY : Moving<to::SafeXY> {};
@@ -121,6 +128,13 @@ using ReturnLeg = msm::back::state_machine<ReturnLeg_<Which>>;
 // ================================================================ retrieve
 /// Takes the requested tool out of its pocket (docs/sequences.md#retrieve).
 struct RetrieveLeg_ : Flow<RetrieveLeg_> {
+  template <class Event, class Parent>
+  void on_entry(const Event& e, Parent& parent) {
+    Flow::on_entry(e, parent);
+    ctx->record_progress(
+        "fetching tool " + std::to_string(pocket_tool) + " from pocket " + std::to_string(pocket_tool),
+        pocket_tool);
+  }
   struct ToSafeZ : Moving<to::SafeZ> {};
   struct ToSafeXY : Moving<to::SafeXY> {};
   struct OverPocket : Moving<to::PocketAtSafeZ> {};

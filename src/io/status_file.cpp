@@ -1,0 +1,76 @@
+#include "status_file.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+namespace fatc::io {
+namespace {
+
+constexpr std::size_t kMessagesKept = 8;
+
+const char* phase_word(Phase phase) {
+  switch (phase) {
+    case Phase::not_ready:
+      return "not ready";
+    case Phase::idle:
+      return "idle";
+    case Phase::changing:
+      return "changing";
+    case Phase::loading:
+      return "loading";
+    case Phase::unloading:
+      return "unloading";
+    case Phase::fault:
+      return "fault";
+  }
+  return "?";
+}
+
+const char* kind_word(MessageKind kind) {
+  switch (kind) {
+    case MessageKind::info:
+      return "info";
+    case MessageKind::prompt:
+      return "prompt";
+    case MessageKind::error:
+      return "error";
+  }
+  return "?";
+}
+
+}  // namespace
+
+void StatusFile::said(MessageKind kind, const std::string& text) {
+  messages_.push_back({kind, text});
+  if (messages_.size() > kMessagesKept) messages_.pop_front();
+  ++serial_;
+}
+
+void StatusFile::write(const Status& status, const std::optional<InProgress>& cut_off) {
+  nlohmann::json root = {{"phase", phase_word(status.phase)},
+                         {"state", static_cast<int>(status.phase)},
+                         {"awaiting", static_cast<int>(status.awaiting)},
+                         {"activity", status.activity},
+                         {"cut_off", nullptr},
+                         {"messages", nlohmann::json::array()},
+                         {"serial", serial_}};
+  if (cut_off) {
+    root["cut_off"] = {
+        {"sequence", cut_off->sequence}, {"step", cut_off->step}, {"pocket", cut_off->pocket}};
+  }
+  for (const Message& m : messages_)
+    root["messages"].push_back({{"kind", kind_word(m.kind)}, {"text", m.text}});
+  // Messages may hold any bytes a user typed: never fail on them.
+  std::string text = root.dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
+  if (text == written_) return;
+  const std::string temporary = path_ + ".tmp";
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    out << text;
+    if (!out) return;  // a display aid: the panel keeps the last one it read
+  }
+  if (std::rename(temporary.c_str(), path_.c_str()) == 0) written_ = std::move(text);
+}
+
+}  // namespace fatc::io

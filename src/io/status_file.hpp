@@ -1,0 +1,37 @@
+#pragma once
+
+#include <deque>
+#include <optional>
+#include <string>
+
+#include "core/ports.hpp"
+#include "core/status.hpp"
+#include "core/tool_state.hpp"
+
+namespace fatc::io {
+
+/// The words HAL cannot carry: what the changer does, the prompt or the fault
+/// in full, and the last messages, as a small JSON file beside the state file
+/// (STATE.status) for panels to show. Rewritten (temporary file and rename)
+/// only when something in it changed; losing it loses nothing.
+class StatusFile {
+ public:
+  explicit StatusFile(std::string path) : path_(std::move(path)) {}
+  /// Remembers a message for the file's `messages` (the newest few).
+  void said(MessageKind kind, const std::string& text);
+  /// Writes the file if the status, the cut-off sequence or the messages changed.
+  void write(const Status& status, const std::optional<InProgress>& cut_off);
+  const std::string& path() const { return path_; }
+
+ private:
+  struct Message {
+    MessageKind kind;
+    std::string text;
+  };
+  std::string path_;
+  std::deque<Message> messages_;
+  long serial_ = 0;
+  std::string written_;
+};
+
+}  // namespace fatc::io
