@@ -15,8 +15,6 @@ Component::Component(HalPins* pins, const Config& config, std::string state_path
       state_path_(std::move(state_path)),
       status_file_(state_path_ + ".status") {
   *pins_->units_inch = config.units == Units::inch;
-  *pins_->step_ready = 0;
-  *pins_->chuck = 0;
 }
 
 bool Component::active() const { return link_.active() || deadline_ || changer_->status().busy(); }
