@@ -1,0 +1,57 @@
+#!/usr/bin/env bash
+# Fuzzes the three readers of hostile files (config.json, the saved tool
+# state, the machine INI) with libFuzzer, AddressSanitizer and UBSan.
+# Configures a clang build of its own, builds the three targets, seeds each
+# with the hostile corpus of tests/unit and the valid files, and runs each for
+# SECONDS (default 60). Fails on any finding: a crash, a leak, undefined
+# behaviour, an input slower than 2 s, a broken invariant (see invariants.hpp).
+# A finding is saved as BUILD_DIR/findings/<reader>-crash-<sha1> (or -timeout-,
+# -leak-, -oom-); replay it with BUILD_DIR/tests/fuzz/fuzz_<reader> FILE.
+#
+# usage: tests/fuzz/run.sh [SECONDS] [BUILD_DIR]     (BUILD_DIR: ./build-fuzz)
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+root=$(cd "$here/../.." && pwd)
+seconds=${1:-60}
+build=${2:-$root/build-fuzz}
+
+command -v clang++ >/dev/null || { echo "run.sh: clang++ not found (scripts/setup.sh installs it)"; exit 1; }
+echo "run.sh: building the fuzz targets in $build"
+CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DFATC_FUZZ=ON \
+  -DBUILD_TESTING=OFF >/dev/null
+cmake --build "$build" --target fuzz_config fuzz_state fuzz_ini -j"$(nproc)" >/dev/null
+
+work=$build/fuzz_run
+findings=$build/findings
+rm -rf "$work"
+mkdir -p "$work" "$findings"
+unit=$root/tests/unit
+
+# Seeds: every hostile file, and the valid ones they were spoiled from.
+mkdir -p "$work/config" "$work/state" "$work/ini"
+cp "$unit"/bad_configs/*.json "$root"/config/config.json "$work/config/"
+cp "$unit"/bad_states/*.json "$work/state/"
+printf '%s\n' '{"version": 1, "spindle": 3, "uncertain": false, "in_pocket": [1, 2, 4, 5, 6], "lengths": {"1": 42.125, "3": 17.5}}' \
+  > "$work/state/valid.json"
+printf '%s\n' '{"version": 1, "spindle": 0, "uncertain": true, "in_pocket": [1], "lengths": {}, "in_progress": {"sequence": "M6 T3", "step": "returning tool 1 to pocket 1", "pocket": 1}}' \
+  > "$work/state/valid_in_progress.json"
+cp "$unit"/bad_inis/*.ini "$unit"/bad_configs/narrow_limits.ini "$root"/config/sim/*.ini "$work/ini/"
+
+status=0
+for reader in config state ini; do
+  dict=$here/json.dict
+  [ "$reader" = ini ] && dict=$here/ini.dict
+  log=$work/$reader.log
+  echo "run.sh: fuzz_$reader for ${seconds} s"
+  if "$build/tests/fuzz/fuzz_$reader" "$work/$reader" -dict="$dict" -max_total_time="$seconds" \
+      -timeout=2 -rss_limit_mb=2048 -max_len=65536 -print_final_stats=1 \
+      -artifact_prefix="$findings/$reader-" >"$log" 2>&1; then
+    runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
+    echo "run.sh: fuzz_$reader: no findings in $runs runs ($(grep -c . < <(ls "$work/$reader")) inputs in its corpus)"
+  else
+    echo "run.sh: fuzz_$reader FOUND A PROBLEM:"
+    grep -E "ERROR|broken promise|SUMMARY|Test unit written|runtime error" "$log" | head -20 | cat -v
+    status=1
+  fi
+done
+exit $status
