@@ -54,6 +54,16 @@ bool ToolState::operator==(const ToolState& other) const {
          lengths == other.lengths && in_progress == other.in_progress;
 }
 
+void ToolState::confirm(int spindle_tool, std::optional<bool> pocket_holds_tool) {
+  const int pocket = in_progress ? in_progress->pocket : 0;
+  if (pocket != 0 && pocket_holds_tool == true) in_pocket.insert(pocket);
+  if (pocket != 0 && pocket_holds_tool == false) in_pocket.erase(pocket);
+  spindle = spindle_tool;
+  in_pocket.erase(spindle_tool);
+  uncertain = false;
+  in_progress.reset();
+}
+
 std::string to_json(const ToolState& state) {
   Json lengths = Json::object();
   for (const auto& [tool, length] : state.lengths) lengths[std::to_string(tool)] = length;

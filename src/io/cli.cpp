@@ -23,6 +23,10 @@ const char* const kUsage =
     "                                     check config, state, INI and rack geometry\n"
     "       fixed_atc_probe --plan --config FILE --from A --to B [--ini FILE]\n"
     "                                     print the steps of M6 from A to B\n"
+    "       fixed_atc_probe --confirm --config FILE [--state FILE] --spindle N [--pocket yes|no]\n"
+    "                                     after a fault, with LinuxCNC stopped: the spindle\n"
+    "                                     holds tool N (0 empty), the cut-off pocket holds its\n"
+    "                                     tool or not; clears the fault in the state file\n"
     "       fixed_atc_probe --dot         the state machine as Graphviz\n";
 
 namespace {
@@ -112,7 +116,8 @@ int check(const Options& options, std::ostream& out, std::ostream& err) {
   out << shown_path(options.config_path) << ": units " << units_name(config.units) << ", "
       << config.pockets.size() << " pockets, keep-out margin " << config.keepout_margin() << "\n\n";
   out << "station                          x          y          z\n";
-  out << "safe                  " << format_point(config.safe.x, config.safe.y, config.safe.z) << "\n";
+  out << "safe                  " << format_point(config.safe.x, config.safe.y, config.safe.z)
+      << "\n";
   out << "loading               "
       << format_point(config.loading.x, config.loading.y, config.loading.z) << "\n";
   out << "probe_limit           "
@@ -161,7 +166,10 @@ int plan(const Options& options, std::ostream& out, std::ostream& err) {
     return 1;
   }
   const Simulator sim = plan_change(config, from, to, config.probe_limit.z);
-  out << "M6 T" << to << " with " << (from == 0 ? std::string("an empty spindle") : "T" + std::to_string(from) + " in the spindle") << "\n";
+  out << "M6 T" << to << " with "
+      << (from == 0 ? std::string("an empty spindle")
+                    : "T" + std::to_string(from) + " in the spindle")
+      << "\n";
   int number = 0;
   bool refused = false;
   for (const auto& record : sim.records) {
@@ -184,11 +192,9 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
   std::map<std::string, std::string> given;  ///< option -> its value, each at most once
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& arg = args[i];
-    static const std::map<std::string, Mode> modes = {{"--check", Mode::check},
-                                                      {"--plan", Mode::plan},
-                                                      {"--dot", Mode::dot},
-                                                      {"--help", Mode::help},
-                                                      {"-h", Mode::help}};
+    static const std::map<std::string, Mode> modes = {
+        {"--check", Mode::check},     {"--plan", Mode::plan}, {"--dot", Mode::dot},
+        {"--confirm", Mode::confirm}, {"--help", Mode::help}, {"-h", Mode::help}};
     if (const auto mode = modes.find(arg); mode != modes.end()) {
       if (mode_flag) {
         error = *mode_flag == arg ? arg + " given twice"
@@ -200,7 +206,7 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
       continue;
     }
     if (arg != "--config" && arg != "--state" && arg != "--ini" && arg != "--from" &&
-        arg != "--to") {
+        arg != "--to" && arg != "--spindle" && arg != "--pocket") {
       error = "unknown argument " + quote(arg);
       return std::nullopt;
     }
@@ -214,7 +220,7 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
       return std::nullopt;
     }
     given[arg] = text;
-    const bool tool = arg == "--from" || arg == "--to";
+    const bool tool = arg == "--from" || arg == "--to" || arg == "--spindle";
     if (text.empty()) {
       error = arg + ": expected " + (tool ? "a tool number" : "a file path") + ", got nothing";
       return std::nullopt;
@@ -229,7 +235,15 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
         error = arg + ": expected a tool number (0 for none), got " + quote(text);
         return std::nullopt;
       }
-      (arg == "--from" ? options.from_tool : options.to_tool) = *number;
+      (arg == "--from" ? options.from_tool
+       : arg == "--to" ? options.to_tool
+                       : options.spindle_tool) = *number;
+    } else if (arg == "--pocket") {
+      if (text != "yes" && text != "no") {
+        error = "--pocket: expected yes or no, got " + quote(text);
+        return std::nullopt;
+      }
+      options.pocket_holds_tool = text == "yes";
     } else if (arg == "--config") {
       options.config_path = text;
     } else if (arg == "--state") {
@@ -242,8 +256,10 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
   const std::string mode_name =
       mode_flag ? *mode_flag : "the component (no --check, --plan, --dot)";
   const std::map<std::string, std::set<Mode>> used_by = {
-      {"--config", {Mode::component, Mode::check, Mode::plan}},
-      {"--state", {Mode::component, Mode::check}},
+      {"--config", {Mode::component, Mode::check, Mode::plan, Mode::confirm}},
+      {"--state", {Mode::component, Mode::check, Mode::confirm}},
+      {"--spindle", {Mode::confirm}},
+      {"--pocket", {Mode::confirm}},
       {"--ini", {Mode::check, Mode::plan}},
       {"--from", {Mode::plan}},
       {"--to", {Mode::plan}}};
@@ -258,6 +274,10 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
     error = "--config FILE is required";
     return std::nullopt;
   }
+  if (options.mode == Mode::confirm && !options.spindle_tool) {
+    error = "--confirm needs --spindle N (0: the spindle is empty)";
+    return std::nullopt;
+  }
   if (options.mode == Mode::plan && (!options.from_tool || !options.to_tool)) {
     error = "--plan needs --from A and --to B";
     return std::nullopt;
@@ -268,13 +288,62 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
   return options;
 }
 
+namespace {
+
+/// The recovery of a fault without LinuxCNC: the operator's word into the
+/// state file, as the clear-fault pin would record it. Nothing moves.
+int confirm(const Options& options, std::ostream& out, std::ostream& err) {
+  const auto config = load_config_file(options.config_path);
+  if (!config.config) {
+    for (const auto& error : config.errors) err << error << "\n";
+    return 1;
+  }
+  auto state = load_state_file(options.state_path, *config.config);
+  if (!state.state) {
+    err << state.error << "\n";
+    return 1;
+  }
+  ToolState& tools = *state.state;
+  const int pocket = tools.in_progress ? tools.in_progress->pocket : 0;
+  if (options.pocket_holds_tool && pocket == 0) {
+    err << options.state_path << ": --pocket: no sequence was cut off at a pocket\n";
+    return 1;
+  }
+  tools.confirm(*options.spindle_tool, options.pocket_holds_tool);
+  try {
+    save_state_file(options.state_path, tools);
+  } catch (const std::exception& e) {
+    err << e.what() << "\n";
+    return 1;
+  }
+  out << options.state_path << ": the spindle holds "
+      << (tools.spindle == 0 ? std::string("nothing") : "tool " + std::to_string(tools.spindle));
+  if (pocket != 0) {
+    out << "; pocket " << pocket << (tools.in_pocket.count(pocket) ? " holds" : " does not hold")
+        << " its tool";
+  }
+  out << "; nothing is uncertain now\n";
+  return 0;
+}
+
+}  // namespace
+
 int run_tool_mode(const Options& options, std::ostream& out, std::ostream& err) {
   switch (options.mode) {
-    case Options::Mode::check: return check(options, out, err);
-    case Options::Mode::plan: return plan(options, out, err);
-    case Options::Mode::dot: out << Changer::dot(); return 0;
-    case Options::Mode::help: out << kUsage; return 0;
-    case Options::Mode::component: break;
+    case Options::Mode::check:
+      return check(options, out, err);
+    case Options::Mode::plan:
+      return plan(options, out, err);
+    case Options::Mode::dot:
+      out << Changer::dot();
+      return 0;
+    case Options::Mode::confirm:
+      return confirm(options, out, err);
+    case Options::Mode::help:
+      out << kUsage;
+      return 0;
+    case Options::Mode::component:
+      break;
   }
   return 2;
 }

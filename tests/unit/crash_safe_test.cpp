@@ -63,19 +63,31 @@ TEST_F(CrashSafeSave, shouldLeaveTheOldOrTheNewStateWhenKilledAtAnyMoment) {
   int found_a = 0, found_b = 0, temporary_files = 0;
   constexpr int kKills = 200;
   for (int kill = 0; kill < kKills; ++kill) {
+    int saved[2];
+    ASSERT_EQ(::pipe(saved), 0);
     const pid_t child = ::fork();
     ASSERT_GE(child, 0);
     if (child == 0) {
+      ::close(saved[0]);
       try {
         for (;;) {
           io::save_state_file(path_, b);
           io::save_state_file(path_, a);
+          // At work: however slow the disk, the kill below comes after this.
+          if (saved[1] >= 0 && ::write(saved[1], "s", 1) == 1) {
+            ::close(saved[1]);
+            saved[1] = -1;
+          }
         }
       } catch (const std::exception& e) {
         std::cerr << "the writer failed: " << e.what() << "\n";
       }
       ::_exit(3);
     }
+    ::close(saved[1]);
+    char byte = 0;
+    ASSERT_EQ(::read(saved[0], &byte, 1), 1) << "the writer never finished its first saves";
+    ::close(saved[0]);
     std::this_thread::sleep_for(std::chrono::microseconds(pause_us(random)));
     ASSERT_EQ(::kill(child, SIGKILL), 0);
     int status = 0;

@@ -1,9 +1,16 @@
 // After a crash, an abort or a fault: what the changer knows, what it
 // refuses, and how the operator's confirmation puts it right.
 #include <gtest/gtest.h>
+#include <stdlib.h>
+
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
 
 #include "core/changer.hpp"
 #include "core/simulator.hpp"
+#include "io/cli.hpp"
+#include "io/files.hpp"
 #include "test_config.hpp"
 
 namespace fatc {
@@ -158,6 +165,81 @@ TEST(UnsafeStep, shouldRunTheChangeWhenEveryMoveIsWithinTheSoftLimits) {
   sim.run(changer);
   EXPECT_EQ(changer.tools().spindle, 2);
   EXPECT_EQ(changer.status().phase, Phase::idle);
+}
+
+}  // namespace
+}  // namespace fatc
+
+namespace fatc {
+namespace {
+
+struct ConfirmFiles {
+  ConfirmFiles() {
+    char pattern[] = "/tmp/fatc_confirm.XXXXXX";
+    folder = ::mkdtemp(pattern);
+    config = folder + "/config.json";
+    state = folder + "/state.json";
+    std::ofstream(config) << test::kValidConfig;
+    io::save_state_file(state, cut_off_while_returning(test::valid_config()));
+  }
+  ~ConfirmFiles() { std::system(("rm -rf " + folder).c_str()); }
+  int run(std::vector<std::string> args, std::string& said) {
+    std::string error;
+    const auto options = io::parse_options(args, error);
+    if (!options) {
+      said = error;
+      return 2;
+    }
+    std::ostringstream out, err;
+    const int code = io::run_tool_mode(*options, out, err);
+    said = out.str() + err.str();
+    return code;
+  }
+  std::string folder, config, state;
+};
+
+TEST(ConfirmCommand, shouldRecordTheOperatorsWordInTheStateFileWithoutLinuxCnc) {
+  ConfirmFiles f;
+  std::string said;
+  ASSERT_EQ(f.run({"--confirm", "--config", f.config, "--state", f.state, "--spindle", "0",
+                   "--pocket", "yes"},
+                  said),
+            0)
+      << said;
+  EXPECT_EQ(said, f.state +
+                      ": the spindle holds nothing; pocket 2 holds its tool; nothing is "
+                      "uncertain now\n");
+  const auto read = io::load_state_file(f.state, test::valid_config());
+  ASSERT_TRUE(read.state) << read.error;
+  EXPECT_EQ(read.state->spindle, 0);
+  EXPECT_EQ(read.state->in_pocket.count(2), 1u);
+  EXPECT_FALSE(read.state->uncertain);
+  EXPECT_FALSE(read.state->in_progress.has_value());
+}
+
+TEST(ConfirmCommand, shouldRefuseAPocketAnswerWhenNoPocketWasInvolvedAndLeaveTheFileAlone) {
+  ConfirmFiles f;
+  std::string said;
+  ASSERT_EQ(f.run({"--confirm", "--config", f.config, "--state", f.state, "--spindle", "2"}, said),
+            0);
+  EXPECT_EQ(f.run({"--confirm", "--config", f.config, "--state", f.state, "--spindle", "0",
+                   "--pocket", "no"},
+                  said),
+            1);
+  EXPECT_NE(said.find("--pocket: no sequence was cut off at a pocket"), std::string::npos) << said;
+  EXPECT_EQ(io::load_state_file(f.state, test::valid_config()).state->spindle, 2);
+}
+
+TEST(ConfirmCommand, shouldSayWhatIsMissingOrWrongOnTheCommandLine) {
+  ConfirmFiles f;
+  std::string said;
+  EXPECT_EQ(f.run({"--confirm", "--config", f.config}, said), 2);
+  EXPECT_EQ(said, "--confirm needs --spindle N (0: the spindle is empty)");
+  EXPECT_EQ(f.run({"--confirm", "--config", f.config, "--spindle", "1", "--pocket", "maybe"}, said),
+            2);
+  EXPECT_EQ(said, "--pocket: expected yes or no, got \"maybe\"");
+  EXPECT_EQ(f.run({"--check", "--config", f.config, "--spindle", "1"}, said), 2);
+  EXPECT_EQ(said, "--spindle is not used by --check");
 }
 
 }  // namespace

@@ -416,13 +416,9 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
     template <class Fsm, class Source, class Target>
     void operator()(const ClearFault& e, Fsm& fsm, Source&, Target&) const {
       Context& c = *fsm.ctx;
-      const int pocket = c.tools.in_progress ? c.tools.in_progress->pocket : 0;
-      if (pocket != 0 && e.pocket_holds_tool == true) c.tools.in_pocket.insert(pocket);
-      if (pocket != 0 && e.pocket_holds_tool == false) c.tools.in_pocket.erase(pocket);
-      c.tools.uncertain = false;
-      c.tools.in_progress.reset();
+      c.tools.confirm(e.spindle_tool, e.pocket_holds_tool);
       c.fault_reason.clear();
-      c.record_in_spindle(e.spindle_tool);
+      c.ports.save(c.tools);
       c.tell(MessageKind::info, "fault cleared; " + c.whereabouts());
     }
   };
