@@ -306,7 +306,7 @@ int confirm(const Options& options, std::ostream& out, std::ostream& err) {
   ToolState& tools = *state.state;
   const int pocket = tools.in_progress ? tools.in_progress->pocket : 0;
   if (options.pocket_holds_tool && pocket == 0) {
-    err << options.state_path << ": --pocket: no sequence was cut off at a pocket\n";
+    err << shown_path(options.state_path) << ": --pocket: no sequence was cut off at a pocket\n";
     return 1;
   }
   tools.confirm(*options.spindle_tool, options.pocket_holds_tool);
@@ -316,7 +316,7 @@ int confirm(const Options& options, std::ostream& out, std::ostream& err) {
     err << e.what() << "\n";
     return 1;
   }
-  out << options.state_path << ": the spindle holds "
+  out << shown_path(options.state_path) << ": the spindle holds "
       << (tools.spindle == 0 ? std::string("nothing") : "tool " + std::to_string(tools.spindle));
   if (pocket != 0) {
     out << "; pocket " << pocket << (tools.in_pocket.count(pocket) ? " holds" : " does not hold")
