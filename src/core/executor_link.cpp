@@ -9,6 +9,7 @@ std::vector<LinkEvent> ExecutorLink::read(const LinkInputs& in, Time now) {
   // A request that rises while the interpreter is idle is a dead executor's,
   // or task has not yet reported the run that raised it: it counts once the
   // interpreter runs, when executor-call is that run's.
+  pin_request_ = in.step_request;
   const bool request = in.step_request && (request_ || !in.interpreter_idle.value_or(false));
   const bool rose = request && !request_;
   const bool fell = !request && request_;
@@ -23,6 +24,8 @@ std::vector<LinkEvent> ExecutorLink::read(const LinkInputs& in, Time now) {
     } else if (!attached_) {
       attached_ = true;
       if (in.call == static_cast<int>(ExecutorCall::tool_change)) {
+        // Whatever waited was for no run of this M6 (a fault's fail step, say).
+        pending_.reset();
         LinkEvent change;
         change.kind = LinkEvent::Kind::tool_change;
         change.tool = in.number;
@@ -107,7 +110,8 @@ void ExecutorLink::drop() {
   refusal_.reset();
   attached_ = false;
   idle_since_.reset();
-  if (request_) offer(resync_step());
+  // The pin, not the deferred request: a rise not yet counted is stale too.
+  if (pin_request_) offer(resync_step());
 }
 
 bool ExecutorLink::needs_run(Time now) const {

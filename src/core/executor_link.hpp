@@ -97,7 +97,8 @@ class ExecutorLink {
   void offer(const Step& step);
   LinkEvent finished(const Step& step, const LinkInputs& in) const;
 
-  bool request_ = false;  ///< step-request at the last read
+  bool request_ = false;      ///< step-request at the last read, as counted
+  bool pin_request_ = false;  ///< step-request at the last read, as on the pin
   bool attached_ = false;
   std::optional<Step> pending_;          ///< published, not yet on the pins
   std::optional<Step> refusal_;          ///< fails a run that was called wrongly

@@ -48,6 +48,13 @@ void StatusFile::said(MessageKind kind, const std::string& text) {
 }
 
 void StatusFile::write(const Status& status, const std::optional<InProgress>& cut_off) {
+  // Called every poll: compare what it shows before building anything.
+  const std::string key = std::to_string(static_cast<int>(status.phase)) + "/" +
+                          std::to_string(static_cast<int>(status.awaiting)) + "/" +
+                          std::to_string(serial_) + "/" + status.activity + "/" +
+                          (cut_off ? cut_off->sequence + cut_off->step : std::string("-"));
+  if (key == shown_) return;
+  shown_ = key;  // a failed write is not retried every poll; the next change writes again
   nlohmann::json root = {{"phase", phase_word(status.phase)},
                          {"state", static_cast<int>(status.phase)},
                          {"awaiting", static_cast<int>(status.awaiting)},

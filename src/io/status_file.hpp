@@ -32,6 +32,7 @@ class StatusFile {
   std::deque<Message> messages_;
   long serial_ = 0;
   std::string written_;
+  std::string shown_;  ///< what the last write was asked to show
 };
 
 }  // namespace fatc::io

@@ -114,9 +114,13 @@ void Component::sync_linuxcnc_tool() {
   // changes what the spindle holds: tell LinuxCNC what the changer knows,
   // once the machine is idle. Nothing is sent while the changer is unsure.
   if (!sync_wanted_ || !task_free_ || changer_->status().phase != Phase::idle) return;
-  sync_wanted_ = false;
   const int tool = changer_->tools().spindle;
-  if (*pins_->linuxcnc_tool == tool) return;
+  if (*pins_->linuxcnc_tool == tool) {
+    sync_wanted_ = false;  // done only when LinuxCNC says so: task may refuse an MDI
+    return;
+  }
+  if (sync_sent_ && now_ - *sync_sent_ < std::chrono::seconds(5)) return;
+  sync_sent_ = now_;
   nml_->run_mdi("M61 Q" + std::to_string(tool));
   tell(MessageKind::info,
        "told LinuxCNC the spindle holds " +

@@ -67,6 +67,7 @@ class Component : public Ports {
   std::optional<bool> spindle_stopped_;
   bool task_free_ = false;
   bool sync_wanted_ = true;  ///< LinuxCNC's tool in spindle must be brought in line
+  std::optional<Clock::time_point> sync_sent_;
   io::StatusFile status_file_;
   Edge abort_, clear_, load_, unload_, continue_, cancel_;
 };

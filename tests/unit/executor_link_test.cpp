@@ -800,6 +800,30 @@ TEST(ExecutorLink, shouldKeepTheWaitingStepForTheNextRunWhenAnExecutorWithAnUnkn
 
 // ---------------------------------------------------------------- publish
 
+TEST(ExecutorLink, shouldForgetAStepLeftFromBeforeWhenAnM6StartsItsRun) {
+  Timeline t;
+  // A fault published its fail step while no executor was attached.
+  t.link.publish(failure_step("fault: the machine went off"));
+  t.script = {rapid_z(50.0, "safe Z")};
+  t.start_executor(static_cast<int>(ExecutorCall::tool_change), 3);
+  ASSERT_EQ(show(t.events), Lines({"tool_change T3"}));
+  ASSERT_TRUE(t.out.step_ready);
+  EXPECT_EQ(t.out.step.label, "safe Z") << "the M6 gets its own first step, not the old fail";
+}
+
+TEST(ExecutorLink, shouldOfferResyncForARequestLeftHighThatWasNeverCounted) {
+  Timeline t;
+  // M64 reached the pin, then the program was aborted before task reported it.
+  t.in.interpreter_idle = true;
+  t.in.step_request = true;
+  t.turn();
+  EXPECT_FALSE(t.link.attached());
+  t.link.drop();
+  t.turn();
+  ASSERT_TRUE(t.out.step_ready);
+  EXPECT_EQ(t.out.step.kind, StepKind::resync);
+}
+
 TEST(ExecutorLink, shouldOfferNothingWhenAStepIsPublishedWithoutARequest) {
   Timeline t;
   t.changer_idle = true;
@@ -854,7 +878,7 @@ TEST(ExecutorLink, shouldBeActiveWhileAHandshakeIsOpenOrAStepWaits) {
 
 TEST(ExecutorLink, shouldCountARequestThatRoseWhileTheInterpreterWasIdleOnceTaskReportsTheRun) {
   Timeline t;
-  t.link.publish(rapid_z(50.0, "safe Z"));
+  t.script = {rapid_z(50.0, "safe Z")};  // the changer's answer to the M6
   // The executor's M64 is seen before task reports the run that raised it:
   // executor-call and number may still be a previous run's.
   t.in.interpreter_idle = true;

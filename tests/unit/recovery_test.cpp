@@ -244,3 +244,31 @@ TEST(ConfirmCommand, shouldSayWhatIsMissingOrWrongOnTheCommandLine) {
 
 }  // namespace
 }  // namespace fatc
+
+namespace fatc {
+namespace {
+
+TEST(Sequence, shouldGoToSafeFirstWhenANewChangeStartsWhereTheLastOneEnded) {
+  // The last sequence ended at safe, but a program or a jog may have moved
+  // the machine since: a new one never takes the old position for granted.
+  const Config config = test::valid_config();
+  Simulator sim;
+  ToolState tools = ToolState::fresh(config);
+  tools.spindle = 3;
+  tools.in_pocket.erase(3);
+  Changer changer(config, sim, tools);
+  changer.ready();
+  changer.tool_change(0);
+  sim.run(changer);
+  const std::size_t before = sim.motion_steps().size();
+  changer.tool_change(5);
+  sim.run(changer);
+  const auto moves = sim.motion_steps();
+  ASSERT_GT(moves.size(), before + 2);
+  EXPECT_EQ(moves[before].label, "safe Z");
+  EXPECT_EQ(moves[before + 1].label, "safe XY");
+  EXPECT_EQ(changer.tools().spindle, 5);
+}
+
+}  // namespace
+}  // namespace fatc

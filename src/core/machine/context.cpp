@@ -46,6 +46,8 @@ void Context::ask_operator(const std::string& question) {
 }
 
 void Context::begin_sequence(const std::string& sequence) {
+  // Between sequences a program, MDI or a jog may have moved the machine.
+  known_axes = 0;
   tools.in_progress = InProgress{sequence, "starting", 0};
   ports.save(tools);
 }

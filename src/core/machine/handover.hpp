@@ -14,6 +14,11 @@ namespace fatc::machine {
 /// Flushes the chuck, then the operator inserts the requested tool.
 template <class How>
 struct InsertLeg_ : Flow<InsertLeg_<How>> {
+  template <class Event, class Parent>
+  void on_entry(const Event& e, Parent& parent) {
+    Flow<InsertLeg_<How>>::on_entry(e, parent);
+    this->ctx->record_progress("inserting tool " + std::to_string(this->pocket_tool) + " at loading", 0);
+  }
   struct InsertPrompt {
     template <class Leg>
     std::string operator()(const Context& c, const Leg& leg) const {
@@ -42,6 +47,11 @@ using InsertLeg = msm::back::state_machine<InsertLeg_<How>>;
 template <class How>
 struct RemoveLeg_ : Flow<RemoveLeg_<How>> {
   static int served_tool(const Context& ctx) { return ctx.tools.spindle; }
+  template <class Event, class Parent>
+  void on_entry(const Event& e, Parent& parent) {
+    Flow<RemoveLeg_<How>>::on_entry(e, parent);
+    this->ctx->record_progress("removing tool " + std::to_string(this->pocket_tool) + " at loading", 0);
+  }
 
   struct RemovePrompt {
     template <class Leg>

@@ -229,6 +229,12 @@ struct ProbingLeg_ : Flow<ProbingLeg_<Run>> {
   double first_touch_z = 0.0;  ///< where the seek touched
   double latched_z = 0.0;      ///< where the latch touched
 
+  template <class Event, class Parent>
+  void on_entry(const Event& e, Parent& parent) {
+    Flow<ProbingLeg_<Run>>::on_entry(e, parent);
+    this->ctx->record_progress("measuring tool " + std::to_string(this->pocket_tool), 0);
+  }
+
   struct NotMeasured : msmf::exit_pseudo_state<LegDone> {};
 
   struct Seeking : Probing<to::ProbeSeek, Run::cancellable> {};
