@@ -19,8 +19,10 @@ std::unique_ptr<NmlLink> NmlLink::open(const std::string& nml_file, std::string&
   // NML prints its own diagnostics; our one line says what failed.
   set_rcs_print_destination(RCS_PRINT_TO_NULL);
   auto channels = std::make_unique<Channels>();
-  channels->status = std::make_unique<RCS_STAT_CHANNEL>(emcFormat, "emcStatus", "xemc", nml_file.c_str());
-  channels->command = std::make_unique<RCS_CMD_CHANNEL>(emcFormat, "emcCommand", "xemc", nml_file.c_str());
+  channels->status =
+      std::make_unique<RCS_STAT_CHANNEL>(emcFormat, "emcStatus", "xemc", nml_file.c_str());
+  channels->command =
+      std::make_unique<RCS_CMD_CHANNEL>(emcFormat, "emcCommand", "xemc", nml_file.c_str());
   if (!channels->status->valid() || !channels->command->valid()) {
     error = "cannot reach LinuxCNC through " + nml_file + ": is LinuxCNC running?";
     return nullptr;
@@ -44,7 +46,23 @@ bool NmlLink::poll() {
 }
 
 void NmlLink::tell(MessageKind kind, const std::string& text) {
-  const std::string line = "fixed_atc_probe: " + text;
+  // An operator message holds 255 characters: a longer one goes out in parts,
+  // cut at a space, so that the GUI shows all of it.
+  std::string rest = "fixed_atc_probe: " + text;
+  while (!rest.empty()) {
+    std::size_t cut = rest.size();
+    if (cut > kMessagePart) {
+      cut = rest.rfind(' ', kMessagePart);
+      if (cut == std::string::npos || cut == 0) cut = kMessagePart;
+    }
+    send(kind, rest.substr(0, cut));
+    rest.erase(0, cut);
+    const std::size_t start = rest.find_first_not_of(' ');
+    rest = start == std::string::npos ? std::string() : "... " + rest.substr(start);
+  }
+}
+
+void NmlLink::send(MessageKind kind, const std::string& line) {
   if (kind == MessageKind::error) {
     EMC_OPERATOR_ERROR message;
     std::strncpy(message.error, line.c_str(), sizeof message.error - 1);

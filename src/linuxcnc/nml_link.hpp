@@ -29,6 +29,9 @@ class NmlLink {
  private:
   struct Channels;
   explicit NmlLink(std::unique_ptr<Channels> channels);
+  void send(MessageKind kind, const std::string& line);
+  /// Characters of one operator message part (LinuxCNC's buffer holds 255).
+  static constexpr std::size_t kMessagePart = 240;
   std::unique_ptr<Channels> channels_;
   bool interpreter_idle_ = true;
   int serial_ = 0;

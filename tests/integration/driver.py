@@ -3,8 +3,12 @@
 runs each scenario's G-code, samples what LinuxCNC reports (position, tool in
 spindle, HAL pins) and writes it all to FATC_RESULTS as JSON. LinuxCNC shuts
 down when this exits."""
+import ctypes
 import json
 import os
+import re
+import signal
+import subprocess
 import sys
 import time
 
@@ -15,7 +19,9 @@ PINS = ["fixed_atc_probe.chuck", "fixed_atc_probe.waiting-for-operator", "fixed_
         "fixed_atc_probe.busy", "fixed_atc_probe.tool-in-spindle", "fixed_atc_probe.step-ready",
         "fixed_atc_probe.step-request", "iocontrol.0.tool-prepare", "iocontrol.0.tool-prepared",
         "iocontrol.0.tool-change", "iocontrol.0.tool-changed", "iocontrol.0.tool-number",
-        "motion.probe-input", "spindle.0.on", "iocontrol.0.coolant-flood", "fatc-chuck-guard.chuck"]
+        "motion.probe-input", "spindle.0.on", "iocontrol.0.coolant-flood", "fatc-chuck-guard.chuck",
+        "fatc-chuck-guard.alive", "fixed_atc_probe.cut-off-pocket"]
+COMPONENT = "fixed_atc_probe"
 
 stat = linuxcnc.stat()
 command = linuxcnc.command()
@@ -56,8 +62,16 @@ def bring_up():
     wait_for(lambda: hal.get_value("fixed_atc_probe.state") == 1, 60, "fixed_atc_probe idle")
 
 
+def pin_value(pin):
+    """None while the pin does not exist (the component is being restarted)."""
+    try:
+        return hal.get_value(pin)
+    except (NameError, RuntimeError):
+        return None
+
+
 def sample(start):
-    values = {pin: hal.get_value(pin) for pin in PINS}
+    values = {pin: pin_value(pin) for pin in PINS}
     values["t"] = time.monotonic() - start
     values["pos"] = list(stat.actual_position[:3])
     values["cmd"] = list(stat.position[:3])
@@ -65,6 +79,210 @@ def sample(start):
     values["interp"] = stat.interp_state
     values["paused"] = stat.paused
     return values
+
+
+# ---------------------------------------------------------------- kill and restart
+def ini():
+    return linuxcnc.ini(os.environ["INI_FILE_NAME"])
+
+
+def ini_dir():
+    """LinuxCNC runs halcmd (and so the component) in the INI's folder."""
+    return os.path.dirname(os.path.abspath(os.environ["INI_FILE_NAME"]))
+
+
+def state_path():
+    return os.path.join(ini_dir(), ini().find("FIXED_ATC_PROBE", "STATE"))
+
+
+def read_json(path):
+    try:
+        with open(path) as f:
+            return json.load(f)
+    except (OSError, ValueError) as e:
+        return {"unreadable": str(e)}
+
+
+def halcmd(*args):
+    return subprocess.run(["halcmd"] + list(args), capture_output=True, text=True, timeout=60,
+                          cwd=ini_dir())
+
+
+def hal_components():
+    """`halcmd show comp`: name -> {id, type, pid, state}."""
+    comps = {}
+    for line in halcmd("show", "comp").stdout.splitlines():
+        words = line.split()
+        if len(words) >= 3 and words[0].isdigit() and words[1] in ("User", "RT"):
+            pid = int(words[3]) if words[1] == "User" and len(words) > 4 else None
+            comps[words[2]] = {"id": int(words[0]), "type": words[1], "pid": pid,
+                               "state": words[-1]}
+    return comps
+
+
+def pin_links(prefix=COMPONENT + "."):
+    """`halcmd show pin`: every pin of the component -> the signal it is on (or None)."""
+    links = {}
+    for line in halcmd("show", "pin", prefix).stdout.splitlines():
+        words = line.split()
+        if len(words) >= 5 and words[0].isdigit() and words[4].startswith(prefix):
+            links[words[4]] = words[6] if len(words) >= 7 else None
+    return links
+
+
+def component_pids():
+    """Processes whose command line is the component's: `fixed_atc_probe --config ...`.
+    (Not a halcmd loading it, not a zombie: a zombie's command line is empty.)"""
+    pids = []
+    for entry in os.listdir("/proc"):
+        if not entry.isdigit():
+            continue
+        try:
+            with open("/proc/%s/cmdline" % entry, "rb") as f:
+                argv = f.read().split(b"\0")
+        except OSError:
+            continue
+        if os.path.basename(argv[0]).decode(errors="replace") == COMPONENT and b"--config" in argv:
+            pids.append(int(entry))
+    return pids
+
+
+def process_gone(pid):
+    """Dead: no such process, or a zombie its parent has not reaped."""
+    try:
+        with open("/proc/%d/stat" % pid) as f:
+            return f.read().rsplit(")", 1)[1].split()[0] in ("Z", "X")
+    except OSError:
+        return True
+
+
+def kill_component():
+    """SIGKILL: the component gets no chance to close its chuck or save anything."""
+    pids = component_pids()
+    if len(pids) != 1:
+        raise RuntimeError("expected one %s process, found %s" % (COMPONENT, pids))
+    os.kill(pids[0], signal.SIGKILL)
+    killed = time.monotonic()
+    wait_for(lambda: process_gone(pids[0]), 10, "the killed component to die")
+    return pids[0], killed
+
+
+_reapers = []
+
+
+def remove_dead_component(comp):
+    """LinuxCNC 2.9 has no command that removes a userspace component whose
+    process died: `halcmd unloadusr`/`unload` only send SIGTERM to its pid
+    (src/hal/utils/halcmd_commands.c, do_unloadusr_cmd) and return 0, so its
+    registration and pins stay; a new process then fails hal_init with
+    "duplicate component name", while `loadusr -W` returns 0 at once: the dead
+    registration is "ready". hal_exit(id) removes any component by id
+    (hal_lib.c: it unlinks and frees its pins), from any process attached to
+    HAL; it also drops that process's hal_lib reference count, and at zero the
+    process detaches from HAL. So a component of our own is registered first
+    to hold the reference: it stays registered (with this driver's pid) until
+    LinuxCNC stops realtime; its shutdown waits up to 2 s for it to go."""
+    lib = ctypes.CDLL("liblinuxcnchal.so.0")  # the library the hal module uses: one reference count
+    name = "fatc-reaper-%d" % (len(_reapers) + 1)
+    reaper = lib.hal_init(name.encode())
+    if reaper < 0:
+        raise RuntimeError("hal_init(%s) failed: %d" % (name, reaper))
+    lib.hal_ready(reaper)
+    _reapers.append(reaper)
+    result = lib.hal_exit(comp["id"])
+    if result != 0:
+        raise RuntimeError("hal_exit(%d) of the dead %s failed: %d" % (comp["id"], COMPONENT, result))
+    return name
+
+
+def hal_file_lines(path, resolve):
+    """The lines of a HAL file with [SECTION]KEY resolved and comments dropped."""
+    lines = []
+    with open(path) as f:
+        for line in f:
+            line = line.split("#", 1)[0].strip()
+            if line:
+                lines.append(re.sub(r"\[([A-Za-z0-9_]+)\]([A-Za-z0-9_]+)", resolve, line).split())
+    return lines
+
+
+def component_hal_commands():
+    """What the machine's HAL files do to the component: its loadusr, then every
+    `net` and `setp` that names one of its pins, as halcmd commands."""
+    inifile = ini()
+
+    def resolve(m):
+        value = inifile.find(m.group(1), m.group(2))
+        if value is None:
+            raise RuntimeError("[%s]%s not in the INI" % (m.group(1), m.group(2)))
+        return value
+
+    files = [f for f in inifile.findall("HAL", "HALFILE") or []]
+    # The panel's file is loaded only after a GUI made its component.
+    if hal.component_exists("fatc-panel"):
+        files += inifile.findall("HAL", "POSTGUI_HALFILE") or []
+    load, nets, setps = None, [], []
+    for name in files:
+        if name.startswith("LIB:") or not name.endswith(".hal"):
+            continue  # the machine's own Tcl files do not name the component
+        path = name if os.path.isabs(name) else os.path.join(ini_dir(), name)
+        for words in hal_file_lines(path, resolve):
+            if words[0] == "loadusr" and COMPONENT in words:
+                load = words
+            elif words[0] == "net":
+                nets += [("net", words[1], w) for w in words[2:] if w.startswith(COMPONENT + ".")]
+            elif words[0] == "setp" and words[1].startswith(COMPONENT + "."):
+                setps.append(("setp", words[1], words[2]))
+    if load is None:
+        raise RuntimeError("no loadusr of %s in %s" % (COMPONENT, files))
+    return [tuple(load)] + nets + setps
+
+
+def restart_component():
+    """Brings a SIGKILLed component back as the machine's HAL files did: remove
+    the dead registration, loadusr -W with the same arguments, net every pin to
+    the signal the HAL files name, setp what they set."""
+    report = {"pid_alive": component_pids()}
+    comps = hal_components()
+    dead = comps.get(COMPONENT)
+    if dead is None:
+        raise RuntimeError("%s is not registered in HAL: %s" % (COMPONENT, sorted(comps)))
+    if not process_gone(dead["pid"]):
+        raise RuntimeError("%s (pid %d) is still running: kill it first" % (COMPONENT, dead["pid"]))
+    report["dead"] = dead
+    report["links_before"] = pin_links()  # the dead component's pins are still on their signals
+    # What LinuxCNC offers for it: both only send SIGTERM to the dead pid.
+    report["unloadusr"] = halcmd("unloadusr", COMPONENT).returncode
+    report["unload"] = halcmd("unload", COMPONENT).returncode
+    report["registered_after_unload"] = COMPONENT in hal_components()
+    report["reaper"] = remove_dead_component(dead)
+    report["registered_after_hal_exit"] = COMPONENT in hal_components()
+    commands = component_hal_commands()
+    report["commands"] = [" ".join(c) for c in commands]
+    hal_path = os.path.join(ini_dir(), "fixed_atc_probe_restart.hal")
+    with open(hal_path, "w") as f:
+        f.write("\n".join(report["commands"]) + "\n")
+    # The component keeps halcmd's output files: a log, not a pipe we would wait on.
+    log_path = os.path.join(ini_dir(), "fixed_atc_probe_restart.log")
+    began = time.monotonic()
+    with open(log_path, "a") as log:
+        code = subprocess.run(["halcmd", "-f", hal_path], stdout=log, stderr=subprocess.STDOUT,
+                              stdin=subprocess.DEVNULL, cwd=ini_dir(), timeout=120).returncode
+    report["load_seconds"] = time.monotonic() - began
+    if code != 0:
+        raise RuntimeError("halcmd -f %s failed (%d): %s" % (hal_path, code, open(log_path).read()[-2000:]))
+    report["new"] = hal_components().get(COMPONENT)
+    report["pid_new"] = component_pids()
+    report["links_after"] = pin_links()
+    return report
+
+
+def snapshot(start):
+    """What the component and LinuxCNC say at one moment: pins, files, tool."""
+    stat.poll()
+    return {"t": time.monotonic() - start, "pins": {p: pin_value(p) for p in PINS},
+            "tool_in_spindle": stat.tool_in_spindle,
+            "state_file": read_json(state_path()), "status_file": read_json(state_path() + ".status")}
 
 
 def run_scenario(scenario):
@@ -77,11 +295,7 @@ def run_scenario(scenario):
         command.wait_complete()
         command.mdi(line)
         command.wait_complete(60)
-    command.mode(linuxcnc.MODE_AUTO)
-    command.wait_complete()
-    command.program_open(os.path.join(os.environ["FATC_ROOT"], scenario["program"]))
-    command.wait_complete()
-    command.auto(linuxcnc.AUTO_RUN, 0)
+    start_program(scenario["program"])
     start = time.monotonic()
     wait_for(lambda: stat.interp_state != linuxcnc.INTERP_IDLE or stat.exec_state != 0, 30,
              "the program to start")
@@ -114,6 +328,12 @@ def run_scenario(scenario):
             elif action["do"] == "abort":
                 command.abort()
                 result["aborted_at"] = s["t"]
+            elif action["do"] == "kill":
+                result["killed_pid"], killed = kill_component()
+                result["killed_at"] = killed - start
+                result["kill_sample"] = s
+            elif action["do"] in ("restart", "confirm", "snapshot"):
+                perform(action, result, start)
             elif action["do"] == "snapshot_abort":
                 result["snapshot"] = {"gcodes": list(stat.gcodes),
                                       "tool_offset": list(stat.tool_offset[:3]),
@@ -136,12 +356,83 @@ def run_scenario(scenario):
     for pin in scenario.get("set_pins", {}):
         hal.set_p(pin, "0")
     for step in scenario.get("after", []):
-        if step == "clear_fault":
+        if isinstance(step, dict):
+            perform(step, result, start)
+        elif step == "clear_fault":
             # The operator has checked the spindle: it holds what LinuxCNC says.
             hal.set_p("fixed_atc_probe.clear-fault", "1")
             wait_for(lambda: hal.get_value("fixed_atc_probe.state") == 1, 30, "the fault to clear")
             hal.set_p("fixed_atc_probe.clear-fault", "0")
     return result
+
+
+def sampled_wait_in(result, start, condition, timeout, what):
+    """Waits on what LinuxCNC or HAL reports, sampling into the result meanwhile."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        stat.poll()
+        drain_errors()
+        result["samples"].append(sample(start))
+        if condition():
+            return
+        time.sleep(0.002)
+    raise TimeoutError("timed out waiting for " + what)
+
+
+def start_program(program):
+    command.mode(linuxcnc.MODE_AUTO)
+    command.wait_complete()
+    command.program_open(os.path.join(os.environ["FATC_ROOT"], program))
+    command.wait_complete()
+    command.auto(linuxcnc.AUTO_RUN, 0)
+
+
+def perform(step, result, start):
+    """A step that is the same in a program scenario (an action) and an operator one."""
+    def wait(condition, timeout, what):
+        sampled_wait_in(result, start, condition, timeout, what)
+
+    def now():
+        return time.monotonic() - start
+
+    if step["do"] == "restart":
+        began = now()
+        result["restart"] = restart_component()
+        result["restart"]["began"], result["restart"]["done"] = began, now()
+    elif step["do"] == "confirm":
+        # The operator says what the spindle holds and whether the cut-off pocket
+        # holds its tool, then presses Clear fault (a 100 ms pulse).
+        hal.set_p(COMPONENT + ".confirm-tool", str(step["tool"]))
+        hal.set_p(COMPONENT + ".confirm-pocket", str(step["pocket"]))
+        hal.set_p(COMPONENT + ".clear-fault", "1")
+        pressed = time.monotonic()
+        wait(lambda: time.monotonic() - pressed > 0.1, 5, "the press")
+        hal.set_p(COMPONENT + ".clear-fault", "0")
+        result["confirmed_at"] = now()
+        wait(lambda: hal.get_value(COMPONENT + ".state") == 1, 30, "the changer idle after the confirm")
+        result["idle_after_confirm_at"] = now()
+        hal.set_p(COMPONENT + ".confirm-tool", "-1")
+        hal.set_p(COMPONENT + ".confirm-pocket", "-1")
+    elif step["do"] == "snapshot":
+        result.setdefault("snapshots", {})[step["name"]] = snapshot(start)
+    elif step["do"] == "program":
+        # A program run from an operator scenario: sampled until the interpreter is idle again.
+        wait(lambda: stat.interp_state == linuxcnc.INTERP_IDLE, 60, "task free for the program")
+        began = now()
+        start_program(step["program"])
+        seen = []
+
+        def ended():
+            if stat.interp_state != linuxcnc.INTERP_IDLE:
+                seen.append(True)
+            return stat.interp_state == linuxcnc.INTERP_IDLE and (seen or now() - began > 2.0)
+        wait(ended, step.get("timeout", 180), "the program %s to end" % step["program"])
+        wait(lambda: not hal.get_value("iocontrol.0.tool-change") and
+             not hal.get_value("iocontrol.0.tool-changed"), 10, "the change handshake to end")
+        result.setdefault("programs", {})[step["name"]] = {"began": began, "ended": now(),
+                                                           "program": step["program"]}
+    else:
+        raise ValueError("unknown step %s" % step)
 
 
 def run_operator(scenario):
@@ -152,18 +443,12 @@ def run_operator(scenario):
     start = time.monotonic()
 
     def sampled_wait(condition, timeout, what):
-        deadline = time.monotonic() + timeout
-        while time.monotonic() < deadline:
-            stat.poll()
-            drain_errors()
-            result["samples"].append(sample(start))
-            if condition():
-                return
-            time.sleep(0.002)
-        raise TimeoutError("timed out waiting for " + what)
+        sampled_wait_in(result, start, condition, timeout, what)
 
     for step in scenario["operator"]:
-        if "set" in step:
+        if "do" in step:
+            perform(step, result, start)
+        elif "set" in step:
             for pin, value in step["set"].items():
                 hal.set_p(pin, str(value))
         elif "press" in step:
@@ -182,6 +467,9 @@ def run_operator(scenario):
         elif "wait_message" in step:
             sampled_wait(lambda: any(step["wait_message"] in m for m in messages[first_message:]), 60,
                          "a message saying " + step["wait_message"])
+        elif "wait_tool_in_spindle" in step:
+            sampled_wait(lambda: stat.tool_in_spindle == step["wait_tool_in_spindle"], 60,
+                         "LinuxCNC's tool in spindle to be %d" % step["wait_tool_in_spindle"])
         elif "wait_idle" in step:
             sampled_wait(lambda: hal.get_value("fixed_atc_probe.state") == 1 and
                          stat.interp_state == linuxcnc.INTERP_IDLE, 180, "the changer idle")
@@ -221,6 +509,8 @@ def finish(result, start, first_message):
     result["start_pos"] = result["samples"][0]["pos"]
     result["duration"] = time.monotonic() - start
     result["tool_table_file"] = open(os.path.join(os.path.dirname(sys.argv[2]), "sim.tbl")).read()
+    result["state_file"] = read_json(state_path())
+    result["status_file"] = read_json(state_path() + ".status")
 
 
 def when(action, s, result):

@@ -94,7 +94,7 @@ std::string Context::whereabouts() const {
                          ? std::string("the spindle is empty")
                          : "tool " + std::to_string(tools.spindle) + " is in the spindle";
   if (tools.uncertain) text += " (last known; not certain)";
-  if (tools.in_progress) {
+  if (tools.uncertain && tools.in_progress) {
     text += "; cut off during " + tools.in_progress->sequence + ", " + tools.in_progress->step;
     if (tools.in_progress->pocket != 0) {
       text +=
