@@ -438,8 +438,9 @@ struct ToolRequested {
 
 // ---------------------------------------------------------------- actions
 
-/// The operator put the tool the leg serves into the spindle.
-struct RecordToolInserted {
+/// The tool the leg serves is in the spindle now (gripped from its pocket, or
+/// inserted by the operator).
+struct RecordToolInSpindle {
   template <class Event, class Fsm, class Source, class Target>
   void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
     fsm.ctx->record_in_spindle(fsm.pocket_tool);

@@ -31,11 +31,11 @@ struct InsertLeg_ : Flow<InsertLeg_<How>> {
   using initial_state = FlushLeg;
   // clang-format off
   using transition_table = boost::mpl::vector<
-  //    Start                        Event             Next          Action              Guard
-  // +----------------------------+-----------------+-------------+-------------------+------+
-  Row < FlushLeg::exit_pt<Finished>, LegDone         , AwaitingTool, none              , none >,
-  Row < AwaitingTool               , OperatorContinue, Finished    , RecordToolInserted, none >,
-  Row < AwaitingTool               , OperatorCancel  , Cancelled   , none              , none >
+  //    Start                        Event             Next          Action               Guard
+  // +----------------------------+-----------------+-------------+--------------------+------+
+  Row < FlushLeg::exit_pt<Finished>, LegDone         , AwaitingTool, none               , none >,
+  Row < AwaitingTool               , OperatorContinue, Finished    , RecordToolInSpindle, none >,
+  Row < AwaitingTool               , OperatorCancel  , Cancelled   , none               , none >
   >;
   // clang-format on
 };

@@ -162,13 +162,6 @@ struct RetrieveLeg_ : Flow<RetrieveLeg_> {
   struct UpToSafeZ : Moving<to::SafeZOverPocket> {};
   struct BackToSafeXY : Moving<to::SafeXY> {};
 
-  struct RecordToolInSpindle {
-    template <class Event, class Fsm, class Source, class Target>
-    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      fsm.ctx->record_in_spindle(fsm.pocket_tool);
-    }
-  };
-
   struct AlreadyAtSafe {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
