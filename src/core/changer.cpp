@@ -138,6 +138,7 @@ Status Changer::status() const {
   status.probe_cancellable = active<machine::flag::ProbeCancellable>(fsm);
   status.accepting = status.phase == Phase::idle && !c.task_busy;
   status.last_length = c.last_length;
+  status.step_number = status.busy() ? c.sequence_step : 0;
   status.activity = activity_of(status, c);
   return status;
 }

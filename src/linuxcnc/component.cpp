@@ -166,6 +166,7 @@ void Component::write_pins() {
   *pins_->busy = status.busy();
   *pins_->tool_in_spindle = changer_->tools().spindle;
   *pins_->awaiting = static_cast<int>(status.awaiting);
+  *pins_->step_number = status.step_number;
   *pins_->accepting = status.accepting;
   if (status.last_length) *pins_->last_length = *status.last_length;
   // An operator flow waits for the operator once its executor run has ended

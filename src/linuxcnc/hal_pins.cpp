@@ -81,6 +81,7 @@ HalPins* create_pins(const std::string& name, int& id) {
   make(id, HAL_OUT, &p->last_length, n, "last-length");
   // What a panel needs to show and to enable only the buttons that can act.
   make(id, HAL_OUT, &p->awaiting, n, "awaiting");
+  make(id, HAL_OUT, &p->step_number, n, "step-number");
   make(id, HAL_OUT, &p->accepting, n, "accepting");
   make(id, HAL_OUT, &p->can_cancel, n, "can-cancel");
   return p;

@@ -52,6 +52,7 @@ struct HalPins {
   hal_bit_t* cancel;          ///< in: rising edge: the operator cancels
   hal_bit_t* waiting_for_operator;  ///< out: a prompt waits for Continue or Cancel
   hal_float_t* last_length;         ///< out: the last tool length measured
+  hal_s32_t* step_number;  ///< out: the step of the sequence under way, as --plan numbers it
   hal_s32_t* awaiting;    ///< out: 0 nothing, 1 motion, 2 probe, 3 timer, 4 spindle, 5 operator
   hal_bit_t* accepting;   ///< out: load and unload would be accepted now
   hal_bit_t* can_cancel;  ///< out: cancel would act now (an operator wait or a load-flow probe)

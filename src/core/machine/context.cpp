@@ -28,15 +28,23 @@ void Context::publish(const Step& next) {
     known_axes = 0;  // the operator may jog; a failed sequence may stop anywhere
   }
   step = next;
+  ++sequence_step;
   ports.publish(next);
 }
 
-void Context::open_chuck() { ports.set_chuck_open(true); }
+void Context::open_chuck() {
+  ++sequence_step;
+  ports.set_chuck_open(true);
+}
 
-void Context::close_chuck() { ports.set_chuck_open(false); }
+void Context::close_chuck() {
+  ++sequence_step;
+  ports.set_chuck_open(false);
+}
 
 void Context::wait(double seconds, std::string what) {
   dwell = std::move(what);
+  ++sequence_step;
   ports.start_timer(seconds);
 }
 
@@ -48,6 +56,7 @@ void Context::ask_operator(const std::string& question) {
 void Context::begin_sequence(const std::string& sequence) {
   // Between sequences a program, MDI or a jog may have moved the machine.
   known_axes = 0;
+  sequence_step = 0;
   tools.in_progress = InProgress{sequence, "starting", 0};
   ports.save(tools);
 }
@@ -60,6 +69,7 @@ void Context::record_progress(const std::string& step, int pocket) {
 }
 
 void Context::end_sequence() {
+  sequence_step = 0;
   if (!tools.in_progress) return;
   tools.in_progress.reset();
   ports.save(tools);

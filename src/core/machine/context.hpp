@@ -45,6 +45,9 @@ class Context {
   std::string dwell;                  ///< what the running timer waits for
   std::string prompt;                 ///< the last question put to the operator
   std::optional<double> last_length;  ///< the last length a probe measured
+  /// Steps taken in the current sequence (moves, chuck actions, dwells),
+  /// numbered as --plan prints them; 0 between sequences.
+  int sequence_step = 0;
 
   void publish(const Step& step);
   void open_chuck();
