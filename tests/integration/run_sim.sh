@@ -10,9 +10,13 @@ user=${FATC_SIM_USER:-fatc}
 id "$user" >/dev/null 2>&1 || useradd -m -s /bin/bash "$user"
 
 mkdir -p "$work"
-# Each run starts as a fresh machine: LinuxCNC starts with an empty spindle.
-rm -f "$work/fixed_atc_state.json" "$work/results.json"
-cp "$root/config/sim/sim.tbl" "$work/"
+rm -f "$work/results.json"
+if [ -z "${FATC_KEEP_STATE:-}" ] || [ ! -e "$work/sim.tbl" ]; then
+  # Each run starts as a fresh machine: LinuxCNC starts with an empty spindle.
+  # (FATC_KEEP_STATE: a restart of the same machine keeps its files.)
+  rm -f "$work/fixed_atc_state.json"
+  cp "$root/config/sim/sim.tbl" "$work/"
+fi
 cp "${FATC_CONFIG:-$root/config/config.json}" "$work/config.json"
 if [ -n "${FATC_CONFIG_SET:-}" ]; then
   # Keys to set in the copied config, as a JSON object: one machine, another setting.
@@ -28,6 +32,10 @@ sed -e "s|^DISPLAY = .*|DISPLAY = $display|" \
 if [ -n "${FATC_INI_EXTRA:-}" ]; then
   sed -i "s|^RETURN_TO_XY = .*|$FATC_INI_EXTRA|" "$work/sim.ini"
 fi
+if [ -n "${FATC_INI_SED:-}" ]; then
+  # A sed script for the copied INI: the same machine, e.g. with faster axes.
+  sed -i -e "$FATC_INI_SED" "$work/sim.ini"
+fi
 if [ -n "${FATC_APP:-}" ]; then
   # A program LinuxCNC starts beside its GUI (the GUI test's driver).
   printf '\n[APPLICATIONS]\nAPP = %s\n' "$FATC_APP" >> "$work/sim.ini"
@@ -42,5 +50,5 @@ cd "$work"
 # FATC_WRAP: a command LinuxCNC runs under (the GUI test's D-Bus session).
 exec runuser -u "$user" -- ${FATC_WRAP:-} env PATH="$bin_dir:$PATH" HOME="$(getent passwd "$user" | cut -d: -f6)" \
   FATC_ROOT="$root" FATC_SCENARIOS="${FATC_SCENARIOS:-}" FATC_RESULTS="${FATC_RESULTS:-}" \
-  FATC_ARTIFACTS="${FATC_ARTIFACTS:-}" FATC_BENCH_REPEATS="${FATC_BENCH_REPEATS:-}" DISPLAY="${DISPLAY:-}" XAUTHORITY="${XAUTHORITY:-}" \
+  FATC_ARTIFACTS="${FATC_ARTIFACTS:-}" FATC_MATRIX_MODE="${FATC_MATRIX_MODE:-}" FATC_MATRIX_KINDS="${FATC_MATRIX_KINDS:-}" FATC_MATRIX_STEPS="${FATC_MATRIX_STEPS:-}" FATC_MATRIX_PENDING="${FATC_MATRIX_PENDING:-}" FATC_BENCH_REPEATS="${FATC_BENCH_REPEATS:-}" DISPLAY="${DISPLAY:-}" XAUTHORITY="${XAUTHORITY:-}" \
   RUNTESTS=1 linuxcnc "$work/sim.ini"

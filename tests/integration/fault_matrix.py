@@ -1,0 +1,331 @@
+#!/usr/bin/python3
+"""[DISPLAY]DISPLAY of the fault-matrix runs on the real LinuxCNC.
+
+An M6 between two rack tools is cut off at each step where it waits (a move
+the executor performs, a dwell the component times) by an estop, LinuxCNC's
+Stop (abort), or the component killed with SIGKILL and restarted; with
+FATC_MATRIX_MODE=restart, LinuxCNC itself is stopped at the step and the next
+start checks what it finds. After each cut the run records what LinuxCNC and
+the component report: the chuck, the fault, the files, the refusals; then the
+operator confirms what a machinist would find (the model below) and the run
+records that LinuxCNC and the changer agree. fault_matrix_check.py judges.
+
+Environment: FATC_RESULTS (JSON written here), FATC_MATRIX_KINDS (comma list,
+default estop,abort,kill), FATC_MATRIX_MODE (matrix | restart),
+FATC_MATRIX_STEPS (comma list of step numbers, "none", or unset: every step
+that waits); FATC_MATRIX_PENDING (restart mode: the case the last start cut).
+"""
+import json
+import os
+import subprocess
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import driver as d  # noqa: E402  (shares its LinuxCNC channels and HAL helpers)
+import hal  # noqa: E402
+import linuxcnc  # noqa: E402
+
+P = d.COMPONENT + "."
+FIRST, SECOND = 1, 2  # adjacent pockets: the change between them is short
+OTHER = 3             # what the refused M6 asks for
+
+
+def pin(name):
+    return d.pin_value(name)
+
+
+def plan(config):
+    """--plan of the change: [(number, kind, what)], as the step-number pin counts."""
+    out = subprocess.run(["fixed_atc_probe", "--plan", "--from", str(FIRST), "--to", str(SECOND),
+                          "--config", config], capture_output=True, text=True, timeout=60)
+    steps = []
+    for line in out.stdout.splitlines()[1:]:
+        words = line.split(None, 2)
+        if len(words) >= 2 and words[0].isdigit():
+            steps.append((int(words[0]), words[1], words[2].strip() if len(words) > 2 else ""))
+    if not steps:
+        raise RuntimeError("--plan printed no steps: %s %s" % (out.stdout, out.stderr))
+    return steps
+
+
+def truth(steps, at, held):
+    """What a machinist finds after a change from `held` cut off at step `at`:
+    the tool leaves the spindle when the chuck first opens (in its pocket), and
+    the next is held only once the chuck closed on it in its pocket (the last
+    close). Returns (spindle, {pocket: holds its tool})."""
+    target = SECOND if held == FIRST else FIRST
+    opens = [n for n, kind, what in steps if kind == "chuck" and what.startswith("open")]
+    closes = [n for n, kind, what in steps if kind == "chuck" and what.startswith("close")]
+    if at < opens[0]:
+        return held, {held: False, target: True}
+    if at < closes[-1]:
+        return 0, {held: True, target: True}
+    return target, {held: True, target: False}
+
+
+def program(name, text):
+    path = os.path.join(d.ini_dir(), name)
+    with open(path, "w") as f:
+        f.write(text)
+    return path
+
+
+def start_program(path):
+    d.command.mode(linuxcnc.MODE_AUTO)
+    d.command.wait_complete()
+    d.command.program_open(path)
+    d.command.wait_complete()
+    d.command.auto(linuxcnc.AUTO_RUN, 0)
+
+
+def run_program(path, timeout=120):
+    """Runs a program to its end; returns the messages it produced."""
+    first = len(d.messages)
+    d.wait_for(lambda: d.stat.interp_state == linuxcnc.INTERP_IDLE, 60, "task free")
+    start_program(path)
+    began = time.monotonic()
+    seen = []
+
+    def ended():
+        if d.stat.interp_state != linuxcnc.INTERP_IDLE:
+            seen.append(True)
+        return d.stat.interp_state == linuxcnc.INTERP_IDLE and (seen or time.monotonic() - began > 2)
+    d.wait_for(ended, timeout, "the program %s to end" % path)
+    d.wait_for(lambda: not hal.get_value("iocontrol.0.tool-change"), 10, "tool-change low")
+    return d.messages[first:]
+
+
+def change_to(tool):
+    run_program(program("fatc_matrix_t%d.ngc" % tool, "T%d M6\nM2\n" % tool))
+    d.wait_for(lambda: pin(P + "state") == 1 and pin(P + "tool-in-spindle") == tool, 30,
+               "the changer idle with T%d" % tool)
+
+
+def files():
+    return {"state_file": d.read_json(d.state_path()),
+            "status_file": d.read_json(d.state_path() + ".status"),
+            "tool_table": open(os.path.join(d.ini_dir(), "sim.tbl")).read()}
+
+
+def machine_on():
+    d.command.state(linuxcnc.STATE_ESTOP_RESET)
+    d.command.state(linuxcnc.STATE_ON)
+    d.wait_for(lambda: d.stat.task_state == linuxcnc.STATE_ON, 60, "machine on")
+    if not all(d.stat.homed[i] for i in range(d.stat.joints)):
+        d.command.mode(linuxcnc.MODE_MANUAL)
+        d.command.wait_complete()
+        d.command.home(-1)
+        d.wait_for(lambda: all(d.stat.homed[i] for i in range(d.stat.joints)), 120, "homing")
+
+
+def cut(kind, at, steps, case):
+    """Runs the change and strikes when the step-number pin shows `at`."""
+    held = pin(P + "tool-in-spindle")
+    target = SECOND if held == FIRST else FIRST
+    case.update({"from": held, "to": target})
+    first = len(d.messages)
+    start_program(program("fatc_matrix_t%d.ngc" % target, "T%d M6\nM2\n" % target))
+    began = time.monotonic()
+    deadline = began + 120
+    while time.monotonic() < deadline:
+        d.stat.poll()
+        d.drain_errors()
+        if pin(P + "step-number") == at:
+            break
+        if d.stat.interp_state == linuxcnc.INTERP_IDLE and time.monotonic() - began > 2:
+            raise RuntimeError("the change ended before step %d (messages %s)" % (at, d.messages[first:]))
+        time.sleep(0.001)
+    else:
+        raise TimeoutError("step %d never came" % at)
+    case["struck_at"] = {"t": time.monotonic() - began, "pos": list(d.stat.actual_position[:3]),
+                         "chuck": pin("fatc-chuck-guard.chuck"), "awaiting": pin(P + "awaiting"),
+                         "step_ready": pin(P + "step-ready"), "step_request": pin(P + "step-request")}
+    struck = time.monotonic()
+    if kind == "estop":
+        d.command.state(linuxcnc.STATE_ESTOP)
+    elif kind == "abort":
+        d.command.abort()
+    elif kind == "kill":
+        d.kill_component()
+    return struck, first
+
+
+def settle(kind, struck, case):
+    """Waits for what the cut must lead to, timing the chuck and the program."""
+    def since():
+        return time.monotonic() - struck
+    d.wait_for(lambda: not pin("fatc-chuck-guard.chuck"), 10, "the chuck closed")
+    case["chuck_closed_after"] = since()
+    d.wait_for(lambda: d.stat.interp_state == linuxcnc.INTERP_IDLE, 30, "the program stopped")
+    case["program_stopped_after"] = since()
+    if kind == "kill":
+        case["restart"] = {k: v for k, v in d.restart_component().items()
+                           if k in ("load_seconds", "registered_after_hal_exit")}
+        d.wait_for(lambda: pin("fatc-chuck-guard.alive"), 30, "the restarted component's heartbeat")
+    if kind == "estop":
+        case["task_state_after"] = d.stat.task_state
+        machine_on()
+    d.wait_for(lambda: pin(P + "fault"), 30, "the changer faulted")
+    d.wait_for(lambda: not hal.get_value("iocontrol.0.tool-change"), 10, "tool-change low")
+
+
+def observe_refusals(case):
+    """Faulted: M6 and the operator flows are refused with a message; nothing moves."""
+    before = list(d.stat.actual_position[:3])
+    said = run_program(program("fatc_matrix_refused.ngc", "T%d M6\nM2\n" % OTHER), 60)
+    first = len(d.messages)
+    hal.set_p(P + "tool-number", "4")
+    hal.set_p(P + "load", "1")
+    d.wait_for(lambda: any("refused" in m for m in d.messages[first:]), 10, "the load refusal")
+    hal.set_p(P + "load", "0")
+    d.stat.poll()
+    case["refusal"] = {"m6_messages": said, "load_messages": d.messages[first:],
+                       "moved": max(abs(a - b) for a, b in zip(before, d.stat.actual_position[:3])),
+                       "fault_after": pin(P + "fault"), "state_after": pin(P + "state")}
+
+
+def confirm(spindle, pockets, case):
+    """The operator says what they found, then presses Clear fault."""
+    cut_off = pin(P + "cut-off-pocket")
+    hal.set_p(P + "confirm-tool", str(spindle))
+    hal.set_p(P + "confirm-pocket", str(-1 if not cut_off else int(pockets.get(cut_off, True))))
+    hal.set_p(P + "clear-fault", "1")
+    pressed = time.monotonic()
+    d.wait_for(lambda: time.monotonic() - pressed > 0.1, 5, "the press")
+    hal.set_p(P + "clear-fault", "0")
+    d.wait_for(lambda: pin(P + "state") == 1, 30, "the changer idle after the confirm")
+    d.wait_for(lambda: d.stat.tool_in_spindle == spindle, 30, "LinuxCNC told the confirmed tool")
+    hal.set_p(P + "confirm-tool", "-1")
+    hal.set_p(P + "confirm-pocket", "-1")
+    case["confirmed"] = {"spindle": spindle, "cut_off_pocket": cut_off,
+                         "pocket_holds_tool": pockets.get(cut_off) if cut_off else None,
+                         "linuxcnc_tool": d.stat.tool_in_spindle,
+                         "changer_tool": pin(P + "tool-in-spindle"), "files": files()}
+
+
+def prepare():
+    """A rack tool in the spindle, the changer idle."""
+    d.wait_for(lambda: pin(P + "state") in (1, 5), 60, "the changer up")
+    if pin(P + "tool-in-spindle") not in (FIRST, SECOND):
+        change_to(FIRST)
+
+
+def run_case(kind, at, steps):
+    case = {"kind": kind, "step": at, "what": next(s for s in steps if s[0] == at)[1:]}
+    try:
+        began = time.monotonic()
+        prepare()
+        case["seconds"] = {"prepare": time.monotonic() - began}
+        struck, first = cut(kind, at, steps, case)
+        case["seconds"]["cut"] = time.monotonic() - began
+        settle(kind, struck, case)
+        case["seconds"]["settle"] = time.monotonic() - began
+        case["after_cut"] = {"fault": pin(P + "fault"), "state": pin(P + "state"),
+                             "chuck": pin("fatc-chuck-guard.chuck"),
+                             "linuxcnc_tool": d.stat.tool_in_spindle,
+                             "changer_tool": pin(P + "tool-in-spindle"),
+                             "cut_off_pocket": pin(P + "cut-off-pocket"), "files": files(),
+                             "messages": d.messages[first:]}
+        observe_refusals(case)
+        case["seconds"]["refusals"] = time.monotonic() - began
+        spindle, pockets = truth(steps, at, case["from"])
+        confirm(spindle, pockets, case)
+        case["seconds"]["confirm"] = time.monotonic() - began
+    except Exception as e:  # the checker reports it; the next case starts afresh
+        case["error"] = "%s: %s" % (type(e).__name__, e)
+        try:
+            recover()
+        except Exception as again:
+            case["recover_error"] = "%s: %s" % (type(again).__name__, again)
+    return case
+
+
+def recover():
+    """After a case that went wrong: the machine on, the component up, idle."""
+    d.stat.poll()
+    if d.stat.task_state != linuxcnc.STATE_ON:
+        machine_on()
+    if not d.component_pids():
+        d.restart_component()
+    d.wait_for(lambda: pin(P + "state") in (1, 5), 30, "the changer up")
+    if pin(P + "fault"):
+        confirm(pin(P + "tool-in-spindle"), {}, {})
+
+
+def waiting_steps(steps):
+    """Every step but the chuck actions (they take no time: the dwell after one
+    is where a cut finds the chuck as it left it) and the final done."""
+    return [n for n, kind, _ in steps if kind not in ("chuck", "done")]
+
+
+def main():
+    comp = hal.component("fatc-matrix")
+    comp.ready()
+    results = {"cases": [], "error": None}
+    out = os.environ["FATC_RESULTS"]
+    try:
+        bring_up()
+        steps = plan(os.path.join(d.ini_dir(), "config.json"))
+        results["plan"] = steps
+        chosen = os.environ.get("FATC_MATRIX_STEPS")
+        if chosen == "none":
+            at_steps = []
+        else:
+            at_steps = [int(s) for s in chosen.split(",")] if chosen else waiting_steps(steps)
+        if os.environ.get("FATC_MATRIX_MODE") == "restart":
+            restart_mode(steps, at_steps, results)
+        else:
+            kinds = os.environ.get("FATC_MATRIX_KINDS", "estop,abort,kill").split(",")
+            began = time.monotonic()
+            for kind in kinds:
+                for at in at_steps:
+                    results["cases"].append(run_case(kind, at, steps))
+                    json.dump(results, open(out, "w"))
+            results["seconds"] = time.monotonic() - began
+    except Exception as e:  # the checker reports it; LinuxCNC must still shut down
+        results["error"] = "%s: %s (last messages: %s)" % (type(e).__name__, e, d.messages[-4:])
+    json.dump(results, open(out, "w"))
+
+
+def bring_up():
+    """As the driver's, but the changer may come up faulted (a restart case)."""
+    d.wait_for(lambda: d.stat.task_state in (linuxcnc.STATE_ESTOP, linuxcnc.STATE_ESTOP_RESET,
+                                             linuxcnc.STATE_ON, linuxcnc.STATE_OFF), 120, "task")
+    machine_on()
+    d.wait_for(lambda: pin(P + "state") in (1, 5), 60, "fixed_atc_probe up")
+
+
+def restart_mode(steps, at_steps, results):
+    """One LinuxCNC start of the restart cases: check and confirm what the last
+    start left (FATC_MATRIX_PENDING names its case), then cut the next case's
+    change and leave, which stops LinuxCNC under it."""
+    pending = os.environ.get("FATC_MATRIX_PENDING")
+    if pending:
+        case = json.loads(pending)
+        d.wait_for(lambda: pin(P + "fault"), 30, "the changer faulted after the restart")
+        d.stat.poll()
+        case["after_cut"] = {"fault": pin(P + "fault"), "state": pin(P + "state"),
+                             "chuck": pin("fatc-chuck-guard.chuck"),
+                             "linuxcnc_tool": d.stat.tool_in_spindle,
+                             "changer_tool": pin(P + "tool-in-spindle"),
+                             "cut_off_pocket": pin(P + "cut-off-pocket"), "files": files(),
+                             "messages": list(d.messages)}
+        try:
+            observe_refusals(case)
+            spindle, pockets = truth(steps, case["step"], case["from"])
+            confirm(spindle, pockets, case)
+        except Exception as e:
+            case["error"] = "%s: %s" % (type(e).__name__, e)
+        results["cases"].append(case)
+    if at_steps:
+        at = at_steps[0]
+        case = {"kind": "restart", "step": at, "what": next(s for s in steps if s[0] == at)[1:]}
+        prepare()
+        struck, _ = cut("restart", at, steps, case)
+        results["next"] = case
+        results["left"] = at_steps[1:]
+
+
+if __name__ == "__main__":
+    main()
