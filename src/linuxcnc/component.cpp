@@ -121,7 +121,7 @@ void Component::sync_linuxcnc_tool() {
   }
   if (sync_sent_ && now_ - *sync_sent_ < std::chrono::seconds(5)) return;
   sync_sent_ = now_;
-  nml_->run_mdi("M61 Q" + std::to_string(tool));
+  if (!nml_->run_mdi("M61 Q" + std::to_string(tool))) return;  // again in 5 s
   tell(MessageKind::info,
        "told LinuxCNC the spindle holds " +
            (tool == 0 ? std::string("nothing") : "tool " + std::to_string(tool)) +

@@ -1,10 +1,12 @@
 #include "nml_link.hpp"
 
+#include <chrono>
 #include <cstring>
 #include <emc.hh>
 #include <emc_nml.hh>
 #include <rcs_print.hh>
 #include <stat_msg.hh>
+#include <thread>
 
 #include "io/ini.hpp"
 
@@ -67,33 +69,46 @@ void NmlLink::send(MessageKind kind, const std::string& line) {
     EMC_OPERATOR_ERROR message;
     std::strncpy(message.error, line.c_str(), sizeof message.error - 1);
     message.error[sizeof message.error - 1] = '\0';
-    message.serial_number = ++serial_;
-    channels_->command->write(&message);
+    write_received(message);
   } else {
     EMC_OPERATOR_DISPLAY message;
     std::strncpy(message.display, line.c_str(), sizeof message.display - 1);
     message.display[sizeof message.display - 1] = '\0';
-    message.serial_number = ++serial_;
-    channels_->command->write(&message);
+    write_received(message);
   }
 }
 
-void NmlLink::run_mdi(const std::string& line) {
+bool NmlLink::write_received(RCS_CMD_MSG& message) {
+  // Task's command buffer holds one command: a second write before task read
+  // the first replaces it (a mode change lost, then "can't do that in AUTO
+  // mode"). So wait until task echoes this serial, as LinuxCNC's own shcom
+  // does, but briefly: the component's loop keeps the chuck guard's heartbeat.
+  message.serial_number = ++serial_;
+  if (channels_->command->write(&message) != 0) return false;
+  const auto until = std::chrono::steady_clock::now() + kReceiveTimeout;
+  do {
+    if (channels_->status->peek() == EMC_STAT_TYPE) {
+      const auto* stat = static_cast<EMC_STAT*>(channels_->status->get_address());
+      if (stat->echo_serial_number == message.serial_number) return true;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  } while (std::chrono::steady_clock::now() < until);
+  return false;
+}
+
+bool NmlLink::run_mdi(const std::string& line) {
   EMC_TASK_SET_MODE mode;
   mode.mode = EMC_TASK_MODE_MDI;
-  mode.serial_number = ++serial_;
-  channels_->command->write(&mode);
+  if (!write_received(mode)) return false;
   EMC_TASK_PLAN_EXECUTE execute;
   std::strncpy(execute.command, line.c_str(), sizeof execute.command - 1);
   execute.command[sizeof execute.command - 1] = '\0';
-  execute.serial_number = ++serial_;
-  channels_->command->write(&execute);
+  return write_received(execute);
 }
 
 void NmlLink::abort() {
   EMC_TASK_ABORT abort;
-  abort.serial_number = ++serial_;
-  channels_->command->write(&abort);
+  write_received(abort);
 }
 
 std::string nml_file_of(const std::string& ini_path) {

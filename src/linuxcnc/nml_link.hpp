@@ -1,9 +1,12 @@
 #pragma once
 
+#include <chrono>
 #include <memory>
 #include <string>
 
 #include "core/ports.hpp"
+
+class RCS_CMD_MSG;
 
 namespace fatc::linuxcnc {
 
@@ -21,8 +24,9 @@ class NmlLink {
   bool interpreter_idle() const { return interpreter_idle_; }
   /// An operator message: errors as EMC_OPERATOR_ERROR, the rest as EMC_OPERATOR_DISPLAY.
   void tell(MessageKind kind, const std::string& text);
-  /// Puts task in MDI mode and runs `line` there, as halui does for its MDI commands.
-  void run_mdi(const std::string& line);
+  /// Puts task in MDI mode and runs `line` there, as halui does for its MDI
+  /// commands. False when task did not take the commands (the caller retries).
+  bool run_mdi(const std::string& line);
   /// Stops what task runs (program or MDI), as the GUI's Stop does.
   void abort();
 
@@ -30,6 +34,9 @@ class NmlLink {
   struct Channels;
   explicit NmlLink(std::unique_ptr<Channels> channels);
   void send(MessageKind kind, const std::string& line);
+  /// Writes a command and waits (at most kReceiveTimeout) until task took it.
+  bool write_received(RCS_CMD_MSG& message);
+  static constexpr std::chrono::milliseconds kReceiveTimeout{100};
   /// Characters of one operator message part (LinuxCNC's buffer holds 255).
   static constexpr std::size_t kMessagePart = 240;
   std::unique_ptr<Channels> channels_;

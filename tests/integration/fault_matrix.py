@@ -253,6 +253,68 @@ def recover():
         confirm(pin(P + "tool-in-spindle"), {}, {})
 
 
+def run_hold(at, steps):
+    """Feed hold at the step and resume: nothing is cut off, the change ends
+    with the tool it was asked for and no fault."""
+    case = {"kind": "hold", "step": at, "what": next(s for s in steps if s[0] == at)[1:]}
+    try:
+        prepare()
+        struck, first = cut("hold", at, steps, case)
+        d.command.auto(linuxcnc.AUTO_PAUSE)
+        d.wait_for(lambda: d.stat.paused, 10, "the program paused")
+        paused = time.monotonic()
+        d.wait_for(lambda: time.monotonic() - paused > 0.3, 5, "the hold")
+        case["held"] = {"step_number": pin(P + "step-number"), "chuck": pin("fatc-chuck-guard.chuck"),
+                        "pos": list(d.stat.actual_position[:3])}
+        d.command.auto(linuxcnc.AUTO_RESUME)
+        d.wait_for(lambda: d.stat.interp_state == linuxcnc.INTERP_IDLE, 60, "the program to end")
+        d.wait_for(lambda: pin(P + "state") in (1, 5), 30, "the changer settled")
+        case["after_hold"] = {"fault": pin(P + "fault"), "state": pin(P + "state"),
+                              "linuxcnc_tool": d.stat.tool_in_spindle,
+                              "changer_tool": pin(P + "tool-in-spindle"),
+                              "chuck": pin("fatc-chuck-guard.chuck"), "files": files(),
+                              "messages": d.messages[first:]}
+    except Exception as e:
+        case["error"] = "%s: %s" % (type(e).__name__, e)
+        try:
+            recover()
+        except Exception as again:
+            case["recover_error"] = "%s: %s" % (type(again).__name__, again)
+    return case
+
+
+def run_spindle_turning(steps):
+    """The spindle never reports stopped (a zero-speed signal stuck low): M6
+    must fault after spindle_stop_timeout_seconds with the chuck closed and
+    nothing moved."""
+    case = {"kind": "spindle", "step": 0, "what": ["spindle", "does not stop"]}
+    stopped = P + "spindle-stopped"
+    try:
+        prepare()
+        case.update({"from": pin(P + "tool-in-spindle")})
+        d.halcmd("unlinkp", stopped)
+        d.halcmd("setp", stopped, "0")
+        before = list(d.stat.actual_position[:3])
+        first = len(d.messages)
+        began = time.monotonic()
+        run_program(program("fatc_matrix_t%d.ngc" % OTHER, "T%d M6\nM2\n" % OTHER), 60)
+        case["program_seconds"] = time.monotonic() - began
+        d.stat.poll()
+        case["after"] = {"fault": pin(P + "fault"), "chuck_ever": None,
+                         "moved": max(abs(a - b) for a, b in zip(before, d.stat.actual_position[:3])),
+                         "messages": d.messages[first:], "linuxcnc_tool": d.stat.tool_in_spindle}
+    except Exception as e:
+        case["error"] = "%s: %s" % (type(e).__name__, e)
+    finally:
+        d.halcmd("net", "fatc-spindle-stop", stopped)
+    try:
+        if pin(P + "fault"):
+            confirm(case.get("from", 0), {}, case)
+    except Exception as e:
+        case["error"] = case.get("error", "") + " confirm: %s: %s" % (type(e).__name__, e)
+    return case
+
+
 def waiting_steps(steps):
     """Every step but the chuck actions (they take no time: the dwell after one
     is where a cut finds the chuck as it left it) and the final done."""
@@ -280,8 +342,13 @@ def main():
             began = time.monotonic()
             for kind in kinds:
                 for at in at_steps:
-                    results["cases"].append(run_case(kind, at, steps))
+                    if kind == "hold":
+                        results["cases"].append(run_hold(at, steps))
+                    else:
+                        results["cases"].append(run_case(kind, at, steps))
                     json.dump(results, open(out, "w"))
+            if os.environ.get("FATC_MATRIX_SPINDLE"):
+                results["cases"].append(run_spindle_turning(steps))
             results["seconds"] = time.monotonic() - began
     except Exception as e:  # the checker reports it; LinuxCNC must still shut down
         results["error"] = "%s: %s (last messages: %s)" % (type(e).__name__, e, d.messages[-4:])

@@ -19,11 +19,57 @@ PROGRAM_STOPS_WITHIN = {"estop": 5.0, "abort": 5.0, "kill": 5.0}
 TOOL_LINE = re.compile(r"^T\d+ P\d+( [A-Z][-+0-9.eE]+)*( ;.*)?$")
 
 
+def hold_problems(case):
+    """A feed hold and resume cuts nothing off: the change ends as asked."""
+    after = case["after_hold"]
+    found = []
+    if after["fault"] or after["state"] != 1:
+        found.append("not idle after the resumed change (state %s): %s" % (after["state"], after["messages"]))
+    if not (after["linuxcnc_tool"] == after["changer_tool"] == case["to"]):
+        found.append("LinuxCNC says T%d, the changer T%d, asked for T%d" % (
+            after["linuxcnc_tool"], after["changer_tool"], case["to"]))
+    if after["chuck"]:
+        found.append("the chuck is open after the change")
+    state = after["files"]["state_file"]
+    if state.get("uncertain") or state.get("in_progress") or state.get("spindle") != case["to"]:
+        found.append("the state file after the change: %s" % state)
+    return found
+
+
+def spindle_problems(case):
+    """A spindle that never reports stopped: fault, nothing moved, no chuck."""
+    after = case["after"]
+    found = []
+    if not after["fault"]:
+        found.append("no fault when the spindle never stopped")
+    if after["moved"] > 1e-6:
+        found.append("the machine moved %.3f while the spindle turned" % after["moved"])
+    if not any("did not stop" in m for m in after["messages"]):
+        found.append("no message says the spindle did not stop: %s" % after["messages"])
+    return found + confirmed_problems(case)
+
+
+def confirmed_problems(case):
+    done = case["confirmed"]
+    found = []
+    if not (done["linuxcnc_tool"] == done["changer_tool"] == done["spindle"]):
+        found.append("after the confirmation LinuxCNC says T%d, the changer T%d, the operator T%d" % (
+            done["linuxcnc_tool"], done["changer_tool"], done["spindle"]))
+    after = done["files"]["state_file"]
+    if after.get("uncertain") or after.get("in_progress") or after.get("spindle") != done["spindle"]:
+        found.append("the state file after the confirmation: %s" % after)
+    return found
+
+
 def problems_of(case):
     """What is wrong with one case, in words; empty when it passed."""
     kind = case["kind"]
     if "error" in case:
         return ["the run failed: %s" % case["error"]]
+    if kind == "hold":
+        return hold_problems(case)
+    if kind == "spindle":
+        return spindle_problems(case)
     found = []
     cut = case["after_cut"]
     if not cut["fault"]:
@@ -57,14 +103,7 @@ def problems_of(case):
         found.append("the load flow was not refused with a message: %s" % refusal["load_messages"])
     if refusal["moved"] > 1e-6 or not refusal["fault_after"]:
         found.append("the refused M6 moved %.3f or cleared the fault" % refusal["moved"])
-    done = case["confirmed"]
-    if not (done["linuxcnc_tool"] == done["changer_tool"] == done["spindle"]):
-        found.append("after the confirmation LinuxCNC says T%d, the changer T%d, the operator T%d" % (
-            done["linuxcnc_tool"], done["changer_tool"], done["spindle"]))
-    after = done["files"]["state_file"]
-    if after.get("uncertain") or after.get("in_progress") or after.get("spindle") != done["spindle"]:
-        found.append("the state file after the confirmation: %s" % after)
-    return found
+    return found + confirmed_problems(case)
 
 
 def cell(case):
@@ -73,6 +112,10 @@ def cell(case):
         return "FAIL"
     if case["kind"] == "restart":
         return "ok T%d" % case["confirmed"]["spindle"]
+    if case["kind"] == "hold":
+        return "ok T%d" % case["after_hold"]["changer_tool"]
+    if case["kind"] == "spindle":
+        return "ok fault, still"
     return "ok %.2f/%.2f T%d" % (case["chuck_closed_after"], case["program_stopped_after"],
                                  case["confirmed"]["spindle"])
 
@@ -87,7 +130,7 @@ def print_matrix(results):
     print("fault matrix, M6 between tools %s: cell = chuck closed / program stopped "
           "(s after the cut), tool confirmed" % "1 and 2")
     print("%-4s %-6s %-28s" % ("step", "kind", "what") + "".join("%-*s" % (width, k) for k in kinds))
-    for number, kind, what in results["plan"]:
+    for number, kind, what in [[0, "-", "before the first step"]] + results["plan"]:
         if not any((k, number) in cells for k in kinds):
             continue
         print("%-4d %-6s %-28s" % (number, kind, what[:28]) +

@@ -7,12 +7,14 @@
 #include <gtest/gtest.h>
 
 #include <functional>
+#include <iostream>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "core/changer.hpp"
 #include "core/simulator.hpp"
+#include "link_rig.hpp"
 #include "test_config.hpp"
 
 namespace fatc {
@@ -151,6 +153,114 @@ TEST(FaultMatrix, shouldEndFaultedSafeAndUncertainWhereverAChangeIsCutOff) {
     }
   }
   EXPECT_EQ(cases, static_cast<int>(faults().size() * waits.size()));
+}
+
+/// Where the handshake stands at one turn: who asked, who offered, which step.
+struct Phase4 {
+  bool request = false;
+  bool ready = false;
+  int step = 0;
+  bool operator==(const Phase4& o) const {
+    return request == o.request && ready == o.ready && step == o.step;
+  }
+};
+
+/// An M6 from tool 1 to tool 2 through the link, against the fake executor.
+struct LinkedChange {
+  explicit LinkedChange(const Config& config)
+      : changer(config, ports, holding(config, kFrom)), executor(in) {
+    changer.ready();
+    changer.spindle_stopped(true);
+    in.interpreter_idle = false;
+    in.number = kTo;
+    executor.call(ExecutorCall::tool_change);
+  }
+  Phase4 phase() const {
+    return {in.step_request, rig.last.step_ready, changer.status().step_number};
+  }
+  test::LinkedPorts ports;
+  Changer changer;
+  LinkInputs in;
+  test::FakeExecutor executor;
+  test::LinkRig rig{ports, changer, in, executor};
+};
+
+/// The turns at which the handshake (or the step) changes: every phase of the
+/// four-phase handshake of every step, and the first turn of every dwell.
+std::vector<int> handshake_turns(const Config& config) {
+  LinkedChange change(config);
+  std::vector<int> turns;
+  Phase4 last{};
+  for (int turn = 0; turn < 20000 && change.executor.running; ++turn) {
+    change.rig.turn();
+    if (!(change.phase() == last)) turns.push_back(turn);
+    last = change.phase();
+  }
+  return turns;
+}
+
+TEST(FaultMatrix, shouldFaultSafelyAndChangeAgainWhenTheProgramIsAbortedAtAnyPhaseOfTheHandshake) {
+  const Config config = test::valid_config();
+  const std::vector<int> turns = handshake_turns(config);
+  ASSERT_GT(turns.size(), 30u);
+  int phases_seen[2][2] = {};
+  int cases = 0;
+  for (const int at : turns) {
+    for (const bool executor_took_its_turn : {true, false}) {
+      SCOPED_TRACE("aborted at turn " + std::to_string(at) +
+                   (executor_took_its_turn ? "" : ", before the executor's turn"));
+      LinkedChange change(config);
+      for (int turn = 0; turn < at; ++turn) change.rig.turn();
+      change.rig.turn(executor_took_its_turn);
+      const Phase4 cut = change.phase();
+      if (!change.changer.status().busy()) continue;  // the change already ended
+      phases_seen[cut.request][cut.ready]++;
+
+      // LinuxCNC's Stop: the interpreter goes idle, the executor with it; the
+      // request output keeps whatever value the executor left on it.
+      change.in.interpreter_idle = true;
+      change.executor.running = false;
+      for (int turn = 0; turn < 400; ++turn) change.rig.turn();
+      EXPECT_EQ(change.changer.status().phase, Phase::fault);
+      EXPECT_FALSE(change.ports.chuck_open);
+      EXPECT_TRUE(change.changer.tools().uncertain);
+      EXPECT_FALSE(change.rig.last.step_ready && change.rig.last.step.kind != StepKind::resync &&
+                   change.rig.last.step.kind != StepKind::fail);
+
+      const bool at_pocket = change.changer.cut_off() && change.changer.cut_off()->pocket != 0;
+      change.changer.clear_fault(0, at_pocket ? std::optional<bool>(true) : std::nullopt);
+      ASSERT_EQ(change.changer.status().phase, Phase::idle);
+
+      // The next program's M6 finds the link clean and changes normally.
+      change.in.interpreter_idle = false;
+      change.in.number = 3;
+      change.executor.performed.clear();
+      change.executor.call(ExecutorCall::tool_change);
+      for (int turn = 0; turn < 20000 && change.executor.running; ++turn) change.rig.turn();
+      EXPECT_FALSE(change.executor.running);
+      EXPECT_EQ(change.changer.tools().spindle, 3);
+      EXPECT_EQ(change.changer.status().phase, Phase::idle);
+      std::vector<std::string> performed, planned;
+      for (const Step& step : change.executor.performed) {
+        if (step.kind != StepKind::resync) performed.push_back(describe(step));
+      }
+      for (const Step& step : plan_change(config, 0, 3, 0.0).steps()) {
+        planned.push_back(describe(step));
+      }
+      EXPECT_EQ(performed, planned);
+      EXPECT_TRUE(change.ports.unexpected_events.empty());
+      ++cases;
+    }
+  }
+  std::cout << cases << " cuts; at request/ready 0/0 " << phases_seen[0][0] << ", 0/1 "
+            << phases_seen[0][1] << ", 1/0 " << phases_seen[1][0] << ", 1/1 " << phases_seen[1][1]
+            << "\n";
+  // Every phase of the handshake was cut at least once.
+  for (int request = 0; request < 2; ++request) {
+    for (int ready = 0; ready < 2; ++ready) {
+      EXPECT_GT(phases_seen[request][ready], 0) << "request " << request << " ready " << ready;
+    }
+  }
 }
 
 }  // namespace
