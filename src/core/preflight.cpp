@@ -1,0 +1,276 @@
+#include "preflight.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+#include <tuple>
+
+namespace fatc {
+
+std::optional<int> home_pocket(const Config& config, int tool) {
+  if (!config.has_pocket(tool)) return std::nullopt;
+  return tool;
+}
+
+std::optional<int> pocket_holding(const Config& config, const ToolState& tools, int tool) {
+  const auto pocket = home_pocket(config, tool);
+  if (!pocket || tools.in_pocket.count(tool) == 0) return std::nullopt;
+  return pocket;
+}
+
+double estimate_seconds(const Simulator& plan, const Point& start, double rapid_per_minute,
+                        int& operator_waits) {
+  Point at = start;
+  double minutes = 0.0;
+  double seconds = 0.0;
+  for (const Record& record : plan.records) {
+    if (record.kind == Record::Kind::dwell) seconds += record.seconds;
+    // Every wait for the operator is a prompt (in M6 for a manual tool, the only sign).
+    if (record.kind == Record::Kind::message && record.message_kind == MessageKind::prompt) {
+      ++operator_waits;
+    }
+    if (record.kind != Record::Kind::step) continue;
+    const Step& step = record.step;
+
+    if (!is_motion(step.kind)) continue;
+    Point to = at;
+    if (step.axes & axis_x) to.x = step.target.x;
+    if (step.axes & axis_y) to.y = step.target.y;
+    if (step.axes & axis_z) to.z = step.target.z;
+    // A probe stops where the sensor touches (the plan's sensor), if above its limit.
+    if (step.kind == StepKind::probe && plan.sensor_z && *plan.sensor_z >= step.target.z) {
+      to.z = std::min(*plan.sensor_z, at.z);
+    }
+    const double distance = std::hypot(to.x - at.x, to.y - at.y, to.z - at.z);
+    const double speed =
+        step.kind == StepKind::rapid ? rapid_per_minute : std::min(step.feed, rapid_per_minute);
+    if (speed > 0.0) minutes += distance / speed;
+    at = to;
+  }
+  return seconds + minutes * 60.0;
+}
+
+namespace {
+
+std::string tool_word(int tool) { return "T" + std::to_string(tool); }
+
+/// One change planned by the changer itself, as --plan prints it.
+struct PlannedChange {
+  double seconds = 0.0;
+  int operator_waits = 0;
+  std::string refused;  ///< the changer's reason when it refuses the change
+};
+
+class Checker {
+ public:
+  explicit Checker(const PreflightInput& input) : in_(input), config_(*input.config) {
+    tools_ = input.tools;
+  }
+
+  Preflight run(const gcode::Walk& walk) {
+    for (const auto& use : walk.uses) {
+      PreflightRow row;
+      row.use = use;
+      if (use.kind == gcode::ToolUse::Kind::change) {
+        change(row);
+      } else {
+        set_tool(row);
+      }
+      result_.rows.push_back(row);
+    }
+    return std::move(result_);
+  }
+
+ private:
+  void problem(const gcode::Site& where, const std::string& text) {
+    result_.problems.push_back({where, text});
+  }
+
+  void change(PreflightRow& row) {
+    const gcode::ToolUse& use = row.use;
+    row.code = use.written.empty() ? "M6" : "M6 " + use.written;
+    if (!use.tool) {
+      row.where = "not known";
+      row.length = "-";
+      ++result_.changes;
+      ++result_.not_estimated;
+      spindle_known_ = false;
+      return;
+    }
+    const int tool = *use.tool;
+    if (tools_.uncertain && !said_uncertain_) {
+      said_uncertain_ = true;
+      problem(use.where, "the state file " + in_.state_name +
+                             " records a sequence that was cut off: the changer refuses M6 "
+                             "until the fault is cleared (panel, or --confirm)");
+    }
+    check_tool_table(use, tool);
+    row.length = length(use, tool);
+    if (spindle_known_ && tool == tools_.spindle) {
+      row.where = tool == 0 ? "the spindle is empty already" : "in the spindle already";
+      row.seconds = 0.0;
+      return;
+    }
+    ++result_.changes;
+    if (tool != 0 &&
+        std::find(result_.tools.begin(), result_.tools.end(), tool) == result_.tools.end()) {
+      result_.tools.push_back(tool);
+    }
+    const auto pocket = home_pocket(config_, tool);
+    if (tool == 0) {
+      row.where = "empties the spindle";
+    } else if (pocket_holding(config_, tools_, tool)) {
+      row.where = "pocket " + std::to_string(*pocket);
+    } else if (pocket) {
+      row.where = "out of the rack (pocket " + std::to_string(*pocket) + " empty)";
+      problem(use.where, "M6 " + tool_word(tool) + ": the state file " + in_.state_name +
+                             " has pocket " + std::to_string(*pocket) + " empty (" +
+                             tool_word(tool) +
+                             " was unloaded): the changer refuses the change; load it first");
+    } else {
+      row.where = "manual: handed over at loading";
+      ++result_.manual;
+    }
+    if (!spindle_known_) {
+      ++result_.not_estimated;
+    } else {
+      const PlannedChange& planned = plan(tools_.spindle, tool);
+      if (!planned.refused.empty()) {
+        // The changer stops the program there; the lint reads on with the spindle as it was.
+        row.where = "refused: " + row.where;
+        problem(use.where, planned.refused);
+        return;
+      } else {
+        row.seconds = planned.seconds;
+        result_.seconds += planned.seconds;
+        result_.operator_waits += planned.operator_waits;
+      }
+    }
+    // The rack after the change: the old tool home, the new one in the spindle.
+    if (spindle_known_ && home_pocket(config_, tools_.spindle)) {
+      tools_.in_pocket.insert(tools_.spindle);
+    }
+    tools_.in_pocket.erase(tool);
+    tools_.spindle = tool;
+    spindle_known_ = true;
+  }
+
+  void set_tool(PreflightRow& row) {
+    const gcode::ToolUse& use = row.use;
+    row.code = "M61 " + use.written;
+    row.seconds = 0.0;
+    if (!use.tool) {
+      row.where = "LinuxCNC is told a tool not known; nothing moves";
+      row.length = "-";
+      return;
+    }
+    const int tool = *use.tool;
+    check_tool_table(use, tool);
+    row.length = length(use, tool);
+    row.where = "LinuxCNC is told " + (tool == 0 ? std::string("nothing") : tool_word(tool)) +
+                " is in the spindle; nothing moves";
+    if (spindle_known_ && tool != tools_.spindle) {
+      problem(use.where,
+              "M61 Q" + std::to_string(tool) + ": tells LinuxCNC the spindle holds " +
+                  (tool == 0 ? std::string("nothing") : tool_word(tool)) +
+                  " while the changer has " +
+                  (tools_.spindle == 0 ? std::string("nothing") : tool_word(tools_.spindle)) +
+                  " in it: the next G43 would apply the wrong length");
+    }
+  }
+
+  /// LinuxCNC refuses a T word for a tool its table does not list.
+  void check_tool_table(const gcode::ToolUse& use, int tool) {
+    if (in_.table == nullptr || tool == 0 || in_.table->tools.count(tool) != 0) return;
+    if (!not_in_table_.insert(tool).second) return;
+    problem(use.where, tool_word(tool) + " is not in the tool table " + in_.table_name +
+                           ": LinuxCNC refuses it (requested tool not found in the tool table)");
+  }
+
+  /// The Length column; a problem, once per tool, when the tool has no length
+  /// and the change does not measure it.
+  std::string length(const gcode::ToolUse& use, int tool) {
+    if (tool == 0) return "-";
+    const bool measures = config_.probe_after_change != ProbeAfterChange::off &&
+                          use.kind == gcode::ToolUse::Kind::change;
+    std::optional<double> stored;
+    std::string missing;  // why there is no length
+    std::string source;
+    if (in_.table != nullptr) {
+      const auto entry = in_.table->tools.find(tool);
+      source = "tool table";
+      if (entry == in_.table->tools.end()) {
+        missing = "not in the tool table " + in_.table_name;
+      } else if (!entry->second.z) {
+        missing = "no Z in the tool table " + in_.table_name + " (line " +
+                  std::to_string(entry->second.line) + ")";
+      } else if (*entry->second.z == 0.0) {
+        missing = "Z0 in the tool table " + in_.table_name + " (line " +
+                  std::to_string(entry->second.line) + ")";
+      } else {
+        stored = *entry->second.z;
+      }
+    } else {
+      const auto entry = tools_.lengths.find(tool);
+      source = "state file";
+      if (entry == tools_.lengths.end()) {
+        missing = "no length in the state file " + in_.state_name;
+      } else {
+        stored = entry->second;
+      }
+    }
+    if (measures) {
+      return std::string(config_.probe_after_change == ProbeAfterChange::check ? "checked"
+                                                                               : "measured") +
+             " at the change" + (stored ? ", stored " + format_length(config_, *stored) : "");
+    }
+    if (stored) return format_length(config_, *stored) + " (" + source + ")";
+    if (never_measured_.insert(tool).second) {
+      problem(use.where, tool_word(tool) + " was never measured: " + missing +
+                             ", and M6 measures nothing (probe_after_change is off)");
+    }
+    return "never measured";
+  }
+
+  /// The probe touches at the stored length, or at its limit when none is known.
+  double sensor_z(int tool) const {
+    const auto stored = tools_.lengths.find(tool);
+    if (stored == tools_.lengths.end()) return config_.probe_limit.z;
+    return std::max(config_.probe_length_compensation_offset + stored->second,
+                    config_.probe_limit.z);
+  }
+
+  const PlannedChange& plan(int from, int to) {
+    const double touch = sensor_z(to);
+    const auto key = std::make_tuple(from, to, touch);
+    const auto known = plans_.find(key);
+    if (known != plans_.end()) return known->second;
+    const Simulator sim = plan_change(config_, from, to, touch);
+    PlannedChange planned;
+    for (const Step& step : sim.steps()) {
+      if (step.kind == StepKind::fail) planned.refused = step.label;
+    }
+    planned.seconds =
+        estimate_seconds(sim, config_.safe, in_.rapid_per_minute, planned.operator_waits);
+    return plans_.emplace(key, planned).first->second;
+  }
+
+  const PreflightInput& in_;
+  const Config& config_;
+  ToolState tools_;
+  bool spindle_known_ = true;
+  bool said_uncertain_ = false;
+  std::set<int> never_measured_;
+  std::set<int> not_in_table_;
+  std::map<std::tuple<int, int, double>, PlannedChange> plans_;
+  Preflight result_;
+};
+
+}  // namespace
+
+Preflight preflight(const gcode::Walk& walk, const PreflightInput& input) {
+  return Checker(input).run(walk);
+}
+
+}  // namespace fatc

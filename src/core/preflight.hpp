@@ -1,0 +1,63 @@
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "config.hpp"
+#include "point.hpp"
+#include "program_walk.hpp"
+#include "simulator.hpp"
+#include "tool_state.hpp"
+#include "tool_table.hpp"
+
+namespace fatc {
+
+/// The pocket `tool` goes back to, if it has one. Today pocket N is tool N's.
+std::optional<int> home_pocket(const Config& config, int tool);
+/// The pocket that holds `tool` now, if any: the one question to change when
+/// pockets may hold any tool.
+std::optional<int> pocket_holding(const Config& config, const ToolState& tools, int tool);
+
+/// How long the steps of a plan take: each move its distance at its feed
+/// (rapids, and feeds above it, at `rapid_per_minute`), plus the dwells,
+/// from `start`; acceleration is not counted. `operator_waits` counts the
+/// prompts, whose time (the operator's) is not counted either.
+double estimate_seconds(const Simulator& plan, const Point& start, double rapid_per_minute,
+                        int& operator_waits);
+
+struct PreflightInput {
+  const Config* config = nullptr;
+  ToolState tools;                   ///< at the program's start
+  std::string state_name;            ///< the state file, as messages show it
+  const ToolTable* table = nullptr;  ///< LinuxCNC's tool table, when given
+  std::string table_name;
+  double rapid_per_minute = 3000.0;  ///< in the config's units per minute
+};
+
+/// One M6 or M61 of the program, as the changer would meet it.
+struct PreflightRow {
+  gcode::ToolUse use;
+  std::string code;               ///< "M6 T3", "M6", "M61 Q3"
+  std::string where;              ///< "pocket 3", "manual: handed over at loading", ...
+  std::string length;             ///< "30.0000 mm (state file)", "never measured", ...
+  std::optional<double> seconds;  ///< nullopt: not estimated
+};
+
+struct Preflight {
+  std::vector<PreflightRow> rows;
+  std::vector<gcode::Finding> problems;
+  std::vector<int> tools;  ///< every tool the program puts in the spindle, in order of first use
+  int changes = 0;         ///< M6 that change the tool (not to the tool already in the spindle)
+  int manual = 0;          ///< of them, to a manual tool
+  int not_estimated = 0;   ///< of them, with a tool or spindle not known
+  int operator_waits = 0;  ///< waits for the operator in the estimated changes
+  double seconds = 0.0;    ///< estimated time of all estimated changes
+};
+
+/// Follows the program's tool uses through the rack (ToolState), the
+/// lengths (state file, or the tool table when given) and the planned steps
+/// of each change (plan_change, the --plan path).
+Preflight preflight(const gcode::Walk& walk, const PreflightInput& input);
+
+}  // namespace fatc

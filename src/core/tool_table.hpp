@@ -1,0 +1,32 @@
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "gcode_scan.hpp"
+
+namespace fatc {
+
+/// One tool of LinuxCNC's tool table file (`T3 P3 Z40.0 D10.0 ;comment`).
+struct ToolTableEntry {
+  int tool = 0;
+  std::optional<double> z;  ///< the length offset (Z); nullopt when the line has none
+  int line = 0;
+};
+
+struct ToolTable {
+  std::map<int, ToolTableEntry> tools;  ///< by tool number; the first line of a tool listed twice
+  /// Lines LinuxCNC skips ("Unrecognized line skipped"), tools listed twice.
+  std::vector<gcode::LineNote> problems;
+};
+
+/// Reads a tool table as LinuxCNC's tooldata_read_entry does: `;` starts a
+/// comment, fields are separated by spaces, each a letter (T P D X Y Z A B C
+/// U V W I J Q, either case) and a number read with sscanf; a line with a bad
+/// field is skipped whole. Never throws.
+ToolTable parse_tool_table(std::string_view text);
+
+}  // namespace fatc
