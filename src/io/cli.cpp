@@ -14,6 +14,7 @@
 #include "core/simulator.hpp"
 #include "files.hpp"
 #include "ini.hpp"
+#include "lint.hpp"
 
 namespace fatc::io {
 
@@ -27,6 +28,10 @@ const char* const kUsage =
     "                                     after a fault, with LinuxCNC stopped: the spindle\n"
     "                                     holds tool N (0 empty), the cut-off pocket holds its\n"
     "                                     tool or not; clears the fault in the state file\n"
+    "       fixed_atc_probe --lint PROGRAM.ngc --config FILE [--state FILE] [--tool-table FILE]\n"
+    "                       [--ini FILE] [--subroutine-path DIR:DIR]\n"
+    "                                     read a G-code program without running it: its tool\n"
+    "                                     changes, the rack, lengths, problems, change time\n"
     "       fixed_atc_probe --dot         the state machine as Graphviz\n";
 
 namespace {
@@ -194,7 +199,8 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
     const std::string& arg = args[i];
     static const std::map<std::string, Mode> modes = {
         {"--check", Mode::check},     {"--plan", Mode::plan}, {"--dot", Mode::dot},
-        {"--confirm", Mode::confirm}, {"--help", Mode::help}, {"-h", Mode::help}};
+        {"--confirm", Mode::confirm}, {"--help", Mode::help}, {"-h", Mode::help},
+        {"--lint", Mode::lint}};
     if (const auto mode = modes.find(arg); mode != modes.end()) {
       if (mode_flag) {
         error = *mode_flag == arg ? arg + " given twice"
@@ -203,10 +209,10 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
       }
       mode_flag = arg;
       options.mode = mode->second;
-      continue;
-    }
-    if (arg != "--config" && arg != "--state" && arg != "--ini" && arg != "--from" &&
-        arg != "--to" && arg != "--spindle" && arg != "--pocket") {
+      if (arg != "--lint") continue;  // --lint takes the program as its value
+    } else if (arg != "--config" && arg != "--state" && arg != "--ini" && arg != "--from" &&
+               arg != "--to" && arg != "--spindle" && arg != "--pocket" && arg != "--tool-table" &&
+               arg != "--subroutine-path") {
       error = "unknown argument " + quote(arg);
       return std::nullopt;
     }
@@ -248,6 +254,12 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
       options.config_path = text;
     } else if (arg == "--state") {
       options.state_path = text;
+    } else if (arg == "--lint") {
+      options.program_path = text;
+    } else if (arg == "--tool-table") {
+      options.tool_table_path = text;
+    } else if (arg == "--subroutine-path") {
+      options.subroutine_path = text;
     } else {
       options.ini_path = text;
     }
@@ -256,11 +268,13 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
   const std::string mode_name =
       mode_flag ? *mode_flag : "the component (no --check, --plan, --dot)";
   const std::map<std::string, std::set<Mode>> used_by = {
-      {"--config", {Mode::component, Mode::check, Mode::plan, Mode::confirm}},
-      {"--state", {Mode::component, Mode::check, Mode::confirm}},
+      {"--config", {Mode::component, Mode::check, Mode::plan, Mode::confirm, Mode::lint}},
+      {"--state", {Mode::component, Mode::check, Mode::confirm, Mode::lint}},
       {"--spindle", {Mode::confirm}},
       {"--pocket", {Mode::confirm}},
-      {"--ini", {Mode::check, Mode::plan}},
+      {"--ini", {Mode::check, Mode::plan, Mode::lint}},
+      {"--tool-table", {Mode::lint}},
+      {"--subroutine-path", {Mode::lint}},
       {"--from", {Mode::plan}},
       {"--to", {Mode::plan}}};
   for (const auto& [option, modes] : used_by) {
@@ -339,6 +353,8 @@ int run_tool_mode(const Options& options, std::ostream& out, std::ostream& err) 
       return 0;
     case Options::Mode::confirm:
       return confirm(options, out, err);
+    case Options::Mode::lint:
+      return lint(options, out, err);
     case Options::Mode::help:
       out << kUsage;
       return 0;

@@ -9,14 +9,17 @@ namespace fatc::io {
 
 /// The component's command line.
 struct Options {
-  enum class Mode { component, check, plan, dot, help, confirm } mode = Mode::component;
+  enum class Mode { component, check, plan, dot, help, confirm, lint } mode = Mode::component;
   std::string config_path;
-  std::string state_path;  ///< component and --check: CONFIG.state unless --state is given
+  std::string state_path;  ///< component, --check, --lint: CONFIG.state unless --state is given
   std::optional<std::string> ini_path;
   std::optional<int> from_tool;
   std::optional<int> to_tool;
-  std::optional<int> spindle_tool;        ///< --confirm: what the spindle holds
-  std::optional<bool> pocket_holds_tool;  ///< --confirm: the cut-off pocket holds its tool
+  std::optional<int> spindle_tool;             ///< --confirm: what the spindle holds
+  std::optional<bool> pocket_holds_tool;       ///< --confirm: the cut-off pocket holds its tool
+  std::string program_path;                    ///< --lint PROGRAM
+  std::optional<std::string> tool_table_path;  ///< --lint: LinuxCNC's tool table
+  std::optional<std::string> subroutine_path;  ///< --lint: folders of subroutines, ':' between
 };
 
 /// Parses argv; nullopt and one line in `error` on a usage mistake: an
@@ -29,6 +32,7 @@ extern const char* const kUsage;
 /// --confirm: 0 when the state file was rewritten with the operator's word.
 /// --check: 0 when config, state and INI are valid and no planned move breaks
 /// the keep-out or the soft limits, 1 otherwise. --plan: 0 printed, 1 refused or invalid. --dot: 0.
+/// --lint: 0 clean, 1 problems found in the program, 2 an input it cannot read (see lint.hpp).
 int run_tool_mode(const Options& options, std::ostream& out, std::ostream& err);
 
 }  // namespace fatc::io

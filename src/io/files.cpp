@@ -4,7 +4,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <cstdint>
 #include <cstring>
 #include <stdexcept>
 
@@ -25,12 +27,12 @@ const char* kind_of(mode_t mode) {
   return "something that is not a file";
 }
 
-/// One line when `st` is not a regular file of at most kMaxFileBytes.
-std::string refusal(const std::string& path, const struct stat& st) {
+/// One line when `st` is not a regular file, or (`limit_size`) one over kMaxFileBytes.
+std::string refusal(const std::string& path, const struct stat& st, bool limit_size = true) {
   if (!S_ISREG(st.st_mode)) {
     return shown_path(path) + ": expected a regular file, got " + kind_of(st.st_mode);
   }
-  if (static_cast<unsigned long long>(st.st_size) > kMaxFileBytes) {
+  if (limit_size && static_cast<unsigned long long>(st.st_size) > kMaxFileBytes) {
     return shown_path(path) + ": expected a file of at most 1 MiB, got " +
            std::to_string(st.st_size) + " bytes";
   }
@@ -75,7 +77,13 @@ std::string shown_path(const std::string& path) {
   return path.empty() ? std::string("\"\" (an empty path)") : escape(path, 200);
 }
 
-std::optional<std::string> read_small_file(const std::string& path, std::string& error) {
+namespace {
+
+/// Reads up to `max_bytes` + 1 bytes of a regular file, refusing anything else
+/// before a read; `limit_size`: a file over kMaxFileBytes is refused by its size.
+std::optional<std::string> read_regular(const std::string& path, std::size_t max_bytes,
+                                        bool limit_size, std::uint64_t& file_bytes,
+                                        std::string& error) {
   if (path.empty()) {
     error = shown_path(path) + ": expected a file path, got nothing";
     return std::nullopt;
@@ -87,7 +95,7 @@ std::optional<std::string> read_small_file(const std::string& path, std::string&
     error = shown_path(path) + ": cannot open " + why(errno);
     return std::nullopt;
   }
-  if (std::string refused = refusal(path, st); !refused.empty()) {
+  if (std::string refused = refusal(path, st, limit_size); !refused.empty()) {
     error = refused;
     return std::nullopt;
   }
@@ -101,11 +109,12 @@ std::optional<std::string> read_small_file(const std::string& path, std::string&
     error = shown_path(path) + ": cannot read " + why(errno);
     return std::nullopt;
   }
-  if (std::string refused = refusal(path, st); !refused.empty()) {
+  if (std::string refused = refusal(path, st, limit_size); !refused.empty()) {
     error = refused;
     return std::nullopt;
   }
-  std::string text(kMaxFileBytes + 1, '\0');
+  file_bytes = static_cast<std::uint64_t>(st.st_size);
+  std::string text(std::min<std::uint64_t>(max_bytes, file_bytes) + 1, '\0');
   std::size_t size = 0;
   while (size < text.size()) {
     const ssize_t n = ::read(file.fd, &text[size], text.size() - size);
@@ -116,12 +125,32 @@ std::optional<std::string> read_small_file(const std::string& path, std::string&
     }
     if (n == 0) break;
     size += static_cast<std::size_t>(n);
+    // It grew while we read: make room up to the limit.
+    if (size == text.size() && text.size() <= max_bytes) text.resize(max_bytes + 1);
   }
-  if (size > kMaxFileBytes) {  // it grew while we read
+  text.resize(size);
+  return text;
+}
+
+}  // namespace
+
+std::optional<std::string> read_small_file(const std::string& path, std::string& error) {
+  std::uint64_t file_bytes = 0;
+  auto text = read_regular(path, kMaxFileBytes, true, file_bytes, error);
+  if (text && text->size() > kMaxFileBytes) {  // it grew while we read
     error = shown_path(path) + ": expected a file of at most 1 MiB, got more";
     return std::nullopt;
   }
-  text.resize(size);
+  return text;
+}
+
+std::optional<std::string> read_file_start(const std::string& path, std::size_t max_bytes,
+                                           std::uint64_t& file_bytes, std::string& error) {
+  auto text = read_regular(path, max_bytes, false, file_bytes, error);
+  if (text && text->size() > max_bytes) {
+    file_bytes = std::max<std::uint64_t>(file_bytes, text->size());
+    text->resize(max_bytes);
+  }
   return text;
 }
 

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,6 +17,12 @@ constexpr std::size_t kMaxFileBytes = 1024 * 1024;
 /// line in `error` ("PATH: expected a regular file, got a FIFO") otherwise.
 /// Never blocks: a FIFO is opened non-blocking and refused before any read.
 std::optional<std::string> read_small_file(const std::string& path, std::string& error);
+
+/// The first `max_bytes` of a regular file of any size, and (`file_bytes`)
+/// how big it is; refuses, never blocking, what read_small_file refuses but
+/// its size. Fewer than `file_bytes` read: the file was cut.
+std::optional<std::string> read_file_start(const std::string& path, std::size_t max_bytes,
+                                           std::uint64_t& file_bytes, std::string& error);
 
 /// A file path for a message: control characters escaped, cut short if huge.
 std::string shown_path(const std::string& path);

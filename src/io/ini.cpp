@@ -120,6 +120,21 @@ std::optional<std::string> IniFile::get(const std::string& section, const std::s
   return get(section, key, line);
 }
 
+std::vector<std::string> IniFile::get_all(const std::string& section,
+                                          const std::string& key) const {
+  std::vector<std::string> values;
+  LinuxCncIni reader(file_.get());
+  if (!reader.IsOpen()) return values;
+  // LinuxCNC's reader numbers repeated keys from 1 and reads the file from its
+  // start for each: a bound keeps a hostile INI from taking minutes.
+  for (int n = 1; n <= kMaxRepeatedKeys; ++n) {
+    const char* value = reader.Find(key.c_str(), section.c_str(), n);
+    if (value == nullptr) break;
+    values.emplace_back(value);
+  }
+  return values;
+}
+
 std::optional<double> IniFile::number(const std::string& section, const std::string& key) const {
   LinuxCncIni reader(file_.get());
   double value = 0.0;

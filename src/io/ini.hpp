@@ -4,6 +4,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/config.hpp"
 #include "core/geometry.hpp"
@@ -26,6 +27,10 @@ class IniFile {
   /// get(), and the line the key is on (0 when it is not there).
   std::optional<std::string> get(const std::string& section, const std::string& key,
                                  int& line) const;
+  /// At most this many values of a repeated key are read.
+  static constexpr int kMaxRepeatedKeys = 200;
+  /// Every value of a key given more than once (REMAP), in the file's order.
+  std::vector<std::string> get_all(const std::string& section, const std::string& key) const;
   /// `[SECTION]KEY` as LinuxCNC parses a number from it (boost::lexical_cast<double>,
   /// as its IniFile::Find<double>): nullopt when missing or not a number.
   std::optional<double> number(const std::string& section, const std::string& key) const;

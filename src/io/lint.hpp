@@ -1,0 +1,28 @@
+#pragma once
+
+#include <cstddef>
+#include <iosfwd>
+
+#include "cli.hpp"
+
+namespace fatc::io {
+
+/// G-code the lint reads in all, the program and its subroutine files
+/// together; what lies beyond is said to be not read.
+constexpr std::size_t kMaxProgramBytes = 64 * 1024 * 1024;
+
+/// Rapid speed assumed without an INI, in mm per minute (and inch per minute).
+constexpr double kAssumedRapidMm = 3000.0;
+constexpr double kAssumedRapidInch = 120.0;
+
+/// --lint: reads the program named in `options` without running it and
+/// reports its tool changes against the config, the state file, the tool
+/// table, the INI's remaps and its rapid speed: which tools, where each is,
+/// which were never measured, what could not be known, what LinuxCNC or the
+/// changer would refuse, and the estimated change time. Returns 0 when no
+/// problem was found, 1 when one was (every problem one line on `out`), 2
+/// when the program, config, state, tool table or INI cannot be read (one
+/// line each on `err`).
+int lint(const Options& options, std::ostream& out, std::ostream& err);
+
+}  // namespace fatc::io

@@ -1,0 +1,621 @@
+// --lint: a G-code program read without running it. Each feature and each
+// hostile input asserts its exact line. The programs are in lint_programs/;
+// huge, binary, FIFO and deeply nested cases are made here at run time.
+#include "io/lint.hpp"
+
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "core/gcode_scan.hpp"
+#include "core/preflight.hpp"
+#include "core/tool_table.hpp"
+#include "io/cli.hpp"
+#include "io/files.hpp"
+
+namespace fatc {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+const std::string kConfig = FATC_SOURCE_DIR "/config/config.json";
+const std::string kPrograms = FATC_SOURCE_DIR "/tests/unit/lint_programs";
+
+struct LintRun {
+  int code;
+  std::string out;
+  std::string err;
+  double seconds;      ///< wall time
+  double cpu_seconds;  ///< the lint's own work, whatever else the machine runs
+};
+
+LintRun run(std::vector<std::string> args) {
+  const auto start = Clock::now();
+  const std::clock_t cpu_start = std::clock();
+  std::string error;
+  const auto options = io::parse_options(args, error);
+  if (!options) return {2, "", error, 0.0, 0.0};
+  std::ostringstream out, err;
+  const int code = io::run_tool_mode(*options, out, err);
+  return {code, out.str(), err.str(), std::chrono::duration<double>(Clock::now() - start).count(),
+          static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC};
+}
+
+/// Within a second of the lint's own time; the wall clock, shared with
+/// whatever else the machine runs (ctest -j, builds), only guards against a hang.
+#define EXPECT_WITHIN_A_SECOND(run)    \
+  do {                                 \
+    EXPECT_LT((run).cpu_seconds, 1.0); \
+    EXPECT_LT((run).seconds, 5.0);     \
+  } while (false)
+
+/// A folder of its own for each test, removed after it.
+class Lint : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::path(::testing::TempDir()) /
+           ("fatc_lint_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(path(name), std::ios::binary) << text;
+    return path(name);
+  }
+  /// A state file where the spindle is empty, every pocket full and every
+  /// tool in `measured` has a length.
+  std::string state_with_lengths(std::initializer_list<int> measured) const {
+    Config config = *io::load_config_file(kConfig).config;
+    ToolState tools = ToolState::fresh(config);
+    for (const int tool : measured) tools.lengths[tool] = 20.0 + tool;
+    io::save_state_file(path("tools.state"), tools);
+    return path("tools.state");
+  }
+  /// The sample config with one key changed.
+  std::string config_with(const std::string& key, const nlohmann::json& value) const {
+    nlohmann::json config = nlohmann::json::parse(std::ifstream(kConfig));
+    config[key] = value;
+    return write("config.json", config.dump());
+  }
+  /// The state path of a first start: no file there.
+  std::string no_state() const { return path("none.state"); }
+
+  LintRun lint(const std::string& program, std::vector<std::string> more = {}) const {
+    std::vector<std::string> args = {"--lint", program, "--config", kConfig};
+    if (std::find(more.begin(), more.end(), "--state") == more.end()) {
+      more.insert(more.end(), {"--state", no_state()});
+    }
+    args.insert(args.end(), more.begin(), more.end());
+    return run(args);
+  }
+
+  fs::path dir_;
+};
+
+bool has(const std::string& text, const std::string& line) {
+  return text.find(line) != std::string::npos;
+}
+
+/// The output of a lint must hold `line`; on failure the whole output shows.
+#define EXPECT_LINE(run, line) EXPECT_TRUE(has((run).out, line)) << (run).out << (run).err
+#define EXPECT_NO_LINE(run, line) EXPECT_FALSE(has((run).out, line)) << (run).out
+
+std::string program(const std::string& name) { return kPrograms + "/" + name; }
+
+// ---- the tool changes and where the tools are ----
+
+TEST_F(Lint, shouldListEveryChangeInTheOrderOfTheProgramWithItsPocket) {
+  const LintRun r = lint(program("changes.ngc"), {"--state", state_with_lengths({1, 2, 3, 4, 5})});
+  EXPECT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_LINE(r, "tools in the order of the changes: T1 T3 T2 T4 T5\n");
+  EXPECT_LINE(r, "  1  4         M6 T1         pocket 1 ");
+  EXPECT_LINE(r, "  2  5         M6 T3         pocket 3 ");
+  EXPECT_LINE(r, "  3  6         M6 T2         pocket 2 ");
+  EXPECT_LINE(r, "  4  8         M6 T4         pocket 4 ");
+  EXPECT_LINE(r,
+              "  5  9         M61 Q4        LinuxCNC is told T4 is in the spindle; nothing moves");
+  EXPECT_LINE(r, "  6  10        M6 T5         pocket 5 ");
+  EXPECT_LINE(r, "  7  11        M6 T0         empties the spindle ");
+  EXPECT_LINE(r,
+              "changes.ngc: line 10: a block-delete line (/): counted as if block delete is off");
+  EXPECT_LINE(r, "changes.ngc: 6 tool changes (M6), 1 M61, 0 problems, 1 not known\n");
+  EXPECT_NO_LINE(r, "T6");  // after the closing %
+}
+
+TEST_F(Lint, shouldSayWhatTheSpindleHoldsAtTheStart) {
+  EXPECT_LINE(lint(program("manual.ngc")),
+              "manual.ngc: at the start the spindle holds nothing (no state file yet at " +
+                  no_state() + ": every pocket full)\n");
+  const LintRun r = lint(program("manual.ngc"), {"--state", kPrograms + "/measured.state"});
+  EXPECT_LINE(r, "manual.ngc: at the start the spindle holds T2 (state file " + kPrograms +
+                     "/measured.state)\n");
+}
+
+TEST_F(Lint, shouldReportAnM6WithoutAT) {
+  const LintRun r = lint(program("no_t.ngc"), {"--state", state_with_lengths({2})});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r, "no_t.ngc: line 3: M6 without a T word since the start\n");
+  EXPECT_LINE(r, "  1  3         M6            not known ");
+  EXPECT_LINE(r, "no_t.ngc: 2 tool changes (M6), 0 M61, 1 problem, 0 not known\n");
+}
+
+TEST_F(Lint, shouldCallAToolWithoutPocketManual) {
+  const LintRun r = lint(program("manual.ngc"), {"--state", state_with_lengths({1, 42})});
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_LINE(r, "  1  1         M6 T42        manual: handed over at loading ");
+  EXPECT_LINE(r, "and the operator at 2 prompts not counted)");  // insert T42, remove it
+}
+
+TEST_F(Lint, shouldReportAChangeTheChangerRefuses) {
+  const LintRun refused =
+      run({"--lint", program("manual.ngc"), "--config", config_with("manual_tools", false),
+           "--state", state_with_lengths({1, 42})});
+  EXPECT_EQ(refused.code, 1);
+  EXPECT_LINE(refused,
+              "manual.ngc: line 1: M6 T42 refused: tool 42 has no pocket in the "
+              "config (and manual_tools is off)\n");
+  EXPECT_LINE(refused, "  1  1         M6 T42        refused: manual: handed over at loading ");
+  // The changer would stop the program; the lint reads on with the spindle as it was.
+  EXPECT_LINE(refused, "  2  2         M6 T1         pocket 1 ");
+}
+
+TEST_F(Lint, shouldFollowTheRackThroughTheStateFile) {
+  // measured.state: T2 in the spindle, pocket 3 empty (tool 3 unloaded).
+  const std::string text = "T1 M6\nT3 M6\nT2 M6\nM2\n";
+  const LintRun r = lint(write("rack.ngc", text), {"--state", kPrograms + "/measured.state"});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r, "  1  1         M6 T1         pocket 1 ");
+  EXPECT_LINE(r, "  2  2         M6 T3         out of the rack (pocket 3 empty) ");
+  // T2 went home at the first change: it is in pocket 2 now.
+  EXPECT_LINE(r, "  3  3         M6 T2         pocket 2 ");
+  EXPECT_LINE(r, "rack.ngc: line 2: M6 T3: the state file " + kPrograms +
+                     "/measured.state has pocket 3 empty (T3 was unloaded): the changer "
+                     "refuses the change; load it first\n");
+}
+
+TEST_F(Lint, shouldSayAChangeToTheToolInTheSpindleMovesNothing) {
+  const LintRun r =
+      lint(write("same.ngc", "T1 M6\nT1 M6\nM2\n"), {"--state", state_with_lengths({1})});
+  EXPECT_EQ(r.code, 0);
+  EXPECT_LINE(r, "  2  2         M6 T1         in the spindle already ");
+  EXPECT_LINE(r, "for 1 change,");
+}
+
+TEST_F(Lint, shouldReportAnM61ThatDisagreesWithTheChanger) {
+  const LintRun r =
+      lint(write("m61.ngc", "T1 M6\nM61 Q3\nM2\n"), {"--state", state_with_lengths({1, 3})});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r,
+              "m61.ngc: line 2: M61 Q3: tells LinuxCNC the spindle holds T3 while the changer "
+              "has T1 in it: the next G43 would apply the wrong length\n");
+}
+
+// ---- lengths ----
+
+TEST_F(Lint, shouldReportAToolNeverMeasuredOncePerTool) {
+  const LintRun r = lint(write("unmeasured.ngc", "T1 M6\nT2 M6\nT1 M6\nM2\n"),
+                         {"--state", state_with_lengths({2})});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r, "unmeasured.ngc: line 1: T1 was never measured: no length in the state file " +
+                     path("tools.state") +
+                     ", and M6 measures nothing (probe_after_change is off)\n");
+  EXPECT_NO_LINE(r, "unmeasured.ngc: line 3: T1 was never measured");
+  EXPECT_LINE(r,
+              "  2  2         M6 T2         pocket 2                              22.0000 mm "
+              "(state file)");
+}
+
+TEST_F(Lint, shouldAcceptAnUnmeasuredToolWhenTheChangeMeasuresIt) {
+  const LintRun r = run({"--lint", write("measure.ngc", "T1 M6\nM2\n"), "--config",
+                         config_with("probe_after_change", "measure"), "--state", no_state()});
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_LINE(r,
+              "  1  1         M6 T1         pocket 1                              measured at "
+              "the change ");
+}
+
+TEST_F(Lint, shouldReadTheLengthsFromTheToolTable) {
+  const std::string table = kPrograms + "/tools.tbl";
+  const LintRun r =
+      lint(write("table.ngc", "T1 M6\nT2 M6\nT3 M6\nT4 M6\nM2\n"), {"--tool-table", table});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r,
+              "  1  1         M6 T1         pocket 1                              30.0000 mm "
+              "(tool table)");
+  EXPECT_LINE(r, "table.ngc: line 2: T2 was never measured: Z0 in the tool table " + table +
+                     " (line 3), and M6 measures nothing (probe_after_change is off)\n");
+  EXPECT_LINE(r, "table.ngc: line 3: T3 was never measured: no Z in the tool table " + table +
+                     " (line 4), and M6 measures nothing (probe_after_change is off)\n");
+  EXPECT_LINE(r, "table.ngc: line 4: T4 is not in the tool table " + table +
+                     ": LinuxCNC refuses it (requested tool not found in the tool table)\n");
+  EXPECT_LINE(r, table + ": line 5: LinuxCNC skips this line: \"Zabc\" is not a number after Z\n");
+  EXPECT_LINE(r, table + ": line 6: tool 1 again (first on line 2)\n");
+}
+
+TEST(ToolTable, shouldReadTheFieldsAsLinuxCncDoes) {
+  const ToolTable table =
+      parse_tool_table("T1 P1 Z30.0 D6.0 ;end mill\n;comment\n\nt2 p2 z-1.5\nT3 K4\nT5\tZ9\n");
+  ASSERT_EQ(table.tools.size(), 3u);
+  EXPECT_DOUBLE_EQ(*table.tools.at(1).z, 30.0);
+  EXPECT_DOUBLE_EQ(*table.tools.at(2).z, -1.5);
+  // A tab is no separator to LinuxCNC: "T5\tZ9" reads as T5, and the Z is lost.
+  EXPECT_FALSE(table.tools.at(5).z);
+  ASSERT_EQ(table.problems.size(), 1u);
+  EXPECT_EQ(table.problems[0].line, 5);
+  EXPECT_EQ(table.problems[0].text,
+            "LinuxCNC skips this line: \"K4\" is no tool table field (T P D X Y Z A B C U V W I "
+            "J Q)");
+}
+
+// ---- G-code as LinuxCNC reads it ----
+
+TEST(GcodeScan, shouldReadWordsAsLinuxCncDoes) {
+  const auto scanned = gcode::scan(
+      "%\n"
+      "( comment ) t 0 0 0 3 . m6 ; T9 M6 in a comment\n"
+      "N10 (MSG, tool 9 (said twice\n"
+      "/T4 M6\n"
+      "M6 T5\n"
+      "%\n"
+      "T7 M6\n");
+  std::vector<std::string> seen;
+  for (const auto& e : scanned.events) {
+    seen.push_back(std::to_string(e.line) + (e.block_delete ? "/" : " ") +
+                   (e.kind == gcode::Event::Kind::select_tool   ? "T" + e.value.text
+                    : e.kind == gcode::Event::Kind::change_tool ? "M6"
+                                                                : "?"));
+  }
+  EXPECT_EQ(seen, (std::vector<std::string>{"2 T0003.", "2 M6", "4/T4", "4/M6", "5 T5", "5 M6"}));
+  ASSERT_EQ(scanned.problems.size(), 1u);
+  EXPECT_EQ(scanned.problems[0].line, 3);
+  EXPECT_EQ(scanned.problems[0].text,
+            "'(' inside a comment: LinuxCNC refuses the line (nested comment)");
+}
+
+TEST_F(Lint, shouldReportEveryLineLinuxCncRefuses) {
+  const LintRun r = lint(program("bad_words.ngc"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r,
+              "bad_words.ngc: line 2: T3.5: a tool number must be a whole number: LinuxCNC "
+              "refuses the line\n");
+  EXPECT_LINE(r, "bad_words.ngc: line 3: T-1: a negative tool number: LinuxCNC refuses the line\n");
+  EXPECT_LINE(r, "bad_words.ngc: line 4: two T words in one line: LinuxCNC refuses the line\n");
+  EXPECT_LINE(r, "bad_words.ngc: line 5: M61 without a Q word: LinuxCNC refuses the line\n");
+  EXPECT_LINE(r,
+              "bad_words.ngc: line 6: T99999999999: beyond the tool numbers LinuxCNC reads "
+              "(up to 2147483647)\n");
+  EXPECT_LINE(r,
+              "bad_words.ngc: line 7: character '{': LinuxCNC refuses the line (bad "
+              "character)\n");
+  EXPECT_LINE(r, "bad_words.ngc: 0 tool changes (M6), 0 M61, 6 problems, 0 not known\n");
+}
+
+TEST_F(Lint, shouldReportAnUnterminatedComment) {
+  const LintRun r = lint(program("unterminated.ngc"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r, "unterminated.ngc: line 3: comment without its ')': LinuxCNC refuses the line\n");
+  EXPECT_LINE(r,
+              "unterminated.ngc: line 5: '(' inside a comment: LinuxCNC refuses the line "
+              "(nested comment)\n");
+  // The lines around are read as ever.
+  EXPECT_LINE(r, "tools in the order of the changes: T1 T2\n");
+}
+
+// ---- what cannot be known statically ----
+
+TEST_F(Lint, shouldFollowSubroutinesInTheFileAndBesideIt) {
+  const LintRun r = lint(program("calls.ngc"));
+  EXPECT_LINE(r, "tools in the order of the changes: T1 T2 T3\n");
+  EXPECT_LINE(r, "  2  3         M6 T2         pocket 2 ");
+  EXPECT_LINE(r, "  3  sub_change.ngc:3 M6 T3         pocket 3 ");
+  EXPECT_LINE(r, "calls.ngc: line 8: o<missingsub> call: missingsub.ngc not found in " + kPrograms +
+                     ": what it does is not known\n");
+}
+
+TEST_F(Lint, shouldLookInTheSubroutinePath) {
+  const std::string elsewhere = path("subs");
+  fs::create_directories(elsewhere);
+  std::ofstream(elsewhere + "/missingsub.ngc")
+      << "o<missingsub> sub\nT4 M6\no<missingsub> endsub\n";
+  const LintRun r = lint(program("calls.ngc"), {"--subroutine-path", "/nonexistent:" + elsewhere});
+  EXPECT_LINE(r, "tools in the order of the changes: T1 T2 T3 T4\n");
+  EXPECT_NO_LINE(r, "not found");
+}
+
+TEST_F(Lint, shouldReportAFileWithoutTheSubroutineCalled) {
+  const LintRun r = lint(program("wrong_file.ngc"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r, "wrong_file.ngc: line 1: o<no_such_sub> call: " + kPrograms +
+                     "/no_such_sub.ngc has no o<no_such_sub> sub: LinuxCNC stops the program\n");
+}
+
+TEST_F(Lint, shouldCountChangesInLoopsAndConditionalsOnce) {
+  const LintRun r = lint(program("flow.ngc"));
+  EXPECT_LINE(r, "flow.ngc: line 3: tool changes inside a loop (o100 while): counted once\n");
+  EXPECT_LINE(r,
+              "flow.ngc: line 7: tool changes inside a conditional (o110 if): counted once, "
+              "every branch as if it ran\n");
+  EXPECT_LINE(r, "flow.ngc: line 15: tool changes inside a loop (o130 repeat): counted once\n");
+  EXPECT_NO_LINE(r, "o120");  // a do-while without a change
+  EXPECT_LINE(r, "  1  4         M6 T1         pocket 1 (in a loop/conditional)");
+  EXPECT_LINE(r, "tools in the order of the changes: T1 T2 T3\n");
+}
+
+TEST_F(Lint, shouldFollowARecursiveSubroutineOnce) {
+  const LintRun r = lint(program("recursive.ngc"));
+  EXPECT_LINE(r,
+              "recursive.ngc: line 4: o<again> call: o<again> calls itself (recursion): its "
+              "body is followed once\n");
+  EXPECT_LINE(r, "recursive.ngc: 1 tool change (M6), 0 M61, 1 problem, 1 not known\n");
+}
+
+TEST_F(Lint, shouldSayAComputedToolIsNotKnown) {
+  const LintRun r = lint(program("computed.ngc"), {"--state", state_with_lengths({2})});
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_LINE(r,
+              "computed.ngc: line 2: M6 T#<tool>: the tool number is computed when the "
+              "program runs: not known\n");
+  EXPECT_LINE(r,
+              "computed.ngc: line 3: M6 T[#<tool>+1]: the tool number is computed when the "
+              "program runs: not known\n");
+  EXPECT_LINE(r,
+              "computed.ngc: line 4: M61 Q#<tool>: the tool number is computed when the "
+              "program runs: not known\n");
+  // After a tool not known, the next change cannot be estimated either.
+  EXPECT_LINE(r,
+              "estimated tool-change time: not known: the tool or the spindle of every "
+              "change is not known\n");
+  const LintRun call = lint(write("call.ngc", "#1 = 100\no[#1] call\nM2\n"));
+  EXPECT_LINE(call,
+              "call.ngc: line 2: o[#1] call: the subroutine is computed when the program "
+              "runs: not known\n");
+}
+
+TEST_F(Lint, shouldSayARemappedOrUserCodeIsNotKnown) {
+  const LintRun r = lint(program("codes.ngc"), {"--state", state_with_lengths({1})});
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_LINE(r,
+              "codes.ngc: line 2: M101 runs the user program M101 (PROGRAM_PREFIX or "
+              "USER_M_PATH): what it does is not known\n");
+  EXPECT_LINE(r,
+              "codes.ngc: line 3: M400 is no LinuxCNC code: a remap in the machine's INI "
+              "(--ini follows it) or an error: not known\n");
+  EXPECT_LINE(r,
+              "codes.ngc: line 4: G66 is no LinuxCNC code: a remap in the machine's INI "
+              "(--ini follows it) or an error: not known\n");
+}
+
+TEST_F(Lint, shouldFollowTheRemapsOfTheIni) {
+  const LintRun r = lint(program("codes.ngc"), {"--state", state_with_lengths({1, 2}), "--ini",
+                                                kPrograms + "/remap.ini"});
+  EXPECT_EQ(r.code, 1) << r.out;
+  // REMAP = M400 ... ngc=m400: m400.ngc beside the program changes to T2.
+  EXPECT_LINE(r, "  2  m400.ngc:2 M6 T2         pocket 2 ");
+  EXPECT_LINE(r,
+              "codes.ngc: line 4: G66 is no LinuxCNC code and the INI remaps none: LinuxCNC "
+              "refuses the line\n");
+  EXPECT_LINE(r,
+              "rapids at 6000 mm/min ([TRAJ]MAX_LINEAR_VELOCITY of " + kPrograms + "/remap.ini)");
+}
+
+TEST_F(Lint, shouldReportAnIniWithoutTheM6Remap) {
+  const LintRun r = lint(program("manual.ngc"), {"--state", state_with_lengths({1, 42}), "--ini",
+                                                 kPrograms + "/no_m6_remap.ini"});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r,
+              "manual.ngc: line 1: the INI remaps no M6: LinuxCNC's own M6 would run here, "
+              "not fixed_atc_probe_m6\n");
+  // 2 inch/s in an inch machine: 3048 mm/min for the mm config.
+  EXPECT_LINE(r, "rapids at 3048 mm/min ([TRAJ]MAX_LINEAR_VELOCITY of ");
+}
+
+// ---- the estimate ----
+
+TEST(Estimate, shouldAddMovesAtTheirFeedAndTheDwells) {
+  Simulator plan;
+  plan.sensor_z = -20.0;
+  auto move = [&](StepKind kind, unsigned axes, Point target, double feed) {
+    Step step;
+    step.kind = kind;
+    step.axes = axes;
+    step.target = target;
+    step.feed = feed;
+    plan.publish(step);
+  };
+  move(StepKind::rapid, axis_z, {0, 0, 10}, 0);    // 10 at the rapid 600/min: 1 s
+  move(StepKind::feed, axis_xy, {30, 40, 0}, 60);  // 50 at 60/min: 50 s
+  plan.start_timer(0.5);
+  move(StepKind::probe, axis_z, {0, 0, -100}, 300);  // to the sensor at -20: 30 at 300: 6 s
+  move(StepKind::feed, axis_z, {0, 0, 40}, 6000);    // 60 above the rapid: at 600: 6 s
+  plan.tell(MessageKind::prompt, "insert tool 7");   // the operator's time: not counted
+  int waits = 0;
+  EXPECT_NEAR(estimate_seconds(plan, {0, 0, 0}, 600.0, waits), 63.5, 1e-9);
+  EXPECT_EQ(waits, 1);
+}
+
+TEST_F(Lint, shouldEstimateTheChangeTimeFromThePlannedSteps) {
+  const LintRun r =
+      lint(write("two.ngc", "T1 M6\nT2 M6\nM2\n"), {"--state", state_with_lengths({1, 2})});
+  EXPECT_LINE(r, "\nestimated tool-change time: ");
+  EXPECT_LINE(r,
+              " for 2 changes, from the steps --plan prints for each: moves at their feed, "
+              "rapids at 3000 mm/min, assumed (--ini gives the machine's "
+              "[TRAJ]MAX_LINEAR_VELOCITY), plus the dwells; from safe to safe (the way "
+              "between the work and safe, acceleration not counted)\n");
+}
+
+// ---- usage and unreadable input: exit 2 ----
+
+TEST_F(Lint, shouldExitTwoOnUsageMistakes) {
+  EXPECT_EQ(run({"--lint"}).err, "--lint needs a value");
+  EXPECT_EQ(run({"--lint", "a.ngc"}).err, "--config FILE is required");
+  EXPECT_EQ(run({"--lint", "a.ngc", "--config", kConfig, "--from", "1"}).err,
+            "--from is not used by --lint");
+  EXPECT_EQ(run({"--check", "--config", kConfig, "--tool-table", "t"}).err,
+            "--tool-table is not used by --check");
+  EXPECT_EQ(run({"--lint", "a.ngc", "--lint", "b.ngc"}).err, "--lint given twice");
+  EXPECT_EQ(run({"--lint", "", "--config", kConfig}).err,
+            "--lint: expected a file path, got nothing");
+}
+
+TEST_F(Lint, shouldExitTwoWhenAnInputCannotBeRead) {
+  const LintRun missing = lint(path("missing.ngc"));
+  EXPECT_EQ(missing.code, 2);
+  EXPECT_EQ(missing.err, path("missing.ngc") + ": cannot open (No such file or directory)\n");
+  EXPECT_EQ(missing.out, "");
+  const LintRun table = lint(program("manual.ngc"), {"--tool-table", path("none.tbl")});
+  EXPECT_EQ(table.code, 2);
+  EXPECT_EQ(table.err, path("none.tbl") + ": cannot open (No such file or directory)\n");
+  const LintRun config = run({"--lint", program("manual.ngc"), "--config", path("none.json")});
+  EXPECT_EQ(config.code, 2);
+}
+
+// ---- hostile programs: one clear line, non-zero, within a second ----
+
+TEST_F(Lint, shouldRefuseADirectoryOrAFifoAtOnce) {
+  const LintRun folder = lint(dir_.string());
+  EXPECT_EQ(folder.code, 2);
+  EXPECT_EQ(folder.err, dir_.string() + ": expected a regular file, got a directory\n");
+  ASSERT_EQ(::mkfifo(path("fifo.ngc").c_str(), 0600), 0);
+  const LintRun fifo = lint(path("fifo.ngc"));
+  EXPECT_EQ(fifo.code, 2);
+  EXPECT_EQ(fifo.err, path("fifo.ngc") + ": expected a regular file, got a FIFO\n");
+  EXPECT_WITHIN_A_SECOND(fifo);
+}
+
+TEST_F(Lint, shouldRefuseABinaryFileInOneLine) {
+  std::string binary =
+      "\x7f"
+      "ELF\x02\x01\x01";
+  binary += std::string("\0\0\0\x03\n\x89PNG", 10);
+  for (int i = 0; i < 100000; ++i) binary.push_back(static_cast<char>(i * 7919 % 256));
+  const LintRun r = lint(write("binary.ngc", binary));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r, "\nproblems:\n  " + path("binary.ngc") +
+                     ": line 1: NUL byte at column 8: not a G-code text "
+                     "file (LinuxCNC stops reading a line at a NUL); nothing of it read\n\n");
+  EXPECT_WITHIN_A_SECOND(r);
+}
+
+TEST_F(Lint, shouldRefuseAFileWithANulByte) {
+  const LintRun r = lint(write("nul.ngc", std::string("T1 M6\nG0 X1\nG0\0 X2\nM2\n", 22)));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r,
+              "nul.ngc: line 3: NUL byte at column 3: not a G-code text file (LinuxCNC "
+              "stops reading a line at a NUL); nothing of it read\n");
+}
+
+TEST_F(Lint, shouldReadAHugeFileOnlyUpToItsCap) {
+  const std::string line = "G1 X1.000 Y2.000 F100\n";
+  {
+    std::ofstream huge(path("huge.ngc"), std::ios::binary);
+    huge << "T1 M6\n";
+    std::string block;
+    for (int i = 0; i < 4096; ++i) block += line;
+    for (std::size_t written = 0; written <= io::kMaxProgramBytes; written += block.size()) {
+      huge << block;
+    }
+    huge << "T2 M6\nM2\n";
+  }
+  const auto bytes = fs::file_size(path("huge.ngc"));
+  const LintRun r = lint(path("huge.ngc"), {"--state", state_with_lengths({1, 2})});
+  EXPECT_EQ(r.code, 1);
+  const std::size_t read = io::kMaxProgramBytes / line.size() * line.size() + 6 - line.size();
+  (void)read;
+  EXPECT_LINE(r, "huge.ngc: only the first ");
+  EXPECT_LINE(r, " of its " + std::to_string(bytes) +
+                     " bytes read (the lint reads at most 64 MiB of G-code): tool changes after "
+                     "line ");
+  EXPECT_LINE(r, "tools in the order of the changes: T1\n");
+  EXPECT_WITHIN_A_SECOND(r);
+}
+
+TEST_F(Lint, shouldRefuseAVeryLongLine) {
+  const LintRun r =
+      lint(write("long.ngc", "T1 M6\nG0 X" + std::string(10'000'000, '1') + "\nT2 M6\nM2\n"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r,
+              "long.ngc: line 2: 10000004 characters: LinuxCNC reads at most 252 in a line "
+              "(command too long)\n");
+  EXPECT_LINE(r, "tools in the order of the changes: T1 T2\n");
+  EXPECT_WITHIN_A_SECOND(r);
+}
+
+TEST_F(Lint, shouldStopReadingAFileAfterTwentyProblems) {
+  std::string text;
+  for (int i = 0; i < 100000; ++i) text += "G0 X1 {\n";
+  const LintRun r = lint(write("garbage.ngc", text));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r, "garbage.ngc: line 20: 20 problems so far: the rest of the file is not read\n");
+  EXPECT_LINE(r, "garbage.ngc: 0 tool changes (M6), 0 M61, 21 problems, 0 not known\n");
+  EXPECT_WITHIN_A_SECOND(r);
+}
+
+TEST_F(Lint, shouldStopCallsNestedDeeperThanLinuxCncAllows) {
+  for (int level = 0; level < 12; ++level) {
+    const std::string name = "level" + std::to_string(level);
+    write(name + ".ngc", "o<" + name + "> sub\nT" + std::to_string(level + 1) + " M6\no<level" +
+                             std::to_string(level + 1) + "> call\no<" + name + "> endsub\nM2\n");
+  }
+  const LintRun r = lint(write("deep.ngc", "o<level0> call\nM2\n"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r, path("level8.ngc") +
+                     ": line 3: o<level9> call: calls nested 10 deep: LinuxCNC allows 9 (too many "
+                     "subroutine levels)\n");
+  EXPECT_LINE(r, "tools in the order of the changes: T1 T2 T3 T4 T5 T6 T7 T8 T9\n");
+  EXPECT_WITHIN_A_SECOND(r);
+}
+
+TEST_F(Lint, shouldStopFollowingCallsThatMultiplyWithoutEnd) {
+  // Each level calls the next ten times: 10^8 calls if followed.
+  for (int level = 0; level < 8; ++level) {
+    std::string text = "o<fan" + std::to_string(level) + "> sub\n";
+    for (int i = 0; i < 10; ++i) text += "o<fan" + std::to_string(level + 1) + "> call\n";
+    text += "o<fan" + std::to_string(level) + "> endsub\n";
+    write("fan" + std::to_string(level) + ".ngc", text);
+  }
+  write("fan8.ngc", "o<fan8> sub\nG0 X1\no<fan8> endsub\n");
+  const LintRun r = lint(write("fan.ngc", "o<fan0> call\nT1 M6\nM2\n"));
+  EXPECT_LINE(r,
+              ": stopped following the program after 200000 blocks through its calls: what "
+              "comes after is not known\n");
+  EXPECT_LINE(r, "  " + path("fan7.ngc") + ": line ");
+  EXPECT_WITHIN_A_SECOND(r);
+}
+
+TEST_F(Lint, shouldStopCountingAfterTenThousandChanges) {
+  std::string text;
+  for (int i = 0; i < 6000; ++i) text += "T1 M6\nT2 M6\n";
+  const LintRun r = lint(write("many.ngc", text + "M2\n"), {"--state", state_with_lengths({1, 2})});
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_LINE(r, "many.ngc: line 10001: more than 10000 tool changes: the rest are not counted\n");
+  EXPECT_LINE(r, "  ... and 9800 more\n");
+  EXPECT_LINE(r, "many.ngc: 10000 tool changes (M6), 0 M61, 0 problems, 1 not known\n");
+  EXPECT_WITHIN_A_SECOND(r);
+}
+
+TEST_F(Lint, shouldFollowMutualRecursionOnce) {
+  write("ping.ngc", "o<ping> sub\nT1 M6\no<pong> call\no<ping> endsub\n");
+  write("pong.ngc", "o<pong> sub\nT2 M6\no<ping> call\no<pong> endsub\n");
+  const LintRun r = lint(write("mutual.ngc", "o<ping> call\nM2\n"));
+  EXPECT_LINE(r, path("pong.ngc") +
+                     ": line 3: o<ping> call: o<ping> calls itself (recursion): "
+                     "its body is followed once\n");
+  EXPECT_LINE(r, "tools in the order of the changes: T1 T2\n");
+}
+
+}  // namespace
+}  // namespace fatc
