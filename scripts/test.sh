@@ -4,4 +4,11 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
-ctest --test-dir build --output-on-failure "$@"
+status=0
+ctest --test-dir build --output-on-failure "$@" || status=$?
+# The fault matrices, as tables (ctest shows a passing test's output only with -V).
+for results in build/tests/integration/fault_matrix/results.json \
+               build/tests/integration/fault_matrix_restarts.json; do
+  if [ -f "$results" ]; then python3 tests/integration/fault_matrix_check.py "$results" --table || true; fi
+done
+exit "$status"
