@@ -4,7 +4,8 @@
 An M6 between two rack tools is cut off at each step where it waits (a move
 the executor performs, a dwell the component times) by an estop, LinuxCNC's
 Stop (abort), or the component killed with SIGKILL and restarted; with
-FATC_MATRIX_MODE=restart, LinuxCNC itself is stopped at the step and the next
+FATC_MATRIX_MODE=restart, LinuxCNC itself is stopped at the step (its realtime
+threads at once, the rest as LinuxCNC shuts down) and the next
 start checks what it finds. After each cut the run records what LinuxCNC and
 the component report: the chuck, the fault, the files, the refusals; then the
 operator confirms what a machinist would find (the model below) and the run
@@ -389,7 +390,11 @@ def restart_mode(steps, at_steps, results):
         at = at_steps[0]
         case = {"kind": "restart", "step": at, "what": next(s for s in steps if s[0] == at)[1:]}
         prepare()
-        struck, _ = cut("restart", at, steps, case)
+        cut("restart", at, steps, case)
+        # Stop the realtime threads at once, as a crash of LinuxCNC would:
+        # LinuxCNC's own shutdown, which follows when this display exits,
+        # lets the program run on for a moment first.
+        case["halcmd_stop"] = d.halcmd("stop").returncode
         results["next"] = case
         results["left"] = at_steps[1:]
 
