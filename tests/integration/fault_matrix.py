@@ -66,6 +66,17 @@ def truth(steps, at, held):
     return target, {held: True, target: False}
 
 
+def what_the_operator_says(steps, at, held):
+    """What a machinist finds (truth), and then says: where the spindle is
+    empty they put tool 1 into it by hand first, from its pocket, so that the
+    next case starts without a fetch."""
+    spindle, pockets = truth(steps, at, held)
+    if spindle == 0:
+        spindle, pockets = FIRST, dict(pockets, **{str(FIRST): False})
+        pockets = {int(k): v for k, v in pockets.items()}
+    return spindle, pockets
+
+
 def program(name, text):
     path = os.path.join(d.ini_dir(), name)
     with open(path, "w") as f:
@@ -231,7 +242,7 @@ def run_case(kind, at, steps):
                              "messages": d.messages[first:]}
         observe_refusals(case)
         case["seconds"]["refusals"] = time.monotonic() - began
-        spindle, pockets = truth(steps, at, case["from"])
+        spindle, pockets = what_the_operator_says(steps, at, case["from"])
         confirm(spindle, pockets, case)
         case["seconds"]["confirm"] = time.monotonic() - began
     except Exception as e:  # the checker reports it; the next case starts afresh
@@ -386,7 +397,7 @@ def restart_mode(steps, at_steps, results):
                              "messages": list(d.messages)}
         try:
             observe_refusals(case)
-            spindle, pockets = truth(steps, case["step"], case["from"])
+            spindle, pockets = what_the_operator_says(steps, case["step"], case["from"])
             confirm(spindle, pockets, case)
         except Exception as e:
             case["error"] = "%s: %s" % (type(e).__name__, e)
