@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <set>
 #include <tuple>
@@ -194,12 +195,11 @@ class Checker {
     if (tool == 0) return "-";
     const bool measures = config_.probe_after_change != ProbeAfterChange::off &&
                           use.kind == gcode::ToolUse::Kind::change;
-    std::optional<double> stored;
-    std::string missing;  // why there is no length
-    std::string source;
+    std::optional<std::string> stored;  // the length as the column shows it
+    std::string missing;                // why there is none
     if (in_.table != nullptr) {
+      // The table is in the machine's units, which may not be the config's.
       const auto entry = in_.table->tools.find(tool);
-      source = "tool table";
       if (entry == in_.table->tools.end()) {
         missing = "not in the tool table " + in_.table_name;
       } else if (!entry->second.z) {
@@ -209,23 +209,24 @@ class Checker {
         missing = "Z0 in the tool table " + in_.table_name + " (line " +
                   std::to_string(entry->second.line) + ")";
       } else {
-        stored = *entry->second.z;
+        char z[48];
+        std::snprintf(z, sizeof z, "Z%.4f (tool table)", *entry->second.z);
+        stored = z;
       }
     } else {
       const auto entry = tools_.lengths.find(tool);
-      source = "state file";
       if (entry == tools_.lengths.end()) {
         missing = "no length in the state file " + in_.state_name;
       } else {
-        stored = entry->second;
+        stored = format_length(config_, entry->second) + " (state file)";
       }
     }
     if (measures) {
       return std::string(config_.probe_after_change == ProbeAfterChange::check ? "checked"
                                                                                : "measured") +
-             " at the change" + (stored ? ", stored " + format_length(config_, *stored) : "");
+             " at the change" + (stored ? ", stored " + *stored : "");
     }
-    if (stored) return format_length(config_, *stored) + " (" + source + ")";
+    if (stored) return *stored;
     if (never_measured_.insert(tool).second) {
       problem(use.where, tool_word(tool) + " was never measured: " + missing +
                              ", and M6 measures nothing (probe_after_change is off)");

@@ -218,6 +218,20 @@ TEST_F(Lint, shouldReportAToolNeverMeasuredOncePerTool) {
               "(state file)");
 }
 
+TEST_F(Lint, shouldReportAStateFileThatRecordsACutOffSequence) {
+  ToolState tools = ToolState::fresh(*io::load_config_file(kConfig).config);
+  tools.uncertain = true;
+  tools.lengths = {{1, 21.0}, {2, 22.0}};
+  io::save_state_file(path("cut_off.state"), tools);
+  const LintRun r =
+      lint(write("after_fault.ngc", "T1 M6\nT2 M6\nM2\n"), {"--state", path("cut_off.state")});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r, "after_fault.ngc: line 1: the state file " + path("cut_off.state") +
+                     " records a sequence that was cut off: the changer refuses M6 until the "
+                     "fault is cleared (panel, or --confirm)\n");
+  EXPECT_LINE(r, "after_fault.ngc: 2 tool changes (M6), 0 M61, 1 problem, 0 not known\n");
+}
+
 TEST_F(Lint, shouldAcceptAnUnmeasuredToolWhenTheChangeMeasuresIt) {
   const LintRun r = run({"--lint", write("measure.ngc", "T1 M6\nM2\n"), "--config",
                          config_with("probe_after_change", "measure"), "--state", no_state()});
@@ -233,8 +247,8 @@ TEST_F(Lint, shouldReadTheLengthsFromTheToolTable) {
       lint(write("table.ngc", "T1 M6\nT2 M6\nT3 M6\nT4 M6\nM2\n"), {"--tool-table", table});
   EXPECT_EQ(r.code, 1);
   EXPECT_LINE(r,
-              "  1  1         M6 T1         pocket 1                              30.0000 mm "
-              "(tool table)");
+              "  1  1         M6 T1         pocket 1                              Z30.0000 (tool "
+              "table)");
   EXPECT_LINE(r, "table.ngc: line 2: T2 was never measured: Z0 in the tool table " + table +
                      " (line 3), and M6 measures nothing (probe_after_change is off)\n");
   EXPECT_LINE(r, "table.ngc: line 3: T3 was never measured: no Z in the tool table " + table +
