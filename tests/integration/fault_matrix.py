@@ -137,6 +137,9 @@ def cut(kind, at, steps, case):
     held = pin(P + "tool-in-spindle")
     target = SECOND if held == FIRST else FIRST
     case.update({"from": held, "to": target})
+    if kind == "kill":
+        # The last kill's process may still be on its way out.
+        d.wait_for(lambda: len(d.component_pids()) == 1, 10, "one component process")
     first = len(d.messages)
     start_program(program("fatc_matrix_t%d.ngc" % target, "T%d M6\nM2\n" % target))
     began = time.monotonic()
