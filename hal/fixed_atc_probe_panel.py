@@ -33,6 +33,7 @@ AWAITING_PROBE = 2
 AWAITING_TIMER = 3
 AWAITING_SPINDLE = 4
 AWAITING_OPERATOR_CHOICE = 5
+AWAITING_SENSOR = 6
 # The `step-kind` pin: StepKind, those the panel names.
 STEP_RAPID = 1
 STEP_FEED = 2
@@ -67,6 +68,8 @@ def describe_awaiting(awaiting, kind, x, y, z, inch):
         return "waiting for the spindle to stop"
     if awaiting == AWAITING_OPERATOR_CHOICE:
         return "Waiting for you: see the message, then Continue or Cancel"
+    if awaiting == AWAITING_SENSOR:
+        return "waiting for a sensor (drawbar, tool present, air, rack)"
     return ""
 
 

@@ -71,7 +71,9 @@ int run_component(const fatc::io::Options& options) {
   int id = -1;
   fatc::linuxcnc::HalPins* pins = nullptr;
   try {
-    pins = fatc::linuxcnc::create_pins("fixed_atc_probe", id);
+    std::vector<int> pockets;
+    for (const auto& pocket : config.config->pockets) pockets.push_back(pocket.first);
+    pins = fatc::linuxcnc::create_pins("fixed_atc_probe", id, pockets);
   } catch (const std::exception& e) {
     if (id >= 0) hal_exit(id);
     return fail(e.what());

@@ -11,6 +11,8 @@ class Engine {
   Engine(const Config& config, Ports& ports, ToolState tools)
       : context(config, ports, std::move(tools)), fsm(&context) {
     context.refuse_step = [this](const std::string& why) { fsm.process_event(UnsafeStep{why}); };
+    context.raise_check_failed = [this](const CheckFailed& e) { fsm.process_event(e); };
+    context.recheck_sensors = [this] { fsm.process_event(SensorReport{}); };
     fsm.start();
   }
   Context context;
@@ -46,7 +48,12 @@ void Changer::task_availability(std::optional<std::string> why_busy) {
 
 void Changer::spindle_stopped(bool stopped) {
   engine_->context.spindle_stopped = stopped;
-  engine_->fsm.process_event(SpindleReport{stopped});
+  engine_->fsm.process_event(SensorReport{});
+}
+
+void Changer::sensors(const SensorReadings& readings) {
+  engine_->context.sensors = readings;
+  engine_->fsm.process_event(SensorReport{});
 }
 
 void Changer::tool_change(int tool) { engine_->fsm.process_event(ToolChange{tool}); }
@@ -91,6 +98,7 @@ Awaiting awaiting_of(const machine::Machine& fsm) {
   if (active<flag::AwaitsMotion>(fsm)) return Awaiting::motion;
   if (active<flag::AwaitsTimer>(fsm)) return Awaiting::timer;
   if (active<flag::AwaitsSpindle>(fsm)) return Awaiting::spindle;
+  if (active<flag::AwaitsSensor>(fsm)) return Awaiting::sensor;
   return Awaiting::nothing;
 }
 
@@ -99,7 +107,7 @@ std::string activity_of(const Status& status, const Context& c) {
     case Phase::not_ready:
       return "machine off, not homed or in estop";
     case Phase::idle:
-      return "idle";
+      return status.awaiting == Awaiting::sensor ? c.dwell : "idle";
     case Phase::fault:
       return "fault: " + c.fault_reason;
     default:
@@ -117,6 +125,7 @@ std::string activity_of(const Status& status, const Context& c) {
       return std::string(step_kind_name(c.step.kind)) + " to " + c.step.label;
     case Awaiting::timer:
     case Awaiting::spindle:
+    case Awaiting::sensor:
       return c.dwell;
     case Awaiting::operator_choice:
       return c.prompt;
@@ -136,7 +145,8 @@ Status Changer::status() const {
   status.awaiting = awaiting_of(fsm);
   status.holds_program = active<machine::flag::HoldsProgram>(fsm);
   status.probe_cancellable = active<machine::flag::ProbeCancellable>(fsm);
-  status.accepting = status.phase == Phase::idle && !c.task_busy;
+  status.accepting =
+      status.phase == Phase::idle && status.awaiting == Awaiting::nothing && !c.task_busy;
   status.last_length = c.last_length;
   status.step_number = status.busy() ? c.sequence_step : 0;
   status.activity = activity_of(status, c);

@@ -7,6 +7,7 @@
 #include "config.hpp"
 #include "geometry.hpp"
 #include "ports.hpp"
+#include "sensors.hpp"
 #include "status.hpp"
 #include "tool_state.hpp"
 
@@ -37,6 +38,8 @@ class Changer {
   void task_availability(std::optional<std::string> why_busy);
   /// The spindle started (false) or stopped (true) turning.
   void spindle_stopped(bool stopped);
+  /// What the optional sensors read now; only the wired ones are looked at.
+  void sensors(const SensorReadings& readings);
   void tool_change(int tool);
   void load(int tool);
   void unload(int tool);

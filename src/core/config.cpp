@@ -50,6 +50,7 @@ constexpr Range kTolerance{0.0001, 100.0, "length"};
 constexpr Range kFeed{0.01, 100000.0, "feed"};
 constexpr Range kPulse{0.01, 60.0, "seconds"};
 constexpr Range kTimeout{0.01, 3600.0, "seconds"};
+constexpr Range kSensorTimeout{0.01, 60.0, "seconds"};
 /// The side offset's length (x and y combined).
 constexpr double kMinSideOffset = 0.1;
 
@@ -89,7 +90,8 @@ class Reader {
                            std::initializer_list<const char*> known) {
     for (const auto& item : object.items()) {
       const std::string& key = item.key();
-      if (std::any_of(known.begin(), known.end(), [&](const char* k) { return key == k; })) continue;
+      if (std::any_of(known.begin(), known.end(), [&](const char* k) { return key == k; }))
+        continue;
       if (full()) {
         ++unlisted;
         continue;
@@ -257,7 +259,8 @@ void read_flush(Reader& reader, const Json& root, Config& config) {
   reader.reject_unknown_keys(*flush, "flush", {"pulses", "pulse_seconds", "pause_seconds"});
   if (const auto pulses = reader.number(*flush, "flush", "pulses", false)) {
     if (*pulses < 0 || *pulses > 20 || std::floor(*pulses) != *pulses) {
-      reader.error("flush.pulses", "must be a whole number from 0 to 20, got " + format_number(*pulses));
+      reader.error("flush.pulses",
+                   "must be a whole number from 0 to 20, got " + format_number(*pulses));
     } else {
       config.flush.pulses = static_cast<int>(*pulses);
     }
@@ -283,6 +286,75 @@ void read_probe_after_change(Reader& reader, const Json& root, Config& config) {
       reader.ranged(root, "", "probe_check_tolerance", kTolerance, false);
 }
 
+/// `true` or `false`, one message otherwise.
+std::optional<bool> boolean(Reader& reader, const Json& value, const std::string& path) {
+  if (value.is_boolean()) return value.get<bool>();
+  reader.error(path, "expected true or false, got " + describe(value));
+  return std::nullopt;
+}
+
+/// `pocket_occupancy`: true (every pocket has a sensor), false, or the
+/// pockets that have one, by their tool numbers: [1, 2, 5].
+void read_pocket_occupancy(Reader& reader, const Json& root, const Json& value, Config& config) {
+  const std::string here = "sensors.pocket_occupancy";
+  if (value.is_boolean()) {
+    if (value.get<bool>()) {
+      for (const auto& pocket : config.pockets)
+        config.sensors.pocket_occupancy.insert(pocket.first);
+    }
+    return;
+  }
+  if (!value.is_array()) {
+    reader.error(here,
+                 "expected true, false or a list of pockets like [1, 2], got " + describe(value));
+    return;
+  }
+  // Compared with the keys as written, so a pocket that failed for another
+  // reason is not reported twice.
+  std::set<int> configured;
+  if (const auto pockets = root.find("pockets"); pockets != root.end() && pockets->is_object()) {
+    for (const auto& item : pockets->items()) {
+      if (const auto tool = tool_number_key(item.key())) configured.insert(*tool);
+    }
+  }
+  for (std::size_t i = 0; i < value.size() && !reader.full(); ++i) {
+    const std::string at = here + "[" + std::to_string(i) + "]";
+    const Json& entry = value[i];
+    if (!is_tool_number(entry)) {
+      reader.error(at, "expected a pocket's tool number (1 to 999999999), got " + describe(entry));
+      continue;
+    }
+    const int tool = entry.get<int>();
+    if (configured.count(tool) == 0) {
+      reader.error(at, "pocket " + std::to_string(tool) + " is not in pockets");
+    } else if (!config.sensors.pocket_occupancy.insert(tool).second) {
+      reader.error(at, "pocket " + std::to_string(tool) + " is listed twice");
+    }
+  }
+}
+
+/// `sensors`: which optional sensors are wired, each off unless it says true.
+void read_sensors(Reader& reader, const Json& root, Config& config) {
+  const Json* sensors = reader.object(root, "", "sensors", false);
+  if (!sensors) return;
+  reader.reject_unknown_keys(*sensors, "sensors",
+                             {"tool_present", "drawbar_open", "drawbar_closed", "air_pressure",
+                              "pocket_occupancy", "zero_speed"});
+  const std::pair<const char*, bool*> flags[] = {{"tool_present", &config.sensors.tool_present},
+                                                 {"drawbar_open", &config.sensors.drawbar_open},
+                                                 {"drawbar_closed", &config.sensors.drawbar_closed},
+                                                 {"air_pressure", &config.sensors.air_pressure},
+                                                 {"zero_speed", &config.sensors.zero_speed}};
+  for (const auto& [key, target] : flags) {
+    if (const auto found = sensors->find(key); found != sensors->end()) {
+      if (const auto value = boolean(reader, *found, join_path("sensors", key))) *target = *value;
+    }
+  }
+  if (const auto occupancy = sensors->find("pocket_occupancy"); occupancy != sensors->end()) {
+    read_pocket_occupancy(reader, root, *occupancy, config);
+  }
+}
+
 void check_geometry(Reader& reader, Config& config) {
   if (config.pocket_above_clearance_offset_z <= config.pocket_above_chuck_offset_z) {
     reader.error("pocket_above_clearance_offset_z",
@@ -292,8 +364,9 @@ void check_geometry(Reader& reader, Config& config) {
   }
   const double side = std::hypot(config.pocket_side_offset.x, config.pocket_side_offset.y);
   if (side == 0.0) {
-    reader.error("pocket_side_offset", "must not be zero in both x and y: the side is where the "
-                                       "spindle slows down before entering a pocket");
+    reader.error("pocket_side_offset",
+                 "must not be zero in both x and y: the side is where the "
+                 "spindle slows down before entering a pocket");
   } else if (side < kMinSideOffset) {
     reader.error("pocket_side_offset", "must be at least " + format_number(kMinSideOffset) + " " +
                                            units_name(config.units) +
@@ -304,19 +377,26 @@ void check_geometry(Reader& reader, Config& config) {
       const double distance = std::hypot(a->second.x - b->second.x, a->second.y - b->second.y);
       if (distance < side) {
         reader.error("pockets." + std::to_string(b->first),
-                     "only " + format_number(distance) + " from pocket " + std::to_string(a->first) +
-                         ", closer than the side offset (" + format_number(side) + ")");
+                     "only " + format_number(distance) + " from pocket " +
+                         std::to_string(a->first) + ", closer than the side offset (" +
+                         format_number(side) + ")");
       }
     }
   }
   if (config.probe_limit.z > config.loading.z) {
-    reader.error("probe_limit.z", "must not be above loading.z (" + format_number(config.loading.z) +
-                                      "), got " + format_number(config.probe_limit.z));
+    reader.error("probe_limit.z", "must not be above loading.z (" +
+                                      format_number(config.loading.z) + "), got " +
+                                      format_number(config.probe_limit.z));
   }
   if (config.rack_keepout_margin && *config.rack_keepout_margin >= side && side > 0.0) {
     reader.error("rack_keepout_margin", "must be smaller than the side offset (" +
                                             format_number(side) + "), got " +
                                             format_number(*config.rack_keepout_margin));
+  }
+  if (config.window() <= config.check_tolerance()) {
+    reader.error("probe_window", "must be larger than probe_check_tolerance (" +
+                                     format_number(config.check_tolerance()) + "), got " +
+                                     format_number(config.window()));
   }
   if (config.probe_latch_feed > config.probe_seek_feed) {
     reader.error("probe_latch_feed", "must not be above probe_seek_feed (" +
@@ -339,6 +419,11 @@ std::string format_length(const Config& config, double length) {
 double Config::check_tolerance() const {
   if (probe_check_tolerance) return *probe_check_tolerance;
   return units == Units::inch ? 0.004 : 0.1;
+}
+
+double Config::window() const {
+  if (probe_window) return *probe_window;
+  return units == Units::inch ? 0.4 : 10.0;
 }
 
 double Config::keepout_margin() const {
@@ -381,7 +466,10 @@ ConfigResult parse_config(const std::string& json_text) {
                               "rack_keepout_margin",
                               "probe_after_change",
                               "probe_check_tolerance",
-                              "manual_tools"});
+                              "manual_tools",
+                              "sensors",
+                              "sensor_timeout_seconds",
+                              "probe_window"});
 
   Config config;
   if (const auto units = root.find("units"); units != root.end()) {
@@ -427,12 +515,12 @@ ConfigResult parse_config(const std::string& json_text) {
 
   read_probe_after_change(reader, root, config);
   if (const auto manual = root.find("manual_tools"); manual != root.end()) {
-    if (manual->is_boolean()) {
-      config.manual_tools = manual->get<bool>();
-    } else {
-      reader.error("manual_tools", "expected true or false, got " + describe(*manual));
-    }
+    if (const auto value = boolean(reader, *manual, "manual_tools")) config.manual_tools = *value;
   }
+  read_sensors(reader, root, config);
+  reader.read(root, "", "sensor_timeout_seconds", config.sensor_timeout_seconds, kSensorTimeout,
+              false);
+  config.probe_window = reader.ranged(root, "", "probe_window", kOffset, false);
 
   // Relations between keys only mean something once every key read cleanly.
   if (reader.count() == 0) check_geometry(reader, config);

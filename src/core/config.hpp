@@ -2,6 +2,7 @@
 
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,24 @@ struct FlushConfig {
   double pause_seconds = 0.2;  ///< how long it stays closed between pulses
 };
 
+/// Which optional sensors are wired (config.json `sensors`); each is read
+/// from its HAL input only when it is, and checked where the sequence needs it.
+struct SensorConfig {
+  bool tool_present = false;       ///< `tool-present`: a tool is clamped in the spindle
+  bool drawbar_open = false;       ///< `drawbar-open`: the drawbar is released
+  bool drawbar_closed = false;     ///< `drawbar-closed`: the drawbar is clamped
+  bool air_pressure = false;       ///< `air-pressure-ok`: the drawbar has air
+  bool zero_speed = false;         ///< `zero-speed`: the spindle's zero-speed feedback
+  std::set<int> pocket_occupancy;  ///< pockets (tool numbers) with a `pocket-occupied-N` sensor
+
+  bool any() const {
+    return tool_present || drawbar_open || drawbar_closed || air_pressure || zero_speed ||
+           !pocket_occupancy.empty();
+  }
+  bool drawbar() const { return drawbar_open || drawbar_closed; }
+  bool pocket(int tool) const { return pocket_occupancy.count(tool) != 0; }
+};
+
 /// The validated contents of config.json. Lengths are in `units`, feeds in
 /// `units` per minute, positions are machine coordinates (G53).
 struct Config {
@@ -43,20 +62,26 @@ struct Config {
   std::map<int, Point> pockets;  ///< tool number -> its pocket, pocket_default merged
 
   // Keys new in the C++ version, all optional.
-  double pocket_feed = 500.0;        ///< slow moves into and out of a pocket
-  double probe_seek_feed = 300.0;    ///< first, fast probing stage
-  double probe_latch_feed = 25.0;    ///< second, slow probing stage
-  double probe_backoff = 2.0;        ///< lift between the two stages
+  double pocket_feed = 500.0;      ///< slow moves into and out of a pocket
+  double probe_seek_feed = 300.0;  ///< first, fast probing stage
+  double probe_latch_feed = 25.0;  ///< second, slow probing stage
+  double probe_backoff = 2.0;      ///< lift between the two stages
   FlushConfig flush;
   double spindle_stop_timeout_seconds = 10.0;
   std::optional<double> rack_keepout_margin;  ///< unset: half the side offset
   ProbeAfterChange probe_after_change = ProbeAfterChange::off;
   std::optional<double> probe_check_tolerance;  ///< unset: 0.1 mm or 0.004 inch
-  bool manual_tools = true;  ///< M6 to a tool without pocket hands it over at `loading`
+  bool manual_tools = true;             ///< M6 to a tool without pocket hands it over at `loading`
+  SensorConfig sensors;                 ///< all off unless config.json says they are wired
+  double sensor_timeout_seconds = 1.0;  ///< how long a wired sensor may take to confirm a change
+  std::optional<double> probe_window;   ///< unset: 10 mm or 0.4 inch
 
   bool has_pocket(int tool) const { return pockets.count(tool) != 0; }
   double keepout_margin() const;
   double check_tolerance() const;
+  /// How far from its stored length a tool may first touch the sensor in a
+  /// probe after M6: a touch outside stops the probe.
+  double window() const;
 };
 
 /// Either a Config or every problem found, one line each, each naming the

@@ -33,10 +33,10 @@ struct ProbeResult {
 };
 /// The timer the current state armed ran out.
 struct TimerElapsed {};
-/// The spindle started or stopped turning; Context::spindle_stopped holds the fact.
-struct SpindleReport {
-  bool stopped = true;
-};
+/// The spindle started or stopped turning, or a wired sensor changed, or a
+/// state asks for a fresh look at them; Context::spindle_stopped and
+/// Context::sensors hold the facts.
+struct SensorReport {};
 /// The operator pressed Continue (or Done).
 struct OperatorContinue {};
 /// The operator pressed Cancel.
@@ -54,6 +54,13 @@ struct InternalError {
 /// machine's soft limits: it was not published.
 struct UnsafeStep {
   std::string reason;
+};
+/// A check of a wired sensor failed (raised by the leg that checked, queued
+/// behind the current event): the changer faults. `uncertain`: it failed
+/// after the chuck moved, so what the spindle holds is no longer a fact.
+struct CheckFailed {
+  std::string reason;
+  bool uncertain = false;
 };
 /// The operator checked the spindle and says what it holds, and, when a
 /// sequence was cut off at a pocket, whether that pocket holds its tool.

@@ -1,6 +1,10 @@
 #include "simulator.hpp"
 
+#include <cmath>
 #include <cstdio>
+#include <regex>
+
+#include "geometry.hpp"
 
 namespace fatc {
 
@@ -40,6 +44,81 @@ void Simulator::set_chuck_open(bool open) {
   record.chuck_open = open;
   records.push_back(record);
   chuck_open = open;
+  if (!rack.modelled || rack.drawbar_jammed || rack.drawbar_open == open) return;
+  rack.drawbar_open = open;
+  // The sensors follow the valve at once: the changer hears of it right after this event.
+  struct ReportAfter {
+    Simulator& sim;
+    ~ReportAfter() {
+      if (sim.changer_) sim.report_sensors(*sim.changer_);
+    }
+  } report{*this};
+  const int pocket = rack.pocket_at(*config_);
+  if (open && rack.spindle != 0 && !rack.tool_sticks) {
+    // Into the pocket it is at, or out of the machine (it drops).
+    if (pocket != 0 && rack.pockets[pocket] == 0) rack.pockets[pocket] = rack.spindle;
+    rack.spindle = 0;
+  } else if (!open && rack.spindle == 0 && pocket != 0 && rack.pockets[pocket] != 0) {
+    if (rack.grips_failing > 0) {
+      --rack.grips_failing;
+    } else {
+      rack.spindle = rack.pockets[pocket];
+      rack.pockets[pocket] = 0;
+    }
+  }
+}
+
+int Rack::pocket_at(const Config& config) const {
+  if (known_axes != axis_xyz) return 0;
+  for (const auto& entry : config.pockets) {
+    const Point p = pocket_waypoints(config, entry.first).pocket;
+    if (std::abs(p.x - at.x) < 1e-6 && std::abs(p.y - at.y) < 1e-6 && std::abs(p.z - at.z) < 1e-6) {
+      return entry.first;
+    }
+  }
+  return 0;
+}
+
+void Simulator::model_rack(const Config& config, const ToolState& tools) {
+  config_ = &config;
+  rack = Rack{};
+  rack.modelled = config.sensors.any();
+  rack.spindle = tools.spindle;
+  for (const auto& entry : config.pockets) {
+    rack.pockets[entry.first] = tools.in_pocket.count(entry.first) != 0 ? entry.first : 0;
+  }
+  reported_.reset();
+}
+
+SensorReadings Simulator::readings() const {
+  SensorReadings r;
+  r.tool_present = rack.spindle != 0;
+  r.drawbar_open = rack.drawbar_open;
+  r.drawbar_closed = !rack.drawbar_open;
+  r.air_pressure_ok = rack.air;
+  r.zero_speed = rack.spindle_still;
+  for (const auto& [pocket, tool] : rack.pockets) r.pocket_occupied[pocket] = tool != 0;
+  return r;
+}
+
+bool Simulator::report_sensors(Changer& changer) {
+  if (!rack.modelled) return false;
+  changer_ = &changer;
+  const SensorReadings now = readings();
+  if (reported_ && *reported_ == now) return false;
+  reported_ = now;
+  changer.sensors(now);
+  return true;
+}
+
+void Simulator::operator_obeys(const Changer& changer) {
+  if (!rack.modelled) return;
+  static const std::regex insert("insert tool (\\d+)", std::regex::icase);
+  static const std::regex remove("remove tool (\\d+)", std::regex::icase);
+  const std::string asked = changer.status().activity;
+  std::smatch match;
+  if (std::regex_search(asked, match, insert)) rack.spindle = std::stoi(match[1]);
+  if (std::regex_search(asked, match, remove)) rack.spindle = 0;
 }
 
 void Simulator::start_timer(double seconds) {
@@ -75,8 +154,10 @@ void Simulator::unexpected(const std::string& state, const std::string& event) {
 int Simulator::run(Changer& changer, int limit) {
   int fed = 0;
   for (; fed < limit; ++fed) {
+    if (report_sensors(changer)) continue;
     const Awaiting awaiting = changer.status().awaiting;
-    if (awaiting == Awaiting::timer && timer_armed) {
+    if ((awaiting == Awaiting::timer || awaiting == Awaiting::sensor) && timer_armed) {
+      // A sensor that has not come by now never will: its time runs out.
       timer_armed = false;
       changer.timer_elapsed();
     } else if (awaiting == Awaiting::probe && pending && pending->kind == StepKind::probe) {
@@ -86,6 +167,12 @@ int Simulator::run(Changer& changer, int limit) {
       changer.probe_result(touched, touched ? *sensor_z : probe.target.z);
     } else if (awaiting == Awaiting::motion && pending) {
       const bool moved = is_motion(pending->kind);
+      if (moved) {
+        if (pending->axes & axis_x) rack.at.x = pending->target.x;
+        if (pending->axes & axis_y) rack.at.y = pending->target.y;
+        if (pending->axes & axis_z) rack.at.z = pending->target.z;
+        rack.known_axes |= pending->axes;
+      }
       pending.reset();
       moved ? changer.in_position() : changer.command_done();
     } else {
@@ -138,6 +225,8 @@ void run_with_operator(Simulator& sim, Changer& changer) {
   for (int presses = 0; presses < 10; ++presses) {
     sim.run(changer);
     if (changer.status().awaiting != Awaiting::operator_choice) return;
+    sim.operator_obeys(changer);
+    sim.report_sensors(changer);
     changer.operator_continue();
   }
 }
@@ -147,8 +236,11 @@ void run_with_operator(Simulator& sim, Changer& changer) {
 Simulator plan_change(const Config& config, int from, int to, double sensor_z) {
   Simulator sim;
   sim.sensor_z = sensor_z;
-  Changer changer(config, sim, with_in_spindle(config, from));
+  const ToolState tools = with_in_spindle(config, from);
+  sim.model_rack(config, tools);
+  Changer changer(config, sim, tools);
   changer.plan_only();
+  sim.report_sensors(changer);
   changer.ready();
   changer.tool_change(to);
   run_with_operator(sim, changer);
@@ -160,8 +252,10 @@ Simulator plan_load(const Config& config, int tool, int from, double sensor_z) {
   sim.sensor_z = sensor_z;
   ToolState tools = with_in_spindle(config, from);
   if (from != tool) tools.in_pocket.erase(tool);
+  sim.model_rack(config, tools);
   Changer changer(config, sim, tools);
   changer.plan_only();
+  sim.report_sensors(changer);
   changer.ready();
   changer.load(tool);
   run_with_operator(sim, changer);
@@ -170,8 +264,11 @@ Simulator plan_load(const Config& config, int tool, int from, double sensor_z) {
 
 Simulator plan_unload(const Config& config, int tool, int from) {
   Simulator sim;
-  Changer changer(config, sim, with_in_spindle(config, from));
+  const ToolState tools = with_in_spindle(config, from);
+  sim.model_rack(config, tools);
+  Changer changer(config, sim, tools);
   changer.plan_only();
+  sim.report_sensors(changer);
   changer.ready();
   changer.unload(tool);
   run_with_operator(sim, changer);

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -21,12 +22,45 @@ struct Record {
 
 std::string describe(const Record& record);
 
+/// The rack the Simulator models when sensors are wired: the tool follows
+/// the chuck (a closing chuck at a full pocket takes its tool, an opening one
+/// lets go of it, into the pocket it is at or out of the machine), and the
+/// sensors read what is there. Tests inject faults through its fields.
+struct Rack {
+  bool modelled = false;
+  int spindle = 0;              ///< the tool the spindle clamps, 0 none
+  std::map<int, int> pockets;   ///< pocket (its tool number) -> the tool in it, 0 empty
+  bool air = true;              ///< air-pressure-ok
+  bool spindle_still = true;    ///< the zero-speed feedback
+  int grips_failing = 0;        ///< this many closings at a pocket do not take its tool
+  bool tool_sticks = false;     ///< a released tool stays in the spindle
+  bool drawbar_jammed = false;  ///< the drawbar does not move (its feedback stays)
+  bool drawbar_open = false;    ///< where the drawbar is
+  Point at;                     ///< where the spindle is (known_axes of it)
+  unsigned known_axes = 0;
+
+  /// The pocket the spindle is in (its nose at the pocket's XYZ), 0 none.
+  int pocket_at(const Config& config) const;
+};
+
 /// Ports that record everything and an executor that finishes every step at
 /// once: what `--plan` prints and what the unit tests read. Probe moves touch
 /// at `sensor_z` (or miss when it is unset); operator waits are answered by
 /// the caller.
 class Simulator : public Ports {
  public:
+  /// With sensors in `config`, models the rack as `tools` says it is, so the
+  /// sensors read true; run() then reports every change of them.
+  void model_rack(const Config& config, const ToolState& tools);
+  Rack rack;
+  /// What the sensors read in the modelled rack.
+  SensorReadings readings() const;
+  /// Reports the readings to the changer if they changed since the last
+  /// report; from then on chuck changes are reported as they happen.
+  bool report_sensors(Changer& changer);
+  /// The operator does what the prompt asks: inserts or removes the tool.
+  void operator_obeys(const Changer& changer);
+
   std::vector<Record> records;
   std::optional<double> sensor_z;
   bool chuck_open = false;
@@ -50,6 +84,11 @@ class Simulator : public Ports {
   std::vector<Step> motion_steps() const;
   std::vector<std::string> messages(MessageKind kind) const;
   int saves = 0;
+
+ private:
+  const Config* config_ = nullptr;
+  Changer* changer_ = nullptr;
+  std::optional<SensorReadings> reported_;
 };
 
 }  // namespace fatc

@@ -15,7 +15,8 @@ enum class Awaiting {
   probe = 2,
   timer = 3,
   spindle = 4,
-  operator_choice = 5
+  operator_choice = 5,
+  sensor = 6,  ///< a wired sensor must confirm a change (drawbar, tool, air, the rack at rest)
 };
 
 /// What the changer shows the world. Computed from the state machine's flags

@@ -13,6 +13,7 @@ Component::Component(HalPins* pins, const Config& config, std::string state_path
     : pins_(pins),
       nml_(nml),
       state_path_(std::move(state_path)),
+      wired_(config.sensors),
       status_file_(state_path_ + ".status") {
   *pins_->units_inch = config.units == Units::inch;
 }
@@ -35,15 +36,32 @@ void Component::poll(Clock::time_point now, std::optional<bool> interpreter_idle
 }
 
 void Component::read_machine(std::optional<bool> interpreter_idle) {
-  const bool ready = *pins_->machine_on && *pins_->all_homed;
-  if (machine_ready_ != ready) {
-    machine_ready_ = ready;
-    ready ? changer_->ready() : changer_->not_ready();
-  }
   const bool stopped = *pins_->spindle_stopped;
   if (spindle_stopped_ != stopped) {
     spindle_stopped_ = stopped;
     changer_->spindle_stopped(stopped);
+  }
+  // The optional sensors: only the wired ones, so an unconnected pin never
+  // wakes the changer.
+  SensorReadings sensors;
+  if (wired_.zero_speed) sensors.zero_speed = *pins_->zero_speed;
+  if (wired_.tool_present) sensors.tool_present = *pins_->tool_present;
+  if (wired_.drawbar_open) sensors.drawbar_open = *pins_->drawbar_open;
+  if (wired_.drawbar_closed) sensors.drawbar_closed = *pins_->drawbar_closed;
+  if (wired_.air_pressure) sensors.air_pressure_ok = *pins_->air_pressure_ok;
+  for (int i = 0; i < pins_->pocket_count; ++i) {
+    const int pocket = pins_->pocket_tools[i];
+    if (wired_.pocket(pocket)) sensors.pocket_occupied[pocket] = *pins_->pocket_occupied[i];
+  }
+  if (sensors_ != sensors) {
+    sensors_ = sensors;
+    changer_->sensors(sensors);
+  }
+  // After the sensors: becoming ready compares them with the tool state.
+  const bool ready = *pins_->machine_on && *pins_->all_homed;
+  if (machine_ready_ != ready) {
+    machine_ready_ = ready;
+    ready ? changer_->ready() : changer_->not_ready();
   }
   // The operator flows run the executor over MDI: task must be free for it.
   task_free_ = nml_ && interpreter_idle.value_or(false);

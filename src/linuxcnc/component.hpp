@@ -65,6 +65,8 @@ class Component : public Ports {
   std::optional<Clock::time_point> deadline_;
   std::optional<bool> machine_ready_;
   std::optional<bool> spindle_stopped_;
+  const SensorConfig wired_;
+  std::optional<SensorReadings> sensors_;
   bool task_free_ = false;
   bool sync_wanted_ = true;  ///< LinuxCNC's tool in spindle must be brought in line
   std::optional<Clock::time_point> sync_sent_;

@@ -21,7 +21,7 @@ void make(int id, hal_pin_dir_t dir, hal_float_t** pin, const std::string& prefi
 
 }  // namespace
 
-HalPins* create_pins(const std::string& name, int& id) {
+HalPins* create_pins(const std::string& name, int& id, const std::vector<int>& pockets) {
   id = hal_init(name.c_str());
   if (id < 0) throw std::runtime_error("hal_init failed: is LinuxCNC (or halrun) running?");
   auto* p = static_cast<HalPins*>(hal_malloc(sizeof(HalPins)));
@@ -37,6 +37,22 @@ HalPins* create_pins(const std::string& name, int& id) {
   make(id, HAL_OUT, &p->chuck, n, "chuck");
   make(id, HAL_IN, &p->probe, n, "probe");
   make(id, HAL_IN, &p->spindle_stopped, n, "spindle-stopped");
+  // The optional sensors: read only where config.json's `sensors` says they are wired.
+  make(id, HAL_IN, &p->zero_speed, n, "zero-speed");
+  make(id, HAL_IN, &p->tool_present, n, "tool-present");
+  make(id, HAL_IN, &p->drawbar_open, n, "drawbar-open");
+  make(id, HAL_IN, &p->drawbar_closed, n, "drawbar-closed");
+  make(id, HAL_IN, &p->air_pressure_ok, n, "air-pressure-ok");
+  p->pocket_count = static_cast<int>(pockets.size());
+  p->pocket_occupied =
+      static_cast<hal_bit_t**>(hal_malloc(sizeof(hal_bit_t*) * (pockets.size() + 1)));
+  p->pocket_tools = static_cast<int*>(hal_malloc(sizeof(int) * (pockets.size() + 1)));
+  if (!p->pocket_occupied || !p->pocket_tools) throw std::runtime_error("hal_malloc failed");
+  for (std::size_t i = 0; i < pockets.size(); ++i) {
+    const std::string pin = "pocket-occupied-" + std::to_string(pockets[i]);
+    p->pocket_tools[i] = pockets[i];
+    make(id, HAL_IN, &p->pocket_occupied[i], n, pin.c_str());
+  }
   make(id, HAL_IN, &p->machine_on, n, "machine-on");
   make(id, HAL_IN, &p->all_homed, n, "all-homed");
   make(id, HAL_IN, &p->clear_fault, n, "clear-fault");

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 namespace fatc::linuxcnc {
 
@@ -8,9 +9,11 @@ namespace fatc::linuxcnc {
 /// written through the pointers HAL gives; only Component touches them.
 struct HalPins;
 
-/// Creates the component and every pin; throws std::runtime_error naming the
-/// pin that failed. hal_ready is left to the caller, after everything else
-/// that can fail has been checked.
-HalPins* create_pins(const std::string& component_name, int& component_id);
+/// Creates the component and every pin, with a `pocket-occupied-N` for each
+/// of `pockets` (tool numbers); throws std::runtime_error naming the pin that
+/// failed. hal_ready is left to the caller, after everything else that can
+/// fail has been checked.
+HalPins* create_pins(const std::string& component_name, int& component_id,
+                     const std::vector<int>& pockets);
 
 }  // namespace fatc::linuxcnc

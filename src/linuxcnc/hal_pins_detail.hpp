@@ -14,15 +14,25 @@ struct HalPins {
   hal_bit_t* changed;          ///< out: iocontrol.0.tool-changed; high until tool-change drops
   hal_bit_t* chuck;            ///< out: true opens the chuck
   hal_bit_t* probe;            ///< in: the touch-off sensor
-  hal_bit_t* spindle_stopped;  ///< in: the spindle stands still
-  hal_bit_t* machine_on;       ///< in: machine on and out of estop
-  hal_bit_t* all_homed;        ///< in: every joint homed
-  hal_bit_t* clear_fault;    ///< in: rising edge clears a fault with the operator's confirmation
-  hal_s32_t* confirm_tool;   ///< in: the spindle holds this tool (0 empty); -1: LinuxCNC's tool
-  hal_s32_t* confirm_pocket; ///< in: the cut-off pocket holds its tool: 1 yes, 0 no, -1 not said
-  hal_s32_t* cut_off_pocket; ///< out: the pocket a cut-off sequence involved, 0 none
-  hal_bit_t* heartbeat;      ///< out: toggles every poll; gates the chuck in HAL
-  hal_s32_t* linuxcnc_tool;  ///< in: iocontrol.0.tool-number
+  hal_bit_t* spindle_stopped;  ///< in: the spindle stands still, as LinuxCNC commands it
+  hal_bit_t* zero_speed;       ///< in: the spindle's zero-speed feedback (sensors.zero_speed)
+  hal_bit_t* tool_present;     ///< in: a tool is clamped in the spindle (sensors.tool_present)
+  hal_bit_t* drawbar_open;     ///< in: the drawbar is released (sensors.drawbar_open)
+  hal_bit_t* drawbar_closed;   ///< in: the drawbar is clamped (sensors.drawbar_closed)
+  hal_bit_t* air_pressure_ok;  ///< in: the drawbar has air (sensors.air_pressure)
+  /// in: pocket-occupied-N, one per configured pocket, in the order of
+  /// `pocket_tools` (sensors.pocket_occupancy); HAL memory, `pocket_count` long
+  hal_bit_t** pocket_occupied;
+  int* pocket_tools;
+  int pocket_count;
+  hal_bit_t* machine_on;      ///< in: machine on and out of estop
+  hal_bit_t* all_homed;       ///< in: every joint homed
+  hal_bit_t* clear_fault;     ///< in: rising edge clears a fault with the operator's confirmation
+  hal_s32_t* confirm_tool;    ///< in: the spindle holds this tool (0 empty); -1: LinuxCNC's tool
+  hal_s32_t* confirm_pocket;  ///< in: the cut-off pocket holds its tool: 1 yes, 0 no, -1 not said
+  hal_s32_t* cut_off_pocket;  ///< out: the pocket a cut-off sequence involved, 0 none
+  hal_bit_t* heartbeat;       ///< out: toggles every poll; gates the chuck in HAL
+  hal_s32_t* linuxcnc_tool;   ///< in: iocontrol.0.tool-number
   hal_s32_t* state;  ///< out: 0 not ready, 1 idle, 2 changing, 3 loading, 4 unloading, 5 fault
   hal_bit_t* ready;  ///< out: idle and able to change tools
   hal_bit_t* busy;   ///< out: running a sequence
@@ -53,9 +63,9 @@ struct HalPins {
   hal_bit_t* waiting_for_operator;  ///< out: a prompt waits for Continue or Cancel
   hal_float_t* last_length;         ///< out: the last tool length measured
   hal_s32_t* step_number;  ///< out: the step of the sequence under way, as --plan numbers it
-  hal_s32_t* awaiting;    ///< out: 0 nothing, 1 motion, 2 probe, 3 timer, 4 spindle, 5 operator
-  hal_bit_t* accepting;   ///< out: load and unload would be accepted now
-  hal_bit_t* can_cancel;  ///< out: cancel would act now (an operator wait or a load-flow probe)
+  hal_s32_t* awaiting;  ///< out: 0 nothing, 1 motion, 2 probe, 3 timer, 4 spindle, 5 operator, 6 sensor
+  hal_bit_t* accepting;    ///< out: load and unload would be accepted now
+  hal_bit_t* can_cancel;   ///< out: cancel would act now (an operator wait or a load-flow probe)
 };
 
 }  // namespace fatc::linuxcnc

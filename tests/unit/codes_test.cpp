@@ -64,6 +64,7 @@ const Codes kAwaiting = {
     {"timer", {"Awaiting::timer", static_cast<int>(Awaiting::timer)}},
     {"spindle", {"Awaiting::spindle", static_cast<int>(Awaiting::spindle)}},
     {"operator_choice", {"Awaiting::operator_choice", static_cast<int>(Awaiting::operator_choice)}},
+    {"sensor", {"Awaiting::sensor", static_cast<int>(Awaiting::sensor)}},
 };
 
 /// One group of codes in a file: the prefix its names carry there, what they

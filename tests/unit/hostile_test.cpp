@@ -158,6 +158,20 @@ const Hostile kBadConfigs[] = {
   {"units_number.json", "units: expected \"mm\" or \"inch\", got 25.4"},
   {"pockets_string.json", "pockets: expected an object, got \"1,2,3\""},
   {"pocket_default_array.json", "pocket_default: expected an object, got an array"},
+  // the optional sensors and their timeout, the probe window
+  {"sensors_not_object.json", "sensors: expected an object, got \"all\""},
+  {"sensors_unknown_key.json", "sensors.toolpresent: unknown key, did you mean \"tool_present\"?"},
+  {"sensors_not_bool.json", "sensors.air_pressure: expected true or false, got \"yes\""},
+  {"sensors_null.json", "sensors.tool_present: expected true or false, got null"},
+  {"sensors_pocket_missing.json", "sensors.pocket_occupancy[1]: pocket 9 is not in pockets"},
+  {"sensors_pocket_twice.json", "sensors.pocket_occupancy[1]: pocket 2 is listed twice"},
+  {"sensors_pocket_negative.json", "sensors.pocket_occupancy[0]: expected a pocket's tool number (1 to 999999999), got -3"},
+  {"sensors_pocket_string.json", "sensors.pocket_occupancy: expected true, false or a list of pockets like [1, 2], got \"all\""},
+  {"sensor_timeout_negative.json", "sensor_timeout_seconds: must be from 0.01 to 60 seconds, got -1"},
+  {"sensor_timeout_huge.json", "sensor_timeout_seconds: must be from 0.01 to 60 seconds, got 1e+10"},
+  {"sensor_timeout_string.json", "sensor_timeout_seconds: expected a number, got \"1s\""},
+  {"probe_window_zero.json", "probe_window: must be from 0.001 to 1000 mm, got 0"},
+  {"probe_window_below_tolerance.json", "probe_window: must be larger than probe_check_tolerance (0.1), got 0.05"},
 };
 
 const Hostile kBadStates[] = {

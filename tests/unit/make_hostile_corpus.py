@@ -135,6 +135,20 @@ def configs():
         "units_number.json": spoil(CONFIG, lambda j: j.update(units=25.4)),
         "pockets_string.json": spoil(CONFIG, lambda j: j.update(pockets="1,2,3")),
         "pocket_default_array.json": spoil(CONFIG, lambda j: j.update(pocket_default=[])),
+        # the optional sensors and their timeout, the probe window
+        "sensors_not_object.json": spoil(CONFIG, lambda j: j.update(sensors="all")),
+        "sensors_unknown_key.json": spoil(CONFIG, lambda j: j.update(sensors={"toolpresent": True})),
+        "sensors_not_bool.json": spoil(CONFIG, lambda j: j.update(sensors={"air_pressure": "yes"})),
+        "sensors_null.json": spoil(CONFIG, lambda j: j.update(sensors={"tool_present": None})),
+        "sensors_pocket_missing.json": spoil(CONFIG, lambda j: j.update(sensors={"pocket_occupancy": [1, 9]})),
+        "sensors_pocket_twice.json": spoil(CONFIG, lambda j: j.update(sensors={"pocket_occupancy": [2, 2]})),
+        "sensors_pocket_negative.json": spoil(CONFIG, lambda j: j.update(sensors={"pocket_occupancy": [-3]})),
+        "sensors_pocket_string.json": spoil(CONFIG, lambda j: j.update(sensors={"pocket_occupancy": "all"})),
+        "sensor_timeout_negative.json": spoil(CONFIG, lambda j: j.update(sensor_timeout_seconds=-1)),
+        "sensor_timeout_huge.json": spoil(CONFIG, lambda j: j.update(sensor_timeout_seconds=1e10)),
+        "sensor_timeout_string.json": spoil(CONFIG, lambda j: j.update(sensor_timeout_seconds="1s")),
+        "probe_window_zero.json": spoil(CONFIG, lambda j: j.update(probe_window=0)),
+        "probe_window_below_tolerance.json": spoil(CONFIG, lambda j: j.update(probe_window=0.05)),
     }
     for name, content in cases.items():
         write("bad_configs", name, content)

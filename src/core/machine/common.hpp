@@ -35,6 +35,7 @@ struct AwaitsMotion {};  ///< the executor performs a move or a command
 struct AwaitsProbe {};   ///< the executor performs a probe move
 struct AwaitsTimer {};
 struct AwaitsSpindle {};
+struct AwaitsSensor {};      ///< a wired sensor must confirm a change (drawbar, tool, air)
 struct AwaitsOperator {};    ///< Continue or Cancel
 struct HoldsProgram {};      ///< an operator wait inside M6: the program holds
 struct ProbeCancellable {};  ///< a probe over MDI that Cancel stops

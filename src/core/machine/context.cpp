@@ -114,6 +114,54 @@ std::string Context::whereabouts() const {
   return text;
 }
 
+bool Context::spindle_at_standstill() const {
+  return spindle_stopped && (!config.sensors.zero_speed || sensors.zero_speed);
+}
+
+bool Context::air_ok() const { return !config.sensors.air_pressure || sensors.air_pressure_ok; }
+
+bool Context::drawbar_reads_open() const {
+  return (!config.sensors.drawbar_open || sensors.drawbar_open) &&
+         (!config.sensors.drawbar_closed || !sensors.drawbar_closed);
+}
+
+bool Context::drawbar_reads_closed() const {
+  return (!config.sensors.drawbar_closed || sensors.drawbar_closed) &&
+         (!config.sensors.drawbar_open || !sensors.drawbar_open);
+}
+
+bool Context::spindle_reads(bool holds) const {
+  return !config.sensors.tool_present || sensors.tool_present == holds;
+}
+
+bool Context::pocket_reads(int pocket, bool occupied) const {
+  return !config.sensors.pocket(pocket) || sensors.occupied(pocket) == occupied;
+}
+
+std::vector<std::string> Context::disagreements() const {
+  return sensor_disagreements(config.sensors, sensors, tools);
+}
+
+std::string Context::drawbar_words() const {
+  std::string words;
+  if (config.sensors.drawbar_open)
+    words = std::string("drawbar-open ") + (sensors.drawbar_open ? "on" : "off");
+  if (config.sensors.drawbar_closed) {
+    if (!words.empty()) words += ", ";
+    words += std::string("drawbar-closed ") + (sensors.drawbar_closed ? "on" : "off");
+  }
+  return words;
+}
+
+void Context::await_sensor(double seconds, std::string what) {
+  dwell = std::move(what);
+  ports.start_timer(seconds);
+}
+
+void Context::fail_check(std::string reason, bool uncertain) {
+  raise_check_failed(CheckFailed{std::move(reason), uncertain});
+}
+
 namespace {
 
 std::string tool_name(int tool) { return "tool " + std::to_string(tool); }
@@ -134,6 +182,13 @@ std::optional<std::string> why_spindle_cannot_be_emptied(const Context& ctx, boo
   return std::nullopt;
 }
 
+/// Every sequence opens the chuck: no air, no start (the legs check again
+/// before each opening).
+std::optional<std::string> why_no_air(const Context& ctx) {
+  if (ctx.air_ok()) return std::nullopt;
+  return std::string("air pressure is low (air-pressure-ok off): the chuck cannot open");
+}
+
 std::optional<std::string> why_not_busy(const Context& ctx) {
   if (!ctx.machine_ready) return std::string("the machine is not on and homed, or is in estop");
   if (ctx.tools.uncertain) return "the spindle contents are uncertain: " + ctx.whereabouts();
@@ -146,6 +201,7 @@ std::optional<std::string> why_not_change(const Context& ctx, int tool) {
   if (tool < 0) return "T" + std::to_string(tool) + " is not a tool number";
   if (auto busy = why_not_busy(ctx)) return busy;
   if (tool == ctx.tools.spindle) return std::nullopt;
+  if (auto air = why_no_air(ctx)) return air;
   const bool manual = !ctx.config.has_pocket(tool);
   if (tool != 0 && manual && !ctx.config.manual_tools) {
     return tool_name(tool) + " has no pocket in the config (and manual_tools is off)";
@@ -160,7 +216,8 @@ std::optional<std::string> why_not_load(const Context& ctx, int tool) {
   if (ctx.task_busy) return ctx.task_busy;
   if (tool <= 0) return "load needs a tool number above 0, got " + std::to_string(tool);
   if (auto busy = why_not_busy(ctx)) return busy;
-  if (!ctx.spindle_stopped) return std::string("the spindle is turning; stop it first");
+  if (!ctx.spindle_at_standstill()) return std::string("the spindle is turning; stop it first");
+  if (auto air = why_no_air(ctx)) return air;
   if (!ctx.config.has_pocket(tool)) return tool_name(tool) + " has no pocket in the config";
   if (ctx.tools.spindle == tool) return std::nullopt;
   if (ctx.tools.in_pocket.count(tool) != 0) {
@@ -173,7 +230,8 @@ std::optional<std::string> why_not_unload(const Context& ctx, int tool) {
   if (ctx.task_busy) return ctx.task_busy;
   if (tool <= 0) return "unload needs a tool number above 0, got " + std::to_string(tool);
   if (auto busy = why_not_busy(ctx)) return busy;
-  if (!ctx.spindle_stopped) return std::string("the spindle is turning; stop it first");
+  if (!ctx.spindle_at_standstill()) return std::string("the spindle is turning; stop it first");
+  if (auto air = why_no_air(ctx)) return air;
   if (ctx.tools.spindle == tool) return std::nullopt;
   if (!ctx.config.has_pocket(tool)) return tool_name(tool) + " has no pocket in the config";
   if (ctx.tools.in_pocket.count(tool) == 0) return tool_name(tool) + " is not in the rack";

@@ -5,8 +5,10 @@
 #include <string>
 
 #include "../config.hpp"
+#include "../events.hpp"
 #include "../geometry.hpp"
 #include "../ports.hpp"
+#include "../sensors.hpp"
 #include "../step.hpp"
 #include "../tool_state.hpp"
 
@@ -25,7 +27,8 @@ class Context {
 
   int requested_tool = 0;       ///< the tool the current request is about
   bool machine_ready = false;   ///< latest Ready/NotReady
-  bool spindle_stopped = true;  ///< latest SpindleReport
+  bool spindle_stopped = true;  ///< LinuxCNC's spindle is off (`spindle-stopped`)
+  SensorReadings sensors;       ///< what the optional sensors read
   /// Why task cannot run the executor over MDI now (a program runs, no NML), if it cannot.
   std::optional<std::string> task_busy;
   std::string fault_reason;
@@ -36,6 +39,11 @@ class Context {
   bool check_moves = true;
   /// Raises UnsafeStep in the machine (queued behind the current event).
   std::function<void(const std::string&)> refuse_step;
+  /// Raises CheckFailed in the machine (queued behind the current event).
+  std::function<void(const CheckFailed&)> raise_check_failed;
+  /// Raises SensorReport in the machine (queued behind the current event):
+  /// a state that waits for a sensor looks at it once on entry this way.
+  std::function<void()> recheck_sensors;
   Point position;           ///< where the last published moves lead
   unsigned known_axes = 0;  ///< which axes of `position` are known
   bool at_safe() const;
@@ -69,6 +77,33 @@ class Context {
 
   /// Where the tools are, in words, for messages after a cancel or a fault.
   std::string whereabouts() const;
+
+  // The optional sensors: each check passes when its sensor is not wired.
+  /// The spindle stands still: LinuxCNC has it off (`spindle-stopped`) and,
+  /// where wired, the zero-speed feedback (`zero-speed`) agrees.
+  bool spindle_at_standstill() const;
+  bool air_ok() const;
+  /// The drawbar reads released: `drawbar-open` on, `drawbar-closed` off (those wired).
+  bool drawbar_reads_open() const;
+  /// The drawbar reads clamped: `drawbar-closed` on, `drawbar-open` off (those wired).
+  bool drawbar_reads_closed() const;
+  /// `tool-present` reads a tool (`holds`) or none.
+  bool spindle_reads(bool holds) const;
+  /// `pocket-occupied-N` of pocket `pocket` reads `occupied`.
+  bool pocket_reads(int pocket, bool occupied) const;
+  /// Where the wired sensors contradict the tool state, one phrase each.
+  std::vector<std::string> disagreements() const;
+  /// What the wired drawbar sensors read, for a message: "drawbar-open off, drawbar-closed on".
+  std::string drawbar_words() const;
+  /// Waits up to `seconds` for a sensor (TimerElapsed if it does not come);
+  /// `what` is what the activity shows meanwhile.
+  void await_sensor(double seconds, std::string what);
+  /// A sensor check failed: the changer faults saying `reason` (once the
+  /// current event is through); `uncertain`: what the spindle holds is no
+  /// longer a fact.
+  void fail_check(std::string reason, bool uncertain);
+  /// Why the last probe measured nothing, in words (for the fault after M6).
+  std::string probe_problem;
 };
 
 /// Why M6 to `tool` cannot start now, or nothing if it can.

@@ -20,29 +20,17 @@ struct PutAway {};  ///< the return of the tool the flow is about
 struct ChangeFlow_ : Flow<ChangeFlow_> {
   using flag_list = boost::mpl::vector2<flag::Busy, flag::Changing>;
 
-  struct WaitingForSpindle : msmf::state<> {
-    using flag_list = boost::mpl::vector1<flag::AwaitsSpindle>;
-    template <class Event, class Fsm>
-    void on_entry(const Event&, Fsm& fsm) {
-      if (fsm.ctx->spindle_stopped) return;  // leaves at once through the anonymous row
-      fsm.ctx->wait(fsm.ctx->config.spindle_stop_timeout_seconds,
-                    "waiting for the spindle to stop");
-    }
-    template <class Event, class Fsm>
-    void on_exit(const Event&, Fsm& fsm) {
-      fsm.ctx->ports.cancel_timer();
-    }
-  };
-  struct SpindleIsStopped {
-    template <class Event, class Fsm, class Source, class Target>
-    bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      return fsm.ctx->spindle_stopped;
-    }
-  };
+  /// LinuxCNC's spindle off and, where wired, zero speed.
+  struct WaitingForSpindle
+      : AwaitingSensor<SpindleIsStopped, SpindleStopTimeout, flag::AwaitsSpindle> {};
   struct SaySpindleDidNotStop {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      const Context& c = *fsm.ctx;
       fsm.ctx->fault_reason = "the spindle did not stop within spindle_stop_timeout_seconds";
+      if (c.config.sensors.zero_speed && !c.sensors.zero_speed) {
+        fsm.ctx->fault_reason += " (zero-speed off)";
+      }
     }
   };
   struct ProbesAfterChange {
@@ -62,8 +50,7 @@ struct ChangeFlow_ : Flow<ChangeFlow_> {
   using transition_table = boost::mpl::vector<
   //    Start                            Event           Next                Action                Guard
   // +--------------------------------+---------------+-------------------+---------------------+-------------------------+
-  Row < WaitingForSpindle              , none          , DecidingHowToEmpty, none                , SpindleIsStopped        >,
-  Row < WaitingForSpindle              , SpindleReport , DecidingHowToEmpty, none                , SpindleIsStopped        >,
+  Row < WaitingForSpindle              , SensorReport  , DecidingHowToEmpty, none                , SpindleIsStopped     >,
   Row < WaitingForSpindle              , TimerElapsed  , Failed            , SaySpindleDidNotStop, none                    >,
   Row < DecidingHowToEmpty             , none          , Returning         , none                , SpindleHoldsRackTool    >,
   Row < DecidingHowToEmpty             , none          , HandOutLeg        , none                , SpindleHoldsManualTool  >,
@@ -267,9 +254,31 @@ using RefusesRequests = boost::mpl::vector<msmf::Internal<ToolChange, Refuse<Bec
 
 // ================================================================ operating
 /// The machine on and homed: idle, or running one flow.
+struct BecauseSensorsDisagree {
+  template <class Fsm, class Request>
+  std::string operator()(Fsm& fsm, const Request&) const {
+    std::string words = "the sensors disagree with the saved tool state";
+    for (const auto& disagreement : fsm.ctx->disagreements()) words += "; " + disagreement;
+    return words;
+  }
+};
+
 struct Operating_ : Flow<Operating_> {
   struct Idle : msmf::state<> {
     using flag_list = boost::mpl::vector1<flag::Idle>;
+  };
+  /// Before the changer takes work (at start, after a fault, after every
+  /// flow, and whenever a sensor changes while idle) the wired sensors must
+  /// agree with the tool state, or come to within sensor_timeout_seconds.
+  struct ComparingSensors : AwaitingSensor<SensorsAgree> {
+    using flag_list = boost::mpl::vector2<flag::Idle, flag::AwaitsSensor>;
+    using internal_transition_table = RefusesRequests<BecauseSensorsDisagree>;
+  };
+  struct SaySensorsDisagree {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event& e, Fsm& fsm, Source&, Target&) const {
+      fsm.ctx->fault_reason = BecauseSensorsDisagree{}(fsm, e);
+    }
   };
 
   struct Refused {
@@ -318,11 +327,14 @@ struct Operating_ : Flow<Operating_> {
     }
   };
 
-  using initial_state = Idle;
+  using initial_state = ComparingSensors;
   // clang-format off
   using transition_table = boost::mpl::vector<
   //    Start                            Event          Next        Action                      Guard
   // +--------------------------------+--------------+-----------+---------------------------+-----------------------------------+
+  Row < ComparingSensors               , SensorReport , Idle      , none                      , SensorsAgree                      >,
+  Row < ComparingSensors               , TimerElapsed , Failed    , SaySensorsDisagree        , none                              >,
+  Row < Idle                           , SensorReport , ComparingSensors, none                , Not<SensorsAgree>                 >,
   Row < Idle                           , ToolChange   , none      , Refuse<BecauseNotPossible>, Refused                           >,
   Row < Idle                           , ToolChange   , none      , AnswerDone                , And<Not<Refused>, AlreadyInSpindle> >,
   Row < Idle                           , ToolChange   , ChangeFlow, TakeRequest               , And<Not<Refused>, Not<AlreadyInSpindle>> >,
@@ -330,11 +342,11 @@ struct Operating_ : Flow<Operating_> {
   Row < Idle                           , LoadRequest  , LoadFlow  , TakeRequest               , Not<Refused>                      >,
   Row < Idle                           , UnloadRequest, none      , Refuse<BecauseNotPossible>, Refused                           >,
   Row < Idle                           , UnloadRequest, UnloadFlow, TakeRequest               , Not<Refused>                      >,
-  Row < ChangeFlow::exit_pt<Finished>  , LegDone      , Idle      , AnswerDone                , none                              >,
+  Row < ChangeFlow::exit_pt<Finished>  , LegDone      , ComparingSensors, AnswerDone          , none                              >,
   Row < ChangeFlow::exit_pt<Failed>    , FlowFailed   , Failed    , none                      , none                              >,
-  Row < ChangeFlow::exit_pt<Cancelled> , LegDone      , Idle      , StopProgram               , none                              >,
-  Row < LoadFlow::exit_pt<Finished>    , LegDone      , Idle      , AnswerDone                , none                              >,
-  Row < UnloadFlow::exit_pt<Finished>  , LegDone      , Idle      , AnswerDone                , none                              >
+  Row < ChangeFlow::exit_pt<Cancelled> , LegDone      , ComparingSensors, StopProgram         , none                              >,
+  Row < LoadFlow::exit_pt<Finished>    , LegDone      , ComparingSensors, AnswerDone          , none                              >,
+  Row < UnloadFlow::exit_pt<Finished>  , LegDone      , ComparingSensors, AnswerDone          , none                              >
   >;
   /// Idle answers every request above; these answer them while a flow runs.
   using internal_transition_table = RefusesRequests<BecauseBusy>;
@@ -398,6 +410,19 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
       c.ports.save(c.tools);
     }
   };
+  /// A sensor check failed in a leg; after a chuck action, what the
+  /// spindle holds is no longer a fact.
+  struct RecordFailedCheck {
+    template <class Fsm, class Source, class Target>
+    void operator()(const CheckFailed& e, Fsm& fsm, Source&, Target&) const {
+      Context& c = *fsm.ctx;
+      c.fault_reason = e.reason;
+      if (e.uncertain) {
+        c.tools.uncertain = true;
+        c.ports.save(c.tools);
+      }
+    }
+  };
   struct RecordUnsafeStep {
     template <class Fsm, class Source, class Target>
     void operator()(const UnsafeStep& e, Fsm& fsm, Source&, Target&) const {
@@ -408,6 +433,10 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       fsm.ctx->fault_reason = "the last sequence was cut off (the saved tool state is uncertain)";
+      // What the wired sensors read helps the operator answer.
+      for (const auto& disagreement : fsm.ctx->disagreements()) {
+        fsm.ctx->fault_reason += "; " + disagreement;
+      }
     }
   };
   /// The operator says what the spindle holds and, for a sequence that was
@@ -416,10 +445,22 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
     template <class Fsm, class Source, class Target>
     void operator()(const ClearFault& e, Fsm& fsm, Source&, Target&) const {
       Context& c = *fsm.ctx;
+      const int answered =
+          c.tools.in_progress && e.pocket_holds_tool ? c.tools.in_progress->pocket : 0;
       c.tools.confirm(e.spindle_tool, e.pocket_holds_tool);
+      // The operator has looked at the rack: every pocket sensor not
+      // contradicted by an answer is taken at its word (only while the
+      // machine is on: its sensors may have no power otherwise).
+      std::string adopted;
+      if (c.machine_ready) {
+        for (const auto& change :
+             adopt_pocket_sensors(c.config.sensors, c.sensors, answered, c.tools)) {
+          adopted += change + "; ";
+        }
+      }
       c.fault_reason.clear();
       c.ports.save(c.tools);
-      c.tell(MessageKind::info, "fault cleared; " + c.whereabouts());
+      c.tell(MessageKind::info, "fault cleared; " + adopted + c.whereabouts());
     }
   };
   template <class Words>
@@ -456,6 +497,7 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
   Row < Operating                  , Abort         , Faulted         , MarkInterrupted , IsBusy                >,
   Row < Operating                  , InternalError , Faulted         , MarkInterrupted , none                  >,
   Row < Operating                  , UnsafeStep    , Faulted         , RecordUnsafeStep, none                  >,
+  Row < Operating                  , CheckFailed   , Faulted         , RecordFailedCheck, none                 >,
   Row < Operating::exit_pt<Failed> , FlowFailed    , Faulted         , none            , none                  >,
   Row < Faulted                    , ClearFault    , Operating       , ClearTheFault   , MachineIsReady        >,
   Row < Faulted                    , ClearFault    , MachineNotReady , ClearTheFault   , Not<MachineIsReady>   >,
@@ -465,12 +507,12 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
   Row < Faulted                    , InternalError , none            , none            , none                  >
   >;
   /// What no state above answers: the operator pressed a button that has
-  /// nothing to act on, or the spindle started or stopped (a fact the guards read).
+  /// nothing to act on, or the spindle or a sensor changed (facts the guards read).
   using internal_transition_table = boost::mpl::vector<
   Internal < OperatorContinue, Say<NothingWaitsToContinue>, none >,
   Internal < OperatorCancel  , Say<NothingWaitsToCancel>  , none >,
   Internal < ClearFault      , Say<ThereIsNoFault>        , none >,
-  Internal < SpindleReport   , none                       , none >
+  Internal < SensorReport    , none                       , none >
   >;
   // clang-format on
 

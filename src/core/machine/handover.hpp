@@ -17,7 +17,8 @@ struct InsertLeg_ : Flow<InsertLeg_<How>> {
   template <class Event, class Parent>
   void on_entry(const Event& e, Parent& parent) {
     Flow<InsertLeg_<How>>::on_entry(e, parent);
-    this->ctx->record_progress("inserting tool " + std::to_string(this->pocket_tool) + " at loading", 0);
+    this->ctx->record_progress(
+        "inserting tool " + std::to_string(this->pocket_tool) + " at loading", 0);
   }
   struct InsertPrompt {
     template <class Leg>
@@ -27,15 +28,25 @@ struct InsertLeg_ : Flow<InsertLeg_<How>> {
     }
   };
   struct AwaitingTool : How::template Asking<InsertPrompt> {};
+  /// Continue, yet `tool-present` sees no tool: the question stands.
+  struct SayToolNotSeen {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      fsm.ctx->tell(MessageKind::error,
+                    "tool " + std::to_string(fsm.pocket_tool) +
+                        " is not in the spindle (tool-present off): " + fsm.ctx->prompt);
+    }
+  };
 
   using initial_state = FlushLeg;
   // clang-format off
   using transition_table = boost::mpl::vector<
   //    Start                        Event             Next          Action               Guard
-  // +----------------------------+-----------------+-------------+--------------------+------+
-  Row < FlushLeg::exit_pt<Finished>, LegDone         , AwaitingTool, none               , none >,
-  Row < AwaitingTool               , OperatorContinue, Finished    , RecordToolInSpindle, none >,
-  Row < AwaitingTool               , OperatorCancel  , Cancelled   , none               , none >
+  // +----------------------------+-----------------+-------------+--------------------+-------------------------+
+  Row < FlushLeg::exit_pt<Finished>, LegDone         , AwaitingTool, none               , none                    >,
+  Row < AwaitingTool               , OperatorContinue, Finished    , RecordToolInSpindle, ToolReadsInSpindle      >,
+  Row < AwaitingTool               , OperatorContinue, none        , SayToolNotSeen     , Not<ToolReadsInSpindle> >,
+  Row < AwaitingTool               , OperatorCancel  , Cancelled   , none               , none                    >
   >;
   // clang-format on
 };
@@ -50,7 +61,8 @@ struct RemoveLeg_ : Flow<RemoveLeg_<How>> {
   template <class Event, class Parent>
   void on_entry(const Event& e, Parent& parent) {
     Flow<RemoveLeg_<How>>::on_entry(e, parent);
-    this->ctx->record_progress("removing tool " + std::to_string(this->pocket_tool) + " at loading", 0);
+    this->ctx->record_progress("removing tool " + std::to_string(this->pocket_tool) + " at loading",
+                               0);
   }
 
   struct RemovePrompt {
@@ -61,14 +73,24 @@ struct RemoveLeg_ : Flow<RemoveLeg_<How>> {
     }
   };
   struct AwaitingRemoval : How::template Asking<RemovePrompt> {};
+  /// Continue, yet `tool-present` still sees a tool: the question stands.
+  struct SayToolStillThere {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      fsm.ctx->tell(MessageKind::error,
+                    "tool " + std::to_string(fsm.pocket_tool) +
+                        " is still in the spindle (tool-present on): " + fsm.ctx->prompt);
+    }
+  };
 
   using initial_state = AwaitingRemoval;
   // clang-format off
   using transition_table = boost::mpl::vector<
   //    Start            Event             Next       Action             Guard
-  // +----------------+-----------------+----------+------------------+------+
-  Row < AwaitingRemoval, OperatorContinue, Finished , RecordToolRemoved, none >,
-  Row < AwaitingRemoval, OperatorCancel  , Cancelled, none             , none >
+  // +----------------+-----------------+----------+------------------+------------------------+
+  Row < AwaitingRemoval, OperatorContinue, Finished , RecordToolRemoved, SpindleReadsEmpty      >,
+  Row < AwaitingRemoval, OperatorContinue, none     , SayToolStillThere, Not<SpindleReadsEmpty> >,
+  Row < AwaitingRemoval, OperatorCancel  , Cancelled, none             , none                   >
   >;
   // clang-format on
 };
@@ -81,7 +103,8 @@ struct HandOutLeg_ : Flow<HandOutLeg_> {
   template <class Event, class Parent>
   void on_entry(const Event& e, Parent& parent) {
     Flow::on_entry(e, parent);
-    ctx->record_progress("handing tool " + std::to_string(ctx->tools.spindle) + " out at loading", 0);
+    ctx->record_progress("handing tool " + std::to_string(ctx->tools.spindle) + " out at loading",
+                         0);
   }
   using Removing = RemoveLeg<HoldingTheProgram>;
   using initial_state = ToLoadingZ;

@@ -4,9 +4,10 @@
 // pocket, retrieve a tool from its pocket, measure a tool on the sensor.
 // docs/sequences.md is the contract these tables follow.
 
+#include <boost/mpl/joint_view.hpp>
 #include <cmath>
 
-#include "common.hpp"
+#include "chuck.hpp"
 
 namespace fatc::machine {
 
@@ -17,7 +18,8 @@ struct ToLoadingXY : Moving<to::LoadingXY> {};
 // ================================================================ flush
 /// Opens the chuck briefly, `flush.pulses` times, so that whatever the spindle
 /// may still hold drops before it receives a tool (docs/sequences.md#flush).
-/// Ends with the chuck closed.
+/// Each opening waits until the chuck may open and must read open; each
+/// closing must read closed. Ends with the chuck closed.
 struct FlushLeg_ : Flow<FlushLeg_> {
   int pulses_done = 0;
 
@@ -27,6 +29,7 @@ struct FlushLeg_ : Flow<FlushLeg_> {
     pulses_done = 0;
   }
 
+  struct WaitingToOpen : WaitingToOpenChuck<ToFlush> {};
   struct PulseOpen : Timed {
     template <class Event, class Fsm>
     void on_entry(const Event&, Fsm& fsm) {
@@ -53,13 +56,18 @@ struct FlushLeg_ : Flow<FlushLeg_> {
   using initial_state = DecidingToPulse;
   // clang-format off
   using transition_table = boost::mpl::vector<
-  //    Start             Event           Next          Action  Guard
-  // +----------------+---------------+-------------+-------+-----------------+
-  Row < DecidingToPulse, none          , PulseOpen   , none  , PulsesLeft      >,
-  Row < DecidingToPulse, none          , Finished    , none  , Not<PulsesLeft> >,
-  Row < PulseOpen      , TimerElapsed  , PulseClosed , none  , none            >,
-  Row < PulseClosed    , TimerElapsed  , PulseOpen   , none  , PulsesLeft      >,
-  Row < PulseClosed    , TimerElapsed  , Finished    , none  , Not<PulsesLeft> >
+  //    Start                  Event          Next                 Action                             Guard
+  // +----------------------+--------------+--------------------+----------------------------------+-----------------+
+  Row < DecidingToPulse      , none         , WaitingToOpen      , none                             , PulsesLeft      >,
+  Row < DecidingToPulse      , none         , Finished           , none                             , Not<PulsesLeft> >,
+  Row < WaitingToOpen        , SensorReport , PulseOpen          , none                             , ChuckMayOpen    >,
+  Row < WaitingToOpen        , TimerElapsed , Halted             , FaultChuckMayNotOpen<ToFlush>    , none            >,
+  Row < PulseOpen            , TimerElapsed , CheckingDrawbarOpen, none                             , none            >,
+  Row < CheckingDrawbarOpen  , SensorReport , PulseClosed        , none                             , DrawbarOpen     >,
+  Row < CheckingDrawbarOpen  , TimerElapsed , Halted             , FaultDrawbarStayedClosed<ToFlush>, none            >,
+  Row < PulseClosed          , TimerElapsed , CheckingDrawbarClosed, none                           , none            >,
+  Row < CheckingDrawbarClosed, SensorReport , DecidingToPulse    , none                             , DrawbarClosed   >,
+  Row < CheckingDrawbarClosed, TimerElapsed , Halted             , FaultDrawbarStayedOpen<ToFlush>  , none            >
   >;
   // clang-format on
 };
@@ -84,6 +92,7 @@ struct ReturnLeg_ : Flow<ReturnLeg_<Which>> {
   struct OverSide : Moving<to::SideAtSafeZ> {};
   struct DownToSide : Moving<to::Side> {};
   struct IntoPocket : Moving<to::SlowlyIntoPocket> {};
+  struct WaitingToOpen : WaitingToOpenChuck<AtPocket> {};
   struct ReleasingTool : Timed {
     template <class Event, class Fsm>
     void on_entry(const Event&, Fsm& fsm) {
@@ -93,6 +102,8 @@ struct ReturnLeg_ : Flow<ReturnLeg_<Which>> {
     }
   };
   struct UpToAboveChuck : Moving<to::AboveChuck> {};
+  /// The spindle lifted with the chuck open: the tool must have stayed behind.
+  struct CheckingToolLeft : AwaitingSensor<SpindleReadsEmpty> {};
   struct UpToClearance : Moving<to::AboveClearance> {};
   struct UpToSafeZ : Moving<to::SafeZOverPocket> {};
   struct BackToSafeXY : Moving<to::SafeXY> {};
@@ -103,22 +114,51 @@ struct ReturnLeg_ : Flow<ReturnLeg_<Which>> {
       fsm.ctx->record_in_pocket(fsm.pocket_tool);
     }
   };
+  struct PocketFull {
+    template <class Leg>
+    static std::string text(const Context&, const Leg& leg) {
+      const std::string t = std::to_string(leg.pocket_tool);
+      return "pocket " + t + " is not empty (" + pocket_pin(leg.pocket_tool) + " on): tool " + t +
+             " cannot go home";
+    }
+  };
+  using FaultPocketFull = FaultSaying<PocketFull, false>;
+  /// The tool came up with the spindle: it is there, as far as anyone knows.
+  struct FaultToolStillInSpindle {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      const std::string t = std::to_string(fsm.pocket_tool);
+      fsm.ctx->record_in_spindle(fsm.pocket_tool);
+      fsm.ctx->fail_check("tool " + t + " still in the spindle after the chuck opened at pocket " +
+                              t + " and the spindle lifted (tool-present on)",
+                          true);
+    }
+  };
 
   using initial_state = ToSafeZ;
   // clang-format off
   using transition_table = boost::mpl::vector<
-  //    Start            Event          Next             Action              Guard
-  // +----------------+--------------+----------------+--------------------+------+
-  Row < ToSafeZ        , InPosition   , ToSafeXY       , none               , none >,
-  Row < ToSafeXY       , InPosition   , OverSide       , none               , none >,
-  Row < OverSide       , InPosition   , DownToSide     , none               , none >,
-  Row < DownToSide     , InPosition   , IntoPocket     , none               , none >,
-  Row < IntoPocket     , InPosition   , ReleasingTool  , none               , none >,
-  Row < ReleasingTool  , TimerElapsed , UpToAboveChuck , RecordToolInPocket , none >,
-  Row < UpToAboveChuck , InPosition   , UpToClearance  , CloseChuck         , none >,
-  Row < UpToClearance  , InPosition   , UpToSafeZ      , none               , none >,
-  Row < UpToSafeZ      , InPosition   , BackToSafeXY   , none               , none >,
-  Row < BackToSafeXY   , InPosition   , Finished       , none               , none >
+  //    Start                  Event          Next                  Action                                Guard
+  // +----------------------+--------------+---------------------+-------------------------------------+-----------------------+
+  Row < ToSafeZ              , InPosition   , ToSafeXY            , none                                , none                  >,
+  Row < ToSafeXY             , InPosition   , OverSide            , none                                , none                  >,
+  Row < OverSide             , InPosition   , DownToSide          , none                                , none                  >,
+  Row < DownToSide           , InPosition   , IntoPocket          , none                                , PocketReadsEmpty      >,
+  Row < DownToSide           , InPosition   , Halted              , FaultPocketFull                     , Not<PocketReadsEmpty> >,
+  Row < IntoPocket           , InPosition   , WaitingToOpen       , none                                , none                  >,
+  Row < WaitingToOpen        , SensorReport , ReleasingTool       , none                                , ChuckMayOpen          >,
+  Row < WaitingToOpen        , TimerElapsed , Halted              , FaultChuckMayNotOpen<AtPocket>      , none                  >,
+  Row < ReleasingTool        , TimerElapsed , CheckingDrawbarOpen , none                                , none                  >,
+  Row < CheckingDrawbarOpen  , SensorReport , UpToAboveChuck      , RecordToolInPocket                  , DrawbarOpen           >,
+  Row < CheckingDrawbarOpen  , TimerElapsed , Halted              , FaultDrawbarStayedClosed<AtPocket>  , none                  >,
+  Row < UpToAboveChuck       , InPosition   , CheckingToolLeft    , none                                , none                  >,
+  Row < CheckingToolLeft     , SensorReport , CheckingDrawbarClosed, CloseChuck                         , SpindleReadsEmpty     >,
+  Row < CheckingToolLeft     , TimerElapsed , Halted              , FaultToolStillInSpindle             , none                  >,
+  Row < CheckingDrawbarClosed, SensorReport , UpToClearance       , none                                , DrawbarClosed         >,
+  Row < CheckingDrawbarClosed, TimerElapsed , Halted              , FaultDrawbarStayedOpen<AbovePocket> , none                  >,
+  Row < UpToClearance        , InPosition   , UpToSafeZ           , none                                , none                  >,
+  Row < UpToSafeZ            , InPosition   , BackToSafeXY        , none                                , none                  >,
+  Row < BackToSafeXY         , InPosition   , Finished            , none                                , none                  >
   >;
   // clang-format on
 };
@@ -127,25 +167,34 @@ using ReturnLeg = msm::back::state_machine<ReturnLeg_<Which>>;
 
 // ================================================================ retrieve
 /// Takes the requested tool out of its pocket (docs/sequences.md#retrieve).
+/// The tool must show in the spindle once the chuck closed on it; if not, it
+/// is gripped once more where it is (the chuck opens and closes again), and
+/// seen neither time, the changer faults.
 struct RetrieveLeg_ : Flow<RetrieveLeg_> {
+  int retries = 0;  ///< grips tried again
   template <class Event, class Parent>
   void on_entry(const Event& e, Parent& parent) {
     Flow::on_entry(e, parent);
-    ctx->record_progress(
-        "fetching tool " + std::to_string(pocket_tool) + " from pocket " + std::to_string(pocket_tool),
-        pocket_tool);
+    retries = 0;
+    ctx->record_progress("fetching tool " + std::to_string(pocket_tool) + " from pocket " +
+                             std::to_string(pocket_tool),
+                         pocket_tool);
   }
   struct ToSafeZ : Moving<to::SafeZ> {};
   struct ToSafeXY : Moving<to::SafeXY> {};
   struct OverPocket : Moving<to::PocketAtSafeZ> {};
   struct DownToClearance : Moving<to::AboveClearance> {};
   struct DownToAboveChuck : Moving<to::AboveChuck> {};
+  struct WaitingToOpen : WaitingToOpenChuck<AbovePocket> {};
   struct OpeningChuck : Timed {
     template <class Event, class Fsm>
     void on_entry(const Event&, Fsm& fsm) {
+      const std::string t = std::to_string(fsm.pocket_tool);
       fsm.ctx->open_chuck();
-      fsm.ctx->wait(fsm.ctx->config.chuck_seconds,
-                    "opening the chuck above pocket " + std::to_string(fsm.pocket_tool));
+      fsm.ctx->wait(fsm.ctx->config.chuck_seconds, fsm.retries == 0
+                                                       ? "opening the chuck above pocket " + t
+                                                       : "opening the chuck again at pocket " + t +
+                                                             " to grip tool " + t + " once more");
     }
   };
   struct SlowlyDownToPocket : Moving<to::SlowlyDownToPocket> {};
@@ -158,6 +207,17 @@ struct RetrieveLeg_ : Flow<RetrieveLeg_> {
                     "gripping tool " + std::to_string(fsm.pocket_tool));
     }
   };
+  /// The drawbar reads closed and tool-present sees the tool.
+  struct Gripped : SensorGuard<Gripped> {
+    template <class Leg>
+    static bool holds(const Context& c, const Leg&) {
+      return c.drawbar_reads_closed() && c.spindle_reads(true);
+    }
+    static std::string awaited(const Context&) {
+      return "waiting for the drawbar to report closed and tool-present to see the tool";
+    }
+  };
+  struct CheckingGrip : AwaitingSensor<Gripped> {};
   struct SlowlyOutToSide : Moving<to::SlowlyToSide> {};
   struct UpToSafeZ : Moving<to::SafeZOverPocket> {};
   struct BackToSafeXY : Moving<to::SafeXY> {};
@@ -168,31 +228,95 @@ struct RetrieveLeg_ : Flow<RetrieveLeg_> {
       return fsm.ctx->at_safe();
     }
   };
+  /// The grip was tried once more already.
+  struct Retried {
+    template <class Event, class Fsm, class Source, class Target>
+    bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      return fsm.retries > 0;
+    }
+  };
+  struct CannotFetch {
+    template <class Leg>
+    static std::string text(const Context& c, const Leg& leg) {
+      const int tool = leg.pocket_tool;
+      const std::string t = std::to_string(tool);
+      if (!c.pocket_reads(tool, true)) {
+        return "pocket " + t + " reads empty (" + pocket_pin(tool) + " off): tool " + t +
+               " cannot be fetched";
+      }
+      return "the spindle is not empty (tool-present on): tool " + t + " cannot be fetched";
+    }
+  };
+  using FaultCannotFetch = FaultSaying<CannotFetch, false>;
+  struct SayGrippingAgain {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      ++fsm.retries;
+      const std::string tool = std::to_string(fsm.pocket_tool);
+      fsm.ctx->tell(MessageKind::info, "tool " + tool +
+                                           " not in the spindle after the chuck closed at pocket " +
+                                           tool + " (tool-present off); gripping it once more");
+    }
+  };
+  struct NotGripped {
+    template <class Leg>
+    static std::string text(const Context&, const Leg& leg) {
+      const std::string t = std::to_string(leg.pocket_tool);
+      return "tool " + t + " not in the spindle after the chuck closed at pocket " + t +
+             " (tool-present off, retried once)";
+    }
+  };
+  using FaultToolNotGripped = FaultSaying<NotGripped, true>;
+  /// Where the chuck opens: above the pocket, or at it when gripping again.
+  struct WhereItOpens {
+    template <class Leg>
+    static std::string where(const Leg& leg) {
+      return leg.retries == 0 ? AbovePocket::where(leg) : AtPocket::where(leg);
+    }
+  };
 
-  /// A return just before ended at safe: no need to go there again.
-  struct DecidingToGoToSafe : Decision {};
-  using initial_state = DecidingToGoToSafe;
+  /// The pocket must read occupied and the spindle empty before anything
+  /// moves; a return just before ended at safe: no need to go there again.
+  struct Starting : Decision {};
+  using initial_state = Starting;
   // clang-format off
-  using transition_table = boost::mpl::vector<
-  //    Start                                Event          Next                 Action               Guard
-  // +------------------------------------+--------------+--------------------+--------------------+--------------------+
-  Row < DecidingToGoToSafe                 , none         , ToSafeZ            , none               , Not<AlreadyAtSafe> >,
-  Row < DecidingToGoToSafe                 , none         , OverPocket         , none               , AlreadyAtSafe      >,
-  Row < ToSafeZ                            , InPosition   , ToSafeXY           , none               , none >,
-  Row < ToSafeXY                           , InPosition   , OverPocket         , none               , none >,
-  Row < OverPocket                         , InPosition   , DownToClearance    , none               , none >,
-  Row < DownToClearance                    , InPosition   , DownToAboveChuck   , none               , none >,
-  Row < DownToAboveChuck                   , InPosition   , FlushLeg           , none               , none >,
-  Row < FlushLeg::exit_pt<Finished>        , LegDone      , OpeningChuck       , none               , none >,
-  Row < OpeningChuck                       , TimerElapsed , SlowlyDownToPocket , none               , none >,
-  Row < SlowlyDownToPocket                 , InPosition   , Settling           , none               , none >,
-  Row < Settling                           , TimerElapsed , GrippingTool       , none               , none >,
-  Row < GrippingTool                       , TimerElapsed , SlowlyOutToSide    , RecordToolInSpindle, none >,
-  Row < SlowlyOutToSide                    , InPosition   , UpToSafeZ          , none               , none >,
-  Row < UpToSafeZ                          , InPosition   , BackToSafeXY       , none               , none >,
-  Row < BackToSafeXY                       , InPosition   , Finished           , none               , none >
+  /// To the pocket: the chuck opens above it, the spindle goes down around the tool.
+  using to_the_tool = boost::mpl::vector<
+  //    Start                        Event          Next                 Action                                 Guard
+  // +----------------------------+--------------+--------------------+--------------------------------------+---------------------------------------+
+  Row < Starting                   , none         , Halted             , FaultCannotFetch                     , Not<ReadyToFetch>                     >,
+  Row < Starting                   , none         , ToSafeZ            , none                                 , And<ReadyToFetch, Not<AlreadyAtSafe>> >,
+  Row < Starting                   , none         , OverPocket         , none                                 , And<ReadyToFetch, AlreadyAtSafe>      >,
+  Row < ToSafeZ                    , InPosition   , ToSafeXY           , none                                 , none                                  >,
+  Row < ToSafeXY                   , InPosition   , OverPocket         , none                                 , none                                  >,
+  Row < OverPocket                 , InPosition   , DownToClearance    , none                                 , none                                  >,
+  Row < DownToClearance            , InPosition   , DownToAboveChuck   , none                                 , none                                  >,
+  Row < DownToAboveChuck           , InPosition   , FlushLeg           , none                                 , none                                  >,
+  Row < FlushLeg::exit_pt<Finished>, LegDone      , WaitingToOpen      , none                                 , none                                  >,
+  Row < WaitingToOpen              , SensorReport , OpeningChuck       , none                                 , ChuckMayOpen                          >,
+  Row < WaitingToOpen              , TimerElapsed , Halted             , FaultChuckMayNotOpen<WhereItOpens>   , none                                  >,
+  Row < OpeningChuck               , TimerElapsed , CheckingDrawbarOpen, none                                 , none                                  >,
+  Row < CheckingDrawbarOpen        , SensorReport , SlowlyDownToPocket , none                                 , And<DrawbarOpen, Not<Retried>>        >,
+  Row < CheckingDrawbarOpen        , SensorReport , GrippingTool       , none                                 , And<DrawbarOpen, Retried>             >,
+  Row < CheckingDrawbarOpen        , TimerElapsed , Halted             , FaultDrawbarStayedClosed<WhereItOpens>, none                                 >,
+  Row < SlowlyDownToPocket         , InPosition   , Settling           , none                                 , none                                  >
+  >;
+  /// The grip, once more if the tool does not show, and away.
+  using grip_and_away = boost::mpl::vector<
+  //    Start                        Event          Next                 Action                                 Guard
+  // +----------------------------+--------------+--------------------+--------------------------------------+---------------------------------------+
+  Row < Settling                   , TimerElapsed , GrippingTool       , none                                 , none                                  >,
+  Row < GrippingTool               , TimerElapsed , CheckingGrip       , none                                 , none                                  >,
+  Row < CheckingGrip               , SensorReport , SlowlyOutToSide    , RecordToolInSpindle                  , Gripped                               >,
+  Row < CheckingGrip               , TimerElapsed , Halted             , FaultDrawbarStayedOpen<AtPocket>     , Not<DrawbarClosed>                    >,
+  Row < CheckingGrip               , TimerElapsed , WaitingToOpen      , SayGrippingAgain                     , And<DrawbarClosed, Not<Retried>>      >,
+  Row < CheckingGrip               , TimerElapsed , Halted             , FaultToolNotGripped                  , And<DrawbarClosed, Retried>           >,
+  Row < SlowlyOutToSide            , InPosition   , UpToSafeZ          , none                                 , none                                  >,
+  Row < UpToSafeZ                  , InPosition   , BackToSafeXY       , none                                 , none                                  >,
+  Row < BackToSafeXY               , InPosition   , Finished           , none                                 , none                                  >
   >;
   // clang-format on
+  using transition_table = boost::mpl::joint_view<to_the_tool, grip_and_away>;
 };
 using RetrieveLeg = msm::back::state_machine<RetrieveLeg_>;
 
@@ -201,12 +325,17 @@ using RetrieveLeg = msm::back::state_machine<RetrieveLeg_>;
 /// always writes the length.
 struct OverMdi {
   static constexpr bool cancellable = true;
+  /// The operator has just put the tool in by hand, maybe with a new cutter:
+  /// its stored length is no expectation.
+  static constexpr bool checks_window = false;
   static bool writes_length(const Context&, int) { return true; }
 };
 /// M6 (`probe_after_change`) runs the probe inside the program, which the
 /// operator stops with LinuxCNC's Stop; `check` only compares a stored length.
 struct InsideProgram {
   static constexpr bool cancellable = false;
+  /// The changer fetched the tool itself: a stored length says where it must touch.
+  static constexpr bool checks_window = true;
   static bool writes_length(const Context& c, int tool) {
     return c.config.probe_after_change != ProbeAfterChange::check ||
            c.tools.lengths.count(tool) == 0;
@@ -243,6 +372,18 @@ struct ProbingLeg_ : Flow<ProbingLeg_<Run>> {
       return e.touched;
     }
   };
+  /// The seek touched more than probe_window away from where the tool's
+  /// stored length puts the touch: a shorted sensor, a wrong or pulled-out tool.
+  struct OutsideWindow {
+    template <class Fsm, class Source, class Target>
+    bool operator()(const ProbeResult& e, Fsm& fsm, Source&, Target&) const {
+      const Context& c = *fsm.ctx;
+      const auto stored = c.tools.lengths.find(fsm.pocket_tool);
+      if (!Run::checks_window || stored == c.tools.lengths.end()) return false;
+      const double expected = stored->second + c.config.probe_length_compensation_offset;
+      return std::abs(e.z - expected) > c.config.window();
+    }
+  };
   struct WritesLength {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
@@ -273,11 +414,32 @@ struct ProbingLeg_ : Flow<ProbingLeg_<Run>> {
   struct SayNoTouch {
     template <class Fsm, class Source, class Target>
     void operator()(const ProbeResult& e, Fsm& fsm, Source&, Target&) const {
-      const std::string tool = "probe: tool " + std::to_string(fsm.pocket_tool);
+      const std::string tool = "tool " + std::to_string(fsm.pocket_tool);
+      fsm.ctx->probe_problem = e.tripped_before
+                                   ? "the touch-off sensor was already tripped"
+                                   : tool + " did not touch the sensor before probe_limit";
       fsm.ctx->tell(MessageKind::error,
                     e.tripped_before
-                        ? tool + ": the touch-off sensor was already tripped; nothing written"
-                        : tool + " did not touch the sensor before probe_limit; nothing written");
+                        ? "probe: " + tool + ": " + fsm.ctx->probe_problem + "; nothing written"
+                        : "probe: " + fsm.ctx->probe_problem + "; nothing written");
+    }
+  };
+  struct SayOutsideWindow {
+    template <class Fsm, class Source, class Target>
+    void operator()(const ProbeResult& e, Fsm& fsm, Source&, Target&) const {
+      Context& c = *fsm.ctx;
+      const double stored = c.tools.lengths.at(fsm.pocket_tool);
+      const double expected = stored + c.config.probe_length_compensation_offset;
+      const bool early = e.z > expected;
+      c.probe_problem =
+          "tool " + std::to_string(fsm.pocket_tool) + " touched the sensor at Z " +
+          format_length(c.config, e.z) + ", " + format_length(c.config, std::abs(e.z - expected)) +
+          (early ? " too early" : " too late") + ": its stored length " +
+          format_length(c.config, stored) + " puts the touch at Z " +
+          format_length(c.config, expected) + " (probe_window " +
+          format_length(c.config, c.config.window()) + "); " +
+          (early ? "a shorted sensor, a wrong or pulled-out tool?" : "a broken or wrong tool?");
+      c.tell(MessageKind::error, "probe: " + c.probe_problem + " Nothing written");
     }
   };
   struct SayCancelled {
@@ -299,7 +461,8 @@ struct ProbingLeg_ : Flow<ProbingLeg_<Run>> {
   using transition_table = boost::mpl::vector<
   //    Start                  Event           Next                   Action              Guard
   // +----------------------+---------------+----------------------+-------------------+-----------------------------+
-  Row < Seeking              , ProbeResult   , BackingOff           , RememberFirstTouch, Touched                     >,
+  Row < Seeking              , ProbeResult   , BackingOff           , RememberFirstTouch, And<Touched, Not<OutsideWindow>> >,
+  Row < Seeking              , ProbeResult   , RetractingUnmeasured , SayOutsideWindow  , And<Touched, OutsideWindow>  >,
   Row < Seeking              , ProbeResult   , RetractingUnmeasured , SayNoTouch        , Not<Touched>                >,
   Row < Seeking              , OperatorCancel, RetractingUnmeasured , SayCancelled      , CancelStopsProbe            >,
   Row < BackingOff           , InPosition    , Latching             , none              , none                        >,
@@ -357,8 +520,9 @@ struct MeasureLeg_ : Flow<MeasureLeg_> {
   struct SayNotMeasured {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      fsm.ctx->fault_reason = "tool " + std::to_string(fsm.pocket_tool) +
-                              " could not be measured after the change (probe_after_change)";
+      fsm.ctx->fault_reason =
+          "tool " + std::to_string(fsm.pocket_tool) +
+          " could not be measured after the change (probe_after_change): " + fsm.ctx->probe_problem;
     }
   };
 

@@ -1,0 +1,121 @@
+#pragma once
+
+// The chuck with its sensors, as states the legs put in their own tables:
+// it opens only when it may (air pressure, the spindle at a standstill), the
+// drawbar must then read open, and after a close read closed.
+// docs/sequences.md#sensors.
+
+#include "sensors.hpp"
+
+namespace fatc::machine {
+
+// ---------------------------------------------------------------- where, for messages
+/// "at pocket 3": where the chuck acts, for a leg that serves pocket `pocket_tool`.
+struct AtPocket {
+  template <class Leg>
+  static std::string where(const Leg& leg) {
+    return "at pocket " + std::to_string(leg.pocket_tool);
+  }
+};
+struct AbovePocket {
+  template <class Leg>
+  static std::string where(const Leg& leg) {
+    return "above pocket " + std::to_string(leg.pocket_tool);
+  }
+};
+struct ToFlush {
+  template <class Leg>
+  static std::string where(const Leg&) {
+    return "to flush it";
+  }
+};
+
+// ---------------------------------------------------------------- opening
+
+/// Air pressure OK and the spindle at a standstill: the chuck may open.
+struct ChuckMayOpen : SensorGuard<ChuckMayOpen> {
+  template <class Leg>
+  static bool holds(const Context& c, const Leg&) {
+    return c.air_ok() && c.spindle_at_standstill();
+  }
+};
+
+/// Waits until the chuck may open: air within sensor_timeout_seconds, a
+/// turning spindle within spindle_stop_timeout_seconds. Rows: SensorReport
+/// [ChuckMayOpen] to the opening, TimerElapsed to the fault.
+template <class Where>
+struct WaitingToOpenChuck : msmf::state<> {
+  using flag_list = boost::mpl::vector1<flag::AwaitsSensor>;
+  template <class Event, class Fsm>
+  void on_entry(const Event&, Fsm& fsm) {
+    Context& c = *fsm.ctx;
+    if (ChuckMayOpen::holds(c, fsm)) {
+      c.recheck_sensors();
+    } else if (!c.spindle_at_standstill()) {
+      c.await_sensor(c.config.spindle_stop_timeout_seconds,
+                     "waiting for the spindle to stop before the chuck opens " + Where::where(fsm));
+    } else {
+      c.await_sensor(
+          c.config.sensor_timeout_seconds,
+          "waiting for air pressure (air-pressure-ok) before the chuck opens " + Where::where(fsm));
+    }
+  }
+  template <class Event, class Fsm>
+  void on_exit(const Event&, Fsm& fsm) {
+    fsm.ctx->ports.cancel_timer();
+  }
+};
+
+/// The chuck did not get to open: no air, or a spindle that kept turning.
+/// Nothing moved with it: what the spindle holds is still a fact.
+template <class Where>
+struct ChuckMayNotOpen {
+  template <class Leg>
+  static std::string text(const Context& c, const Leg& leg) {
+    std::string why;
+    if (!c.air_ok()) why = "air pressure low (air-pressure-ok off)";
+    if (!c.spindle_at_standstill()) {
+      std::string seen = c.spindle_stopped ? "" : "spindle-stopped off";
+      if (c.config.sensors.zero_speed && !c.sensors.zero_speed) {
+        seen += std::string(seen.empty() ? "" : ", ") + "zero-speed off";
+      }
+      why += std::string(why.empty() ? "" : " and ") +
+             "the spindle did not stop within spindle_stop_timeout_seconds (" + seen + ")";
+    }
+    return why + " before the chuck opened " + Where::where(leg) + "; it stayed closed";
+  }
+};
+template <class Where>
+using FaultChuckMayNotOpen = FaultSaying<ChuckMayNotOpen<Where>, false>;
+
+/// The chuck was told to open and the drawbar did not follow: whether it
+/// let go of anything is not a fact.
+template <class Where>
+struct DrawbarStayedClosed {
+  template <class Leg>
+  static std::string text(const Context& c, const Leg& leg) {
+    return "the drawbar did not open " + Where::where(leg) + " within " +
+           seconds_words(c.config.sensor_timeout_seconds) + " (" + c.drawbar_words() + ")";
+  }
+};
+template <class Where>
+using FaultDrawbarStayedClosed = FaultSaying<DrawbarStayedClosed<Where>, true>;
+
+/// The chuck was told to close and the drawbar did not follow.
+template <class Where>
+struct DrawbarStayedOpen {
+  template <class Leg>
+  static std::string text(const Context& c, const Leg& leg) {
+    return "the drawbar did not close " + Where::where(leg) + " within " +
+           seconds_words(c.config.sensor_timeout_seconds) + " (" + c.drawbar_words() + ")";
+  }
+};
+template <class Where>
+using FaultDrawbarStayedOpen = FaultSaying<DrawbarStayedOpen<Where>, true>;
+
+/// The drawbar must read open, within sensor_timeout_seconds.
+struct CheckingDrawbarOpen : AwaitingSensor<DrawbarOpen> {};
+/// The drawbar must read closed, within sensor_timeout_seconds.
+struct CheckingDrawbarClosed : AwaitingSensor<DrawbarClosed> {};
+
+}  // namespace fatc::machine
