@@ -1,0 +1,193 @@
+#!/usr/bin/env python3
+"""Checks one scenario of the sensors run (scenarios_sensors.json: every
+sensor wired, the rack simulated by rack_sim.py) against what LinuxCNC, the
+component's files and the simulated rack report.
+   check_sensors.py RESULTS.json CONFIG.json SCENARIO
+Prints what it checked; exits 1 on the first failed expectation."""
+import json
+import os
+import sys
+
+from check import Rack, distinct, fail, near, ok, said
+
+GRIP_FAULT = "tool 2 not in the spindle after the chuck closed at pocket 2 (tool-present off, retried once)"
+AIR_FAULT = "air pressure low (air-pressure-ok off) before the chuck opened to flush it; it stayed closed"
+DISAGREEMENT = ("the sensors disagree with the saved tool state; pocket 1 reads empty "
+                "(pocket-occupied-1 off), but tool 1 is recorded in it")
+
+
+def rack_log(results_path):
+    """What the simulated rack did, in order: gripped, released, grip failed, ..."""
+    path = os.path.join(os.path.dirname(os.path.abspath(results_path)), "rack_sim.log")
+    with open(path) as f:
+        return [json.loads(line) for line in f if line.strip()]
+
+
+def rises(samples, pin):
+    """The times `pin` went high."""
+    times, last = [], False
+    for s in samples:
+        if s[pin] and not last:
+            times.append(s["t"])
+        last = s[pin]
+    return times
+
+
+def settled(r):
+    """When the program's scenario had settled: the 'faulted' snapshot, before
+    the operator's confirmation, or the end."""
+    return r.get("snapshots", {}).get("faulted", {}).get("t", float("inf"))
+
+
+def at_end(r):
+    """The last sample of the program, before any operator's confirmation."""
+    return [s for s in r["samples"] if s["t"] <= settled(r)][-1]
+
+
+def faulted_with(r, words):
+    last = at_end(r)
+    if not last["fixed_atc_probe.fault"]:
+        fail("the changer is not in fault at the end")
+    said(r, words)
+    activity = r["status_file"].get("activity", "")
+    if activity != "fault: " + words:
+        fail("the status file's activity is %r, expected the fault's words" % activity)
+    texts = [m["text"] for m in r["status_file"].get("messages", [])]
+    if not any(words in t for t in texts):
+        fail("the status file's messages do not carry the fault: %s" % texts)
+    ok("faulted, and the panel's status file says: %s" % activity)
+
+
+def still_after(r, t):
+    """Nothing moved after `t` (seconds into the scenario), until the operator confirmed."""
+    after = [s for s in r["samples"] if t <= s["t"] <= settled(r)]
+    first = after[0]["pos"]
+    for s in after:
+        if not near(s["pos"], first):
+            fail("the machine moved after the fault: %s -> %s at %.2f s" % (first, s["pos"], s["t"]))
+    ok("nothing moved after %.2f s (%d samples at %s)" % (t, len(after), [round(v, 3) for v in first]))
+
+
+def fault_time(r):
+    for s in r["samples"]:
+        if s["fixed_atc_probe.fault"]:
+            return s["t"]
+    fail("no sample shows the fault")
+
+
+def check_sensors_changes(r, rack, log):
+    if any(s["fixed_atc_probe.fault"] for s in r["samples"]):
+        fail("a fault during the changes: %s" % r["messages"])
+    tools = distinct(r["samples"], "tool_in_spindle")
+    if tools[-3:] != [1, 3, 0]:
+        fail("tool in spindle went %s, expected ... 1, 3, 0" % tools)
+    ok("tool in spindle went %s with every sensor wired and checked" % tools)
+    moved = [(e["what"], e.get("tool"), e.get("pocket")) for e in log
+             if e["what"] in ("gripped", "released", "dropped", "grip failed")]
+    expected = [("gripped", 1, 1), ("released", 1, 1), ("gripped", 3, 3), ("released", 3, 3)]
+    if moved[:4] != expected:
+        fail("the simulated rack saw %s, expected %s" % (moved[:4], expected))
+    ok("the simulated rack: %s" % moved[:4])
+    if r["state_file"].get("in_pocket") != sorted(rack.pockets):
+        fail("the state file says %s in their pockets" % r["state_file"].get("in_pocket"))
+    ok("every tool home again, as the state file says")
+
+
+def check_sensors_grip_fails(r, rack, log):
+    faulted_with(r, GRIP_FAULT)
+    said(r, "tool 2 not in the spindle after the chuck closed at pocket 2 (tool-present off); "
+            "gripping it once more")
+    opened = rises(r["samples"], "fatc-chuck-guard.chuck")
+    if len(opened) != 3:
+        fail("the chuck opened %d times, expected 3 (flush, above pocket 2, once more in it)" % len(opened))
+    at_retry = [s for s in r["samples"] if s["t"] >= opened[2]][0]["pos"]
+    if not near(at_retry, rack.pocket(2)):
+        fail("the chuck opened again at %s, not at pocket 2 %s" % (at_retry, rack.pocket(2)))
+    ok("the chuck opened 3 times: the flush, above pocket 2, and once more at pocket 2 %s" % at_retry)
+    still_after(r, fault_time(r))
+    last = at_end(r)
+    if last["interp"] != 1 or last["tool_in_spindle"] != 0:
+        fail("the program should have stopped with LinuxCNC's spindle empty: %s" % last)
+    if last["fatc-chuck-guard.chuck"]:
+        fail("the chuck is open after the fault")
+    ok("the program stopped, the chuck closed, LinuxCNC says the spindle is empty")
+    if not r["state_file"].get("uncertain"):
+        fail("the state file does not mark the spindle uncertain: %s" % r["state_file"])
+    ok("the state file marks the spindle uncertain: %s" % r["state_file"]["in_progress"])
+    failed = [e for e in log if e["what"] == "grip failed" and e["tool"] == 2]
+    if len(failed) != 2:
+        fail("the simulated rack saw %d failed grips of tool 2, expected 2" % len(failed))
+    ok("the simulated rack saw both grips of tool 2 fail; tool 2 stayed in pocket 2")
+    confirmed = r["snapshots"]["confirmed"]
+    if confirmed["pins"]["fixed_atc_probe.state"] != 1 or confirmed["state_file"].get("uncertain"):
+        fail("not idle and certain after the confirmation: %s" % confirmed)
+    ok("idle after the operator confirmed: spindle empty, pocket 2 holds tool 2")
+
+
+def check_sensors_air_refused(r, rack, log):
+    said(r, "M6 T4 refused: air pressure is low (air-pressure-ok off): the chuck cannot open")
+    first = r["samples"][0]["pos"]
+    if any(not near(s["pos"], first) for s in r["samples"]):
+        fail("the machine moved although the M6 was refused")
+    if any(s["fatc-chuck-guard.chuck"] for s in r["samples"]) or r["samples"][-1]["fixed_atc_probe.fault"]:
+        fail("the chuck opened or the changer faulted")
+    ok("M6 T4 refused without air: nothing moved, the chuck stayed closed, no fault")
+
+
+def check_sensors_air_lost(r, rack, log):
+    faulted_with(r, AIR_FAULT)
+    if rises(r["samples"], "fatc-chuck-guard.chuck"):
+        fail("the chuck opened without air")
+    ok("the chuck never opened")
+    still_after(r, fault_time(r))
+    if r["state_file"].get("uncertain"):
+        fail("the spindle is marked uncertain though the chuck never moved")
+    ok("the tool state stays certain: the chuck never moved")
+    if not any(e["what"] == "air cut" for e in log):
+        fail("the simulated rack never cut the air")
+
+
+def check_sensors_kill(r, rack, log):
+    if r["samples"][-1]["fatc-chuck-guard.alive"]:
+        fail("the chuck guard still sees the killed component")
+    ok("component killed (pid %s)" % r.get("killed_pid"))
+
+
+def check_sensors_start_disagree(r, rack, log):
+    faulted = r["snapshots"]["faulted"]
+    if not faulted["pins"]["fixed_atc_probe.fault"]:
+        fail("the restarted component is not in fault")
+    said(r, DISAGREEMENT)
+    if faulted["status_file"].get("activity") != "fault: " + DISAGREEMENT:
+        fail("the status file says %r" % faulted["status_file"].get("activity"))
+    ok("restarted with tool 1 gone from its pocket: %s" % faulted["status_file"]["activity"])
+    if faulted["state_file"].get("in_pocket", []).count(1) != 1:
+        fail("the state file changed before the operator confirmed: %s" % faulted["state_file"])
+    said(r, "M6 T3 refused: the changer is in fault")
+    ok("M6 refused until the operator confirms")
+    said(r, "pocket 1 recorded empty, as pocket-occupied-1 reads (off)")
+    confirmed = r["snapshots"]["confirmed"]["state_file"]
+    if 1 in confirmed.get("in_pocket", []) or confirmed.get("uncertain"):
+        fail("after the confirmation the state file says %s" % confirmed)
+    ok("after the confirmation the state file has pocket 1 empty: %s" % confirmed["in_pocket"])
+    if r["samples"][-1]["tool_in_spindle"] != 3 or r["samples"][-1]["fixed_atc_probe.fault"]:
+        fail("M6 T3 after the confirmation did not complete: %s" % r["samples"][-1])
+    ok("M6 T3 after the confirmation: tool 3 in the spindle")
+    if not any(e["what"] == "taken out by hand" and e["tool"] == 1 for e in log):
+        fail("the simulated rack never had tool 1 taken out")
+
+
+def main():
+    results_path, config_path, name = sys.argv[1:4]
+    results = json.load(open(results_path))
+    if results.get("error"):
+        fail("the run failed: %s" % results["error"])
+    rack = Rack(json.load(open(config_path)))
+    scenario = next((s for s in results["scenarios"] if s["name"] == name), None)
+    if scenario is None:
+        fail("scenario %s did not run" % name)
+    globals()["check_" + name](scenario, rack, rack_log(results_path))
+
+
+if __name__ == "__main__":
+    main()
