@@ -7,6 +7,7 @@
 #include <map>
 #include <ostream>
 #include <set>
+#include <sstream>
 
 #include "core/changer.hpp"
 #include "core/geometry.hpp"
@@ -113,13 +114,40 @@ int report(const std::string& name, const Config& config, const Simulator& sim,
   return static_cast<int>(violations.size());
 }
 
+/// "tool-present, air-pressure-ok, pocket-occupied-1 2 5 (sensor_timeout_seconds 1)", or "none".
+std::string sensors_wired(const Config& config) {
+  const SensorConfig& wired = config.sensors;
+  std::string pins;
+  auto add = [&](bool on, const char* pin) {
+    if (on) pins += std::string(pins.empty() ? "" : ", ") + pin;
+  };
+  add(wired.zero_speed, "zero-speed");
+  add(wired.tool_present, "tool-present");
+  add(wired.drawbar_open, "drawbar-open");
+  add(wired.drawbar_closed, "drawbar-closed");
+  add(wired.air_pressure, "air-pressure-ok");
+  if (!wired.pocket_occupancy.empty()) {
+    pins += std::string(pins.empty() ? "" : ", ") + "pocket-occupied-";
+    bool first = true;
+    for (const int pocket : wired.pocket_occupancy) {
+      pins += (first ? "" : " ") + std::to_string(pocket);
+      first = false;
+    }
+  }
+  if (pins.empty()) return "none";
+  std::ostringstream timeout;
+  timeout << config.sensor_timeout_seconds;
+  return pins + " (sensor_timeout_seconds " + timeout.str() + ")";
+}
+
 int check(const Options& options, std::ostream& out, std::ostream& err) {
   const Loaded loaded = load(options, err);
   const int problems = loaded.problems + check_state(options, loaded.config, out, err);
   if (!loaded.config) return 1;
   const Config& config = *loaded.config;
   out << shown_path(options.config_path) << ": units " << units_name(config.units) << ", "
-      << config.pockets.size() << " pockets, keep-out margin " << config.keepout_margin() << "\n\n";
+      << config.pockets.size() << " pockets, keep-out margin " << config.keepout_margin() << "\n";
+  out << "sensors wired: " << sensors_wired(config) << "\n\n";
   out << "station                          x          y          z\n";
   out << "safe                  " << format_point(config.safe.x, config.safe.y, config.safe.z)
       << "\n";

@@ -45,7 +45,8 @@ TEST(Cli, shouldExitOneWhenThePlannedChangeIsRefused) {
   const CliRun r = run({"--plan", "--config", path, "--from", "0", "--to", "42"});
   std::remove(path.c_str());
   EXPECT_EQ(r.code, 1);
-  EXPECT_NE(r.out.find("tool 42 has no pocket in the config (and manual_tools is off)"), std::string::npos)
+  EXPECT_NE(r.out.find("tool 42 has no pocket in the config (and manual_tools is off)"),
+            std::string::npos)
       << r.out << r.err;
 }
 
@@ -54,6 +55,36 @@ TEST(Cli, shouldPlanAManualToolWithTheOperatorHandingItOver) {
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("insert tool 42 into the spindle"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("done       T42"), std::string::npos) << r.out;
+}
+
+TEST(Cli, shouldSayWhichSensorsTheConfigWires) {
+  nlohmann::json config = nlohmann::json::parse(std::ifstream(kConfig));
+  config["sensors"] = {
+      {"tool_present", true}, {"air_pressure", true}, {"pocket_occupancy", {3, 1}}};
+  config["sensor_timeout_seconds"] = 0.5;
+  const std::string path = ::testing::TempDir() + "fatc_sensors.json";
+  std::ofstream(path) << config.dump();
+  const CliRun r = run({"--check", "--config", path, "--state", path + ".none"});
+  std::remove(path.c_str());
+  EXPECT_NE(r.out.find("sensors wired: tool-present, air-pressure-ok, pocket-occupied-1 3 "
+                       "(sensor_timeout_seconds 0.5)\n"),
+            std::string::npos)
+      << r.out << r.err;
+  EXPECT_NE(run({"--check", "--config", kConfig}).out.find("sensors wired: none\n"),
+            std::string::npos);
+}
+
+TEST(Cli, shouldPlanAChangeWithEverySensorWiredAsTheRackWouldBehave) {
+  nlohmann::json config = nlohmann::json::parse(std::ifstream(kConfig));
+  config["sensors"] = {{"tool_present", true}, {"drawbar_open", true}, {"drawbar_closed", true},
+                       {"air_pressure", true}, {"zero_speed", true},   {"pocket_occupancy", true}};
+  const std::string path = ::testing::TempDir() + "fatc_sensors_plan.json";
+  std::ofstream(path) << config.dump();
+  const CliRun wired = run({"--plan", "--config", path, "--from", "2", "--to", "5"});
+  std::remove(path.c_str());
+  const CliRun plain = run({"--plan", "--config", kConfig, "--from", "2", "--to", "5"});
+  EXPECT_EQ(wired.code, 0) << wired.err;
+  EXPECT_EQ(wired.out, plain.out);
 }
 
 TEST(Cli, shouldPassTheCheckOfTheSampleConfig) {
@@ -66,11 +97,13 @@ TEST(Cli, shouldPassTheCheckOfTheSampleConfig) {
 TEST(Cli, shouldFailTheCheckOfABadConfigNamingTheKey) {
   const CliRun r = run({"--check", "--config", FATC_BAD_CONFIGS "/clearance_below_chuck.json"});
   EXPECT_EQ(r.code, 1);
-  EXPECT_NE(r.err.find("pocket_above_clearance_offset_z: must be above"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("pocket_above_clearance_offset_z: must be above"), std::string::npos)
+      << r.err;
 }
 
 TEST(Cli, shouldCheckAgainstTheSoftLimitsOfAnIni) {
-  const CliRun r = run({"--check", "--config", kConfig, "--ini", FATC_BAD_CONFIGS "/narrow_limits.ini"});
+  const CliRun r =
+      run({"--check", "--config", kConfig, "--ini", FATC_BAD_CONFIGS "/narrow_limits.ini"});
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.out.find("is outside the soft limits"), std::string::npos) << r.out;
 }
