@@ -84,19 +84,11 @@ def program(name, text):
     return path
 
 
-def start_program(path):
-    d.command.mode(linuxcnc.MODE_AUTO)
-    d.command.wait_complete()
-    d.command.program_open(path)
-    d.command.wait_complete()
-    d.command.auto(linuxcnc.AUTO_RUN, 0)
-
-
 def run_program(path, timeout=120):
     """Runs a program to its end; returns the messages it produced."""
     first = len(d.messages)
     d.wait_for(lambda: d.stat.interp_state == linuxcnc.INTERP_IDLE, 60, "task free")
-    start_program(path)
+    d.start_program(path)  # an absolute path: the driver's join keeps it
     began = time.monotonic()
     seen = []
 
@@ -141,7 +133,7 @@ def cut(kind, at, steps, case):
         # The last kill's process may still be on its way out.
         d.wait_for(lambda: len(d.component_pids()) == 1, 10, "one component process")
     first = len(d.messages)
-    start_program(program("fatc_matrix_t%d.ngc" % target, "T%d M6\nM2\n" % target))
+    d.start_program(program("fatc_matrix_t%d.ngc" % target, "T%d M6\nM2\n" % target))
     began = time.monotonic()
     deadline = began + 120
     while time.monotonic() < deadline:
@@ -184,6 +176,14 @@ def settle(kind, struck, case):
         machine_on()
     d.wait_for(lambda: pin(P + "fault"), 30, "the changer faulted")
     d.wait_for(lambda: not hal.get_value("iocontrol.0.tool-change"), 10, "tool-change low")
+
+
+def after_cut(messages):
+    """What LinuxCNC and the component say once a cut has settled."""
+    return {"fault": pin(P + "fault"), "state": pin(P + "state"),
+            "chuck": pin("fatc-chuck-guard.chuck"), "linuxcnc_tool": d.stat.tool_in_spindle,
+            "changer_tool": pin(P + "tool-in-spindle"), "cut_off_pocket": pin(P + "cut-off-pocket"),
+            "files": files(), "messages": messages}
 
 
 def observe_refusals(case):
@@ -237,24 +237,24 @@ def run_case(kind, at, steps):
         case["seconds"]["cut"] = time.monotonic() - began
         settle(kind, struck, case)
         case["seconds"]["settle"] = time.monotonic() - began
-        case["after_cut"] = {"fault": pin(P + "fault"), "state": pin(P + "state"),
-                             "chuck": pin("fatc-chuck-guard.chuck"),
-                             "linuxcnc_tool": d.stat.tool_in_spindle,
-                             "changer_tool": pin(P + "tool-in-spindle"),
-                             "cut_off_pocket": pin(P + "cut-off-pocket"), "files": files(),
-                             "messages": d.messages[first:]}
+        case["after_cut"] = after_cut(d.messages[first:])
         observe_refusals(case)
         case["seconds"]["refusals"] = time.monotonic() - began
         spindle, pockets = what_the_operator_says(steps, at, case["from"])
         confirm(spindle, pockets, case)
         case["seconds"]["confirm"] = time.monotonic() - began
     except Exception as e:  # the checker reports it; the next case starts afresh
-        case["error"] = "%s: %s" % (type(e).__name__, e)
-        try:
-            recover()
-        except Exception as again:
-            case["recover_error"] = "%s: %s" % (type(again).__name__, again)
+        went_wrong(case, e)
     return case
+
+
+def went_wrong(case, error):
+    """Records what failed and brings the machine back for the next case."""
+    case["error"] = "%s: %s" % (type(error).__name__, error)
+    try:
+        recover()
+    except Exception as again:
+        case["recover_error"] = "%s: %s" % (type(again).__name__, again)
 
 
 def recover():
@@ -290,12 +290,8 @@ def run_hold(at, steps):
                               "changer_tool": pin(P + "tool-in-spindle"),
                               "chuck": pin("fatc-chuck-guard.chuck"), "files": files(),
                               "messages": d.messages[first:]}
-    except Exception as e:
-        case["error"] = "%s: %s" % (type(e).__name__, e)
-        try:
-            recover()
-        except Exception as again:
-            case["recover_error"] = "%s: %s" % (type(again).__name__, again)
+    except Exception as e:  # the checker reports it; the next case starts afresh
+        went_wrong(case, e)
     return case
 
 
@@ -392,12 +388,7 @@ def restart_mode(steps, at_steps, results):
         case = json.loads(pending)
         d.wait_for(lambda: pin(P + "fault"), 30, "the changer faulted after the restart")
         d.stat.poll()
-        case["after_cut"] = {"fault": pin(P + "fault"), "state": pin(P + "state"),
-                             "chuck": pin("fatc-chuck-guard.chuck"),
-                             "linuxcnc_tool": d.stat.tool_in_spindle,
-                             "changer_tool": pin(P + "tool-in-spindle"),
-                             "cut_off_pocket": pin(P + "cut-off-pocket"), "files": files(),
-                             "messages": list(d.messages)}
+        case["after_cut"] = after_cut(list(d.messages))
         try:
             observe_refusals(case)
             spindle, pockets = what_the_operator_says(steps, case["step"], case["from"])
