@@ -3,14 +3,17 @@
 Makes the panel's HAL pins, turns button clicks into the pulses the
 component's rising-edge inputs want, shows what the changer reports in the
 machinist's words, and enables a button only when the component says it can
-act. Pocket occupancy comes from the component's state file and config, the
-paths named in [FIXED_ATC_PROBE] of the INI."""
+act. The rack (each pocket, its tool, the tool's length, its approach) comes
+from the component's state file and config, the paths named in
+[FIXED_ATC_PROBE] of the INI; the program loaded in the GUI is checked with
+`fixed_atc_probe --lint` in a subprocess, never in the GTK loop."""
 import json
 import os
+import re
 
 import hal
 import linuxcnc
-from gi.repository import GLib, Gtk
+from gi.repository import Gio, GLib, Gtk
 
 BUTTONS = ("load", "unload", "continue", "cancel", "clear-fault")
 # The component polls every 20 ms at most: high and low phases it cannot miss.
@@ -45,6 +48,21 @@ PHASES = {PHASE_NOT_READY: "Machine off, not homed or in estop", PHASE_IDLE: "Id
           PHASE_CHANGING: "Changing tool", PHASE_LOADING: "Loading tool",
           PHASE_UNLOADING: "Unloading tool",
           PHASE_FAULT: "FAULT: check spindle and rack, then Clear fault"}
+# --lint's exit codes (src/io/lint.cpp): clean, problems found, an input unreadable.
+LINT_CLEAN = 0
+LINT_PROBLEMS = 1
+LINT_UNREADABLE = 2
+# A lint of a hostile program ends well within this; longer is a hang.
+LINT_TIMEOUT_S = 20
+# How often the panel asks LinuxCNC which program the GUI has loaded.
+PROGRAM_POLL_MS = 500
+# Problems the program page lists; the full report has them all.
+SHOWN_PROBLEMS = 4
+# A pocket's approach when neither it nor pocket_default names one (config.json).
+DEFAULT_APPROACH = "side"
+SERVED_MARK = "\u25b6 "  # before the served pocket's number: readable, not only a colour
+SERVED_BACKGROUND = "#ffd54f"
+
 STEP_KINDS = {STEP_RAPID: "rapid", STEP_FEED: "feed", STEP_PROBE: "probing",
               STEP_SET_TOOL_LENGTH: "writing the tool length",
               STEP_SET_SPINDLE_TOOL: "telling LinuxCNC the tool in the spindle"}
@@ -73,6 +91,143 @@ def describe_awaiting(awaiting, kind, x, y, z, inch):
     return ""
 
 
+def read_rack_config(path):
+    """config.json's pockets as [(pocket, first-start tool, approach)] by
+    pocket number, and its units; ([], "mm") when it cannot be read. The
+    first-start tool is the entry's "tool" (0: starts empty), else the pocket's
+    own number; "approach" is merged from pocket_default as x/y/z are."""
+    try:
+        with open(path) as f:
+            config = json.load(f)
+        default = config.get("pocket_default", {})
+        pockets = []
+        for key, entry in config["pockets"].items():
+            pocket = int(key)
+            pockets.append((pocket, int(entry.get("tool", pocket)),
+                            str(entry.get("approach", default.get("approach", DEFAULT_APPROACH)))))
+        return sorted(pockets), config.get("units", "mm")
+    except (TypeError, OSError, ValueError, KeyError, AttributeError):
+        return [], "mm"
+
+
+def rack_contents(pockets, state):
+    """{pocket: (tool, sits)}: the tool each pocket is for (0 none) and whether
+    it sits there now. Reads the state file's version 1 (pocket N holds tool N
+    when N is in in_pocket) and version 2 (pockets: {"P": {"tool", "in_pocket"}});
+    no state file (None): every pocket holds its first-start tool."""
+    if state is None:
+        return {pocket: (first, True) for pocket, first, _ in pockets}
+    if state.get("version", 1) >= 2:
+        recorded = state.get("pockets", {})
+        contents = {}
+        for pocket, first, _ in pockets:
+            entry = recorded.get(str(pocket))
+            if entry is None:  # a pocket added to config.json since: as at first start
+                contents[pocket] = (first, True)
+            else:
+                contents[pocket] = (int(entry.get("tool", 0)), bool(entry.get("in_pocket", False)))
+        return contents
+    full = set(state.get("in_pocket", []))
+    return {pocket: (pocket, pocket in full) for pocket, _, _ in pockets}
+
+
+def rack_rows(pockets, state, spindle):
+    """One row of words per pocket: (pocket, what it holds, length, approach);
+    `spindle`: the tools said to be in the spindle (a set)."""
+    contents = rack_contents(pockets, state)
+    lengths = state.get("lengths", {}) if state else {}
+    rows = []
+    for pocket, _, approach in pockets:
+        tool, sits = contents[pocket]
+        if tool == 0:
+            holds, length = "empty", ""
+        else:
+            if sits:
+                holds = "T%d" % tool
+            elif tool in spindle:
+                holds = "T%d (in the spindle)" % tool
+            elif state.get("version", 1) >= 2:
+                holds = "T%d (out)" % tool  # lost after a fault: the operator says where
+            else:
+                holds = "empty"  # version 1: its tool was unloaded
+            measured = lengths.get(str(tool))
+            length = "%.4f" % measured if measured is not None else "never measured"
+            if holds == "empty":
+                length = ""
+        rows.append((pocket, holds, length, approach))
+    return rows
+
+
+def summarize_lint(code, out, err):
+    """What the program page shows of a --lint run: a dict of short lines."""
+    lines = out.splitlines()
+    if code not in (LINT_CLEAN, LINT_PROBLEMS) or not lines:
+        said = (err.strip() or out.strip() or "exit code %s" % code).splitlines()
+        return {"title": "Cannot check the program", "error": said[0], "problems": 1}
+    summary = {"title": lines[-1].strip(), "problems": 0}
+    order = []
+    for line in lines:
+        if line.startswith("tools in the order of the changes:"):
+            order = line.split(":", 1)[1].split()
+    where, never, manual = {}, [], []
+    section = None
+    problems, unknown = [], 0
+    for line in lines:
+        row = re.match(r"^\s*\d+\s+\S+\s+M6 (T\d+)\s+(.*)$", line)
+        if row:
+            tool, rest = row.groups()
+            pocket = re.match(r"pocket (\d+)", rest)
+            if tool not in where:
+                where[tool] = ("pocket " + pocket.group(1) if pocket
+                               else "manual" if rest.startswith("manual")
+                               else "refused" if rest.startswith("refused")
+                               else None)
+            if "never measured" in rest and tool not in never:
+                never.append(tool)
+            if rest.startswith("manual") and tool not in manual:
+                manual.append(tool)
+            continue
+        if line.startswith("problems:"):
+            section = "problems"
+        elif line.startswith("not known without running the program:"):
+            section = "unknown"
+        elif not line.startswith("  "):
+            section = None
+        elif section == "problems":
+            problems.append(line.strip())
+        elif section == "unknown":
+            unknown += 1
+        if line.startswith("estimated tool-change time:"):
+            summary["time"] = line.split(":", 1)[1].split(", from")[0].strip()
+    summary["tools"] = ", ".join("%s (%s)" % (t, where[t]) if where.get(t) else t for t in order)
+    summary["never"] = never
+    summary["manual"] = manual
+    summary["problem_lines"] = problems
+    summary["problems"] = len(problems)
+    summary["unknown"] = unknown
+    return summary
+
+
+def preflight_lines(summary):
+    """The program page's lines from summarize_lint's dict."""
+    if "error" in summary:
+        return [summary["error"]]
+    shown = ["Tools: " + (summary["tools"] or "no tool changes")]
+    if summary["manual"]:
+        shown.append("Manual: " + " ".join(summary["manual"]))
+    shown.append("Never measured: " + (" ".join(summary["never"]) or "none"))
+    if "time" in summary:
+        shown.append("Change time: " + summary["time"])
+    if summary["unknown"]:
+        shown.append("Not known before running: %d (see the report)" % summary["unknown"])
+    problems = summary["problem_lines"]
+    for line in problems[:SHOWN_PROBLEMS]:
+        shown.append("Problem: " + line)
+    if len(problems) > SHOWN_PROBLEMS:
+        shown.append("... and %d more problems (see the report)" % (len(problems) - SHOWN_PROBLEMS))
+    return shown
+
+
 class Handler:
     def __init__(self, halcomp, builder):
         self.comp = halcomp
@@ -82,7 +237,8 @@ class Handler:
             halcomp.newpin(name, hal.HAL_BIT, hal.HAL_OUT)
             halcomp.newpin(name + "-enabled", hal.HAL_BIT, hal.HAL_OUT)
         halcomp.newpin("tool-number", hal.HAL_S32, hal.HAL_OUT)
-        for name in ("state", "awaiting", "tool-in-spindle", "step-kind", "cut-off-pocket"):
+        for name in ("state", "awaiting", "tool-in-spindle", "step-kind", "cut-off-pocket",
+                     "pocket-served"):
             halcomp.newpin(name, hal.HAL_S32, hal.HAL_IN)
         halcomp.newpin("confirm-tool", hal.HAL_S32, hal.HAL_OUT)
         halcomp.newpin("confirm-pocket", hal.HAL_S32, hal.HAL_OUT)
@@ -92,35 +248,37 @@ class Handler:
             halcomp.newpin(name, hal.HAL_BIT, hal.HAL_IN)
         for name in ("last-length", "step-x", "step-y", "step-z"):
             halcomp.newpin(name, hal.HAL_FLOAT, hal.HAL_IN)
-        self.config_path, self.state_path = self.paths()
+        self.ini_path = os.environ.get("INI_FILE_NAME")
+        self.config_path, self.state_path, self.tool_table_path = self.paths(self.ini_path)
         self.state_stamp = None
+        self.state = None
         self.status_path = self.state_path + ".status" if self.state_path else None
         self.status_stamp = None
         self.status = None
         self.was_faulted = False
-        self.pocket_tools = self.read_pockets()
+        self.pockets, self.units = read_rack_config(self.config_path)
+        self.rack_cells = self.make_rack()
+        self.rack_shown = None
+        self.linuxcnc_stat = linuxcnc.stat()
+        self.lint_key = None  # what the shown preflight was made from
+        self.lint_run = None  # (subprocess, its timeout source) while one runs
         GLib.timeout_add(100, self.refresh)
+        GLib.timeout_add(PROGRAM_POLL_MS, self.watch_program)
 
     @staticmethod
-    def paths():
-        """[FIXED_ATC_PROBE]CONFIG and STATE, relative to the INI as halcmd reads them."""
-        ini = os.environ.get("INI_FILE_NAME")
+    def paths(ini):
+        """[FIXED_ATC_PROBE]CONFIG and STATE and [EMCIO]TOOL_TABLE, relative to
+        the INI as halcmd and LinuxCNC read them."""
         if not ini:
-            return None, None
+            return None, None, None
         inifile = linuxcnc.ini(ini)
         folder = os.path.dirname(os.path.abspath(ini))
 
-        def where(key):
-            value = inifile.find("FIXED_ATC_PROBE", key)
+        def where(section, key):
+            value = inifile.find(section, key)
             return os.path.join(folder, value) if value else None
-        return where("CONFIG"), where("STATE")
-
-    def read_pockets(self):
-        try:
-            with open(self.config_path) as f:
-                return sorted(int(tool) for tool in json.load(f)["pockets"])
-        except (TypeError, OSError, ValueError, KeyError):
-            return []
+        return (where("FIXED_ATC_PROBE", "CONFIG"), where("FIXED_ATC_PROBE", "STATE"),
+                where("EMCIO", "TOOL_TABLE"))
 
     def on_tool_number_changed(self, spin):
         self.comp["tool-number"] = spin.get_value_as_int()
@@ -165,7 +323,7 @@ class Handler:
         get("spindle_tool").set_text("T%d" % c["tool-in-spindle"] if c["tool-in-spindle"] else "empty")
         length = c["last-length"]
         get("last_length").set_text("%.4f %s" % (length, "in" if c["units-inch"] else "mm") if length else "-")
-        self.show_pockets()
+        self.show_rack()
         wanted = c["tool-number"] > 0
         enabled = {"load": c["accepting"] and wanted, "unload": c["accepting"] and wanted,
                    "continue": c["waiting-for-operator"], "cancel": c["can-cancel"],
@@ -206,27 +364,179 @@ class Handler:
         c["confirm-tool"] = get("confirm_tool").get_value_as_int() if faulted else -1
         c["confirm-pocket"] = (1 if get("confirm_pocket").get_active() else 0) if faulted and pocket > 0 else -1
 
-    def show_pockets(self):
+    def make_rack(self):
+        """The rack page's grid: a header and one row of labels per pocket."""
+        grid = self.builder.get_object("rack")
+        header = ("Pocket", "Tool", "Length (%s)" % ("in" if self.units == "inch" else "mm"), "Approach")
+        rows = [header] + [(str(pocket), "", "", "") for pocket, _, _ in self.pockets]
+        if not self.pockets:
+            rows.append(("-", "config.json not read", "", ""))
+        cells = []
+        for top, row in enumerate(rows):
+            labels = []
+            for left, text in enumerate(row):
+                label = Gtk.Label(label=text, xalign=0, visible=True)
+                if top == 0:
+                    label.set_markup("<b>%s</b>" % GLib.markup_escape_text(text))
+                grid.attach(label, left, top, 1, 1)
+                labels.append(label)
+            cells.append(labels)
+        return cells[1:]
+
+    def read_state(self):
+        """The state file into self.state when it changed (None: not written yet)."""
         try:
             stamp = os.stat(self.state_path).st_mtime_ns
         except (TypeError, OSError):
+            if self.state_stamp != "missing":
+                self.state, self.state_stamp = None, "missing"
             return
         if stamp == self.state_stamp:
             return
         try:
             with open(self.state_path) as f:
-                state = json.load(f)
+                self.state = json.load(f)
+            self.state_stamp = stamp
         except (OSError, ValueError):
-            return  # caught mid-write: the next refresh reads it
-        self.state_stamp = stamp
-        full = set(state.get("in_pocket", []))
-        lengths = state.get("lengths", {})
-        lines = []
-        for tool in self.pocket_tools:
-            mark = "in pocket" if tool in full else ("in spindle" if tool == state.get("spindle") else "out")
-            length = lengths.get(str(tool))
-            lines.append("T%-3d %-10s %s" % (tool, mark, "%.4f" % length if length is not None else "not measured"))
-        self.builder.get_object("pockets").set_markup("<tt>%s</tt>" % GLib.markup_escape_text("\n".join(lines)))
+            pass  # caught mid-write: the next refresh reads it
+
+    def show_rack(self):
+        """Each pocket with its tool, length and approach; the pocket being
+        served during a change highlighted, the cut-off one in fault marked."""
+        c = self.comp
+        self.read_state()
+        busy = c["state"] in (PHASE_CHANGING, PHASE_LOADING, PHASE_UNLOADING)
+        served = c["pocket-served"] or (self.status or {}).get("pocket", 0)
+        if not served and busy and self.state:
+            # What the sequence under way recorded before it moved.
+            served = (self.state.get("in_progress") or {}).get("pocket", 0)
+        cut_off = c["cut-off-pocket"] if c["state"] == PHASE_FAULT else 0
+        uncertain = bool(self.state and self.state.get("uncertain"))
+        # A tool out of its pocket is in the spindle when the component's pin,
+        # the state file or LinuxCNC says so: in the load flow LinuxCNC is told
+        # at the insertion (M61), the pin and the file with the flow's end.
+        try:
+            told = self.linuxcnc_stat.tool_in_spindle  # polled by watch_program
+        except (AttributeError, linuxcnc.error):
+            told = 0
+        spindle = frozenset({c["tool-in-spindle"], (self.state or {}).get("spindle", 0), told}) - {0}
+        key = (self.state_stamp, served, cut_off, uncertain, spindle)
+        if key == self.rack_shown or not self.pockets:
+            return
+        self.rack_shown = key
+        try:
+            rows = rack_rows(self.pockets, self.state, spindle)
+        except (TypeError, ValueError, AttributeError):
+            return  # a state file the component would refuse: it says so itself
+        for labels, (pocket, holds, length, approach) in zip(self.rack_cells, rows):
+            mark, background = "", None
+            if pocket == served:
+                mark, background = SERVED_MARK, SERVED_BACKGROUND
+            elif pocket == cut_off:
+                mark, background = "? ", "#ff8a65"
+            texts = (mark + str(pocket), holds, length, approach)
+            for label, text in zip(labels, texts):
+                text = GLib.markup_escape_text(text)
+                if background:
+                    text = '<span background="%s" weight="bold">%s</span>' % (background, text)
+                label.set_markup(text)
+        note = self.builder.get_object("rack_note")
+        note.set_text("Uncertain: look at the spindle and the rack" if uncertain else "")
+        note.set_visible(uncertain)
+
+    def watch_program(self):
+        """Starts a preflight when the GUI's program, the state file, the tool
+        table or the config changed; not while a program runs (the preflight
+        is about its start)."""
+        try:
+            self.linuxcnc_stat.poll()
+            program = self.linuxcnc_stat.file
+            running = self.linuxcnc_stat.interp_state != linuxcnc.INTERP_IDLE
+        except linuxcnc.error:
+            return True
+        if running or self.lint_run is not None:
+            return True
+
+        def stamp(path):
+            try:
+                return os.stat(path).st_mtime_ns
+            except (TypeError, OSError):
+                return None
+        key = (program, stamp(program), self.state_stamp, stamp(self.tool_table_path),
+               stamp(self.config_path))
+        if key != self.lint_key:
+            self.lint_key = key
+            self.start_lint(program)
+        return True
+
+    def start_lint(self, program):
+        """fixed_atc_probe --lint over the program, found on the PATH as the
+        HAL file's loadusr finds the component; its end arrives in lint_done."""
+        if not program:
+            self.show_preflight("No program loaded", [], "")
+            return
+        binary = GLib.find_program_in_path("fixed_atc_probe")
+        if not binary or not self.config_path:
+            self.show_preflight("Cannot check the program",
+                                ["fixed_atc_probe is not on the PATH" if not binary
+                                 else "no [FIXED_ATC_PROBE]CONFIG in the INI"], "", trouble=True)
+            return
+        argv = [binary, "--lint", program, "--config", self.config_path, "--state", self.state_path,
+                "--ini", self.ini_path]
+        if self.tool_table_path:
+            argv += ["--tool-table", self.tool_table_path]
+        self.show_preflight("Checking %s ..." % os.path.basename(program), [], "")
+        try:
+            process = Gio.Subprocess.new(argv, Gio.SubprocessFlags.STDOUT_PIPE |
+                                         Gio.SubprocessFlags.STDERR_PIPE)
+        except GLib.Error as e:
+            self.show_preflight("Cannot check the program", [e.message], "", trouble=True)
+            return
+        timeout = GLib.timeout_add_seconds(LINT_TIMEOUT_S, self.lint_timed_out, process)
+        self.lint_run = (process, timeout, program, [False])
+        process.communicate_async(None, None, self.lint_done, None)
+
+    def lint_timed_out(self, process):
+        if self.lint_run and self.lint_run[0] is process:
+            self.lint_run[3][0] = True
+            process.force_exit()
+        return False
+
+    def lint_done(self, process, result, _data):
+        if not self.lint_run or self.lint_run[0] is not process:
+            return
+        _, timeout, program, timed_out = self.lint_run
+        self.lint_run = None
+        if not timed_out[0]:
+            GLib.source_remove(timeout)
+        try:
+            _, out, err = process.communicate_finish(result)
+        except GLib.Error as e:
+            self.show_preflight("Cannot check the program", [e.message], "", trouble=True)
+            return
+
+        def text(data):
+            # Without the program's folder (AXIS's temporary copy): the names are enough.
+            words = data.get_data().decode("utf-8", "replace") if data else ""
+            return words.replace(os.path.dirname(program) + "/", "")
+        if timed_out[0]:
+            self.show_preflight("Cannot check the program",
+                                ["fixed_atc_probe --lint took over %d s: stopped" % LINT_TIMEOUT_S],
+                                "", trouble=True)
+            return
+        code = process.get_exit_status() if process.get_if_exited() else None
+        summary = summarize_lint(code, text(out), text(err))
+        self.show_preflight(summary["title"], preflight_lines(summary), text(out) + text(err),
+                            trouble=summary["problems"] > 0)
+
+    def show_preflight(self, title, lines, report, trouble=False):
+        get = self.builder.get_object
+        get("preflight_title").set_text(title)
+        get("preflight_lines").set_text("\n".join(lines))
+        get("preflight_lines").set_visible(bool(lines))
+        get("preflight_report").set_text(report)
+        get("preflight_more").set_visible(bool(report))
+        get("program_tab").set_text("Program \u26a0" if trouble else "Program")
 
 
 def get_handlers(halcomp, builder, useropts):

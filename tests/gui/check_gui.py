@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """Checks the GUI test's results: the panel's HAL outputs and its buttons'
 enabled state at each stage of an unload and a load flow clicked in AXIS,
-the measured length in LinuxCNC's tool table, and the screenshots.
+the rack page as the panel showed it at each stage, the program page's
+preflight of the program opened in AXIS, the measured length in LinuxCNC's
+tool table, and the screenshots.
    check_gui.py RESULTS.json"""
 import json
 import os
@@ -31,6 +33,34 @@ def expect_enabled(r, what, **wanted):
     ok("at '%s': enabled %s" % (what, [n for n in ENABLED if got[n]] or "nothing"))
 
 
+def expect_rack(r, key, what, holds, measured=()):
+    """The rack page at `key`: pockets 1-6 (the sim's config) holding `holds`
+    ({pocket: words}, else T<pocket>), side approach, a length exactly for the
+    tools in `measured`."""
+    rows = r.get(key)
+    if not rows:
+        fail("the rack was not read %s" % what)
+    if rows[0] != ["Pocket", "Tool", "Length (mm)", "Approach"]:
+        fail("the rack's header %s is %s" % (what, rows[0]))
+    got = {}
+    for row in rows[1:]:
+        if len(row) != 4 and not (len(row) == 3 and row[1] == "empty"):
+            fail("a rack row %s has %d cells: %s" % (what, len(row), row))
+        pocket, tool, approach = row[0], row[1], row[-1]
+        length = row[2] if len(row) == 4 else ""
+        if approach != "side":
+            fail("pocket %s %s: approach %r, expected side" % (pocket, what, approach))
+        if tool.startswith("T"):
+            tool_number = tool.split()[0][1:]
+            if (tool_number in measured) != (length not in ("", "never measured")):
+                fail("pocket %s %s: length %r; measured are %s" % (pocket, what, length, measured))
+        got[pocket] = tool
+    expected = {str(p): holds.get(p, "T%d" % p) for p in range(1, 7)}
+    if got != expected:
+        fail("the rack %s shows %s, expected %s" % (what, got, expected))
+    ok("the rack %s: %s" % (what, ", ".join("%s %s" % (p, got[p]) for p in sorted(got))))
+
+
 def main():
     r = json.load(open(sys.argv[1]))
     if r["error"]:
@@ -51,9 +81,33 @@ def main():
     clicks = [s["what"] for s in r["steps"] if s["what"].startswith("clicked")]
     ok("clicked in AXIS: %s" % ", ".join(c[8:] for c in clicks))
 
+    expect_rack(r, "rack_start", "at the start", {})
+    if r["served_during_unload"] != ["\u25b6 4"]:
+        fail("while tool 4 was fetched the rack highlighted %s, expected pocket 4 only"
+             % r["served_during_unload"])
+    ok("while tool 4 was fetched the rack highlighted pocket 4")
+    expect_rack(r, "rack_unloaded", "after the unload", {4: "empty"})
+    # State file version 1 keeps pocket 4 for tool 4; version 2 frees it at
+    # the unload and gives it again when the load flow puts the tool away.
+    version = r["state_file"].get("version", 1)
+    expect_rack(r, "rack_jog", "at the jog prompt (state file version %d)" % version,
+                {4: "T4 (in the spindle)" if version == 1 else "empty"})
+    expect_rack(r, "rack_loaded", "after the load", {}, measured=("4",))
+    text = r["preflight"]
+    for wanted in ("demo.ngc: 5 tool changes (M6), 0 M61, 0 problems, 0 not known",
+                   "Tools: T1 (pocket 1), T3 (pocket 3), T5 (pocket 5)",
+                   "Never measured: none", "Change time: "):
+        if wanted not in text:
+            fail("the program page does not say %r: %r" % (wanted, text))
+    ok("the program page checked demo.ngc: %s" % text.splitlines()[:3])
+
     measured_to_truth(r, json.load(open(CONFIG)), 4, "measured through the panel")
     state = r["state_file"]
-    if 4 not in state["in_pocket"] or state["spindle"] != 0:
+    if version == 1:
+        in_pocket = 4 in state["in_pocket"]
+    else:
+        in_pocket = state["pockets"].get("4") == {"tool": 4, "in_pocket": True}
+    if not in_pocket or state["spindle"] != 0:
         fail("after the load, tool 4 should be in its pocket and the spindle empty: %s" % state)
     ok("tool 4 back in its pocket, the spindle empty")
 
@@ -64,8 +118,8 @@ def main():
             if head != b"\x89PNG\r\n\x1a\n" or os.path.getsize(path) < 2000:
                 fail("%s is not a screenshot" % path)
         ok("screenshot %s (panel at %s)" % (shot["file"], shot["panel"]))
-    if len(r["screenshots"]) != 2:
-        fail("expected two screenshots, got %d" % len(r["screenshots"]))
+    if len(r["screenshots"]) != 3:
+        fail("expected three screenshots, got %d" % len(r["screenshots"]))
 
 
 if __name__ == "__main__":

@@ -10,6 +10,7 @@ hang it on; GTK names the plug's accessible in the _XEMBED_AT_SPI_PATH property
 of its window, and the driver walks the tree from there over D-Bus."""
 import json
 import os
+import subprocess
 import sys
 import time
 import traceback
@@ -84,6 +85,24 @@ class Accessible:
         self.call("org.freedesktop.DBus.Properties", "Set",
                   GLib.Variant("(ssv)", ("org.a11y.atspi.Value", "CurrentValue", GLib.Variant("d", value))))
 
+    def find_named(self, label):
+        for child in self.children():
+            if child.label() == label:
+                return child
+            found = child.find_named(label)
+            if found:
+                return found
+        return None
+
+    def labels(self):
+        """Every label below this node, in the tree's order."""
+        found = []
+        for child in self.children():
+            if child.role() == "label":
+                found.append(child)
+            found += child.labels()
+        return found
+
     def find(self, role, label=None):
         for child in self.children():
             if child.role() == role and (label is None or child.label() == label):
@@ -127,9 +146,9 @@ def sensitive(name):
     return button(name).sensitive()
 
 
-def click(name):
-    """A left click in the middle of the button, through the X server."""
-    x, y, width, height = button(name).extents()
+def click(name, node=None):
+    """A left click in the middle of the button (or of `node`), through the X server."""
+    x, y, width, height = (node or button(name)).extents()
     x, y = x + width // 2, y + height // 2
     # From outside the panel, as a hand moves the mouse: GTK only takes the
     # click of a button the pointer has entered.
@@ -197,6 +216,55 @@ def panel_region(margin=6):
             max(b[2] for b in boxes) + margin, max(b[3] for b in boxes) + margin)
 
 
+def rack():
+    """The rack page as the panel shows it: its labels read over AT-SPI, put
+    in rows and columns by where they are on the screen (header first); read
+    again while the panel is laying them out (two readings differ)."""
+    last = None
+    for _ in range(20):
+        rows = rack_once()
+        if rows == last and all(len(row) == 4 for row in rows):
+            return rows
+        last = rows
+        time.sleep(0.05)
+    return last
+
+
+def rack_once():
+    cells = []
+    for label in panel_plug().find_named("Rack pockets").labels():
+        x, y, w, h = label.extents()
+        cells.append((y + h / 2, x, label.label()))
+    rows = []  # a cell whose middle is within a few pixels of a row's is in that row
+    for middle, x, text in sorted(cells):
+        if rows and middle - rows[-1][0] < 4:
+            rows[-1][1].append((x, text))
+        else:
+            rows.append((middle, [(x, text)]))
+    return [[text for _, text in sorted(row)] for _, row in rows]
+
+
+def rack_shows(pocket, tool, timeout=5):
+    """Waits (at most `timeout`) for the rack to show `tool` in `pocket`; the
+    rows it showed last either way, for the checker to judge."""
+    deadline = time.monotonic() + timeout
+    while True:
+        rows = rack()
+        if any(row[0].split()[-1] == str(pocket) and row[1] == tool for row in rows[1:]) \
+                or time.monotonic() > deadline:
+            return rows
+        time.sleep(0.1)
+
+
+def preflight():
+    """The program page's words, as the panel shows them."""
+    return "\n".join(label.label() for label in panel_plug().find_named("Program preflight").labels())
+
+
+def show_page(name):
+    click(name, panel_plug().find("page tab", name))
+
+
 def pin(name, value):
     return lambda: hal.get_value(name) == value
 
@@ -207,17 +275,33 @@ def run():
     driver.bring_up()
     note("idle, tool number 0")
     result["idle_tool0_sensitive"] = {b: sensitive(b) for b in ("Load / Probe", "Unload", "Continue", "Cancel")}
+    result["rack_start"] = rack()
+
+    # The demo program opened in AXIS: the panel checks it with --lint.
+    subprocess.run(["axis-remote", os.path.join(os.environ["FATC_ROOT"], "nc_files", "demo.ngc")],
+                   check=True, timeout=30)
+    wait_for(lambda: "Tools:" in preflight(), 30, "the preflight of demo.ngc")
+    note("program opened")
 
     # Unload tool 4, then load it back and measure it, all from the panel.
     set_tool_number(4)
     wait_for(pin("fatc-panel.unload-enabled", True), 10, "Unload enabled")
     click("Unload")
-    wait_for(pin("fatc-panel.continue-enabled", True), 180, "the removal prompt")
+    # While the changer fetches tool 4, its pocket is highlighted.
+    served = set()
+    deadline = time.monotonic() + 180
+    while not hal.get_value("fatc-panel.continue-enabled"):
+        if time.monotonic() > deadline:
+            raise TimeoutError("the removal prompt")
+        served.update(row[0] for row in rack()[1:] if row and not row[0].isdigit())
+        time.sleep(0.2)
+    result["served_during_unload"] = sorted(served)
     note("removal prompt")
     result["waiting_sensitive"] = {b: sensitive(b) for b in ("Load / Probe", "Unload", "Continue", "Cancel")}
     answer("Continue")
     wait_for(pin("fatc-panel.load-enabled", True), 180, "idle after the unload")
     note("unloaded")
+    result["rack_unloaded"] = rack_shows(4, "empty")
 
     click("Load / Probe")
     wait_for(pin("fatc-panel.continue-enabled", True), 180, "the insert prompt")
@@ -226,13 +310,21 @@ def run():
     answer("Continue", next_prompt="Jog it closer")
     wait_for(pin("fatc-panel.continue-enabled", True), 180, "the jog prompt")
     note("jog prompt")
+    # Inserted, not yet measured. State file version 1 keeps pocket 4 for tool 4;
+    # version 2 frees it at the unload and gives it again at the end of the load.
+    version = json.load(open(driver.state_path())).get("version", 1)
+    result["rack_jog"] = rack_shows(4, "T4 (in the spindle)" if version == 1 else "empty")
     answer("Continue")
     wait_for(lambda: hal.get_value("fixed_atc_probe.awaiting") == 2, 60, "the probe")
     note("probing")
     result["probing_sensitive"] = {b: sensitive(b) for b in ("Load / Probe", "Unload", "Continue", "Cancel")}
     wait_for(pin("fatc-panel.load-enabled", True), 180, "idle after the load")
     note("loaded")
+    result["rack_loaded"] = rack_shows(4, "T4")
     screenshot("after_load", ("Load / Probe", True))
+    show_page("Program")
+    result["preflight"] = preflight()
+    screenshot("program", ("Load / Probe", True))
     result["tool_table_file"] = open(os.path.join(os.getcwd(), "sim.tbl")).read()
     result["state_file"] = json.load(open(os.path.join(os.getcwd(), "fixed_atc_state.json")))
 
