@@ -57,7 +57,7 @@ void Changer::sensors(const SensorReadings& readings) {
 }
 
 void Changer::tool_change(int tool) { engine_->fsm.process_event(ToolChange{tool}); }
-void Changer::load(int tool) { engine_->fsm.process_event(LoadRequest{tool}); }
+void Changer::load(int tool, int pocket) { engine_->fsm.process_event(LoadRequest{tool, pocket}); }
 void Changer::unload(int tool) { engine_->fsm.process_event(UnloadRequest{tool}); }
 void Changer::in_position() { engine_->fsm.process_event(InPosition{}); }
 void Changer::command_done() { engine_->fsm.process_event(CommandDone{}); }
@@ -149,6 +149,7 @@ Status Changer::status() const {
       status.phase == Phase::idle && status.awaiting == Awaiting::nothing && !c.task_busy;
   status.last_length = c.last_length;
   status.step_number = status.busy() ? c.sequence_step : 0;
+  status.pocket = status.busy() && c.tools.in_progress ? c.tools.in_progress->pocket : 0;
   status.activity = activity_of(status, c);
   return status;
 }

@@ -41,7 +41,8 @@ class Changer {
   /// What the optional sensors read now; only the wired ones are looked at.
   void sensors(const SensorReadings& readings);
   void tool_change(int tool);
-  void load(int tool);
+  /// Load `tool` by hand into `pocket` (0: its own, else the nearest free one).
+  void load(int tool, int pocket = 0);
   void unload(int tool);
   void in_position();
   void command_done();

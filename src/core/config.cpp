@@ -182,8 +182,8 @@ class Reader {
     std::optional<double> x, y, z;
   };
 
+  /// The caller rejects the keys it does not know (pocket entries have more).
   PartialPoint partial_point(const Json& object, const std::string& path) {
-    reject_unknown_keys(object, path, {"x", "y", "z"});
     return {ranged(object, path, "x", kCoordinate, false),
             ranged(object, path, "y", kCoordinate, false),
             ranged(object, path, "z", kCoordinate, false)};
@@ -202,10 +202,64 @@ class Reader {
   }
 };
 
+/// What a pocket entry and pocket_default may say besides x, y and z.
+struct PocketExtras {
+  std::optional<Approach> approach;
+  std::optional<PlanarOffset> side_offset;
+  bool failed = false;  ///< one of them was given but refused (reported)
+};
+
+PocketExtras pocket_extras(Reader& reader, const Json& entry, const std::string& here) {
+  PocketExtras extras;
+  if (const auto approach = entry.find("approach"); approach != entry.end()) {
+    if (*approach == "side") {
+      extras.approach = Approach::side;
+    } else if (*approach == "top") {
+      extras.approach = Approach::top;
+    } else {
+      reader.error(join_path(here, "approach"),
+                   "expected \"side\" or \"top\", got " + describe(*approach));
+      extras.failed = true;
+    }
+  }
+  if (entry.contains("side_offset")) {
+    const Json* side = reader.object(entry, here, "side_offset", true);
+    const std::string at = join_path(here, "side_offset");
+    if (side) reader.reject_unknown_keys(*side, at, {"x", "y"});
+    const auto x = side ? reader.ranged(*side, at, "x", kSideComponent, true) : std::nullopt;
+    const auto y = side ? reader.ranged(*side, at, "y", kSideComponent, true) : std::nullopt;
+    if (x && y) {
+      extras.side_offset = PlanarOffset{*x, *y};
+    } else {
+      extras.failed = true;
+    }
+  }
+  return extras;
+}
+
+/// `tool` of a pocket entry: the tool it holds at first start, 0 for none.
+std::optional<int> first_tool(Reader& reader, const Json& entry, const std::string& here,
+                              int pocket) {
+  const auto tool = entry.find("tool");
+  if (tool == entry.end()) return pocket;
+  if (tool->is_number_integer() && tool->get<std::int64_t>() == 0) return 0;
+  if (!is_tool_number(*tool)) {
+    reader.error(
+        join_path(here, "tool"),
+        "expected a tool number (1 to 999999999) or 0 (starts empty), got " + describe(*tool));
+    return std::nullopt;
+  }
+  return tool->get<int>();
+}
+
 void read_pockets(Reader& reader, const Json& root, Config& config) {
   Reader::PartialPoint fallback;
+  PocketExtras common;
   if (const Json* defaults = reader.object(root, "", "pocket_default", false)) {
+    reader.reject_unknown_keys(*defaults, "pocket_default",
+                               {"x", "y", "z", "approach", "side_offset"});
     fallback = reader.partial_point(*defaults, "pocket_default");
+    common = pocket_extras(reader, *defaults, "pocket_default");
   }
   const auto defaults = root.find("pocket_default");
   auto default_given = [&](const char* axis) {
@@ -222,23 +276,28 @@ void read_pockets(Reader& reader, const Json& root, Config& config) {
                                 std::to_string(pockets->size()));
     return;
   }
+  std::map<int, int> pocket_of_tool;  // first-start tool -> its pocket, for duplicates
   for (const auto& item : pockets->items()) {
     const std::string here = join_path("pockets", item.key());
-    const auto tool = tool_number_key(item.key());
-    if (!tool) {
-      reader.error(here, "the key must be a tool number, a positive integer like \"7\"");
+    const auto number = tool_number_key(item.key());
+    if (!number) {
+      reader.error(here, "the key must be a pocket number, a positive integer like \"7\"");
       continue;
     }
     if (!item.value().is_object()) {
       reader.error(here, "expected an object, got " + describe(item.value()));
       continue;
     }
+    reader.reject_unknown_keys(item.value(), here,
+                               {"x", "y", "z", "tool", "approach", "side_offset"});
     const auto own = reader.partial_point(item.value(), here);
-    bool complete = true;
-    auto merge = [&](const std::optional<double>& mine, const std::optional<double>& common,
+    const PocketExtras extras = pocket_extras(reader, item.value(), here);
+    const auto tool = first_tool(reader, item.value(), here, *number);
+    bool complete = tool.has_value() && !extras.failed && !common.failed;
+    auto merge = [&](const std::optional<double>& mine, const std::optional<double>& shared,
                      const char* axis) {
       if (mine) return *mine;
-      if (common) return *common;
+      if (shared) return *shared;
       // A pocket_default that has the axis but failed was reported once already.
       if (!default_given(axis)) {
         reader.error(join_path(here, axis),
@@ -247,9 +306,23 @@ void read_pockets(Reader& reader, const Json& root, Config& config) {
       complete = false;
       return 0.0;
     };
-    const Point position{merge(own.x, fallback.x, "x"), merge(own.y, fallback.y, "y"),
-                         merge(own.z, fallback.z, "z")};
-    if (complete) config.pockets[*tool] = position;
+    Pocket pocket;
+    pocket.at = {merge(own.x, fallback.x, "x"), merge(own.y, fallback.y, "y"),
+                 merge(own.z, fallback.z, "z")};
+    if (tool && *tool != 0) {
+      if (const auto [other, fresh] = pocket_of_tool.emplace(*tool, *number); !fresh) {
+        reader.error(join_path(here, "tool"), "tool " + std::to_string(*tool) +
+                                                  " already starts in pocket " +
+                                                  std::to_string(other->second));
+        complete = false;
+      }
+    }
+    if (!complete) continue;
+    pocket.first_tool = *tool;
+    pocket.approach = extras.approach.value_or(common.approach.value_or(Approach::side));
+    pocket.side_offset =
+        extras.side_offset.value_or(common.side_offset.value_or(config.pocket_side_offset));
+    config.pockets[*number] = pocket;
   }
 }
 
@@ -294,7 +367,7 @@ std::optional<bool> boolean(Reader& reader, const Json& value, const std::string
 }
 
 /// `pocket_occupancy`: true (every pocket has a sensor), false, or the
-/// pockets that have one, by their tool numbers: [1, 2, 5].
+/// pockets that have one, by their numbers: [1, 2, 5].
 void read_pocket_occupancy(Reader& reader, const Json& root, const Json& value, Config& config) {
   const std::string here = "sensors.pocket_occupancy";
   if (value.is_boolean()) {
@@ -314,21 +387,21 @@ void read_pocket_occupancy(Reader& reader, const Json& root, const Json& value, 
   std::set<int> configured;
   if (const auto pockets = root.find("pockets"); pockets != root.end() && pockets->is_object()) {
     for (const auto& item : pockets->items()) {
-      if (const auto tool = tool_number_key(item.key())) configured.insert(*tool);
+      if (const auto number = tool_number_key(item.key())) configured.insert(*number);
     }
   }
   for (std::size_t i = 0; i < value.size() && !reader.full(); ++i) {
     const std::string at = here + "[" + std::to_string(i) + "]";
     const Json& entry = value[i];
     if (!is_tool_number(entry)) {
-      reader.error(at, "expected a pocket's tool number (1 to 999999999), got " + describe(entry));
+      reader.error(at, "expected a pocket number (1 to 999999999), got " + describe(entry));
       continue;
     }
-    const int tool = entry.get<int>();
-    if (configured.count(tool) == 0) {
-      reader.error(at, "pocket " + std::to_string(tool) + " is not in pockets");
-    } else if (!config.sensors.pocket_occupancy.insert(tool).second) {
-      reader.error(at, "pocket " + std::to_string(tool) + " is listed twice");
+    const int number = entry.get<int>();
+    if (configured.count(number) == 0) {
+      reader.error(at, "pocket " + std::to_string(number) + " is not in pockets");
+    } else if (!config.sensors.pocket_occupancy.insert(number).second) {
+      reader.error(at, "pocket " + std::to_string(number) + " is listed twice");
     }
   }
 }
@@ -355,6 +428,27 @@ void read_sensors(Reader& reader, const Json& root, Config& config) {
   }
 }
 
+/// A side offset says where the spindle slows down before entering a pocket:
+/// it must lead out of the pocket's keep-out.
+/// (pocket_side_offset itself is held against rack_keepout_margin below.)
+void check_side_offset(Reader& reader, const Config& config, const PlanarOffset& offset,
+                       const std::string& path, bool pockets_own) {
+  const double length = std::hypot(offset.x, offset.y);
+  if (length == 0.0) {
+    reader.error(path,
+                 "must not be zero in both x and y: the side is where the "
+                 "spindle slows down before entering a pocket");
+  } else if (length < kMinSideOffset) {
+    reader.error(path, "must be at least " + format_number(kMinSideOffset) + " " +
+                           units_name(config.units) + " long (x and y combined), got " +
+                           format_number(length));
+  } else if (pockets_own && length <= config.keepout_margin()) {
+    reader.error(path, "must lead out of the pocket's keep-out (rack_keepout_margin " +
+                           format_number(config.keepout_margin()) + "), got " +
+                           format_number(length) + " long");
+  }
+}
+
 void check_geometry(Reader& reader, Config& config) {
   if (config.pocket_above_clearance_offset_z <= config.pocket_above_chuck_offset_z) {
     reader.error("pocket_above_clearance_offset_z",
@@ -363,18 +457,19 @@ void check_geometry(Reader& reader, Config& config) {
                      format_number(config.pocket_above_clearance_offset_z));
   }
   const double side = std::hypot(config.pocket_side_offset.x, config.pocket_side_offset.y);
-  if (side == 0.0) {
-    reader.error("pocket_side_offset",
-                 "must not be zero in both x and y: the side is where the "
-                 "spindle slows down before entering a pocket");
-  } else if (side < kMinSideOffset) {
-    reader.error("pocket_side_offset", "must be at least " + format_number(kMinSideOffset) + " " +
-                                           units_name(config.units) +
-                                           " long (x and y combined), got " + format_number(side));
+  check_side_offset(reader, config, config.pocket_side_offset, "pocket_side_offset", false);
+  for (const auto& [number, pocket] : config.pockets) {
+    if (pocket.approach != Approach::side) continue;
+    const PlanarOffset& own = pocket.side_offset;
+    if (own.x != config.pocket_side_offset.x || own.y != config.pocket_side_offset.y) {
+      check_side_offset(reader, config, own, "pockets." + std::to_string(number) + ".side_offset",
+                        true);
+    }
   }
   for (auto a = config.pockets.begin(); a != config.pockets.end(); ++a) {
     for (auto b = std::next(a); b != config.pockets.end(); ++b) {
-      const double distance = std::hypot(a->second.x - b->second.x, a->second.y - b->second.y);
+      const double distance =
+          std::hypot(a->second.at.x - b->second.at.x, a->second.at.y - b->second.at.y);
       if (distance < side) {
         reader.error("pockets." + std::to_string(b->first),
                      "only " + format_number(distance) + " from pocket " +
@@ -408,6 +503,16 @@ void check_geometry(Reader& reader, Config& config) {
 }  // namespace
 
 const char* units_name(Units units) { return units == Units::mm ? "mm" : "inch"; }
+
+const char* approach_name(Approach approach) { return approach == Approach::top ? "top" : "side"; }
+
+std::optional<int> Config::first_pocket_of(int tool) const {
+  if (tool == 0) return std::nullopt;
+  for (const auto& [number, pocket] : pockets) {
+    if (pocket.first_tool == tool) return number;
+  }
+  return std::nullopt;
+}
 
 std::string format_length(const Config& config, double length) {
   char buffer[48];

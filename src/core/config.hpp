@@ -26,6 +26,21 @@ struct FlushConfig {
   double pause_seconds = 0.2;  ///< how long it stays closed between pulses
 };
 
+/// How the spindle enters and leaves a pocket (docs/sequences.md).
+enum class Approach {
+  side,  ///< in from the side to return, out the side after fetching (the prototype's)
+  top,   ///< straight down into the pocket and straight up out of it, both ways
+};
+
+/// A place in the rack. Which tool sits in it is tool state (ToolState), not config.
+struct Pocket {
+  Point at;            ///< where the tool holder sits
+  int first_tool = 0;  ///< the tool it holds at first start (`tool`), 0: starts empty
+  Approach approach = Approach::side;
+  PlanarOffset
+      side_offset;  ///< from the pocket to its side (`side_offset`, else pocket_side_offset)
+};
+
 /// Which optional sensors are wired (config.json `sensors`); each is read
 /// from its HAL input only when it is, and checked where the sequence needs it.
 struct SensorConfig {
@@ -34,14 +49,14 @@ struct SensorConfig {
   bool drawbar_closed = false;     ///< `drawbar-closed`: the drawbar is clamped
   bool air_pressure = false;       ///< `air-pressure-ok`: the drawbar has air
   bool zero_speed = false;         ///< `zero-speed`: the spindle's zero-speed feedback
-  std::set<int> pocket_occupancy;  ///< pockets (tool numbers) with a `pocket-occupied-N` sensor
+  std::set<int> pocket_occupancy;  ///< pockets with a `pocket-occupied-N` sensor
 
   bool any() const {
     return tool_present || drawbar_open || drawbar_closed || air_pressure || zero_speed ||
            !pocket_occupancy.empty();
   }
   bool drawbar() const { return drawbar_open || drawbar_closed; }
-  bool pocket(int tool) const { return pocket_occupancy.count(tool) != 0; }
+  bool pocket(int number) const { return pocket_occupancy.count(number) != 0; }
 };
 
 /// The validated contents of config.json. Lengths are in `units`, feeds in
@@ -59,7 +74,7 @@ struct Config {
   Point loading;
   Point probe_limit;
   Point safe;
-  std::map<int, Point> pockets;  ///< tool number -> its pocket, pocket_default merged
+  std::map<int, Pocket> pockets;  ///< pocket number -> pocket, pocket_default merged
 
   // Keys new in the C++ version, all optional.
   double pocket_feed = 500.0;      ///< slow moves into and out of a pocket
@@ -76,7 +91,9 @@ struct Config {
   double sensor_timeout_seconds = 1.0;  ///< how long a wired sensor may take to confirm a change
   std::optional<double> probe_window;   ///< unset: 10 mm or 0.4 inch
 
-  bool has_pocket(int tool) const { return pockets.count(tool) != 0; }
+  bool has_pocket(int number) const { return pockets.count(number) != 0; }
+  /// The pocket that holds `tool` at first start, if any.
+  std::optional<int> first_pocket_of(int tool) const;
   double keepout_margin() const;
   double check_tolerance() const;
   /// How far from its stored length a tool may first touch the sensor in a
@@ -95,6 +112,7 @@ struct ConfigResult {
 ConfigResult parse_config(const std::string& json_text);
 
 const char* units_name(Units units);
+const char* approach_name(Approach approach);
 /// A length for a message, with the config's unit: "25.0012 mm".
 std::string format_length(const Config& config, double length);
 

@@ -16,6 +16,7 @@ struct ToolChange {
 /// The operator asks to load tool `tool` by hand, measure it and store it.
 struct LoadRequest {
   int tool = 0;
+  int pocket = 0;  ///< where it goes; 0: its own pocket, else the nearest free one
 };
 /// The operator asks to take tool `tool` out of the machine.
 struct UnloadRequest {

@@ -51,13 +51,13 @@ std::string format(const char* pattern, double value) {
 
 }  // namespace
 
-PocketWaypoints pocket_waypoints(const Config& config, int tool) {
-  const Point pocket = config.pockets.at(tool);
-  return {
-      pocket,
-      {pocket.x + config.pocket_side_offset.x, pocket.y + config.pocket_side_offset.y, pocket.z},
-      {pocket.x, pocket.y, pocket.z + config.pocket_above_chuck_offset_z},
-      {pocket.x, pocket.y, pocket.z + config.pocket_above_clearance_offset_z}};
+PocketWaypoints pocket_waypoints(const Config& config, int number) {
+  const Pocket& entry = config.pockets.at(number);
+  const Point pocket = entry.at;
+  return {pocket,
+          {pocket.x + entry.side_offset.x, pocket.y + entry.side_offset.y, pocket.z},
+          {pocket.x, pocket.y, pocket.z + config.pocket_above_chuck_offset_z},
+          {pocket.x, pocket.y, pocket.z + config.pocket_above_clearance_offset_z}};
 }
 
 std::vector<std::string> check_move(const Config& config, const Point& from, unsigned known,
@@ -83,11 +83,11 @@ std::vector<std::string> check_move(const Config& config, const Point& from, uns
   }
   // The keep-out needs the start of the move: only once every axis is known.
   if (known == axis_xyz) {
-    for (const auto& [tool, pocket] : config.pockets) {
-      if (!passes_through(from, target, column_of(config, pocket))) continue;
-      if (tool == step.pocket && step.approach) continue;
-      problems.push_back("passes through the rack at pocket " + std::to_string(tool) +
-                         (tool == step.pocket ? " outside its approach" : ""));
+    for (const auto& [number, pocket] : config.pockets) {
+      if (!passes_through(from, target, column_of(config, pocket.at))) continue;
+      if (number == step.pocket && step.approach) continue;
+      problems.push_back("passes through the rack at pocket " + std::to_string(number) +
+                         (number == step.pocket ? " outside its approach" : ""));
     }
   }
   return problems;

@@ -11,13 +11,15 @@ namespace fatc {
 
 /// The stations of one pocket, in the order the spindle passes them.
 struct PocketWaypoints {
-  Point pocket;           ///< where the tool holder sits in the rack
-  Point side;             ///< beside the pocket, at pocket height: where the slow move in starts
+  Point pocket;  ///< where the tool holder sits in the rack
+  Point
+      side;  ///< beside the pocket, at pocket height: where the slow move in starts (side approach)
   Point above_chuck;      ///< where the chuck opens or closes over the holder
   Point above_clearance;  ///< high enough to move in XY over the rack
 };
 
-PocketWaypoints pocket_waypoints(const Config& config, int tool);
+/// The waypoints of pocket `number` (a key of Config::pockets).
+PocketWaypoints pocket_waypoints(const Config& config, int number);
 
 struct AxisLimits {
   double min = 0.0;

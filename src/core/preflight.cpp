@@ -9,17 +9,6 @@
 
 namespace fatc {
 
-std::optional<int> home_pocket(const Config& config, int tool) {
-  if (!config.has_pocket(tool)) return std::nullopt;
-  return tool;
-}
-
-std::optional<int> pocket_holding(const Config& config, const ToolState& tools, int tool) {
-  const auto pocket = home_pocket(config, tool);
-  if (!pocket || tools.in_pocket.count(tool) == 0) return std::nullopt;
-  return pocket;
-}
-
 double estimate_seconds(const Simulator& plan, const Point& start, double rapid_per_minute,
                         int& operator_waits) {
   Point at = start;
@@ -118,17 +107,17 @@ class Checker {
         std::find(result_.tools.begin(), result_.tools.end(), tool) == result_.tools.end()) {
       result_.tools.push_back(tool);
     }
-    const auto pocket = home_pocket(config_, tool);
+    const auto pocket = tools_.home_of(tool);
     if (tool == 0) {
       row.where = "empties the spindle";
-    } else if (pocket_holding(config_, tools_, tool)) {
+    } else if (tools_.pocket_holding(tool)) {
       row.where = "pocket " + std::to_string(*pocket);
     } else if (pocket) {
       row.where = "out of the rack (pocket " + std::to_string(*pocket) + " empty)";
       problem(use.where, "M6 " + tool_word(tool) + ": the state file " + in_.state_name +
                              " has pocket " + std::to_string(*pocket) + " empty (" +
                              tool_word(tool) +
-                             " was unloaded): the changer refuses the change; load it first");
+                             " is not in it): the changer refuses the change; load it first");
     } else {
       row.where = "manual: handed over at loading";
       ++result_.manual;
@@ -149,10 +138,12 @@ class Checker {
       }
     }
     // The rack after the change: the old tool home, the new one in the spindle.
-    if (spindle_known_ && home_pocket(config_, tools_.spindle)) {
-      tools_.in_pocket.insert(tools_.spindle);
+    if (spindle_known_ && tools_.spindle != 0) {
+      if (const auto back = return_pocket(tools_, config_, tools_.spindle)) {
+        tools_.pockets[*back] = {tools_.spindle, true};
+      }
     }
-    tools_.in_pocket.erase(tool);
+    if (const auto from = tools_.home_of(tool)) tools_.pockets[*from].holds = false;
     tools_.spindle = tool;
     spindle_known_ = true;
   }
@@ -242,12 +233,23 @@ class Checker {
                     config_.probe_limit.z);
   }
 
+  /// M6 T`to` from the rack as it is now (`from` in the spindle).
   const PlannedChange& plan(int from, int to) {
     const double touch = sensor_z(to);
-    const auto key = std::make_tuple(from, to, touch);
+    // The same change plans the same while the pockets involved are the same.
+    const auto key =
+        std::make_tuple(from, to, touch, return_pocket(tools_, config_, from).value_or(0),
+                        tools_.pocket_holding(to).value_or(0));
     const auto known = plans_.find(key);
     if (known != plans_.end()) return known->second;
-    const Simulator sim = plan_change(config_, from, to, touch);
+    // The problems the lint reports itself (a state cut off, a tool not in
+    // its pocket) do not stop the estimate: it plans as if they were resolved.
+    ToolState resolved = tools_;
+    resolved.uncertain = false;
+    resolved.in_progress.reset();
+    if (const auto home = resolved.home_of(to); home && to != from)
+      resolved.pockets[*home].holds = true;
+    const Simulator sim = plan_change(config_, resolved, to, touch);
     PlannedChange planned;
     for (const Step& step : sim.steps()) {
       if (step.kind == StepKind::fail) planned.refused = step.label;
@@ -264,7 +266,7 @@ class Checker {
   bool said_uncertain_ = false;
   std::set<int> never_measured_;
   std::set<int> not_in_table_;
-  std::map<std::tuple<int, int, double>, PlannedChange> plans_;
+  std::map<std::tuple<int, int, double, int, int>, PlannedChange> plans_;
   Preflight result_;
 };
 

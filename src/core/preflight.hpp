@@ -13,12 +13,6 @@
 
 namespace fatc {
 
-/// The pocket `tool` goes back to, if it has one. Today pocket N is tool N's.
-std::optional<int> home_pocket(const Config& config, int tool);
-/// The pocket that holds `tool` now, if any: the one question to change when
-/// pockets may hold any tool.
-std::optional<int> pocket_holding(const Config& config, const ToolState& tools, int tool);
-
 /// How long the steps of a plan take: each move its distance at its feed
 /// (rapids, and feeds above it, at `rapid_per_minute`), plus the dwells,
 /// from `start`; acceleration is not counted. `operator_waits` counts the

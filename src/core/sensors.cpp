@@ -20,15 +20,22 @@ std::vector<std::string> sensor_disagreements(const SensorConfig& wired, const S
                                       "tool in it (on)"));
   }
   for (const int pocket : wired.pocket_occupancy) {
-    const bool recorded = tools.in_pocket.count(pocket) != 0;
+    const bool recorded = tools.holds(pocket);
     if (read.occupied(pocket) == recorded) continue;
-    const std::string where =
-        tools.spindle == pocket ? "in the spindle" : std::string("out of the machine");
-    found.push_back(
-        recorded ? "pocket " + std::to_string(pocket) + " reads empty (" + pocket_pin(pocket) +
-                       " off), but tool " + std::to_string(pocket) + " is recorded in it"
-                 : "pocket " + std::to_string(pocket) + " reads occupied (" + pocket_pin(pocket) +
-                       " on), but tool " + std::to_string(pocket) + " is recorded " + where);
+    const std::string p = "pocket " + std::to_string(pocket);
+    const int tool = tools.tool_of(pocket);
+    const std::string t = "tool " + std::to_string(tool);
+    if (recorded) {
+      found.push_back(p + " reads empty (" + pocket_pin(pocket) + " off), but " + t +
+                      " is recorded in it");
+    } else if (tool == 0) {
+      found.push_back(p + " reads occupied (" + pocket_pin(pocket) +
+                      " on), but it is recorded free; take the tool out, or load it there");
+    } else {
+      found.push_back(p + " reads occupied (" + pocket_pin(pocket) + " on), but " + t +
+                      " is recorded " +
+                      (tools.spindle == tool ? "in the spindle" : "out of the machine"));
+    }
   }
   return found;
 }
@@ -37,14 +44,12 @@ std::vector<std::string> adopt_pocket_sensors(const SensorConfig& wired, const S
                                               int answered, ToolState& tools) {
   std::vector<std::string> changed;
   for (const int pocket : wired.pocket_occupancy) {
-    if (pocket == answered || pocket == tools.spindle) continue;
+    // Only a pocket some tool (not the spindle's) belongs in says which tool it holds.
+    const int tool = tools.tool_of(pocket);
+    if (pocket == answered || tool == 0 || tool == tools.spindle) continue;
     const bool occupied = read.occupied(pocket);
-    if ((tools.in_pocket.count(pocket) != 0) == occupied) continue;
-    if (occupied) {
-      tools.in_pocket.insert(pocket);
-    } else {
-      tools.in_pocket.erase(pocket);
-    }
+    if (tools.holds(pocket) == occupied) continue;
+    tools.pockets[pocket].holds = occupied;
     changed.push_back("pocket " + std::to_string(pocket) + " recorded " +
                       (occupied ? "full" : "empty") + ", as " + pocket_pin(pocket) + " reads (" +
                       on_off(occupied) + ")");

@@ -17,7 +17,7 @@ struct SensorReadings {
   bool drawbar_closed = false;          ///< `drawbar-closed`
   bool air_pressure_ok = false;         ///< `air-pressure-ok`
   bool zero_speed = false;              ///< `zero-speed`: the spindle's zero-speed feedback
-  std::map<int, bool> pocket_occupied;  ///< `pocket-occupied-N`, by the pocket's tool number
+  std::map<int, bool> pocket_occupied;  ///< `pocket-occupied-N`, by pocket number
 
   bool occupied(int pocket) const {
     const auto found = pocket_occupied.find(pocket);
@@ -32,7 +32,7 @@ struct SensorReadings {
 };
 
 /// Where the wired sensors contradict the tool state, one phrase each, e.g.
-/// "pocket 5 reads empty (pocket-occupied-5 off), but tool 5 is recorded in it".
+/// "pocket 5 reads empty (pocket-occupied-5 off), but tool 12 is recorded in it".
 std::vector<std::string> sensor_disagreements(const SensorConfig& wired, const SensorReadings& read,
                                               const ToolState& tools);
 

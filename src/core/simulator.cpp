@@ -85,7 +85,7 @@ void Simulator::model_rack(const Config& config, const ToolState& tools) {
   rack.modelled = config.sensors.any();
   rack.spindle = tools.spindle;
   for (const auto& entry : config.pockets) {
-    rack.pockets[entry.first] = tools.in_pocket.count(entry.first) != 0 ? entry.first : 0;
+    rack.pockets[entry.first] = tools.holds(entry.first) ? tools.tool_of(entry.first) : 0;
   }
   reported_.reset();
 }
@@ -211,14 +211,15 @@ std::vector<std::string> Simulator::messages(MessageKind kind) const {
 }  // namespace fatc
 
 namespace fatc {
-namespace {
 
 ToolState with_in_spindle(const Config& config, int tool) {
   ToolState tools = ToolState::fresh(config);
   tools.spindle = tool;
-  tools.in_pocket.erase(tool);
+  if (const auto home = tools.home_of(tool)) tools.pockets[*home].holds = false;
   return tools;
 }
+
+namespace {
 
 /// Runs an operator flow, pressing Continue at every wait.
 void run_with_operator(Simulator& sim, Changer& changer) {
@@ -234,9 +235,12 @@ void run_with_operator(Simulator& sim, Changer& changer) {
 }  // namespace
 
 Simulator plan_change(const Config& config, int from, int to, double sensor_z) {
+  return plan_change(config, with_in_spindle(config, from), to, sensor_z);
+}
+
+Simulator plan_change(const Config& config, const ToolState& tools, int to, double sensor_z) {
   Simulator sim;
   sim.sensor_z = sensor_z;
-  const ToolState tools = with_in_spindle(config, from);
   sim.model_rack(config, tools);
   Changer changer(config, sim, tools);
   changer.plan_only();
@@ -248,16 +252,22 @@ Simulator plan_change(const Config& config, int from, int to, double sensor_z) {
 }
 
 Simulator plan_load(const Config& config, int tool, int from, double sensor_z) {
+  ToolState tools = with_in_spindle(config, from);
+  // The tool to load is out of the machine: its pocket is free.
+  if (const auto home = tools.home_of(tool); home && from != tool) tools.pockets[*home] = {};
+  return plan_load(config, tools, tool, 0, sensor_z);
+}
+
+Simulator plan_load(const Config& config, const ToolState& tools, int tool, int pocket,
+                    double sensor_z) {
   Simulator sim;
   sim.sensor_z = sensor_z;
-  ToolState tools = with_in_spindle(config, from);
-  if (from != tool) tools.in_pocket.erase(tool);
   sim.model_rack(config, tools);
   Changer changer(config, sim, tools);
   changer.plan_only();
   sim.report_sensors(changer);
   changer.ready();
-  changer.load(tool);
+  changer.load(tool, pocket);
   run_with_operator(sim, changer);
   return sim;
 }

@@ -29,7 +29,7 @@ std::string describe(const Record& record);
 struct Rack {
   bool modelled = false;
   int spindle = 0;              ///< the tool the spindle clamps, 0 none
-  std::map<int, int> pockets;   ///< pocket (its tool number) -> the tool in it, 0 empty
+  std::map<int, int> pockets;   ///< pocket number -> the tool in it, 0 empty
   bool air = true;              ///< air-pressure-ok
   bool spindle_still = true;    ///< the zero-speed feedback
   int grips_failing = 0;        ///< this many closings at a pocket do not take its tool
@@ -95,13 +95,22 @@ class Simulator : public Ports {
 
 namespace fatc {
 
+/// The first-start rack (ToolState::fresh) with `tool` taken from its pocket
+/// into the spindle (0: the spindle empty).
+ToolState with_in_spindle(const Config& config, int tool);
+
 /// The records of M6 T`to` with `from` in the spindle, every other pocket full;
 /// the operator continues at every wait (manual tools) and the sensor, when
 /// `probe_after_change` asks for it, touches at `sensor_z`.
 Simulator plan_change(const Config& config, int from, int to, double sensor_z);
+/// The same from the tools as `tools` has them (a saved state).
+Simulator plan_change(const Config& config, const ToolState& tools, int to, double sensor_z);
 /// The records of loading `tool` by hand with `from` in the spindle; the operator
 /// continues at every wait and the sensor touches at `sensor_z`.
 Simulator plan_load(const Config& config, int tool, int from, double sensor_z);
+/// The same into pocket `pocket` (0: the one the changer chooses), from `tools`.
+Simulator plan_load(const Config& config, const ToolState& tools, int tool, int pocket,
+                    double sensor_z);
 /// The records of unloading `tool` with `from` in the spindle; the operator continues.
 Simulator plan_unload(const Config& config, int tool, int from);
 

@@ -30,6 +30,7 @@ struct Status {
   bool accepting = false;          ///< idle, and task is free for a load or unload
   std::optional<double> last_length;  ///< the last tool length measured
   int step_number = 0;  ///< the step of the sequence under way, as --plan numbers it; 0 none
+  int pocket = 0;       ///< the pocket being served, 0 none
 
   bool busy() const {
     return phase == Phase::changing || phase == Phase::loading || phase == Phase::unloading;

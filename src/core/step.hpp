@@ -31,7 +31,7 @@ struct Step {
   double feed = 0.0;      ///< units per minute, for feed and probe
   int tool = 0;           ///< for set_tool_length, set_spindle_tool and done
   double value = 0.0;     ///< tool length, for set_tool_length
-  int pocket = 0;         ///< the pocket this move serves (its tool number), 0 if none
+  int pocket = 0;         ///< the pocket this move serves (its number), 0 if none
   bool approach = false;  ///< part of the way into or out of `pocket`: may enter its column
   std::string label;      ///< the machinist's name for the target ("side of pocket 3")
 };

@@ -79,6 +79,13 @@ Loaded load(const Options& options, std::ostream& err) {
   return loaded;
 }
 
+/// How many tools sit in their pockets.
+std::size_t tools_in_rack(const ToolState& tools) {
+  std::size_t count = 0;
+  for (const auto& [number, pocket] : tools.pockets) count += tools.holds(number) ? 1 : 0;
+  return count;
+}
+
 /// --check of the state file: what the component would read at start.
 int check_state(const Options& options, const std::optional<Config>& config, std::ostream& out,
                 std::ostream& err) {
@@ -97,7 +104,7 @@ int check_state(const Options& options, const std::optional<Config>& config, std
   const ToolState& tools = *state.state;
   out << shown_path(path) << ": spindle "
       << (tools.spindle == 0 ? std::string("empty") : "T" + std::to_string(tools.spindle)) << ", "
-      << tools.in_pocket.size() << " tools in their pockets, " << tools.lengths.size() << " lengths"
+      << tools_in_rack(tools) << " tools in their pockets, " << tools.lengths.size() << " lengths"
       << (tools.uncertain ? ", uncertain (an interrupted sequence)" : "") << "\n";
   return 0;
 }
@@ -155,11 +162,14 @@ int check(const Options& options, std::ostream& out, std::ostream& err) {
       << format_point(config.loading.x, config.loading.y, config.loading.z) << "\n";
   out << "probe_limit           "
       << format_point(config.probe_limit.x, config.probe_limit.y, config.probe_limit.z) << "\n";
-  for (const auto& [tool, pocket] : config.pockets) {
-    const auto w = pocket_waypoints(config, tool);
-    const std::string name = "pocket " + std::to_string(tool);
+  for (const auto& [number, pocket] : config.pockets) {
+    const auto w = pocket_waypoints(config, number);
+    const std::string name = "pocket " + std::to_string(number);
     out << name << std::string(22 - name.size(), ' ')
-        << format_point(w.pocket.x, w.pocket.y, w.pocket.z) << "\n";
+        << format_point(w.pocket.x, w.pocket.y, w.pocket.z) << "  (approach "
+        << approach_name(pocket.approach) << ", first tool "
+        << (pocket.first_tool == 0 ? std::string("none") : "T" + std::to_string(pocket.first_tool))
+        << ")\n";
     out << "  side                " << format_point(w.side.x, w.side.y, w.side.z) << "\n";
     out << "  above_chuck         "
         << format_point(w.above_chuck.x, w.above_chuck.y, w.above_chuck.z) << "\n";
@@ -361,8 +371,8 @@ int confirm(const Options& options, std::ostream& out, std::ostream& err) {
   out << shown_path(options.state_path) << ": the spindle holds "
       << (tools.spindle == 0 ? std::string("nothing") : "tool " + std::to_string(tools.spindle));
   if (pocket != 0) {
-    out << "; pocket " << pocket << (tools.in_pocket.count(pocket) ? " holds" : " does not hold")
-        << " its tool";
+    out << "; pocket " << pocket << (tools.holds(pocket) ? " holds" : " does not hold") << " tool "
+        << tools.tool_of(pocket);
   }
   out << "; nothing is uncertain now\n";
   return 0;

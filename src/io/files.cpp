@@ -180,11 +180,8 @@ ToolStateResult load_state_file(const std::string& path, const Config& config) {
   if (missing(path)) return {ToolState::fresh(config), ""};
   auto result = load_state_file(path);
   if (!result.state) return result;
-  for (const int tool : result.state->in_pocket) {
-    if (!config.has_pocket(tool)) {
-      return {std::nullopt, shown_path(path) + ": in_pocket: tool " + std::to_string(tool) +
-                                " is recorded in a pocket that config.json does not have"};
-    }
+  if (const std::string why = fit_to_config(*result.state, config, result.version); !why.empty()) {
+    return {std::nullopt, shown_path(path) + ": " + why};
   }
   return result;
 }

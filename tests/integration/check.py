@@ -578,7 +578,7 @@ def check_restart_after_kill(r, rack):
              (pins["fixed_atc_probe.fault"], pins["fixed_atc_probe.cut-off-pocket"]))
     if status.get("phase") != "fault" or status.get("cut_off") != CUT_OFF:
         fail("the status file says %s, cut_off %s" % (status.get("phase"), status.get("cut_off")))
-    said(r, "cut off during M6 T3, returning tool 1 to pocket 1; pocket 1 may or may not hold its tool")
+    said(r, "cut off during M6 T3, returning tool 1 to pocket 1; pocket 1 may or may not hold tool 1")
     ok("came up faulted: cut-off-pocket 1, status file cut_off %s" % status["cut_off"])
     if not pins["fatc-chuck-guard.alive"] or pins["fatc-chuck-guard.chuck"]:
         fail("after the restart the guard should be alive with the chuck closed: %s" % pins)

@@ -23,8 +23,8 @@ struct Rig {
     ToolState tools = ToolState::fresh(config);
     tools.lengths = std::move(lengths);
     tools.spindle = spindle;
-    tools.in_pocket.erase(spindle);
-    for (int tool : out_of_machine) tools.in_pocket.erase(tool);
+    test::take_out(tools, spindle);
+    for (int tool : out_of_machine) test::take_out(tools, tool);
     changer = std::make_unique<Changer>(config, sim, tools);
     changer->ready();
   }
@@ -130,7 +130,7 @@ TEST(Change, shouldRetrieveIntoAnEmptySpindle) {
   rig.sim.run(*rig.changer);
   EXPECT_EQ(rig.lines(), concat({retrieve(4), {"done T4"}}));
   EXPECT_EQ(rig.changer->tools().spindle, 4);
-  EXPECT_EQ(rig.changer->tools().in_pocket.count(4), 0u);
+  EXPECT_FALSE(rig.changer->tools().holds(4));
   EXPECT_EQ(rig.changer->status().phase, Phase::idle);
 }
 
@@ -140,7 +140,7 @@ TEST(Change, shouldReturnThenRetrieveFromAToB) {
   rig.sim.run(*rig.changer);
   EXPECT_EQ(rig.lines(), concat({return_to_pocket(2), retrieve_from_safe(5), {"done T5"}}));
   EXPECT_EQ(rig.changer->tools().spindle, 5);
-  EXPECT_EQ(rig.changer->tools().in_pocket.count(2), 1u);
+  EXPECT_TRUE(rig.changer->tools().holds(2));
   EXPECT_FALSE(rig.sim.chuck_open);
 }
 
@@ -167,8 +167,8 @@ TEST(Change, shouldSaveWhatIsUnderWayBeforeItMovesAndWhereTheToolsAreAfterEachCh
     const ToolState& t = r.saved;
     std::string line = t.in_progress ? t.in_progress->sequence + ": " + t.in_progress->step : "-";
     line += " | spindle " + std::to_string(t.spindle) + " | pocket 2 " +
-            (t.in_pocket.count(2) ? "full" : "empty") + ", pocket 5 " +
-            (t.in_pocket.count(5) ? "full" : "empty");
+            (t.holds(2) ? "full" : "empty") + ", pocket 5 " +
+            (t.holds(5) ? "full" : "empty");
     saves.push_back(line);
     if (saves.size() == 2) {
       EXPECT_EQ(first_move, 0u) << "the return was recorded after the machine moved";
@@ -239,11 +239,11 @@ TEST_P(RefusedChange, shouldFailTheExecutorWithAMessageAndMoveNothing) {
 
 // clang-format off
 INSTANTIATE_TEST_SUITE_P(Each, RefusedChange, ::testing::Values(
-  Refusal{"no_pocket", 0, {}, 9, "tool 9 has no pocket in the config (and manual_tools is off)",
+  Refusal{"no_pocket", 0, {}, 9, "tool 9 is in no pocket of the rack (and manual_tools is off)",
           R"("manual_tools": false)"},
   Refusal{"negative", 0, {}, -1, "T-1 is not a tool number"},
-  Refusal{"unloaded", 0, {4}, 4, "tool 4 is not in its pocket (it was unloaded); load it first"},
-  Refusal{"spindle_tool_without_pocket", 9, {}, 2, "tool 9 in the spindle has no pocket in the config",
+  Refusal{"unloaded", 0, {4}, 4, "tool 4 belongs in pocket 4 but is not in it; load it first"},
+  Refusal{"spindle_tool_without_pocket", 9, {}, 2, "tool 9 in the spindle has no pocket to go to",
           R"("manual_tools": false)"}
 ));
 // clang-format on
@@ -320,7 +320,7 @@ TEST(Load, shouldLoadProbeAndPutAwayWithAnEmptySpindle) {
   EXPECT_DOUBLE_EQ(rig.changer->tools().lengths.at(4),
                    kSensorZ - rig.config.probe_length_compensation_offset);
   EXPECT_EQ(rig.changer->tools().spindle, 0);
-  EXPECT_EQ(rig.changer->tools().in_pocket.count(4), 1u);
+  EXPECT_TRUE(rig.changer->tools().holds(4));
   EXPECT_EQ(rig.changer->status().phase, Phase::idle);
 }
 
@@ -436,10 +436,10 @@ TEST_P(RefusedLoad, shouldSayWhyAndMoveNothing) {
 
 // clang-format off
 INSTANTIATE_TEST_SUITE_P(Each, RefusedLoad, ::testing::Values(
-  LoadRefusal{"no_pocket", 0, {}, 9, "tool 9 has no pocket in the config"},
+  LoadRefusal{"no_pocket", 0, {}, 9, "no pocket for tool 9: every pocket holds a tool; unload one first"},
   LoadRefusal{"zero", 0, {}, 0, "load needs a tool number above 0, got 0"},
-  LoadRefusal{"already_in_rack", 0, {}, 3, "tool 3 is already in its pocket; unload it first"},
-  LoadRefusal{"spindle_tool_homeless", 9, {3}, 3, "tool 9 in the spindle has no pocket in the config; unload it by hand first"}
+  LoadRefusal{"already_in_rack", 0, {}, 3, "tool 3 is already in pocket 3; unload it first"},
+  LoadRefusal{"spindle_tool_homeless", 9, {3}, 3, "tool 9 in the spindle has no pocket to go to; unload it first"}
 ));
 // clang-format on
 
@@ -464,7 +464,7 @@ TEST(Unload, shouldFetchTheToolAndLetTheOperatorTakeIt) {
   rig.sim.run(*rig.changer);
   EXPECT_EQ(rig.lines(before), concat({flush(), {"set-tool T0", "done T0"}}));
   EXPECT_EQ(rig.changer->tools().spindle, 0);
-  EXPECT_EQ(rig.changer->tools().in_pocket.count(3), 0u);
+  EXPECT_FALSE(rig.changer->tools().holds(3));
 }
 
 TEST(Unload, shouldReturnTheToolInTheSpindleFirst) {
@@ -648,7 +648,7 @@ TEST(Load, shouldSayTheSensorWasAlreadyTrippedAndWriteNothing) {
   const Config config = test::valid_config();
   ToolState tools = ToolState::fresh(config);
   tools.spindle = 4;
-  tools.in_pocket.erase(4);
+  test::take_out(tools, 4);
   Changer changer(config, sim, tools);
   changer.ready();
   changer.load(4);
@@ -787,7 +787,7 @@ TEST(Manual, shouldReturnTheRackToolThenHoldForTheManualTool) {
   rig.sim.run(*rig.changer);
   EXPECT_EQ(rig.lines(before), (Lines{"rapid safe Z", "done T9"}));
   EXPECT_EQ(rig.changer->tools().spindle, 9);
-  EXPECT_EQ(rig.changer->tools().in_pocket.count(2), 1u);
+  EXPECT_TRUE(rig.changer->tools().holds(2));
 }
 
 TEST(Manual, shouldHandTheManualToolOutBeforeRetrievingARackTool) {

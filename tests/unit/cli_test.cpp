@@ -7,25 +7,14 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <sstream>
+
+#include "cli_run.hpp"
 
 namespace fatc {
 namespace {
 
-struct CliRun {
-  int code;
-  std::string out;
-  std::string err;
-};
-
-CliRun run(std::vector<std::string> args) {
-  std::string error;
-  const auto options = io::parse_options(args, error);
-  if (!options) return {2, "", error};
-  std::ostringstream out, err;
-  const int code = io::run_tool_mode(*options, out, err);
-  return {code, out.str(), err.str()};
-}
+using test::CliRun;
+const auto& run = test::run_cli;
 
 const std::string kConfig = FATC_SOURCE_DIR "/config/config.json";
 
@@ -45,7 +34,7 @@ TEST(Cli, shouldExitOneWhenThePlannedChangeIsRefused) {
   const CliRun r = run({"--plan", "--config", path, "--from", "0", "--to", "42"});
   std::remove(path.c_str());
   EXPECT_EQ(r.code, 1);
-  EXPECT_NE(r.out.find("tool 42 has no pocket in the config (and manual_tools is off)"),
+  EXPECT_NE(r.out.find("tool 42 is in no pocket of the rack (and manual_tools is off)"),
             std::string::npos)
       << r.out << r.err;
 }

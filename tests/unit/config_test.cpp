@@ -30,10 +30,10 @@ TEST(Config, shouldReadEveryPrototypeKeyWithItsMeaning) {
 
 TEST(Config, shouldMergePocketDefaultUnderEachPocket) {
   const Config c = test::valid_config();
-  EXPECT_EQ(c.pockets.at(2).x, 100.0);
-  EXPECT_EQ(c.pockets.at(2).y, 20.0);
-  EXPECT_EQ(c.pockets.at(2).z, -80.0);
-  EXPECT_EQ(c.pockets.at(6).z, -82.5) << "a pocket's own value wins over pocket_default";
+  EXPECT_EQ(c.pockets.at(2).at.x, 100.0);
+  EXPECT_EQ(c.pockets.at(2).at.y, 20.0);
+  EXPECT_EQ(c.pockets.at(2).at.z, -80.0);
+  EXPECT_EQ(c.pockets.at(6).at.z, -82.5) << "a pocket's own value wins over pocket_default";
 }
 
 TEST(Config, shouldApplyDocumentedDefaultsToNewKeys) {
@@ -131,11 +131,11 @@ INSTANTIATE_TEST_SUITE_P(Each, BadConfigs, ::testing::Values(
   BadConfig{"pocket_not_object", [](Json& j) { j["pockets"]["2"] = 5; }, "pockets.2: expected an object"},
   BadConfig{"pockets_array", [](Json& j) { j["pockets"] = Json::array(); }, "pockets: expected an object, got an array"},
   BadConfig{"pockets_empty", [](Json& j) { j["pockets"] = Json::object(); }, "pockets: no pockets defined"},
-  BadConfig{"tool_zero", [](Json& j) { j["pockets"]["0"] = {{"x", 400}}; }, "pockets.0: the key must be a tool number"},
-  BadConfig{"tool_negative", [](Json& j) { j["pockets"]["-3"] = {{"x", 400}}; }, "pockets.-3: the key must be a tool number"},
-  BadConfig{"tool_fraction", [](Json& j) { j["pockets"]["1.5"] = {{"x", 400}}; }, "pockets.1.5: the key must be a tool number"},
-  BadConfig{"tool_name", [](Json& j) { j["pockets"]["endmill"] = {{"x", 400}}; }, "pockets.endmill: the key must be a tool number"},
-  BadConfig{"tool_leading_zero", [](Json& j) { j["pockets"]["07"] = {{"x", 400}}; }, "pockets.07: the key must be a tool number"},
+  BadConfig{"tool_zero", [](Json& j) { j["pockets"]["0"] = {{"x", 400}}; }, "pockets.0: the key must be a pocket number"},
+  BadConfig{"tool_negative", [](Json& j) { j["pockets"]["-3"] = {{"x", 400}}; }, "pockets.-3: the key must be a pocket number"},
+  BadConfig{"tool_fraction", [](Json& j) { j["pockets"]["1.5"] = {{"x", 400}}; }, "pockets.1.5: the key must be a pocket number"},
+  BadConfig{"tool_name", [](Json& j) { j["pockets"]["endmill"] = {{"x", 400}}; }, "pockets.endmill: the key must be a pocket number"},
+  BadConfig{"tool_leading_zero", [](Json& j) { j["pockets"]["07"] = {{"x", 400}}; }, "pockets.07: the key must be a pocket number"},
   BadConfig{"pocket_without_z", [](Json& j) { j["pocket_default"].erase("z"); j["pockets"]["6"].erase("z"); }, "pockets.1.z: missing, and pocket_default has no z"},
   BadConfig{"unknown_top_key", [](Json& j) { j["chuck_second"] = 1; }, "chuck_second: unknown key, did you mean \"chuck_seconds\"?"},
   BadConfig{"unknown_far_key", [](Json& j) { j["spindle_rpm"] = 1; }, "spindle_rpm: unknown key"},

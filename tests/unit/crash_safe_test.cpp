@@ -34,14 +34,14 @@ class CrashSafeSave : public ::testing::Test {
   static ToolState small() {
     ToolState state;
     state.spindle = 0;
-    state.in_pocket = {1, 2, 3, 4, 5, 6};
+    for (int pocket = 1; pocket <= 6; ++pocket) state.pockets[pocket] = {pocket, true};
     return state;
   }
   /// Much longer than small(): a torn write of it would not parse.
   static ToolState large() {
     ToolState state;
     state.spindle = 3;
-    state.in_pocket = {1, 2, 4, 5, 6};
+    for (int pocket = 1; pocket <= 6; ++pocket) state.pockets[pocket] = {pocket, pocket != 3};
     for (int tool = 1; tool <= 6; ++tool) state.lengths[tool] = 40.0 + tool / 8.0;
     state.in_progress = InProgress{"M6 T4", "returning tool 3 to pocket 3", 3};
     state.uncertain = true;

@@ -26,7 +26,7 @@ constexpr int kTo = 2;
 ToolState holding(const Config& config, int tool) {
   ToolState tools = ToolState::fresh(config);
   tools.spindle = tool;
-  tools.in_pocket.erase(tool);
+  test::take_out(tools, tool);
   return tools;
 }
 

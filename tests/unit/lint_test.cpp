@@ -165,8 +165,8 @@ TEST_F(Lint, shouldReportAChangeTheChangerRefuses) {
            "--state", state_with_lengths({1, 42})});
   EXPECT_EQ(refused.code, 1);
   EXPECT_LINE(refused,
-              "manual.ngc: line 1: M6 T42 refused: tool 42 has no pocket in the "
-              "config (and manual_tools is off)\n");
+              "manual.ngc: line 1: M6 T42 refused: tool 42 is in no pocket of the "
+              "rack (and manual_tools is off)\n");
   EXPECT_LINE(refused, "  1  1         M6 T42        refused: manual: handed over at loading ");
   // The changer would stop the program; the lint reads on with the spindle as it was.
   EXPECT_LINE(refused, "  2  2         M6 T1         pocket 1 ");
@@ -182,7 +182,7 @@ TEST_F(Lint, shouldFollowTheRackThroughTheStateFile) {
   // T2 went home at the first change: it is in pocket 2 now.
   EXPECT_LINE(r, "  3  3         M6 T2         pocket 2 ");
   EXPECT_LINE(r, "rack.ngc: line 2: M6 T3: the state file " + kPrograms +
-                     "/measured.state has pocket 3 empty (T3 was unloaded): the changer "
+                     "/measured.state has pocket 3 empty (T3 is not in it): the changer "
                      "refuses the change; load it first\n");
 }
 

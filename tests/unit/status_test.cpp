@@ -37,7 +37,7 @@ struct Rig {
       : config(test::valid_config(extra_config)) {
     ToolState tools = ToolState::fresh(config);
     tools.spindle = spindle;
-    tools.in_pocket.erase(spindle);
+    test::take_out(tools, spindle);
     tools.lengths = std::move(lengths);
     sim.sensor_z = kSensorZ;
     changer = std::make_unique<Changer>(config, sim, tools);

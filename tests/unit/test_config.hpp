@@ -1,8 +1,10 @@
 #pragma once
 
+#include <set>
 #include <string>
 
 #include "core/config.hpp"
+#include "core/tool_state.hpp"
 
 namespace fatc::test {
 
@@ -27,6 +29,20 @@ inline Config valid_config(const std::string& extra = "") {
   std::string text = kValidConfig;
   if (!extra.empty()) text.insert(text.rfind('}'), "," + extra);
   return *parse_config(text).config;
+}
+
+/// `tool` is out of its pocket (in the spindle, or lost): the pocket stays its.
+inline void take_out(ToolState& tools, int tool) {
+  if (const auto home = tools.home_of(tool)) tools.pockets[*home].holds = false;
+}
+
+/// The tools sitting in their pockets.
+inline std::set<int> tools_in_rack(const ToolState& tools) {
+  std::set<int> in_rack;
+  for (const auto& [number, pocket] : tools.pockets) {
+    if (tools.holds(number)) in_rack.insert(pocket.tool);
+  }
+  return in_rack;
 }
 
 }  // namespace fatc::test

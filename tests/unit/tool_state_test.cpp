@@ -14,7 +14,8 @@ namespace {
 ToolState sample() {
   ToolState state;
   state.spindle = 3;
-  state.in_pocket = {1, 2, 5};
+  state.pockets = {{1, {1, true}},  {2, {2, true}}, {3, {3, false}},
+                   {4, {0, false}}, {5, {5, true}}, {6, {6, false}}};
   state.lengths = {{1, 42.125}, {3, 17.5}};
   return state;
 }
@@ -22,7 +23,8 @@ ToolState sample() {
 TEST(ToolState, shouldStartWithEveryPocketFullAndTheSpindleEmpty) {
   const ToolState fresh = ToolState::fresh(test::valid_config());
   EXPECT_EQ(fresh.spindle, 0);
-  EXPECT_EQ(fresh.in_pocket, (std::set<int>{1, 2, 3, 4, 5, 6}));
+  EXPECT_EQ(test::tools_in_rack(fresh), (std::set<int>{1, 2, 3, 4, 5, 6}));
+  for (int pocket = 1; pocket <= 6; ++pocket) EXPECT_EQ(fresh.tool_of(pocket), pocket);
   EXPECT_FALSE(fresh.uncertain);
 }
 
@@ -52,13 +54,22 @@ INSTANTIATE_TEST_SUITE_P(Each, CorruptState, ::testing::Values(
   Corruption{"", "line 1, column 1: invalid JSON: syntax error while parsing value - unexpected end of input"},
   Corruption{"{\"version\": 1, \"spindle\": 3", "line 1, column 28: invalid JSON: syntax error while parsing object - unexpected end of input"},
   Corruption{"[]", "state: expected a JSON object"},
-  Corruption{"{\"version\": 2, \"spindle\": 0, \"uncertain\": false, \"in_pocket\": [], \"lengths\": {}}", "version: expected 1, got 2"},
+  Corruption{"{\"version\": 3, \"spindle\": 0, \"uncertain\": false, \"in_pocket\": [], \"lengths\": {}}", "version: expected 1 or 2, got 3"},
+  Corruption{"{\"version\": 2, \"spindle\": 0, \"uncertain\": false, \"in_pocket\": [], \"lengths\": {}}", "in_pocket: unknown key"},
+  Corruption{"{\"version\": 2, \"spindle\": 0, \"uncertain\": false, \"pockets\": [], \"lengths\": {}}", "pockets: expected an object of pocket number to {tool, in_pocket}, got an array"},
+  Corruption{"{\"version\": 2, \"spindle\": 0, \"uncertain\": false, \"pockets\": {\"0\": {\"tool\": 1, \"in_pocket\": true}}, \"lengths\": {}}", "pockets.0: the key must be a pocket number"},
+  Corruption{"{\"version\": 2, \"spindle\": 0, \"uncertain\": false, \"pockets\": {\"1\": {\"tool\": -1, \"in_pocket\": true}}, \"lengths\": {}}", "pockets.1.tool: expected 0 or a tool number, got -1"},
+  Corruption{"{\"version\": 2, \"spindle\": 0, \"uncertain\": false, \"pockets\": {\"1\": {\"tool\": 1}}, \"lengths\": {}}", "pockets.1.in_pocket: expected true or false, got nothing"},
+  Corruption{"{\"version\": 2, \"spindle\": 0, \"uncertain\": false, \"pockets\": {\"1\": {\"tool\": 0, \"in_pocket\": true}}, \"lengths\": {}}", "pockets.1.in_pocket: a free pocket (tool 0) cannot hold its tool"},
+  Corruption{"{\"version\": 2, \"spindle\": 0, \"uncertain\": false, \"pockets\": {\"1\": {\"tool\": 7, \"in_pocket\": true}, \"2\": {\"tool\": 7, \"in_pocket\": false}}, \"lengths\": {}}", "pockets.2.tool: tool 7 is recorded in pocket 1 too"},
+  Corruption{"{\"version\": 2, \"spindle\": 7, \"uncertain\": false, \"pockets\": {\"1\": {\"tool\": 7, \"in_pocket\": true}}, \"lengths\": {}}", "spindle: tool 7 is recorded both in the spindle and in pocket 1"},
+  Corruption{"{\"version\": 2, \"spindle\": 0, \"uncertain\": false, \"pockets\": {\"1\": {\"tool\": 7, \"in_pocket\": true, \"x\": 1}}, \"lengths\": {}}", "pockets.1.x: unknown key"},
   Corruption{"{\"version\": 1, \"uncertain\": false, \"in_pocket\": [], \"lengths\": {}}", "spindle: missing"},
   Corruption{"{\"version\": 1, \"spindle\": -2, \"uncertain\": false, \"in_pocket\": [], \"lengths\": {}}", "spindle: expected 0 or a tool number, got -2"},
   Corruption{"{\"version\": 1, \"spindle\": 0, \"uncertain\": \"no\", \"in_pocket\": [], \"lengths\": {}}", "uncertain: expected true or false"},
   Corruption{"{\"version\": 1, \"spindle\": 0, \"uncertain\": false, \"in_pocket\": [1, \"x\"], \"lengths\": {}}", "in_pocket.1: expected a tool number"},
   Corruption{"{\"version\": 1, \"spindle\": 0, \"uncertain\": false, \"in_pocket\": [1, 1], \"lengths\": {}}", "in_pocket.1: tool 1 listed twice"},
-  Corruption{"{\"version\": 1, \"spindle\": 2, \"uncertain\": false, \"in_pocket\": [2], \"lengths\": {}}", "spindle: tool 2 is recorded both in the spindle and in its pocket"},
+  Corruption{"{\"version\": 1, \"spindle\": 2, \"uncertain\": false, \"in_pocket\": [2], \"lengths\": {}}", "spindle: tool 2 is recorded both in the spindle and in pocket 2"},
   Corruption{"{\"version\": 1, \"spindle\": 0, \"uncertain\": false, \"in_pocket\": [], \"lengths\": {\"a\": 1}}", "lengths.a: the key must be a tool number"},
   Corruption{"{\"version\": 1, \"spindle\": 0, \"uncertain\": false, \"in_pocket\": [], \"lengths\": {\"1\": \"long\"}}", "lengths.1: expected a finite number"},
   Corruption{"{\"version\": 1, \"spindle\": 0, \"uncertain\": false, \"in_pocket\": [], \"lengths\": {}, \"extra\": 1}", "extra: unknown key"}
@@ -106,11 +117,12 @@ TEST_F(StateFile, shouldNameTheFileWhenCorruptNeverReset) {
 
 TEST_F(StateFile, shouldRefuseAPocketTheConfigDoesNotHave) {
   ToolState state = sample();
-  state.in_pocket.insert(9);
+  state.pockets[9] = {9, true};
   io::save_state_file(path_, state);
   const auto result = io::load_state_file(path_, test::valid_config());
   ASSERT_FALSE(result.state);
-  EXPECT_EQ(result.error, path_ + ": in_pocket: tool 9 is recorded in a pocket that config.json does not have");
+  EXPECT_EQ(result.error,
+            path_ + ": pockets.9: tool 9 is recorded in pocket 9, which config.json does not have");
 }
 
 TEST_F(StateFile, shouldKeepTheOldFileWhenTheFolderIsGone) {

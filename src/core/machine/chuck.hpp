@@ -10,17 +10,17 @@
 namespace fatc::machine {
 
 // ---------------------------------------------------------------- where, for messages
-/// "at pocket 3": where the chuck acts, for a leg that serves pocket `pocket_tool`.
+/// "at pocket 3": where the chuck acts, for a leg that serves pocket `tool`.
 struct AtPocket {
   template <class Leg>
   static std::string where(const Leg& leg) {
-    return "at pocket " + std::to_string(leg.pocket_tool);
+    return "at pocket " + std::to_string(leg.pocket);
   }
 };
 struct AbovePocket {
   template <class Leg>
   static std::string where(const Leg& leg) {
-    return "above pocket " + std::to_string(leg.pocket_tool);
+    return "above pocket " + std::to_string(leg.pocket);
   }
 };
 struct ToFlush {

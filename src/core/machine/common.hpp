@@ -61,18 +61,23 @@ struct Failed : msmf::exit_pseudo_state<FlowFailed> {};
 struct Cancelled : msmf::exit_pseudo_state<LegDone> {};
 
 /// Base of every submachine front: takes the context from its parent on
-/// entry and remembers which tool's pocket it serves.
+/// entry and remembers which tool it serves and at which pocket.
 template <class Derived>
 struct Flow : msmf::state_machine_def<Derived> {
   Context* ctx = nullptr;
-  int pocket_tool = 0;
+  int tool = 0;
+  int pocket = 0;  ///< the pocket the tool comes from or goes to, 0 none
 
   template <class Event, class Parent>
   void on_entry(const Event&, Parent& parent) {
     ctx = parent.ctx;
-    pocket_tool = Derived::served_tool(*ctx);
+    tool = Derived::served_tool(*ctx);
+    pocket = Derived::served_pocket(*ctx, tool);
   }
   static int served_tool(const Context& ctx) { return ctx.requested_tool; }
+  static int served_pocket(const Context& ctx, int tool) {
+    return ctx.tools.pocket_holding(tool).value_or(0);
+  }
 };
 
 // ---------------------------------------------------------------- kinds of state
@@ -204,8 +209,8 @@ inline Step move(StepKind kind, unsigned axes, const Point& target, std::string 
   return step;
 }
 
-inline std::string of_pocket(const char* what, int tool) {
-  return std::string(what) + " of pocket " + std::to_string(tool);
+inline std::string of_pocket(const char* what, int pocket) {
+  return std::string(what) + " of pocket " + std::to_string(pocket);
 }
 
 struct SafeZ {
@@ -224,72 +229,71 @@ struct SafeXY {
 struct SafeZOverPocket {
   template <class Leg>
   Step operator()(const Context& c, const Leg& leg) const {
-    const int tool = leg.pocket_tool;
-    return move(StepKind::rapid, axis_z, c.config.safe, "safe Z", tool, true);
+    return move(StepKind::rapid, axis_z, c.config.safe, "safe Z", leg.pocket, true);
   }
 };
 struct SideAtSafeZ {
   template <class Leg>
   Step operator()(const Context& c, const Leg& leg) const {
-    const int tool = leg.pocket_tool;
-    const Point side = pocket_waypoints(c.config, tool).side;
-    return move(StepKind::rapid, axis_xy, side, of_pocket("over the side", tool), tool);
+    const Point side = pocket_waypoints(c.config, leg.pocket).side;
+    return move(StepKind::rapid, axis_xy, side, of_pocket("over the side", leg.pocket), leg.pocket);
   }
 };
 struct Side {
   template <class Leg>
   Step operator()(const Context& c, const Leg& leg) const {
-    const int tool = leg.pocket_tool;
-    return move(StepKind::rapid, axis_z, pocket_waypoints(c.config, tool).side,
-                of_pocket("side", tool), tool, true);
+    return move(StepKind::rapid, axis_z, pocket_waypoints(c.config, leg.pocket).side,
+                of_pocket("side", leg.pocket), leg.pocket, true);
   }
 };
 struct SlowlyToSide {
   template <class Leg>
   Step operator()(const Context& c, const Leg& leg) const {
-    const int tool = leg.pocket_tool;
-    return move(StepKind::feed, axis_xy, pocket_waypoints(c.config, tool).side,
-                of_pocket("side", tool), tool, true, c.config.pocket_feed);
+    return move(StepKind::feed, axis_xy, pocket_waypoints(c.config, leg.pocket).side,
+                of_pocket("side", leg.pocket), leg.pocket, true, c.config.pocket_feed);
   }
 };
 struct SlowlyIntoPocket {
   template <class Leg>
   Step operator()(const Context& c, const Leg& leg) const {
-    const int tool = leg.pocket_tool;
-    return move(StepKind::feed, axis_xy, pocket_waypoints(c.config, tool).pocket,
-                "pocket " + std::to_string(tool), tool, true, c.config.pocket_feed);
+    return move(StepKind::feed, axis_xy, pocket_waypoints(c.config, leg.pocket).pocket,
+                "pocket " + std::to_string(leg.pocket), leg.pocket, true, c.config.pocket_feed);
   }
 };
 struct SlowlyDownToPocket {
   template <class Leg>
   Step operator()(const Context& c, const Leg& leg) const {
-    const int tool = leg.pocket_tool;
-    return move(StepKind::feed, axis_z, pocket_waypoints(c.config, tool).pocket,
-                "pocket " + std::to_string(tool), tool, true, c.config.pocket_feed);
+    return move(StepKind::feed, axis_z, pocket_waypoints(c.config, leg.pocket).pocket,
+                "pocket " + std::to_string(leg.pocket), leg.pocket, true, c.config.pocket_feed);
+  }
+};
+/// A top-approach pocket: the tool leaves its holder straight up, slowly.
+struct SlowlyUpToClearance {
+  template <class Leg>
+  Step operator()(const Context& c, const Leg& leg) const {
+    return move(StepKind::feed, axis_z, pocket_waypoints(c.config, leg.pocket).above_clearance,
+                of_pocket("above-clearance", leg.pocket), leg.pocket, true, c.config.pocket_feed);
   }
 };
 struct PocketAtSafeZ {
   template <class Leg>
   Step operator()(const Context& c, const Leg& leg) const {
-    const int tool = leg.pocket_tool;
-    return move(StepKind::rapid, axis_xy, pocket_waypoints(c.config, tool).pocket,
-                "over pocket " + std::to_string(tool), tool);
+    return move(StepKind::rapid, axis_xy, pocket_waypoints(c.config, leg.pocket).pocket,
+                "over pocket " + std::to_string(leg.pocket), leg.pocket);
   }
 };
 struct AboveChuck {
   template <class Leg>
   Step operator()(const Context& c, const Leg& leg) const {
-    const int tool = leg.pocket_tool;
-    return move(StepKind::rapid, axis_z, pocket_waypoints(c.config, tool).above_chuck,
-                of_pocket("above-chuck", tool), tool, true);
+    return move(StepKind::rapid, axis_z, pocket_waypoints(c.config, leg.pocket).above_chuck,
+                of_pocket("above-chuck", leg.pocket), leg.pocket, true);
   }
 };
 struct AboveClearance {
   template <class Leg>
   Step operator()(const Context& c, const Leg& leg) const {
-    const int tool = leg.pocket_tool;
-    return move(StepKind::rapid, axis_z, pocket_waypoints(c.config, tool).above_clearance,
-                of_pocket("above-clearance", tool), tool, true);
+    return move(StepKind::rapid, axis_z, pocket_waypoints(c.config, leg.pocket).above_clearance,
+                of_pocket("above-clearance", leg.pocket), leg.pocket, true);
   }
 };
 struct LoadingZ {
@@ -356,7 +360,7 @@ struct SpindleTool {
 struct ToolLength {
   template <class Leg>
   Step operator()(const Context& c, const Leg& leg) const {
-    const int tool = leg.pocket_tool;
+    const int tool = leg.tool;
     Step step;
     step.kind = StepKind::set_tool_length;
     step.tool = tool;
@@ -408,26 +412,33 @@ struct SpindleHoldsOtherTool {
 struct SpindleHoldsRackTool {
   template <class Event, class Fsm, class Source, class Target>
   bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-    return fsm.ctx->tools.spindle != 0 && fsm.ctx->config.has_pocket(fsm.ctx->tools.spindle);
+    return fsm.ctx->tools.spindle != 0 && fsm.ctx->return_pocket(fsm.ctx->tools.spindle);
   }
 };
 /// The spindle holds a manual tool: one with no pocket, handed over at `loading`.
 struct SpindleHoldsManualTool {
   template <class Event, class Fsm, class Source, class Target>
   bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-    return fsm.ctx->tools.spindle != 0 && !fsm.ctx->config.has_pocket(fsm.ctx->tools.spindle);
+    return fsm.ctx->tools.spindle != 0 && !fsm.ctx->return_pocket(fsm.ctx->tools.spindle);
   }
 };
 struct RequestedRackTool {
   template <class Event, class Fsm, class Source, class Target>
   bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-    return fsm.ctx->requested_tool != 0 && fsm.ctx->config.has_pocket(fsm.ctx->requested_tool);
+    return fsm.ctx->requested_tool != 0 && fsm.ctx->tools.home_of(fsm.ctx->requested_tool);
   }
 };
 struct RequestedManualTool {
   template <class Event, class Fsm, class Source, class Target>
   bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-    return fsm.ctx->requested_tool != 0 && !fsm.ctx->config.has_pocket(fsm.ctx->requested_tool);
+    return fsm.ctx->requested_tool != 0 && !fsm.ctx->tools.home_of(fsm.ctx->requested_tool);
+  }
+};
+/// The pocket the leg serves is approached from above (`"approach": "top"`).
+struct FromAbove {
+  template <class Event, class Fsm, class Source, class Target>
+  bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+    return fsm.ctx->config.pockets.at(fsm.pocket).approach == Approach::top;
   }
 };
 struct ToolRequested {
@@ -444,14 +455,14 @@ struct ToolRequested {
 struct RecordToolInSpindle {
   template <class Event, class Fsm, class Source, class Target>
   void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-    fsm.ctx->record_in_spindle(fsm.pocket_tool);
+    fsm.ctx->record_in_spindle(fsm.tool);
   }
 };
 /// The operator took the tool the leg serves out of the machine.
 struct RecordToolRemoved {
   template <class Event, class Fsm, class Source, class Target>
   void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-    fsm.ctx->record_out_of_machine(fsm.pocket_tool);
+    fsm.ctx->record_out_of_machine(fsm.tool);
   }
 };
 struct CloseChuck {

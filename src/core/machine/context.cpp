@@ -1,5 +1,7 @@
 #include "context.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 namespace fatc {
@@ -75,21 +77,26 @@ void Context::end_sequence() {
   ports.save(tools);
 }
 
+std::optional<int> Context::return_pocket(int tool) const {
+  return fatc::return_pocket(tools, config, tool);
+}
+
 void Context::record_in_spindle(int tool) {
   tools.spindle = tool;
-  tools.in_pocket.erase(tool);
+  if (const auto home = tools.home_of(tool)) tools.pockets[*home].holds = false;
   ports.save(tools);
 }
 
-void Context::record_in_pocket(int tool) {
+void Context::record_in_pocket(int tool, int pocket) {
   if (tools.spindle == tool) tools.spindle = 0;
-  tools.in_pocket.insert(tool);
+  if (const auto home = tools.home_of(tool); home && *home != pocket) tools.pockets[*home] = {};
+  tools.pockets[pocket] = {tool, true};
   ports.save(tools);
 }
 
 void Context::record_out_of_machine(int tool) {
   if (tools.spindle == tool) tools.spindle = 0;
-  tools.in_pocket.erase(tool);
+  if (const auto home = tools.home_of(tool)) tools.pockets[*home] = {};
   ports.save(tools);
 }
 
@@ -106,9 +113,10 @@ std::string Context::whereabouts() const {
   if (tools.uncertain) text += " (last known; not certain)";
   if (tools.uncertain && tools.in_progress) {
     text += "; cut off during " + tools.in_progress->sequence + ", " + tools.in_progress->step;
-    if (tools.in_progress->pocket != 0) {
-      text +=
-          "; pocket " + std::to_string(tools.in_progress->pocket) + " may or may not hold its tool";
+    if (const int pocket = tools.in_progress->pocket; pocket != 0) {
+      const int tool = tools.tool_of(pocket);
+      text += "; pocket " + std::to_string(pocket) + " may or may not hold " +
+              (tool != 0 ? "tool " + std::to_string(tool) : std::string("its tool"));
     }
   }
   return text;
@@ -171,13 +179,14 @@ std::string tool_name(int tool) { return "tool " + std::to_string(tool); }
 std::optional<std::string> why_spindle_cannot_be_emptied(const Context& ctx, bool hand_out) {
   const int held = ctx.tools.spindle;
   if (held == 0) return std::nullopt;
-  if (!ctx.config.has_pocket(held)) {
+  const auto pocket = ctx.return_pocket(held);
+  if (!pocket) {
     if (hand_out) return std::nullopt;
-    return tool_name(held) + " in the spindle has no pocket in the config; unload it by hand first";
+    return tool_name(held) + " in the spindle has no pocket to go to; unload it first";
   }
-  if (ctx.tools.in_pocket.count(held) != 0) {
-    return "pocket " + std::to_string(held) + " is recorded full, yet " + tool_name(held) +
-           " is in the spindle; check the rack";
+  if (ctx.tools.holds(*pocket)) {
+    return "pocket " + std::to_string(*pocket) + " is recorded full, yet " + tool_name(held) +
+           " that belongs in it is in the spindle; check the rack";
   }
   return std::nullopt;
 }
@@ -202,27 +211,75 @@ std::optional<std::string> why_not_change(const Context& ctx, int tool) {
   if (auto busy = why_not_busy(ctx)) return busy;
   if (tool == ctx.tools.spindle) return std::nullopt;
   if (auto air = why_no_air(ctx)) return air;
-  const bool manual = !ctx.config.has_pocket(tool);
-  if (tool != 0 && manual && !ctx.config.manual_tools) {
-    return tool_name(tool) + " has no pocket in the config (and manual_tools is off)";
+  const auto home = ctx.tools.home_of(tool);
+  if (tool != 0 && !home && !ctx.config.manual_tools) {
+    return tool_name(tool) + " is in no pocket of the rack (and manual_tools is off)";
   }
-  if (tool != 0 && !manual && ctx.tools.in_pocket.count(tool) == 0) {
-    return tool_name(tool) + " is not in its pocket (it was unloaded); load it first";
+  if (tool != 0 && home && !ctx.tools.holds(*home)) {
+    return tool_name(tool) + " belongs in pocket " + std::to_string(*home) +
+           " but is not in it; load it first";
   }
   return why_spindle_cannot_be_emptied(ctx, ctx.config.manual_tools);
 }
 
-std::optional<std::string> why_not_load(const Context& ctx, int tool) {
+LoadPocket choose_load_pocket(const Context& ctx, int tool, int asked) {
+  // The pocket the spindle's tool goes back to first is not free for this one.
+  const int held = ctx.tools.spindle;
+  const int taken = held != 0 && held != tool ? ctx.return_pocket(held).value_or(0) : 0;
+  auto free_for_tool = [&](int pocket) {
+    const int owner = ctx.tools.tool_of(pocket);
+    return pocket != taken && (owner == 0 || owner == tool);
+  };
+  std::vector<int> free;
+  for (const auto& [number, pocket] : ctx.config.pockets) {
+    if (free_for_tool(number)) free.push_back(number);
+  }
+  const std::string free_words =
+      free.empty() ? "every pocket holds a tool; unload one first" : "free: " + pocket_list(free);
+  if (asked != 0) {
+    if (!ctx.config.has_pocket(asked)) {
+      return {0, "pocket " + std::to_string(asked) + " is not in the config (" + free_words + ")"};
+    }
+    if (!free_for_tool(asked)) {
+      const int owner = asked == taken ? held : ctx.tools.tool_of(asked);
+      return {0,
+              "pocket " + std::to_string(asked) + " is " +
+                  (asked == taken ? "where tool " + std::to_string(owner) + " in the spindle goes"
+                                  : "tool " + std::to_string(owner) + "'s") +
+                  " (" + free_words + ")"};
+    }
+    return {asked, ""};
+  }
+  if (const auto home = ctx.tools.home_of(tool); home && free_for_tool(*home)) return {*home, ""};
+  if (const auto first = ctx.config.first_pocket_of(tool); first && free_for_tool(*first)) {
+    return {*first, ""};
+  }
+  if (free.empty()) return {0, "no pocket for " + tool_name(tool) + ": " + free_words};
+  const Point& loading = ctx.config.loading;
+  const auto nearest = std::min_element(free.begin(), free.end(), [&](int a, int b) {
+    const Point& pa = ctx.config.pockets.at(a).at;
+    const Point& pb = ctx.config.pockets.at(b).at;
+    return std::hypot(pa.x - loading.x, pa.y - loading.y) <
+           std::hypot(pb.x - loading.x, pb.y - loading.y);
+  });
+  return {*nearest, ""};
+}
+
+std::optional<std::string> why_not_load(const Context& ctx, int tool, int pocket) {
   if (ctx.task_busy) return ctx.task_busy;
   if (tool <= 0) return "load needs a tool number above 0, got " + std::to_string(tool);
+  if (pocket < 0)
+    return "pocket-number must be 0 (chosen) or a pocket, got " + std::to_string(pocket);
   if (auto busy = why_not_busy(ctx)) return busy;
   if (!ctx.spindle_at_standstill()) return std::string("the spindle is turning; stop it first");
   if (auto air = why_no_air(ctx)) return air;
-  if (!ctx.config.has_pocket(tool)) return tool_name(tool) + " has no pocket in the config";
-  if (ctx.tools.spindle == tool) return std::nullopt;
-  if (ctx.tools.in_pocket.count(tool) != 0) {
-    return tool_name(tool) + " is already in its pocket; unload it first";
+  if (const auto in_rack = ctx.tools.pocket_holding(tool)) {
+    return tool_name(tool) + " is already in pocket " + std::to_string(*in_rack) +
+           "; unload it first";
   }
+  const LoadPocket chosen = choose_load_pocket(ctx, tool, pocket);
+  if (chosen.pocket == 0) return chosen.why;
+  if (ctx.tools.spindle == tool) return std::nullopt;
   return why_spindle_cannot_be_emptied(ctx, false);
 }
 
@@ -233,8 +290,7 @@ std::optional<std::string> why_not_unload(const Context& ctx, int tool) {
   if (!ctx.spindle_at_standstill()) return std::string("the spindle is turning; stop it first");
   if (auto air = why_no_air(ctx)) return air;
   if (ctx.tools.spindle == tool) return std::nullopt;
-  if (!ctx.config.has_pocket(tool)) return tool_name(tool) + " has no pocket in the config";
-  if (ctx.tools.in_pocket.count(tool) == 0) return tool_name(tool) + " is not in the rack";
+  if (!ctx.tools.pocket_holding(tool)) return tool_name(tool) + " is not in the rack";
   return why_spindle_cannot_be_emptied(ctx, false);
 }
 

@@ -26,6 +26,7 @@ class Context {
   ToolState tools;
 
   int requested_tool = 0;       ///< the tool the current request is about
+  int load_pocket = 0;          ///< the pocket the load flow puts its tool in
   bool machine_ready = false;   ///< latest Ready/NotReady
   bool spindle_stopped = true;  ///< LinuxCNC's spindle is off (`spindle-stopped`)
   SensorReadings sensors;       ///< what the optional sensors read
@@ -70,8 +71,14 @@ class Context {
   void record_progress(const std::string& step, int pocket);
   void end_sequence();
 
+  /// The pocket the tool in the spindle goes back to: its own, or, for a tool
+  /// from outside the rack, its first-start pocket if that is free.
+  std::optional<int> return_pocket(int tool) const;
+
   void record_in_spindle(int tool);
-  void record_in_pocket(int tool);
+  /// `tool` sits in `pocket` now, which is its pocket from now on.
+  void record_in_pocket(int tool, int pocket);
+  /// `tool` left the machine: its pocket is free.
   void record_out_of_machine(int tool);
   void record_length(int tool, double length);
 
@@ -108,8 +115,17 @@ class Context {
 
 /// Why M6 to `tool` cannot start now, or nothing if it can.
 std::optional<std::string> why_not_change(const Context& ctx, int tool);
-/// Why loading tool `tool` by hand cannot start now, or nothing if it can.
-std::optional<std::string> why_not_load(const Context& ctx, int tool);
+/// The pocket a load of `tool` puts it in: `asked` if given, else its own
+/// pocket, else its first-start pocket if free, else the free pocket nearest
+/// to `loading`. 0 and `why` when there is none.
+struct LoadPocket {
+  int pocket = 0;
+  std::string why;
+};
+LoadPocket choose_load_pocket(const Context& ctx, int tool, int asked);
+/// Why loading tool `tool` by hand (into pocket `pocket`, 0: chosen) cannot
+/// start now, or nothing if it can.
+std::optional<std::string> why_not_load(const Context& ctx, int tool, int pocket);
 /// Why unloading tool `tool` cannot start now, or nothing if it can.
 std::optional<std::string> why_not_unload(const Context& ctx, int tool);
 

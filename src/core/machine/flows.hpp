@@ -10,9 +10,6 @@
 
 namespace fatc::machine {
 
-struct Before {};   ///< the return of whatever the spindle held before
-struct PutAway {};  ///< the return of the tool the flow is about
-
 // ================================================================ change (M6)
 /// M6: empty the spindle (its tool back to its pocket, or handed out), then
 /// fetch the requested tool (from its pocket, or handed in), then measure it
@@ -185,7 +182,8 @@ using UnloadFlow = msm::back::state_machine<UnloadFlow_>;
 // ================================================================ requests and refusals
 inline std::string request_name(const ToolChange& e) { return "M6 T" + std::to_string(e.tool); }
 inline std::string request_name(const LoadRequest& e) {
-  return "load of tool " + std::to_string(e.tool);
+  return "load of tool " + std::to_string(e.tool) +
+         (e.pocket != 0 ? " into pocket " + std::to_string(e.pocket) : std::string());
 }
 inline std::string request_name(const UnloadRequest& e) {
   return "unload of tool " + std::to_string(e.tool);
@@ -195,7 +193,7 @@ inline std::optional<std::string> why_not(const Context& c, const ToolChange& e)
   return why_not_change(c, e.tool);
 }
 inline std::optional<std::string> why_not(const Context& c, const LoadRequest& e) {
-  return why_not_load(c, e.tool);
+  return why_not_load(c, e.tool, e.pocket);
 }
 inline std::optional<std::string> why_not(const Context& c, const UnloadRequest& e) {
   return why_not_unload(c, e.tool);
@@ -297,6 +295,9 @@ struct Operating_ : Flow<Operating_> {
     template <class Request, class Fsm, class Source, class Target>
     void operator()(const Request& e, Fsm& fsm, Source&, Target&) const {
       fsm.ctx->requested_tool = e.tool;
+      if constexpr (std::is_same_v<Request, LoadRequest>) {
+        fsm.ctx->load_pocket = choose_load_pocket(*fsm.ctx, e.tool, e.pocket).pocket;
+      }
       fsm.ctx->begin_sequence(request_name(e));
     }
   };

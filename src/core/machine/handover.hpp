@@ -18,13 +18,13 @@ struct InsertLeg_ : Flow<InsertLeg_<How>> {
   void on_entry(const Event& e, Parent& parent) {
     Flow<InsertLeg_<How>>::on_entry(e, parent);
     this->ctx->record_progress(
-        "inserting tool " + std::to_string(this->pocket_tool) + " at loading", 0);
+        "inserting tool " + std::to_string(this->tool) + " at loading", 0);
   }
   struct InsertPrompt {
     template <class Leg>
     std::string operator()(const Context& c, const Leg& leg) const {
       return question<How>(c,
-                           "insert tool " + std::to_string(leg.pocket_tool) + " into the spindle");
+                           "insert tool " + std::to_string(leg.tool) + " into the spindle");
     }
   };
   struct AwaitingTool : How::template Asking<InsertPrompt> {};
@@ -33,7 +33,7 @@ struct InsertLeg_ : Flow<InsertLeg_<How>> {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       fsm.ctx->tell(MessageKind::error,
-                    "tool " + std::to_string(fsm.pocket_tool) +
+                    "tool " + std::to_string(fsm.tool) +
                         " is not in the spindle (tool-present off): " + fsm.ctx->prompt);
     }
   };
@@ -61,7 +61,7 @@ struct RemoveLeg_ : Flow<RemoveLeg_<How>> {
   template <class Event, class Parent>
   void on_entry(const Event& e, Parent& parent) {
     Flow<RemoveLeg_<How>>::on_entry(e, parent);
-    this->ctx->record_progress("removing tool " + std::to_string(this->pocket_tool) + " at loading",
+    this->ctx->record_progress("removing tool " + std::to_string(this->tool) + " at loading",
                                0);
   }
 
@@ -69,7 +69,7 @@ struct RemoveLeg_ : Flow<RemoveLeg_<How>> {
     template <class Leg>
     std::string operator()(const Context& c, const Leg& leg) const {
       return question<How>(c,
-                           "remove tool " + std::to_string(leg.pocket_tool) + " from the spindle");
+                           "remove tool " + std::to_string(leg.tool) + " from the spindle");
     }
   };
   struct AwaitingRemoval : How::template Asking<RemovePrompt> {};
@@ -78,7 +78,7 @@ struct RemoveLeg_ : Flow<RemoveLeg_<How>> {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       fsm.ctx->tell(MessageKind::error,
-                    "tool " + std::to_string(fsm.pocket_tool) +
+                    "tool " + std::to_string(fsm.tool) +
                         " is still in the spindle (tool-present on): " + fsm.ctx->prompt);
     }
   };
@@ -128,7 +128,7 @@ struct HandInLeg_ : Flow<HandInLeg_> {
   template <class Event, class Parent>
   void on_entry(const Event& e, Parent& parent) {
     Flow::on_entry(e, parent);
-    ctx->record_progress("handing tool " + std::to_string(pocket_tool) + " in at loading", 0);
+    ctx->record_progress("handing tool " + std::to_string(tool) + " in at loading", 0);
   }
   using Inserting = InsertLeg<HoldingTheProgram>;
   struct UpToSafeZ : Moving<to::SafeZ> {};

@@ -74,17 +74,27 @@ struct FlushLeg_ : Flow<FlushLeg_> {
 using FlushLeg = msm::back::state_machine<FlushLeg_>;
 
 // ================================================================ return
-/// Puts the tool in the spindle back into its own pocket (docs/sequences.md#return).
-/// `Which` only tells two uses within one flow apart.
+/// The return of whatever the spindle held before: to its own pocket.
+struct Before {
+  static int pocket(const Context& ctx, int tool) { return ctx.return_pocket(tool).value_or(0); }
+};
+/// The return of the tool the load flow is about: to the pocket the load chose.
+struct PutAway {
+  static int pocket(const Context& ctx, int) { return ctx.load_pocket; }
+};
+
+/// Puts the tool in the spindle into a pocket (docs/sequences.md#return):
+/// `Which` says which one (Before: its own; PutAway: the one the load chose).
 template <class Which>
 struct ReturnLeg_ : Flow<ReturnLeg_<Which>> {
   static int served_tool(const Context& ctx) { return ctx.tools.spindle; }
+  static int served_pocket(const Context& ctx, int tool) { return Which::pocket(ctx, tool); }
   template <class Event, class Parent>
   void on_entry(const Event& e, Parent& parent) {
     Flow<ReturnLeg_<Which>>::on_entry(e, parent);
-    const int tool = this->pocket_tool;
-    this->ctx->record_progress(
-        "returning tool " + std::to_string(tool) + " to pocket " + std::to_string(tool), tool);
+    this->ctx->record_progress("returning tool " + std::to_string(this->tool) + " to pocket " +
+                                   std::to_string(this->pocket),
+                               this->pocket);
   }
 
   struct ToSafeZ : Moving<to::SafeZ> {};
@@ -92,13 +102,17 @@ struct ReturnLeg_ : Flow<ReturnLeg_<Which>> {
   struct OverSide : Moving<to::SideAtSafeZ> {};
   struct DownToSide : Moving<to::Side> {};
   struct IntoPocket : Moving<to::SlowlyIntoPocket> {};
+  struct OverPocket : Moving<to::PocketAtSafeZ> {};
+  struct DownToClearance : Moving<to::AboveClearance> {};
+  struct DownIntoPocket : Moving<to::SlowlyDownToPocket> {};
   struct WaitingToOpen : WaitingToOpenChuck<AtPocket> {};
   struct ReleasingTool : Timed {
     template <class Event, class Fsm>
     void on_entry(const Event&, Fsm& fsm) {
       fsm.ctx->open_chuck();
-      fsm.ctx->wait(fsm.ctx->config.chuck_seconds,
-                    "releasing tool " + std::to_string(fsm.pocket_tool) + " into its pocket");
+      fsm.ctx->wait(fsm.ctx->config.chuck_seconds, "releasing tool " + std::to_string(fsm.tool) +
+                                                       " into pocket " +
+                                                       std::to_string(fsm.pocket));
     }
   };
   struct UpToAboveChuck : Moving<to::AboveChuck> {};
@@ -111,15 +125,14 @@ struct ReturnLeg_ : Flow<ReturnLeg_<Which>> {
   struct RecordToolInPocket {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      fsm.ctx->record_in_pocket(fsm.pocket_tool);
+      fsm.ctx->record_in_pocket(fsm.tool, fsm.pocket);
     }
   };
   struct PocketFull {
     template <class Leg>
     static std::string text(const Context&, const Leg& leg) {
-      const std::string t = std::to_string(leg.pocket_tool);
-      return "pocket " + t + " is not empty (" + pocket_pin(leg.pocket_tool) + " on): tool " + t +
-             " cannot go home";
+      return "pocket " + std::to_string(leg.pocket) + " is not empty (" + pocket_pin(leg.pocket) +
+             " on): tool " + std::to_string(leg.tool) + " cannot go in";
     }
   };
   using FaultPocketFull = FaultSaying<PocketFull, false>;
@@ -127,25 +140,37 @@ struct ReturnLeg_ : Flow<ReturnLeg_<Which>> {
   struct FaultToolStillInSpindle {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      const std::string t = std::to_string(fsm.pocket_tool);
-      fsm.ctx->record_in_spindle(fsm.pocket_tool);
-      fsm.ctx->fail_check("tool " + t + " still in the spindle after the chuck opened at pocket " +
-                              t + " and the spindle lifted (tool-present on)",
+      fsm.ctx->record_in_spindle(fsm.tool);
+      fsm.ctx->fail_check("tool " + std::to_string(fsm.tool) +
+                              " still in the spindle after the chuck opened at pocket " +
+                              std::to_string(fsm.pocket) +
+                              " and the spindle lifted (tool-present on)",
                           true);
     }
   };
 
   using initial_state = ToSafeZ;
   // clang-format off
-  using transition_table = boost::mpl::vector<
+  /// Into the pocket: in from its side, or straight down from above (`approach`).
+  using into_the_pocket = boost::mpl::vector<
   //    Start                  Event          Next                  Action                                Guard
   // +----------------------+--------------+---------------------+-------------------------------------+-----------------------+
   Row < ToSafeZ              , InPosition   , ToSafeXY            , none                                , none                  >,
-  Row < ToSafeXY             , InPosition   , OverSide            , none                                , none                  >,
+  Row < ToSafeXY             , InPosition   , OverSide            , none                                , Not<FromAbove>        >,
   Row < OverSide             , InPosition   , DownToSide          , none                                , none                  >,
   Row < DownToSide           , InPosition   , IntoPocket          , none                                , PocketReadsEmpty      >,
   Row < DownToSide           , InPosition   , Halted              , FaultPocketFull                     , Not<PocketReadsEmpty> >,
   Row < IntoPocket           , InPosition   , WaitingToOpen       , none                                , none                  >,
+  Row < ToSafeXY             , InPosition   , OverPocket          , none                                , FromAbove             >,
+  Row < OverPocket           , InPosition   , DownToClearance     , none                                , none                  >,
+  Row < DownToClearance      , InPosition   , DownIntoPocket      , none                                , PocketReadsEmpty      >,
+  Row < DownToClearance      , InPosition   , Halted              , FaultPocketFull                     , Not<PocketReadsEmpty> >,
+  Row < DownIntoPocket       , InPosition   , WaitingToOpen       , none                                , none                  >
+  >;
+  /// The tool let go in the pocket, and the spindle away.
+  using release_and_away = boost::mpl::vector<
+  //    Start                  Event          Next                  Action                                Guard
+  // +----------------------+--------------+---------------------+-------------------------------------+-----------------------+
   Row < WaitingToOpen        , SensorReport , ReleasingTool       , none                                , ChuckMayOpen          >,
   Row < WaitingToOpen        , TimerElapsed , Halted              , FaultChuckMayNotOpen<AtPocket>      , none                  >,
   Row < ReleasingTool        , TimerElapsed , CheckingDrawbarOpen , none                                , none                  >,
@@ -161,6 +186,7 @@ struct ReturnLeg_ : Flow<ReturnLeg_<Which>> {
   Row < BackToSafeXY         , InPosition   , Finished            , none                                , none                  >
   >;
   // clang-format on
+  using transition_table = boost::mpl::joint_view<into_the_pocket, release_and_away>;
 };
 template <class Which>
 using ReturnLeg = msm::back::state_machine<ReturnLeg_<Which>>;
@@ -176,9 +202,8 @@ struct RetrieveLeg_ : Flow<RetrieveLeg_> {
   void on_entry(const Event& e, Parent& parent) {
     Flow::on_entry(e, parent);
     retries = 0;
-    ctx->record_progress("fetching tool " + std::to_string(pocket_tool) + " from pocket " +
-                             std::to_string(pocket_tool),
-                         pocket_tool);
+    ctx->record_progress(
+        "fetching tool " + std::to_string(tool) + " from pocket " + std::to_string(pocket), pocket);
   }
   struct ToSafeZ : Moving<to::SafeZ> {};
   struct ToSafeXY : Moving<to::SafeXY> {};
@@ -189,12 +214,12 @@ struct RetrieveLeg_ : Flow<RetrieveLeg_> {
   struct OpeningChuck : Timed {
     template <class Event, class Fsm>
     void on_entry(const Event&, Fsm& fsm) {
-      const std::string t = std::to_string(fsm.pocket_tool);
+      const std::string p = std::to_string(fsm.pocket);
       fsm.ctx->open_chuck();
-      fsm.ctx->wait(fsm.ctx->config.chuck_seconds, fsm.retries == 0
-                                                       ? "opening the chuck above pocket " + t
-                                                       : "opening the chuck again at pocket " + t +
-                                                             " to grip tool " + t + " once more");
+      fsm.ctx->wait(fsm.ctx->config.chuck_seconds,
+                    fsm.retries == 0 ? "opening the chuck above pocket " + p
+                                     : "opening the chuck again at pocket " + p + " to grip tool " +
+                                           std::to_string(fsm.tool) + " once more");
     }
   };
   struct SlowlyDownToPocket : Moving<to::SlowlyDownToPocket> {};
@@ -203,8 +228,7 @@ struct RetrieveLeg_ : Flow<RetrieveLeg_> {
     template <class Event, class Fsm>
     void on_entry(const Event&, Fsm& fsm) {
       fsm.ctx->close_chuck();
-      fsm.ctx->wait(fsm.ctx->config.chuck_seconds,
-                    "gripping tool " + std::to_string(fsm.pocket_tool));
+      fsm.ctx->wait(fsm.ctx->config.chuck_seconds, "gripping tool " + std::to_string(fsm.tool));
     }
   };
   /// The drawbar reads closed and tool-present sees the tool.
@@ -219,6 +243,7 @@ struct RetrieveLeg_ : Flow<RetrieveLeg_> {
   };
   struct CheckingGrip : AwaitingSensor<Gripped> {};
   struct SlowlyOutToSide : Moving<to::SlowlyToSide> {};
+  struct SlowlyUpOut : Moving<to::SlowlyUpToClearance> {};
   struct UpToSafeZ : Moving<to::SafeZOverPocket> {};
   struct BackToSafeXY : Moving<to::SafeXY> {};
 
@@ -238,11 +263,10 @@ struct RetrieveLeg_ : Flow<RetrieveLeg_> {
   struct CannotFetch {
     template <class Leg>
     static std::string text(const Context& c, const Leg& leg) {
-      const int tool = leg.pocket_tool;
-      const std::string t = std::to_string(tool);
-      if (!c.pocket_reads(tool, true)) {
-        return "pocket " + t + " reads empty (" + pocket_pin(tool) + " off): tool " + t +
-               " cannot be fetched";
+      const std::string t = std::to_string(leg.tool);
+      if (!c.pocket_reads(leg.pocket, true)) {
+        return "pocket " + std::to_string(leg.pocket) + " reads empty (" + pocket_pin(leg.pocket) +
+               " off): tool " + t + " cannot be fetched";
       }
       return "the spindle is not empty (tool-present on): tool " + t + " cannot be fetched";
     }
@@ -252,17 +276,17 @@ struct RetrieveLeg_ : Flow<RetrieveLeg_> {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       ++fsm.retries;
-      const std::string tool = std::to_string(fsm.pocket_tool);
-      fsm.ctx->tell(MessageKind::info, "tool " + tool +
+      fsm.ctx->tell(MessageKind::info, "tool " + std::to_string(fsm.tool) +
                                            " not in the spindle after the chuck closed at pocket " +
-                                           tool + " (tool-present off); gripping it once more");
+                                           std::to_string(fsm.pocket) +
+                                           " (tool-present off); gripping it once more");
     }
   };
   struct NotGripped {
     template <class Leg>
     static std::string text(const Context&, const Leg& leg) {
-      const std::string t = std::to_string(leg.pocket_tool);
-      return "tool " + t + " not in the spindle after the chuck closed at pocket " + t +
+      return "tool " + std::to_string(leg.tool) +
+             " not in the spindle after the chuck closed at pocket " + std::to_string(leg.pocket) +
              " (tool-present off, retried once)";
     }
   };
@@ -307,11 +331,13 @@ struct RetrieveLeg_ : Flow<RetrieveLeg_> {
   // +----------------------------+--------------+--------------------+--------------------------------------+---------------------------------------+
   Row < Settling                   , TimerElapsed , GrippingTool       , none                                 , none                                  >,
   Row < GrippingTool               , TimerElapsed , CheckingGrip       , none                                 , none                                  >,
-  Row < CheckingGrip               , SensorReport , SlowlyOutToSide    , RecordToolInSpindle                  , Gripped                               >,
+  Row < CheckingGrip               , SensorReport , SlowlyOutToSide    , RecordToolInSpindle                  , And<Gripped, Not<FromAbove>>          >,
+  Row < CheckingGrip               , SensorReport , SlowlyUpOut        , RecordToolInSpindle                  , And<Gripped, FromAbove>               >,
   Row < CheckingGrip               , TimerElapsed , Halted             , FaultDrawbarStayedOpen<AtPocket>     , Not<DrawbarClosed>                    >,
   Row < CheckingGrip               , TimerElapsed , WaitingToOpen      , SayGrippingAgain                     , And<DrawbarClosed, Not<Retried>>      >,
   Row < CheckingGrip               , TimerElapsed , Halted             , FaultToolNotGripped                  , And<DrawbarClosed, Retried>           >,
   Row < SlowlyOutToSide            , InPosition   , UpToSafeZ          , none                                 , none                                  >,
+  Row < SlowlyUpOut                , InPosition   , UpToSafeZ          , none                                 , none                                  >,
   Row < UpToSafeZ                  , InPosition   , BackToSafeXY       , none                                 , none                                  >,
   Row < BackToSafeXY               , InPosition   , Finished           , none                                 , none                                  >
   >;
@@ -354,7 +380,7 @@ struct ProbingLeg_ : Flow<ProbingLeg_<Run>> {
   template <class Event, class Parent>
   void on_entry(const Event& e, Parent& parent) {
     Flow<ProbingLeg_<Run>>::on_entry(e, parent);
-    this->ctx->record_progress("measuring tool " + std::to_string(this->pocket_tool), 0);
+    this->ctx->record_progress("measuring tool " + std::to_string(this->tool), 0);
   }
 
   struct NotMeasured : msmf::exit_pseudo_state<LegDone> {};
@@ -378,7 +404,7 @@ struct ProbingLeg_ : Flow<ProbingLeg_<Run>> {
     template <class Fsm, class Source, class Target>
     bool operator()(const ProbeResult& e, Fsm& fsm, Source&, Target&) const {
       const Context& c = *fsm.ctx;
-      const auto stored = c.tools.lengths.find(fsm.pocket_tool);
+      const auto stored = c.tools.lengths.find(fsm.tool);
       if (!Run::checks_window || stored == c.tools.lengths.end()) return false;
       const double expected = stored->second + c.config.probe_length_compensation_offset;
       return std::abs(e.z - expected) > c.config.window();
@@ -387,7 +413,7 @@ struct ProbingLeg_ : Flow<ProbingLeg_<Run>> {
   struct WritesLength {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      return Run::writes_length(*fsm.ctx, fsm.pocket_tool);
+      return Run::writes_length(*fsm.ctx, fsm.tool);
     }
   };
   struct RememberFirstTouch {
@@ -407,14 +433,13 @@ struct ProbingLeg_ : Flow<ProbingLeg_<Run>> {
     template <class Fsm, class Source, class Target>
     void operator()(const ProbeResult& e, Fsm& fsm, Source&, Target&) const {
       fsm.latched_z = e.z;
-      fsm.ctx->record_length(fsm.pocket_tool,
-                             e.z - fsm.ctx->config.probe_length_compensation_offset);
+      fsm.ctx->record_length(fsm.tool, e.z - fsm.ctx->config.probe_length_compensation_offset);
     }
   };
   struct SayNoTouch {
     template <class Fsm, class Source, class Target>
     void operator()(const ProbeResult& e, Fsm& fsm, Source&, Target&) const {
-      const std::string tool = "tool " + std::to_string(fsm.pocket_tool);
+      const std::string tool = "tool " + std::to_string(fsm.tool);
       fsm.ctx->probe_problem = e.tripped_before
                                    ? "the touch-off sensor was already tripped"
                                    : tool + " did not touch the sensor before probe_limit";
@@ -428,11 +453,11 @@ struct ProbingLeg_ : Flow<ProbingLeg_<Run>> {
     template <class Fsm, class Source, class Target>
     void operator()(const ProbeResult& e, Fsm& fsm, Source&, Target&) const {
       Context& c = *fsm.ctx;
-      const double stored = c.tools.lengths.at(fsm.pocket_tool);
+      const double stored = c.tools.lengths.at(fsm.tool);
       const double expected = stored + c.config.probe_length_compensation_offset;
       const bool early = e.z > expected;
       c.probe_problem =
-          "tool " + std::to_string(fsm.pocket_tool) + " touched the sensor at Z " +
+          "tool " + std::to_string(fsm.tool) + " touched the sensor at Z " +
           format_length(c.config, e.z) + ", " + format_length(c.config, std::abs(e.z - expected)) +
           (early ? " too early" : " too late") + ": its stored length " +
           format_length(c.config, stored) + " puts the touch at Z " +
@@ -445,7 +470,7 @@ struct ProbingLeg_ : Flow<ProbingLeg_<Run>> {
   struct SayCancelled {
     template <class Fsm, class Source, class Target>
     void operator()(const OperatorCancel&, Fsm& fsm, Source&, Target&) const {
-      fsm.ctx->tell(MessageKind::info, "probe of tool " + std::to_string(fsm.pocket_tool) +
+      fsm.ctx->tell(MessageKind::info, "probe of tool " + std::to_string(fsm.tool) +
                                            " cancelled by the operator; nothing written");
     }
   };
@@ -491,37 +516,34 @@ struct MeasureLeg_ : Flow<MeasureLeg_> {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       const Context& c = *fsm.ctx;
-      return std::abs(*c.last_length - c.tools.lengths.at(fsm.pocket_tool)) >
-             c.config.check_tolerance();
+      return std::abs(*c.last_length - c.tools.lengths.at(fsm.tool)) > c.config.check_tolerance();
     }
   };
   struct SayMeasured {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       const Context& c = *fsm.ctx;
-      fsm.ctx->tell(MessageKind::info,
-                    "tool " + std::to_string(fsm.pocket_tool) + " measures " +
-                        format_length(c.config, *c.last_length) + ", stored " +
-                        format_length(c.config, c.tools.lengths.at(fsm.pocket_tool)));
+      fsm.ctx->tell(MessageKind::info, "tool " + std::to_string(fsm.tool) + " measures " +
+                                           format_length(c.config, *c.last_length) + ", stored " +
+                                           format_length(c.config, c.tools.lengths.at(fsm.tool)));
     }
   };
   struct SayBrokenOrPulledOut {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       Context& c = *fsm.ctx;
-      c.fault_reason = "tool " + std::to_string(fsm.pocket_tool) + " measures " +
-                       format_length(c.config, *c.last_length) + " but its stored length is " +
-                       format_length(c.config, c.tools.lengths.at(fsm.pocket_tool)) +
-                       " (probe_check_tolerance " +
-                       format_length(c.config, c.config.check_tolerance()) +
-                       "): tool broken or pulled out?";
+      c.fault_reason =
+          "tool " + std::to_string(fsm.tool) + " measures " +
+          format_length(c.config, *c.last_length) + " but its stored length is " +
+          format_length(c.config, c.tools.lengths.at(fsm.tool)) + " (probe_check_tolerance " +
+          format_length(c.config, c.config.check_tolerance()) + "): tool broken or pulled out?";
     }
   };
   struct SayNotMeasured {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       fsm.ctx->fault_reason =
-          "tool " + std::to_string(fsm.pocket_tool) +
+          "tool " + std::to_string(fsm.tool) +
           " could not be measured after the change (probe_after_change): " + fsm.ctx->probe_problem;
     }
   };

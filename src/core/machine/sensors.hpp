@@ -96,7 +96,7 @@ struct SpindleReadsEmpty : SensorGuard<SpindleReadsEmpty> {
 struct PocketReadsEmpty : SensorGuard<PocketReadsEmpty> {
   template <class Leg>
   static bool holds(const Context& c, const Leg& leg) {
-    return c.pocket_reads(leg.pocket_tool, false);
+    return c.pocket_reads(leg.pocket, false);
   }
 };
 /// The pocket of the leg's tool reads occupied and the spindle empty: the
@@ -104,7 +104,7 @@ struct PocketReadsEmpty : SensorGuard<PocketReadsEmpty> {
 struct ReadyToFetch : SensorGuard<ReadyToFetch> {
   template <class Leg>
   static bool holds(const Context& c, const Leg& leg) {
-    return c.pocket_reads(leg.pocket_tool, true) && c.spindle_reads(false);
+    return c.pocket_reads(leg.pocket, true) && c.spindle_reads(false);
   }
 };
 /// The wired sensors agree with the tool state.
