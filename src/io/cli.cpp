@@ -2,8 +2,10 @@
 
 #include <sys/stat.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <ostream>
 #include <set>
@@ -12,6 +14,7 @@
 #include "core/changer.hpp"
 #include "core/geometry.hpp"
 #include "core/quote.hpp"
+#include "core/sequence_check.hpp"
 #include "core/simulator.hpp"
 #include "files.hpp"
 #include "ini.hpp"
@@ -33,6 +36,11 @@ const char* const kUsage =
     "                       [--ini FILE] [--subroutine-path DIR:DIR]\n"
     "                                     read a G-code program without running it: its tool\n"
     "                                     changes, the rack, lengths, problems, change time\n"
+    "       fixed_atc_probe --teach pocket:N|loading|safe|sensor --at X,Y,Z --config FILE\n"
+    "                       [--ini FILE]\n"
+    "                                     write a machine position (G53) into config.json,\n"
+    "                                     checked as --check checks; the old file kept as\n"
+    "                                     FILE.bak (sensor: X and Y only)\n"
     "       fixed_atc_probe --dot         the state machine as Graphviz\n";
 
 namespace {
@@ -45,10 +53,37 @@ std::optional<int> tool_argument(const std::string& text) {
   return std::stoi(text);
 }
 
+/// "X,Y,Z": three numbers, nothing else.
+std::optional<Point> position_argument(const std::string& text) {
+  double values[3];
+  std::size_t at = 0;
+  for (int axis = 0; axis < 3; ++axis) {
+    const std::size_t end = axis < 2 ? text.find(',', at) : text.size();
+    if (end == std::string::npos) return std::nullopt;
+    const std::string part = text.substr(at, end - at);
+    if (part.empty() || std::isspace(static_cast<unsigned char>(part[0]))) return std::nullopt;
+    char* stop = nullptr;
+    values[axis] = std::strtod(part.c_str(), &stop);
+    if (stop != part.c_str() + part.size()) return std::nullopt;
+    at = end + 1;
+  }
+  return Point{values[0], values[1], values[2]};
+}
+
 std::string format_point(double x, double y, double z) {
   char buffer[96];
   std::snprintf(buffer, sizeof buffer, "%10.3f %10.3f %10.3f", x, y, z);
   return buffer;
+}
+
+/// The INI's soft limits in `units`; nullopt and one line on `err` when it cannot be read.
+std::optional<SoftLimits> read_limits(const std::string& ini_path, Units units, std::ostream& err) {
+  std::string error;
+  const auto ini = IniFile::read(ini_path, error);
+  std::optional<SoftLimits> limits;
+  if (ini) limits = soft_limits(*ini, units, error);
+  if (!limits) err << error << "\n";
+  return limits;
 }
 
 struct Loaded {
@@ -65,16 +100,10 @@ Loaded load(const Options& options, std::ostream& err) {
   loaded.problems += static_cast<int>(result.errors.size());
   loaded.config = result.config;
   if (options.ini_path) {
-    std::string error;
-    const auto ini = IniFile::read(*options.ini_path, error);
     // Without a valid config the INI is still checked, its numbers as in mm.
-    if (ini) {
-      loaded.limits = soft_limits(*ini, loaded.config ? loaded.config->units : Units::mm, error);
-    }
-    if (!loaded.limits) {
-      err << error << "\n";
-      ++loaded.problems;
-    }
+    loaded.limits =
+        read_limits(*options.ini_path, loaded.config ? loaded.config->units : Units::mm, err);
+    if (!loaded.limits) ++loaded.problems;
   }
   return loaded;
 }
@@ -109,15 +138,9 @@ int check_state(const Options& options, const std::optional<Config>& config, std
   return 0;
 }
 
-/// Prints each violation of one planned sequence; returns how many.
-int report(const std::string& name, const Config& config, const Simulator& sim,
-           const std::optional<SoftLimits>& limits, std::ostream& out) {
-  const auto steps = sim.steps();
-  const auto violations = check_steps(config, steps, limits);
-  for (const auto& v : violations) {
-    out << "  " << name << ", step " << v.step + 1 << " (" << step_kind_name(steps[v.step].kind)
-        << " to " << steps[v.step].label << "): " << v.what << "\n";
-  }
+/// Prints each violation, one indented line each; returns how many.
+int report(const std::vector<SequenceViolation>& violations, std::ostream& out) {
+  for (const auto& v : violations) out << "  " << describe(v) << "\n";
   return static_cast<int>(violations.size());
 }
 
@@ -178,21 +201,9 @@ int check(const Options& options, std::ostream& out, std::ostream& err) {
   }
   out << "\nchecking every sequence against the rack keep-out"
       << (loaded.limits ? " and the soft limits" : "") << ":\n";
-  int violations = 0;
-  int sequences = 0;
-  for (const auto& entry : config.pockets) {
-    const int tool = entry.first;
-    const std::string t = std::to_string(tool);
-    violations += report("M6 T" + t + " from empty", config,
-                         plan_change(config, 0, tool, config.probe_limit.z), loaded.limits, out);
-    violations += report("M6 T0 from T" + t, config,
-                         plan_change(config, tool, 0, config.probe_limit.z), loaded.limits, out);
-    violations += report("load T" + t, config, plan_load(config, tool, 0, config.probe_limit.z),
-                         loaded.limits, out);
-    violations += report("unload T" + t, config, plan_unload(config, tool, 0), loaded.limits, out);
-    sequences += 4;
-  }
-  out << sequences << " sequences checked, " << violations << " violation"
+  const SequencesChecked checked = check_sequences(config, loaded.limits);
+  const int violations = report(checked.violations, out);
+  out << checked.sequences << " sequences checked, " << violations << " violation"
       << (violations == 1 ? "" : "s") << "\n";
   return violations == 0 && problems == 0 ? 0 : 1;
 }
@@ -222,7 +233,7 @@ int plan(const Options& options, std::ostream& out, std::ostream& err) {
     std::snprintf(prefix, sizeof prefix, "%3d  ", ++number);
     out << prefix << describe(record) << "\n";
   }
-  const int violations = report("M6", config, sim, loaded.limits, out);
+  const int violations = report(check_sequence("M6", config, sim, loaded.limits), out);
   return refused || violations != 0 ? 1 : 0;
 }
 
@@ -236,9 +247,9 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& arg = args[i];
     static const std::map<std::string, Mode> modes = {
-        {"--check", Mode::check},     {"--plan", Mode::plan}, {"--dot", Mode::dot},
-        {"--confirm", Mode::confirm}, {"--help", Mode::help}, {"-h", Mode::help},
-        {"--lint", Mode::lint}};
+        {"--check", Mode::check},     {"--plan", Mode::plan},  {"--dot", Mode::dot},
+        {"--confirm", Mode::confirm}, {"--help", Mode::help},  {"-h", Mode::help},
+        {"--lint", Mode::lint},       {"--teach", Mode::teach}};
     if (const auto mode = modes.find(arg); mode != modes.end()) {
       if (mode_flag) {
         error = *mode_flag == arg ? arg + " given twice"
@@ -247,10 +258,11 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
       }
       mode_flag = arg;
       options.mode = mode->second;
-      if (arg != "--lint") continue;  // --lint takes the program as its value
+      // --lint takes the program as its value, --teach the target.
+      if (arg != "--lint" && arg != "--teach") continue;
     } else if (arg != "--config" && arg != "--state" && arg != "--ini" && arg != "--from" &&
                arg != "--to" && arg != "--spindle" && arg != "--pocket" && arg != "--tool-table" &&
-               arg != "--subroutine-path") {
+               arg != "--subroutine-path" && arg != "--at") {
       error = "unknown argument " + quote(arg);
       return std::nullopt;
     }
@@ -265,7 +277,8 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
     }
     given[arg] = text;
     const bool tool = arg == "--from" || arg == "--to" || arg == "--spindle";
-    if (text.empty()) {
+    // --teach and --at say what they expect themselves.
+    if (text.empty() && arg != "--teach" && arg != "--at") {
       error = arg + ": expected " + (tool ? "a tool number" : "a file path") + ", got nothing";
       return std::nullopt;
     }
@@ -298,6 +311,18 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
       options.tool_table_path = text;
     } else if (arg == "--subroutine-path") {
       options.subroutine_path = text;
+    } else if (arg == "--teach") {
+      options.teach_target = parse_teach_target(text);
+      if (!options.teach_target) {
+        error = "--teach: expected pocket:N, loading, safe or sensor, got " + quote(text);
+        return std::nullopt;
+      }
+    } else if (arg == "--at") {
+      options.teach_at = position_argument(text);
+      if (!options.teach_at) {
+        error = "--at: expected X,Y,Z (three numbers, machine coordinates), got " + quote(text);
+        return std::nullopt;
+      }
     } else {
       options.ini_path = text;
     }
@@ -306,11 +331,13 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
   const std::string mode_name =
       mode_flag ? *mode_flag : "the component (no --check, --plan, --dot)";
   const std::map<std::string, std::set<Mode>> used_by = {
-      {"--config", {Mode::component, Mode::check, Mode::plan, Mode::confirm, Mode::lint}},
+      {"--config",
+       {Mode::component, Mode::check, Mode::plan, Mode::confirm, Mode::lint, Mode::teach}},
       {"--state", {Mode::component, Mode::check, Mode::confirm, Mode::lint}},
       {"--spindle", {Mode::confirm}},
       {"--pocket", {Mode::confirm}},
-      {"--ini", {Mode::check, Mode::plan, Mode::lint}},
+      {"--ini", {Mode::check, Mode::plan, Mode::lint, Mode::teach}},
+      {"--at", {Mode::teach}},
       {"--tool-table", {Mode::lint}},
       {"--subroutine-path", {Mode::lint}},
       {"--from", {Mode::plan}},
@@ -328,6 +355,10 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
   }
   if (options.mode == Mode::confirm && !options.spindle_tool) {
     error = "--confirm needs --spindle N (0: the spindle is empty)";
+    return std::nullopt;
+  }
+  if (options.mode == Mode::teach && !options.teach_at) {
+    error = "--teach needs --at X,Y,Z (the machine position, G53)";
     return std::nullopt;
   }
   if (options.mode == Mode::plan && (!options.from_tool || !options.to_tool)) {
@@ -378,6 +409,35 @@ int confirm(const Options& options, std::ostream& out, std::ostream& err) {
   return 0;
 }
 
+/// --teach: the machine position into config.json, the file as it was kept as PATH.bak.
+int teach_position(const Options& options, std::ostream& out, std::ostream& err) {
+  std::string error;
+  const auto text = read_small_file(options.config_path, error);
+  if (!text) {
+    err << error << "\n";
+    return 2;
+  }
+  std::optional<SoftLimits> limits;
+  if (options.ini_path) {
+    limits = read_limits(*options.ini_path, declared_units(*text), err);
+    if (!limits) return 2;
+  }
+  const TeachResult taught = teach(*text, *options.teach_target, *options.teach_at, limits);
+  if (!taught.text) {
+    err << shown_path(options.config_path) << ": " << taught.error << "\n";
+    return 1;
+  }
+  try {
+    save_config_file(options.config_path, *text, *taught.text);
+  } catch (const std::exception& e) {
+    err << e.what() << "\n";
+    return 2;
+  }
+  out << taught.change << "\n"
+      << "written (previous file kept as " << shown_path(options.config_path + ".bak") << ")\n";
+  return 0;
+}
+
 }  // namespace
 
 int run_tool_mode(const Options& options, std::ostream& out, std::ostream& err) {
@@ -393,6 +453,8 @@ int run_tool_mode(const Options& options, std::ostream& out, std::ostream& err) 
       return confirm(options, out, err);
     case Options::Mode::lint:
       return lint(options, out, err);
+    case Options::Mode::teach:
+      return teach_position(options, out, err);
     case Options::Mode::help:
       out << kUsage;
       return 0;

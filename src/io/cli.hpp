@@ -5,11 +5,15 @@
 #include <string>
 #include <vector>
 
+#include "core/point.hpp"
+#include "core/teach.hpp"
+
 namespace fatc::io {
 
 /// The component's command line.
 struct Options {
-  enum class Mode { component, check, plan, dot, help, confirm, lint } mode = Mode::component;
+  enum class Mode { component, check, plan, dot, help, confirm, lint, teach };
+  Mode mode = Mode::component;
   std::string config_path;
   std::string state_path;  ///< component, --check, --lint: CONFIG.state unless --state is given
   std::optional<std::string> ini_path;
@@ -20,6 +24,8 @@ struct Options {
   std::string program_path;                    ///< --lint PROGRAM
   std::optional<std::string> tool_table_path;  ///< --lint: LinuxCNC's tool table
   std::optional<std::string> subroutine_path;  ///< --lint: folders of subroutines, ':' between
+  std::optional<TeachTarget> teach_target;     ///< --teach TARGET
+  std::optional<Point> teach_at;               ///< --teach: --at X,Y,Z, machine coordinates
 };
 
 /// Parses argv; nullopt and one line in `error` on a usage mistake: an
@@ -33,6 +39,8 @@ extern const char* const kUsage;
 /// --check: 0 when config, state and INI are valid and no planned move breaks
 /// the keep-out or the soft limits, 1 otherwise. --plan: 0 printed, 1 refused or invalid. --dot: 0.
 /// --lint: 0 clean, 1 problems found in the program, 2 an input it cannot read (see lint.hpp).
+/// --teach: 0 written, 1 refused (nothing written), 2 the config or INI cannot be read or the
+/// config cannot be written.
 int run_tool_mode(const Options& options, std::ostream& out, std::ostream& err);
 
 }  // namespace fatc::io

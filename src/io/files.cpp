@@ -186,7 +186,15 @@ ToolStateResult load_state_file(const std::string& path, const Config& config) {
   return result;
 }
 
-void save_state_file(const std::string& path, const ToolState& state) {
+namespace {
+
+/// Replaces PATH with `text` crash-safe: a fresh temporary file next to it
+/// (PATH.tmp, whatever a killed writer left there removed first, never
+/// followed if a symlink), fsync, rename over PATH, fsync of the folder. A
+/// reader sees the old file or the new one, never a part. `mode`: the new
+/// file's permissions, else 0644 less the umask.
+void replace_file(const std::string& path, const std::string& text,
+                  std::optional<mode_t> mode = std::nullopt) {
   const std::string temporary = path + ".tmp";
   // A writer killed between create and rename leaves its temporary file: it
   // is removed, not reused (it may be a symlink someone put there).
@@ -198,7 +206,9 @@ void save_state_file(const std::string& path, const ToolState& state) {
       ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
   if (fd < 0) throw std::runtime_error(shown_path(temporary) + ": cannot create " + why(errno));
   try {
-    write_all(fd, to_json(state), temporary);
+    if (mode && ::fchmod(fd, *mode) != 0)
+      throw std::runtime_error(shown_path(temporary) + ": cannot set its mode " + why(errno));
+    write_all(fd, text, temporary);
     if (::fsync(fd) != 0)
       throw std::runtime_error(shown_path(temporary) + ": fsync failed " + why(errno));
   } catch (...) {
@@ -212,12 +222,40 @@ void save_state_file(const std::string& path, const ToolState& state) {
     ::unlink(temporary.c_str());
     throw std::runtime_error(shown_path(path) + ": cannot replace " + reason);
   }
-  // The rename itself must reach the disk before we call the state saved.
+  // The rename itself must reach the disk before we call the file saved.
   const int folder = ::open(folder_of(path).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   if (folder >= 0) {
     ::fsync(folder);
     ::close(folder);
   }
+}
+
+}  // namespace
+
+void save_state_file(const std::string& path, const ToolState& state) {
+  replace_file(path, to_json(state));
+}
+
+void save_config_file(const std::string& path, const std::string& previous,
+                      const std::string& text) {
+  struct stat st;
+  if (::lstat(path.c_str(), &st) != 0) {
+    throw std::runtime_error(shown_path(path) + ": cannot write " + why(errno));
+  }
+  if (S_ISLNK(st.st_mode)) {
+    std::string target(4096, '\0');
+    const ssize_t n = ::readlink(path.c_str(), &target[0], target.size());
+    target.resize(n > 0 ? static_cast<std::size_t>(n) : 0);
+    throw std::runtime_error(shown_path(path) + ": a symbolic link (to " + shown_path(target) +
+                             "): not written, the link would become a file of its own; " +
+                             "teach the file it points to");
+  }
+  if (std::string refused = refusal(path, st, false); !refused.empty()) {
+    throw std::runtime_error(refused);
+  }
+  const mode_t mode = st.st_mode & 07777;
+  replace_file(path + ".bak", previous, mode);
+  replace_file(path, text, mode);
 }
 
 }  // namespace fatc::io

@@ -45,4 +45,13 @@ ToolStateResult load_state_file(const std::string& path);
 /// the file on failure.
 void save_state_file(const std::string& path, const ToolState& state);
 
+/// Writes a taught config.json: first `previous` (the text it was read as)
+/// to PATH.bak, replacing an older backup, then `text` to PATH, each
+/// crash-safe as save_state_file writes, both with PATH's permissions. A
+/// PATH that is a symbolic link is refused before anything is written: the
+/// rename would turn the link into a file of its own and leave its target
+/// as it was. Throws std::runtime_error naming the file on failure.
+void save_config_file(const std::string& path, const std::string& previous,
+                      const std::string& text);
+
 }  // namespace fatc::io
