@@ -33,14 +33,16 @@ int fail(const std::string& message) {
 }
 
 int run_component(const fatc::io::Options& options) {
-  const auto config = fatc::io::load_config_file(options.config_path);
-  if (!config.config) {
-    for (const auto& error : config.errors) std::cerr << "fixed_atc_probe: " << error << "\n";
+  const auto loaded = fatc::io::load_config_file(options.config_path);
+  if (!loaded.config) {
+    for (const auto& error : loaded.errors) std::cerr << "fixed_atc_probe: " << error << "\n";
     return 1;
   }
+  // Teaching replaces it in place while the changer is idle.
+  fatc::Config config = *loaded.config;
   const std::string state_path =
       options.state_path.empty() ? options.config_path + ".state" : options.state_path;
-  const auto tools = fatc::io::load_state_file(state_path, *config.config);
+  const auto tools = fatc::io::load_state_file(state_path, config);
   if (!tools.state) return fail(tools.error);
   if (::access(state_path.c_str(), F_OK) != 0) {
     // A first start writes what it assumes (every pocket full, the spindle
@@ -62,7 +64,7 @@ int run_component(const fatc::io::Options& options) {
     std::string error;
     const auto ini = fatc::io::IniFile::read(ini_path, error);
     if (!ini) return fail(error);
-    limits = fatc::io::soft_limits(*ini, config.config->units, error);
+    limits = fatc::io::soft_limits(*ini, config.units, error);
     if (!limits) return fail(error);
     nml = fatc::linuxcnc::NmlLink::open(fatc::linuxcnc::nml_file_of(ini_path), error);
     if (!nml) return fail(error);
@@ -72,7 +74,7 @@ int run_component(const fatc::io::Options& options) {
   fatc::linuxcnc::HalPins* pins = nullptr;
   try {
     std::vector<int> pockets;
-    for (const auto& pocket : config.config->pockets) pockets.push_back(pocket.first);
+    for (const auto& pocket : config.pockets) pockets.push_back(pocket.first);
     pins = fatc::linuxcnc::create_pins("fixed_atc_probe", id, pockets);
   } catch (const std::exception& e) {
     if (id >= 0) hal_exit(id);
@@ -81,8 +83,9 @@ int run_component(const fatc::io::Options& options) {
   std::signal(SIGTERM, request_stop);
   std::signal(SIGINT, request_stop);
 
-  fatc::linuxcnc::Component component(pins, *config.config, state_path, nml.get());
-  fatc::Changer changer(*config.config, component, *tools.state);
+  fatc::linuxcnc::Component component(pins, config, options.config_path, state_path, nml.get());
+  component.soft_limits(limits);
+  fatc::Changer changer(config, component, *tools.state);
   changer.soft_limits(limits);
   component.attach(&changer);
   auto interpreter_idle = [&]() -> std::optional<bool> {

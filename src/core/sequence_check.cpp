@@ -27,13 +27,29 @@ SequencesChecked check_sequences(const Config& config, const std::optional<SoftL
                               std::make_move_iterator(found.end()));
     ++checked.sequences;
   };
-  for (const auto& entry : config.pockets) {
-    const int tool = entry.first;
-    const std::string t = std::to_string(tool);
-    add("M6 T" + t + " from empty", plan_change(config, 0, tool, config.probe_limit.z));
-    add("M6 T0 from T" + t, plan_change(config, tool, 0, config.probe_limit.z));
-    add("load T" + t, plan_load(config, tool, 0, config.probe_limit.z));
-    add("unload T" + t, plan_unload(config, tool, 0));
+  for (const auto& [number, pocket] : config.pockets) {
+    // The pocket with a tool in it: its first-start tool, or one no pocket
+    // starts with when it starts empty.
+    int tool = pocket.first_tool;
+    if (tool == 0) {
+      tool = 1;
+      while (config.first_pocket_of(tool)) ++tool;
+    }
+    ToolState full = ToolState::fresh(config);
+    full.pockets[number] = {tool, true};
+    ToolState in_spindle = full;
+    in_spindle.spindle = tool;
+    in_spindle.pockets[number].holds = false;
+    ToolState free = full;
+    free.pockets[number] = {};
+    const std::string t = "T" + std::to_string(tool);
+    const std::string at = " (pocket " + std::to_string(number) + ")";
+    const double z = config.probe_limit.z;
+    add("M6 " + t + " from empty" + at, plan_change(config, full, tool, z));
+    add("M6 T0 from " + t + at, plan_change(config, in_spindle, 0, z));
+    add("load " + t + " into pocket " + std::to_string(number),
+        plan_load(config, free, tool, number, z));
+    add("unload " + t + at, plan_unload(config, full, tool));
   }
   return checked;
 }

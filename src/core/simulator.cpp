@@ -273,8 +273,11 @@ Simulator plan_load(const Config& config, const ToolState& tools, int tool, int 
 }
 
 Simulator plan_unload(const Config& config, int tool, int from) {
+  return plan_unload(config, with_in_spindle(config, from), tool);
+}
+
+Simulator plan_unload(const Config& config, const ToolState& tools, int tool) {
   Simulator sim;
-  const ToolState tools = with_in_spindle(config, from);
   sim.model_rack(config, tools);
   Changer changer(config, sim, tools);
   changer.plan_only();

@@ -113,5 +113,7 @@ Simulator plan_load(const Config& config, const ToolState& tools, int tool, int 
                     double sensor_z);
 /// The records of unloading `tool` with `from` in the spindle; the operator continues.
 Simulator plan_unload(const Config& config, int tool, int from);
+/// The same from `tools`.
+Simulator plan_unload(const Config& config, const ToolState& tools, int tool);
 
 }  // namespace fatc

@@ -51,7 +51,8 @@ void StatusFile::write(const Status& status, const std::optional<InProgress>& cu
   // Called every poll: compare what it shows before building anything.
   const std::string key = std::to_string(static_cast<int>(status.phase)) + "/" +
                           std::to_string(static_cast<int>(status.awaiting)) + "/" +
-                          std::to_string(serial_) + "/" + status.activity + "/" +
+                          std::to_string(serial_) + "/" + std::to_string(status.pocket) + "/" +
+                          status.activity + "/" +
                           (cut_off ? cut_off->sequence + cut_off->step : std::string("-"));
   if (key == shown_) return;
   shown_ = key;  // a failed write is not retried every poll; the next change writes again
@@ -59,6 +60,7 @@ void StatusFile::write(const Status& status, const std::optional<InProgress>& cu
                          {"state", static_cast<int>(status.phase)},
                          {"awaiting", static_cast<int>(status.awaiting)},
                          {"activity", status.activity},
+                         {"pocket", status.pocket},
                          {"cut_off", nullptr},
                          {"messages", nlohmann::json::array()},
                          {"serial", serial_}};

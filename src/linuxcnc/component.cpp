@@ -9,9 +9,12 @@
 
 namespace fatc::linuxcnc {
 
-Component::Component(HalPins* pins, const Config& config, std::string state_path, NmlLink* nml)
+Component::Component(HalPins* pins, Config& config, std::string config_path, std::string state_path,
+                     NmlLink* nml)
     : pins_(pins),
       nml_(nml),
+      config_(config),
+      config_path_(std::move(config_path)),
       state_path_(std::move(state_path)),
       wired_(config.sensors),
       status_file_(state_path_ + ".status") {
@@ -107,7 +110,7 @@ void Component::read_executor(std::optional<bool> interpreter_idle) {
 }
 
 void Component::read_operator() {
-  if (load_.rose(*pins_->load)) changer_->load(*pins_->tool_number);
+  if (load_.rose(*pins_->load)) changer_->load(*pins_->tool_number, *pins_->pocket_number);
   if (unload_.rose(*pins_->unload)) changer_->unload(*pins_->tool_number);
   if (continue_.rose(*pins_->continue_)) changer_->operator_continue();
   if (cancel_.rose(*pins_->cancel)) {
@@ -119,12 +122,56 @@ void Component::read_operator() {
     }
     changer_->operator_cancel();
   }
+  using Kind = TeachTarget::Kind;
+  if (teach_pocket_.rose(*pins_->teach_pocket)) teach({Kind::pocket, *pins_->pocket_number});
+  if (teach_loading_.rose(*pins_->teach_loading)) teach({Kind::loading, 0});
+  if (teach_safe_.rose(*pins_->teach_safe)) teach({Kind::safe, 0});
+  if (teach_sensor_.rose(*pins_->teach_sensor)) teach({Kind::sensor, 0});
   if (clear_.rose(*pins_->clear_fault)) {
     const int tool = *pins_->confirm_tool >= 0 ? *pins_->confirm_tool : *pins_->linuxcnc_tool;
     const int pocket = *pins_->confirm_pocket;
     changer_->clear_fault(tool, pocket < 0 ? std::nullopt : std::optional<bool>(pocket == 1));
     sync_wanted_ = true;
   }
+}
+
+void Component::teach(const TeachTarget& target) {
+  const std::string what = "teach " + target_name(target) + " refused: ";
+  const Status status = changer_->status();
+  if (status.phase != Phase::idle || status.awaiting != Awaiting::nothing) {
+    tell(MessageKind::error,
+         what + "only while the changer is idle (it is " + status.activity + ")");
+    return;
+  }
+  if (!nml_) {
+    tell(MessageKind::error, what + "no LinuxCNC status to read the machine position from");
+    return;
+  }
+  std::string error;
+  const auto text = io::read_small_file(config_path_, error);
+  if (!text) {
+    tell(MessageKind::error, what + error);
+    return;
+  }
+  const Point mm = nml_->machine_position_mm();
+  const double scale = config_.units == Units::inch ? 1.0 / 25.4 : 1.0;
+  const TeachResult taught =
+      fatc::teach(*text, target, {mm.x * scale, mm.y * scale, mm.z * scale}, limits_);
+  if (!taught.text) {
+    tell(MessageKind::error, taught.error);
+    return;
+  }
+  try {
+    io::save_config_file(config_path_, *text, *taught.text);
+  } catch (const std::exception& e) {
+    tell(MessageKind::error, what + e.what());
+    return;
+  }
+  // Validated by teach(): the changer uses the new geometry from the next request on.
+  config_ = *parse_config(*taught.text).config;
+  tell(MessageKind::info, "taught " + taught.change + "; " + io::shown_path(config_path_) +
+                              " written, the previous one kept as " +
+                              io::shown_path(config_path_ + ".bak"));
 }
 
 void Component::sync_linuxcnc_tool() {
@@ -185,6 +232,7 @@ void Component::write_pins() {
   *pins_->tool_in_spindle = changer_->tools().spindle;
   *pins_->awaiting = static_cast<int>(status.awaiting);
   *pins_->step_number = status.step_number;
+  *pins_->pocket_served = status.pocket;
   *pins_->accepting = status.accepting;
   if (status.last_length) *pins_->last_length = *status.last_length;
   // An operator flow waits for the operator once its executor run has ended

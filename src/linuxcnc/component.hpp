@@ -7,6 +7,7 @@
 #include "core/changer.hpp"
 #include "core/executor_link.hpp"
 #include "core/ports.hpp"
+#include "core/teach.hpp"
 #include "io/status_file.hpp"
 
 namespace fatc::linuxcnc {
@@ -22,8 +23,13 @@ class Component : public Ports {
   using Clock = std::chrono::steady_clock;
 
   /// `nml` may be null (no LinuxCNC task, as under halrun).
-  Component(HalPins* pins, const Config& config, std::string state_path, NmlLink* nml);
+  /// `config` is the one the changer runs with: teaching updates it in place
+  /// (only while idle) after writing `config_path`.
+  Component(HalPins* pins, Config& config, std::string config_path, std::string state_path,
+            NmlLink* nml);
   void attach(Changer* changer) { changer_ = changer; }
+  /// The machine's soft limits, which a taught position must respect.
+  void soft_limits(std::optional<SoftLimits> limits) { limits_ = std::move(limits); }
   /// `interpreter_idle`: LinuxCNC's interpreter state, when NML is available.
   void poll(Clock::time_point now, std::optional<bool> interpreter_idle);
   /// Whether the next poll should come soon: a sequence runs or a handshake is open.
@@ -51,6 +57,8 @@ class Component : public Ports {
   void read_machine(std::optional<bool> interpreter_idle);
   void read_executor(std::optional<bool> interpreter_idle);
   void read_operator();
+  /// Teaching: the machine position into config.json at `target`, if idle.
+  void teach(const TeachTarget& target);
   void abort(const std::string& reason);
   void start_executor_if_needed();
   void sync_linuxcnc_tool();
@@ -58,6 +66,9 @@ class Component : public Ports {
 
   HalPins* pins_;
   NmlLink* nml_;
+  Config& config_;
+  std::string config_path_;
+  std::optional<SoftLimits> limits_;
   std::string state_path_;
   Changer* changer_ = nullptr;
   ExecutorLink link_;
@@ -72,6 +83,7 @@ class Component : public Ports {
   std::optional<Clock::time_point> sync_sent_;
   io::StatusFile status_file_;
   Edge abort_, clear_, load_, unload_, continue_, cancel_;
+  Edge teach_pocket_, teach_loading_, teach_safe_, teach_sensor_;
 };
 
 }  // namespace fatc::linuxcnc

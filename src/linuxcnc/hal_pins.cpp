@@ -91,6 +91,12 @@ HalPins* create_pins(const std::string& name, int& id, const std::vector<int>& p
   make(id, HAL_IN, &p->tool_number, n, "tool-number");
   make(id, HAL_IN, &p->load, n, "load");
   make(id, HAL_IN, &p->unload, n, "unload");
+  make(id, HAL_IN, &p->pocket_number, n, "pocket-number");
+  make(id, HAL_IN, &p->teach_pocket, n, "teach-pocket");
+  make(id, HAL_IN, &p->teach_loading, n, "teach-loading");
+  make(id, HAL_IN, &p->teach_safe, n, "teach-safe");
+  make(id, HAL_IN, &p->teach_sensor, n, "teach-sensor");
+  make(id, HAL_OUT, &p->pocket_served, n, "pocket-served");
   make(id, HAL_IN, &p->continue_, n, "continue");
   make(id, HAL_IN, &p->cancel, n, "cancel");
   make(id, HAL_OUT, &p->waiting_for_operator, n, "waiting-for-operator");

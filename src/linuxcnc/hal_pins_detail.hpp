@@ -58,14 +58,21 @@ struct HalPins {
   hal_s32_t* tool_number;     ///< in: the tool the operator buttons are about
   hal_bit_t* load;            ///< in: rising edge: load and probe tool-number
   hal_bit_t* unload;          ///< in: rising edge: unload tool-number
+  hal_s32_t* pocket_number;   ///< in: the pocket load and teach-pocket are about (0: load chooses)
+  hal_bit_t* teach_pocket;    ///< in: rising edge: the machine position becomes pocket-number's
+  hal_bit_t* teach_loading;   ///< in: rising edge: ... becomes `loading`
+  hal_bit_t* teach_safe;      ///< in: rising edge: ... becomes `safe`
+  hal_bit_t* teach_sensor;    ///< in: rising edge: its XY becomes the touch-off sensor's
+  hal_s32_t* pocket_served;   ///< out: the pocket a sequence serves now, 0 none
   hal_bit_t* continue_;       ///< in: rising edge: the operator is done (Continue)
   hal_bit_t* cancel;          ///< in: rising edge: the operator cancels
   hal_bit_t* waiting_for_operator;  ///< out: a prompt waits for Continue or Cancel
   hal_float_t* last_length;         ///< out: the last tool length measured
   hal_s32_t* step_number;  ///< out: the step of the sequence under way, as --plan numbers it
-  hal_s32_t* awaiting;  ///< out: 0 nothing, 1 motion, 2 probe, 3 timer, 4 spindle, 5 operator, 6 sensor
-  hal_bit_t* accepting;    ///< out: load and unload would be accepted now
-  hal_bit_t* can_cancel;   ///< out: cancel would act now (an operator wait or a load-flow probe)
+  hal_s32_t*
+      awaiting;  ///< out: 0 nothing, 1 motion, 2 probe, 3 timer, 4 spindle, 5 operator, 6 sensor
+  hal_bit_t* accepting;   ///< out: load and unload would be accepted now
+  hal_bit_t* can_cancel;  ///< out: cancel would act now (an operator wait or a load-flow probe)
 };
 
 }  // namespace fatc::linuxcnc

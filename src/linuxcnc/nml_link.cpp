@@ -42,6 +42,10 @@ bool NmlLink::poll() {
   if (channels_->status->peek() == EMC_STAT_TYPE) {
     const auto* stat = static_cast<EMC_STAT*>(channels_->status->get_address());
     interpreter_idle_ = stat->task.interpState == EMC_TASK_INTERP_IDLE;
+    // linearUnits: machine units per mm.
+    const double per_mm = stat->motion.traj.linearUnits > 0 ? stat->motion.traj.linearUnits : 1.0;
+    const EmcPose& at = stat->motion.traj.actualPosition;
+    position_mm_ = {at.tran.x / per_mm, at.tran.y / per_mm, at.tran.z / per_mm};
     serial_ = std::max(serial_, stat->echo_serial_number);
   }
   return true;

@@ -22,6 +22,8 @@ class NmlLink {
   /// Reads the newest status; false when the channel fails.
   bool poll();
   bool interpreter_idle() const { return interpreter_idle_; }
+  /// Where the machine is (G53, actual position), in mm; what teaching writes.
+  Point machine_position_mm() const { return position_mm_; }
   /// An operator message: errors as EMC_OPERATOR_ERROR, the rest as EMC_OPERATOR_DISPLAY.
   void tell(MessageKind kind, const std::string& text);
   /// Puts task in MDI mode and runs `line` there, as halui does for its MDI
@@ -41,6 +43,7 @@ class NmlLink {
   static constexpr std::size_t kMessagePart = 240;
   std::unique_ptr<Channels> channels_;
   bool interpreter_idle_ = true;
+  Point position_mm_;
   int serial_ = 0;
 };
 

@@ -143,7 +143,7 @@ TEST(Teach, shouldRefuseAPocketWhoseApproachPassesThroughAnotherPocketsKeepOut) 
   const TeachResult r = teach(test::kValidConfig, kPocket3, {185.0, -25.0, -80.0}, {});
   EXPECT_FALSE(r.text);
   EXPECT_EQ(
-      r.error.rfind("teach pocket 3 at X185 Y-25 Z-80: not written: M6 T3 from empty, step ", 0),
+      r.error.rfind("teach pocket 3 at X185 Y-25 Z-80: not written: M6 T3 from empty (pocket 3), step ", 0),
       0u)
       << r.error;
   EXPECT_NE(r.error.find("side of pocket 3): passes through the rack at pocket 4"),
@@ -156,7 +156,7 @@ TEST(Teach, shouldRefuseAPositionOutsideTheSoftLimitsOnlyWithThem) {
   const TeachResult outside = teach(test::kValidConfig, kSafe, {450.0, 80.0, -5.0}, limits);
   EXPECT_FALSE(outside.text);
   EXPECT_EQ(
-      outside.error.rfind("teach safe at X450 Y80 Z-5: not written: M6 T1 from empty, step ", 0),
+      outside.error.rfind("teach safe at X450 Y80 Z-5: not written: M6 T1 from empty (pocket 1), step ", 0),
       0u)
       << outside.error;
   EXPECT_NE(outside.error.find("X=450.000 is outside the soft limits -10.000 .. 400.000"),
