@@ -3,7 +3,8 @@
 Makes the panel's HAL pins, turns button clicks into the pulses the
 component's rising-edge inputs want, shows what the changer reports in the
 machinist's words, and enables a button only when the component says it can
-act. The rack (each pocket, its tool, the tool's length, its approach) comes
+act. The Setup page's Teach buttons pulse the component's teach pins, which
+write the machine position into config.json. The rack (each pocket, its tool, the tool's length, its approach) comes
 from the component's state file and config, the paths named in
 [FIXED_ATC_PROBE] of the INI; the program loaded in the GUI is checked with
 `fixed_atc_probe --lint` in a subprocess, never in the GTK loop."""
@@ -15,7 +16,11 @@ import hal
 import linuxcnc
 from gi.repository import Gio, GLib, Gtk
 
-BUTTONS = ("load", "unload", "continue", "cancel", "clear-fault")
+# Each button pulses the component pin of its name (the button's id in the .ui).
+OPERATOR_BUTTONS = ("load", "unload", "continue", "cancel", "clear-fault")
+# The Setup page: nothing moves, config.json is written.
+TEACH_BUTTONS = ("teach-pocket", "teach-loading", "teach-safe", "teach-sensor")
+BUTTONS = OPERATOR_BUTTONS + TEACH_BUTTONS
 # The component polls every 20 ms at most: high and low phases it cannot miss.
 PULSE_MS = 100
 GAP_MS = 60
@@ -237,6 +242,7 @@ class Handler:
             halcomp.newpin(name, hal.HAL_BIT, hal.HAL_OUT)
             halcomp.newpin(name + "-enabled", hal.HAL_BIT, hal.HAL_OUT)
         halcomp.newpin("tool-number", hal.HAL_S32, hal.HAL_OUT)
+        halcomp.newpin("pocket-number", hal.HAL_S32, hal.HAL_OUT)
         for name in ("state", "awaiting", "tool-in-spindle", "step-kind", "cut-off-pocket",
                      "pocket-served"):
             halcomp.newpin(name, hal.HAL_S32, hal.HAL_IN)
@@ -283,6 +289,12 @@ class Handler:
     def on_tool_number_changed(self, spin):
         self.comp["tool-number"] = spin.get_value_as_int()
 
+    def on_pocket_number_changed(self, spin):
+        pocket = spin.get_value_as_int()
+        self.comp["pocket-number"] = pocket
+        self.builder.get_object("teach-pocket").set_label(
+            "Teach pocket %d" % pocket if pocket > 0 else "Teach pocket")
+
     def on_button_clicked(self, button):
         name = Gtk.Buildable.get_name(button)
         if name in self.pulses:
@@ -325,9 +337,14 @@ class Handler:
         get("last_length").set_text("%.4f %s" % (length, "in" if c["units-inch"] else "mm") if length else "-")
         self.show_rack()
         wanted = c["tool-number"] > 0
+        # A teach while a program or MDI runs would take the position of a
+        # moving machine: only when Load could start (idle, task free).
+        teach = c["accepting"]
         enabled = {"load": c["accepting"] and wanted, "unload": c["accepting"] and wanted,
                    "continue": c["waiting-for-operator"], "cancel": c["can-cancel"],
-                   "clear-fault": state == PHASE_FAULT}
+                   "clear-fault": state == PHASE_FAULT,
+                   "teach-pocket": teach and c["pocket-number"] > 0, "teach-loading": teach,
+                   "teach-safe": teach, "teach-sensor": teach}
         for name, on in enabled.items():
             get(name).set_sensitive(bool(on))
             c[name + "-enabled"] = bool(on)

@@ -78,6 +78,14 @@ def main():
         if r[key] != wanted:
             fail("the buttons' sensitivity (%s) is %s, expected %s" % (key, r[key], wanted))
     ok("the buttons on screen are enabled exactly as the panel's pins say")
+    for what, teach in (("program opened", True), ("removal prompt", False),
+                        ("probing", False), ("loaded", True)):
+        s = stage(r, what)
+        got = (s["fatc-panel.teach-loading-enabled"], s["fatc-panel.teach-pocket-enabled"])
+        if got != (teach, False):
+            fail("at '%s' Teach loading/Teach pocket enabled %s, expected %s (pocket 0)"
+                 % (what, got, (teach, False)))
+    ok("Teach loading enabled only while the changer is idle; Teach pocket never (pocket 0)")
     clicks = [s["what"] for s in r["steps"] if s["what"].startswith("clicked")]
     ok("clicked in AXIS: %s" % ", ".join(c[8:] for c in clicks))
 
@@ -102,6 +110,14 @@ def main():
     ok("the program page checked demo.ngc: %s" % text.splitlines()[:3])
 
     measured_to_truth(r, json.load(open(CONFIG)), 4, "measured through the panel")
+    shown = r["teach_shown"]
+    if not shown or not shown[0].startswith("taught loading: x "):
+        fail("after Teach loading the panel shows %r, not the component's message" % shown)
+    ok("Teach loading: the panel shows %r" % shown[0][:80])
+    loading = [r["config_after_teach"]["loading"][a] for a in "xyz"]
+    if any(abs(got - round(at, 4)) > 1e-4 for got, at in zip(loading, r["teach_at"])):
+        fail("config.json's loading is %s, the machine was at %s" % (loading, r["teach_at"]))
+    ok("config.json's loading is now %s, where the machine was" % loading)
     state = r["state_file"]
     if version == 1:
         in_pocket = 4 in state["in_pocket"]
@@ -118,8 +134,8 @@ def main():
             if head != b"\x89PNG\r\n\x1a\n" or os.path.getsize(path) < 2000:
                 fail("%s is not a screenshot" % path)
         ok("screenshot %s (panel at %s)" % (shot["file"], shot["panel"]))
-    if len(r["screenshots"]) != 3:
-        fail("expected three screenshots, got %d" % len(r["screenshots"]))
+    if len(r["screenshots"]) != 4:
+        fail("expected four screenshots, got %d" % len(r["screenshots"]))
 
 
 if __name__ == "__main__":

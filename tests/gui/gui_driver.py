@@ -30,7 +30,8 @@ STATE_SENSITIVE = 24  # AtspiStateType
 COORDS_SCREEN = 0
 
 PANEL_PINS = ["load-enabled", "unload-enabled", "continue-enabled", "cancel-enabled",
-              "clear-fault-enabled", "load", "unload", "continue", "cancel", "tool-number"]
+              "clear-fault-enabled", "load", "unload", "continue", "cancel", "tool-number",
+              "teach-pocket-enabled", "teach-loading-enabled", "pocket-number"]
 
 xdisplay = display.Display()
 result = {"steps": [], "messages": [], "error": None, "screenshots": []}
@@ -256,6 +257,11 @@ def rack_shows(pocket, tool, timeout=5):
         time.sleep(0.1)
 
 
+def panel_says(words):
+    """The panel's labels that say `words` (the last message is one of them)."""
+    return [label.label() for label in panel_plug().labels() if words in label.label()]
+
+
 def preflight():
     """The program page's words, as the panel shows them."""
     return "\n".join(label.label() for label in panel_plug().find_named("Program preflight").labels())
@@ -325,6 +331,22 @@ def run():
     show_page("Program")
     result["preflight"] = preflight()
     screenshot("program", ("Load / Probe", True))
+
+    # Teach loading where the spindle is now, from the Setup page: nothing
+    # moves, config.json is written, the component's message shows on the panel.
+    show_page("Setup")
+    stat.poll()
+    result["teach_at"] = list(stat.actual_position[:3])
+    said = len(driver.messages)
+    click("Teach loading")
+    wait_for(lambda: any("fixed_atc_probe: taught loading" in m for m in driver.messages[said:]), 30,
+             "the message of the teach")
+    wait_for(lambda: panel_says("taught loading"), 10, "the panel to show the teach's message")
+    result["teach_shown"] = panel_says("taught loading")
+    note("taught loading")
+    screenshot("setup", ("Teach loading", True))
+    with open(os.path.join(os.getcwd(), "config.json")) as f:
+        result["config_after_teach"] = json.load(f)
     result["tool_table_file"] = open(os.path.join(os.getcwd(), "sim.tbl")).read()
     result["state_file"] = json.load(open(os.path.join(os.getcwd(), "fixed_atc_state.json")))
 

@@ -95,6 +95,19 @@ def state_path():
     return os.path.join(ini_dir(), ini().find("FIXED_ATC_PROBE", "STATE"))
 
 
+def config_path():
+    return os.path.join(ini_dir(), ini().find("FIXED_ATC_PROBE", "CONFIG"))
+
+
+def read_text(path):
+    """The file's text exactly (None when there is none)."""
+    try:
+        with open(path, newline="") as f:
+            return f.read()
+    except OSError:
+        return None
+
+
 def read_json(path):
     try:
         with open(path) as f:
@@ -415,6 +428,12 @@ def perform(step, result, start):
         hal.set_p(COMPONENT + ".confirm-pocket", "-1")
     elif step["do"] == "snapshot":
         result.setdefault("snapshots", {})[step["name"]] = snapshot(start)
+    elif step["do"] == "files":
+        # config.json and its backup as they are on disk now (teaching writes them).
+        stat.poll()
+        result.setdefault("files", {})[step["name"]] = {
+            "t": now(), "pos": list(stat.actual_position[:3]),
+            "config": read_text(config_path()), "bak": read_text(config_path() + ".bak")}
     elif step["do"] == "program":
         # A program run from an operator scenario: sampled until the interpreter is idle again.
         wait(lambda: stat.interp_state == linuxcnc.INTERP_IDLE, 60, "task free for the program")
