@@ -29,8 +29,21 @@ class Rack:
         return [p["x"], p["y"], p["z"]]
 
     def side(self, t):
+        """Pocket t's side: its own `side_offset`, else the rack's `pocket_side_offset`."""
         p = self.pocket(t)
-        return [p[0] + self.c["pocket_side_offset"]["x"], p[1] + self.c["pocket_side_offset"]["y"], p[2]]
+        offset = self.pockets[t].get("side_offset", self.c["pocket_side_offset"])
+        return [p[0] + offset["x"], p[1] + offset["y"], p[2]]
+
+    def top(self, t):
+        """Pocket t is approached straight down from above (`"approach": "top"`)."""
+        return self.pockets[t].get("approach", "side") == "top"
+
+    def first_tools(self):
+        """Pocket -> the tool it holds at first start (`tool`; default its own number)."""
+        return {n: p.get("tool", n) for n, p in self.pockets.items()}
+
+    def at_safe_z(self, p):
+        return [p[0], p[1], self.c["safe"]["z"]]
 
     def above(self, t, key):
         p = self.pocket(t)
@@ -41,16 +54,37 @@ class Rack:
         return [s["x"], s["y"], s["z"]]
 
     def return_waypoints(self, t):
-        return [("side of pocket %d" % t, self.side(t)), ("pocket %d" % t, self.pocket(t)),
-                ("above-chuck %d" % t, self.above(t, "pocket_above_chuck_offset_z")),
-                ("above-clearance %d" % t, self.above(t, "pocket_above_clearance_offset_z")),
-                ("safe", self.safe())]
+        return [w[:2] for w in self.return_stops(t) if "safe Z" not in w[0]]
 
     def retrieve_waypoints(self, t):
-        return [("above-clearance %d" % t, self.above(t, "pocket_above_clearance_offset_z")),
-                ("above-chuck %d" % t, self.above(t, "pocket_above_chuck_offset_z")),
-                ("pocket %d" % t, self.pocket(t)), ("side of pocket %d" % t, self.side(t)),
-                ("safe", self.safe())]
+        return [w[:2] for w in self.retrieve_stops(t)[1:] if "safe Z" not in w[0]]
+
+    def return_stops(self, t):
+        """Every stop of a return into pocket t from safe (docs/sequences.md#return):
+        (name, position, reached slowly at pocket_feed)."""
+        clearance = ("above-clearance %d" % t, self.above(t, "pocket_above_clearance_offset_z"), False)
+        if self.top(t):
+            into = [("pocket %d at safe Z" % t, self.at_safe_z(self.pocket(t)), False), clearance,
+                    ("pocket %d" % t, self.pocket(t), True)]
+        else:
+            into = [("side of pocket %d at safe Z" % t, self.at_safe_z(self.side(t)), False),
+                    ("side of pocket %d" % t, self.side(t), False), ("pocket %d" % t, self.pocket(t), True)]
+        return into + [("above-chuck %d" % t, self.above(t, "pocket_above_chuck_offset_z"), False),
+                       clearance, ("pocket %d at safe Z" % t, self.at_safe_z(self.pocket(t)), False),
+                       ("safe", self.safe(), False)]
+
+    def retrieve_stops(self, t):
+        """Every stop of a retrieve out of pocket t from safe (docs/sequences.md#retrieve)."""
+        clearance = ("above-clearance %d" % t, self.above(t, "pocket_above_clearance_offset_z"), False)
+        route = [("pocket %d at safe Z" % t, self.at_safe_z(self.pocket(t)), False), clearance,
+                 ("above-chuck %d" % t, self.above(t, "pocket_above_chuck_offset_z"), False),
+                 ("pocket %d" % t, self.pocket(t), True)]
+        if self.top(t):
+            route += [clearance[:2] + (True,), ("pocket %d at safe Z" % t, self.at_safe_z(self.pocket(t)), False)]
+        else:
+            route += [("side of pocket %d" % t, self.side(t), True),
+                      ("side of pocket %d at safe Z" % t, self.at_safe_z(self.side(t)), False)]
+        return route + [("safe", self.safe(), False)]
 
 
 def loading(rack):
@@ -93,6 +127,24 @@ def visits_in_order(samples, waypoints):
         if i == len(samples):
             fail("the machine never reached %s %s after the previous waypoint" % (name, target))
     ok("visited %d waypoints in order at the config's positions" % len(waypoints))
+
+
+def stops(samples):
+    """Where the machine stood still, in order: runs of samples with LinuxCNC's
+    current velocity zero and the actual position on the commanded one, at one
+    place (within TOLERANCE), as (position, first sample index, last sample
+    index). (A status not refreshed between two samples repeats a position in
+    the middle of a move: its velocity is not zero; at the end of a move the
+    velocity is zero a few servo periods before the feedback arrives.)"""
+    found = []
+    for i, s in enumerate(samples):
+        if s["vel"] != 0.0 or math.dist(s["pos"], s["cmd"]) > 1e-6:
+            continue
+        if found and near(found[-1][0], s["pos"]):
+            found[-1] = (found[-1][0], found[-1][1], i)
+        else:
+            found.append((s["pos"], i, i))
+    return found
 
 
 def rising(samples, pin):

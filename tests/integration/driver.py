@@ -20,7 +20,7 @@ PINS = ["fixed_atc_probe.chuck", "fixed_atc_probe.waiting-for-operator", "fixed_
         "fixed_atc_probe.step-request", "iocontrol.0.tool-prepare", "iocontrol.0.tool-prepared",
         "iocontrol.0.tool-change", "iocontrol.0.tool-changed", "iocontrol.0.tool-number",
         "motion.probe-input", "spindle.0.on", "iocontrol.0.coolant-flood", "fatc-chuck-guard.chuck",
-        "fatc-chuck-guard.alive", "fixed_atc_probe.cut-off-pocket"]
+        "fatc-chuck-guard.alive", "fixed_atc_probe.cut-off-pocket", "fixed_atc_probe.pocket-served"]
 COMPONENT = "fixed_atc_probe"
 
 stat = linuxcnc.stat()
@@ -75,6 +75,7 @@ def sample(start):
     values["t"] = time.monotonic() - start
     values["pos"] = list(stat.actual_position[:3])
     values["cmd"] = list(stat.position[:3])
+    values["vel"] = stat.current_vel
     values["tool_in_spindle"] = stat.tool_in_spindle
     values["interp"] = stat.interp_state
     values["paused"] = stat.paused

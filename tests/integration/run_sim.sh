@@ -15,7 +15,8 @@ if [ -z "${FATC_KEEP_STATE:-}" ] || [ ! -e "$work/sim.tbl" ]; then
   # Each run starts as a fresh machine: LinuxCNC starts with an empty spindle.
   # (FATC_KEEP_STATE: a restart of the same machine keeps its files.)
   rm -f "$work/fixed_atc_state.json"
-  cp "$root/config/sim/sim.tbl" "$work/"
+  # FATC_TOOL_TABLE: another tool table for the same machine (the rack run's tools).
+  cp "${FATC_TOOL_TABLE:-$root/config/sim/sim.tbl}" "$work/sim.tbl"
 fi
 cp "${FATC_CONFIG:-$root/config/config.json}" "$work/config.json"
 if [ -n "${FATC_CONFIG_SET:-}" ]; then

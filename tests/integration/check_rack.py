@@ -1,0 +1,326 @@
+#!/usr/bin/env python3
+"""Checks one scenario of the rack run (scenarios_rack.json on rack_config.json:
+tools and pockets differ, pocket 4 is approached from the top, pocket 5 from
+its own side) against what LinuxCNC reported: the tool in the spindle, every
+place the spindle stood still, the path between them, the pocket the component
+said it served, and the state file.
+   check_rack.py RESULTS.json CONFIG.json SCENARIO
+Prints what it checked; exits 1 on the first failed expectation."""
+import json
+import math
+import sys
+
+from check import TOLERANCE, Rack, distinct, fail, measured_to_truth, near, no_fault, ok, stops
+
+SERVED = "fixed_atc_probe.pocket-served"
+
+
+class Expected:
+    """The rack as the changer should keep it: pocket -> tool, and which sit in
+    their pocket; the stops each change should make, from the config alone."""
+
+    def __init__(self, rack):
+        self.rack = rack
+        self.tools = rack.first_tools()
+        self.home = {n for n, t in self.tools.items() if t}
+        self.spindle = 0
+
+    def pocket_of(self, tool):
+        return next(n for n, t in self.tools.items() if t == tool)
+
+    def state_pockets(self):
+        """The state file's `pockets`, as it should read now."""
+        return {str(n): {"tool": t, "in_pocket": n in self.home} for n, t in self.tools.items()}
+
+    def to_safe(self, at):
+        return [("safe Z", self.rack.at_safe_z(at), False), ("safe", self.rack.safe(), False)]
+
+    def put_back(self, at):
+        """The spindle's tool back to its own pocket: (stops, pocket)."""
+        pocket = self.pocket_of(self.spindle)
+        self.home.add(pocket)
+        self.spindle = 0
+        return self.to_safe(at) + self.rack.return_stops(pocket), pocket
+
+    def change(self, at, tool):
+        """M6 T`tool` from position `at`: its stops, and the pockets served in order."""
+        route, served = [], []
+        if self.spindle:
+            legs, pocket = self.put_back(at)
+            route, served, at = legs, [pocket], self.rack.safe()
+        if tool:
+            pocket = self.pocket_of(tool)
+            self.home.discard(pocket)
+            self.spindle = tool
+            route += self.to_safe(at) + self.rack.retrieve_stops(pocket)
+            served.append(pocket)
+        return route, served
+
+
+def merged(route):
+    """A route without repeats: a move to where the spindle already is, is no stop."""
+    out = []
+    for stop in route:
+        if not out or not near(out[-1][1], stop[1]):
+            out.append(stop)
+    return out
+
+
+def observed(r):
+    """Where the spindle stood still, in order, as (position, first, last) sample indexes."""
+    found = stops(r["samples"])
+    if not found:
+        fail("no sample shows the spindle standing still")
+    return found
+
+
+def follows_route(r, route, found, offset=0):
+    """The stops from found[offset] on are the route's, one for one. Returns the
+    index after the route's last stop."""
+    route = merged(route)
+    for i, (name, target, _) in enumerate(route):
+        if offset + i >= len(found):
+            fail("the spindle stopped %d times, the route has %d more stops from %s on" %
+                 (len(found) - offset, len(route) - i, name))
+        pos = found[offset + i][0]
+        if not near(pos, target):
+            fail("stop %d: the spindle stood at %s, expected %s %s (stops so far: %s)" % (
+                offset + i, [round(v, 3) for v in pos], name, target,
+                [[round(v, 3) for v in f[0]] for f in found[max(0, offset + i - 4):offset + i]]))
+    ok("%d stops, each at the config's waypoint: %s" % (len(route), " > ".join(s[0] for s in route)))
+    return offset + len(route)
+
+
+def straight_and_slow(r, route, found, offset, feed):
+    """Between two stops the spindle moved along the straight line; into a stop
+    reached slowly, no faster than pocket_feed."""
+    route = merged(route)
+    samples = r["samples"]
+    slow = 0
+    for i in range(1, len(route)):
+        (a, _, left), (b, arrived, _) = found[offset + i - 1], found[offset + i]
+        for s in samples[left:arrived + 1]:
+            if distance_to_segment(s["pos"], a, b) > TOLERANCE:
+                fail("between %s and %s the spindle left the straight line: %s at %.3f s" % (
+                    route[i - 1][0], route[i][0], s["pos"], s["t"]))
+        if route[i][2]:
+            seconds = samples[arrived]["t"] - samples[left]["t"]
+            least = math.dist(a, b) / (feed / 60.0)
+            if seconds < 0.9 * least:
+                fail("%s reached in %.3f s from %s: faster than pocket_feed (%.3f s)" % (
+                    route[i][0], seconds, route[i - 1][0], least))
+            slow += 1
+    ok("every move straight between its stops; %d slow moves at pocket_feed or slower" % slow)
+
+
+def distance_to_segment(p, a, b):
+    ab = [b[k] - a[k] for k in range(3)]
+    length = sum(v * v for v in ab)
+    if length == 0.0:
+        return math.dist(p, a)
+    t = max(0.0, min(1.0, sum((p[k] - a[k]) * ab[k] for k in range(3)) / length))
+    return math.dist(p, [a[k] + t * ab[k] for k in range(3)])
+
+
+def outside_other_columns(r, rack):
+    """No sample inside a pocket's keep-out column (rack_keepout_margin, default
+    half the side offset, around it, up to above-clearance) except the pocket
+    the component says it serves."""
+    margin = rack.c.get("rack_keepout_margin", math.hypot(rack.c["pocket_side_offset"]["x"],
+                                                          rack.c["pocket_side_offset"]["y"]) / 2.0)
+    inside = 0
+    for s in r["samples"]:
+        x, y, z = s["pos"]
+        for n in rack.pockets:
+            p = rack.pocket(n)
+            top = p[2] + rack.c["pocket_above_clearance_offset_z"]
+            if abs(x - p[0]) < margin - 1e-3 and abs(y - p[1]) < margin - 1e-3 and z < top - 1e-3:
+                inside += 1
+                if s[SERVED] != n:
+                    fail("at %s (%.3f s) the spindle is in pocket %d's keep-out column, but "
+                         "pocket-served says %s" % (s["pos"], s["t"], n, s[SERVED]))
+    ok("no sample in a keep-out column but the served pocket's (%d samples inside one)" % inside)
+
+
+def served_at_stops(r, route, found, offset):
+    """At every stop at a pocket's waypoint, pocket-served names that pocket."""
+    route = merged(route)
+    checked = 0
+    for i, (name, _, _) in enumerate(route):
+        words = name.split()
+        if "pocket" not in words or "safe" in words:
+            continue
+        pocket = int(words[words.index("pocket") + 1])
+        first, last = found[offset + i][1], found[offset + i][2]
+        values = {s[SERVED] for s in r["samples"][first:last + 1]}
+        if values != {pocket}:
+            fail("at %s pocket-served read %s" % (name, sorted(values, key=str)))
+        checked += 1
+    ok("pocket-served named the pocket at each of %d stops at a pocket" % checked)
+
+
+def served_per_change(r, expected):
+    """While each change runs (busy), the pockets pocket-served names, in order."""
+    runs, current = [], None
+    for s in r["samples"]:
+        if s["fixed_atc_probe.busy"]:
+            if current is None:
+                current = []
+                runs.append(current)
+            if s[SERVED] and (not current or current[-1] != s[SERVED]):
+                current.append(s[SERVED])
+        else:
+            current = None
+    if runs != expected:
+        fail("pocket-served named %s during the changes, expected %s" % (runs, expected))
+    ok("pocket-served during each change: %s" % runs)
+
+
+def state_pockets(r, wanted, what):
+    got = r["state_file"].get("pockets")
+    if got != wanted:
+        fail("%s the state file's pockets are %s, expected %s" % (what, got, wanted))
+    if r["state_file"].get("spindle") != 0:
+        fail("%s the state file has T%s in the spindle" % (what, r["state_file"].get("spindle")))
+    ok("%s the state file's pockets: %s" % (what, {k: v["tool"] if v["in_pocket"] else "-"
+                                                  for k, v in got.items()}))
+
+
+def tools_went(r, wanted):
+    """LinuxCNC's tool in spindle (stat) and iocontrol's tool-number, change by
+    change; the changer's tool-in-spindle the same, empty between a return and a fetch."""
+    for key in ("tool_in_spindle", "iocontrol.0.tool-number"):
+        went = distinct(r["samples"], key)
+        if went != wanted:
+            fail("%s went %s, expected %s" % (key, went, wanted))
+    changer = [t for t in distinct(r["samples"], "fixed_atc_probe.tool-in-spindle") if t]
+    if changer != [t for t in wanted if t]:
+        fail("the changer's tool-in-spindle held %s, expected %s" % (changer, [t for t in wanted if t]))
+    ok("LinuxCNC's tool in spindle went %s (stat and iocontrol; the changer's pin agrees)" % wanted)
+
+
+def program_changes(r, rack, expected, tools):
+    """A program of M6s: the tools, every stop, the path, pocket-served, the keep-out."""
+    no_fault(r)
+    tools_went(r, [expected.spindle] + tools)
+    found = observed(r)
+    at = found[0][0]
+    route, served = [("start", at, False)], []
+    snapshots = r.get("snapshots", {})
+    fetched = []
+    for tool in tools:
+        legs, pockets = expected.change(at, tool)
+        route += legs
+        served.append(pockets)
+        at = route[-1][1]
+        fetched.append(tool)
+        # The scenario's snapshot when the changer recorded the tool: "T12", then "T12 #2".
+        snap = snapshots.get("T%d" % tool + ("" if fetched.count(tool) == 1 else " #%d" % fetched.count(tool)))
+        if tool and not snap:
+            fail("no snapshot of the state file when T%d was gripped" % tool)
+        if snap and tool:
+            # The moment the changer recorded the new tool in the spindle.
+            got = snap["state_file"].get("pockets")
+            if got != expected.state_pockets() or snap["state_file"].get("spindle") != tool:
+                fail("when T%d was gripped the state file said spindle T%s, pockets %s; expected %s" % (
+                    tool, snap["state_file"].get("spindle"), got, expected.state_pockets()))
+            ok("when T%d was gripped the state file had it out of pocket %d, the previous tool home" %
+               (tool, expected.pocket_of(tool)))
+    end = follows_route(r, route, found)
+    if end != len(found):
+        fail("the spindle stopped %d more times after the route: %s" % (
+            len(found) - end, [f[0] for f in found[end:]]))
+    straight_and_slow(r, route, found, 0, rack.c["pocket_feed"])
+    served_at_stops(r, route, found, 0)
+    served_per_change(r, served)
+    outside_other_columns(r, rack)
+    state_pockets(r, expected.state_pockets(), "at the end")
+
+
+CHANGES = [12, 7, 3, 5, 12, 0]  # rack_changes.ngc
+T20 = [20, 0]  # rack_t20.ngc
+
+
+def check_rack_changes(r, rack, expected):
+    program_changes(r, rack, expected, CHANGES)
+    # Spelled out: the top pocket has no side stop, pocket 5 none at the rack's side offset.
+    default = rack.c["pocket_side_offset"]
+    for name, place in (("the side of top pocket 4", rack.side(4)),
+                        ("pocket 5's side at the rack's pocket_side_offset",
+                         [rack.pocket(5)[0] + default["x"], rack.pocket(5)[1] + default["y"], rack.pocket(5)[2]])):
+        if any(near(f[0], place) for f in observed(r)):
+            fail("the spindle stopped at %s %s" % (name, place))
+        ok("never at %s %s" % (name, place))
+
+
+def check_rack_load(r, rack, expected):
+    """T20 from outside, loaded into pocket 3 through tool-number and pocket-number."""
+    no_fault(r)
+    spindle = distinct(r["samples"], "tool_in_spindle")
+    if spindle != [0, 20, 0]:
+        fail("LinuxCNC's tool in spindle went %s, expected [0, 20, 0]" % spindle)
+    ok("LinuxCNC's tool in spindle went %s (M61 at the prompt, M61 Q0 once home)" % spindle)
+    measured_to_truth(r, rack.c, 20, "loaded into pocket 3")
+    found = observed(r)
+    start = found[0][0]
+    load = [("start", start, False), ("loading Z", [start[0], start[1], rack.c["loading"]["z"]], False),
+            ("loading", [rack.c["loading"][a] for a in "xyz"], False)]
+    i = follows_route(r, load, found)
+    # The probe's stops: over the sensor, between probe_limit and loading Z.
+    sensor = rack.c["probe_limit"]
+    probe = i
+    while i < len(found) and near(found[i][0][:2] + [0.0], [sensor["x"], sensor["y"], 0.0]) and \
+            sensor["z"] <= found[i][0][2] <= rack.c["loading"]["z"] + TOLERANCE:
+        i += 1
+    if i - probe < 3:
+        fail("the probe stopped %d times over the sensor, expected seek, back-off, latch and retract" %
+             (i - probe))
+    ok("%d stops over the sensor while probing" % (i - probe))
+    load_t20(expected)
+    expected.spindle = 20
+    route = [("probed", found[i - 1][0], False)]
+    legs, pocket = expected.put_back(found[i - 1][0])
+    if pocket != 3:
+        fail("the checker put T20 in pocket %d" % pocket)
+    route += legs
+    end = follows_route(r, route, found, i - 1)
+    if end != len(found):
+        fail("the spindle stopped %d more times after the return: %s" % (
+            len(found) - end, [f[0] for f in found[end:]]))
+    straight_and_slow(r, route, found, i - 1, rack.c["pocket_feed"])
+    served_at_stops(r, route, found, i - 1)
+    outside_other_columns(r, rack)
+    state_pockets(r, expected.state_pockets(), "after the load:")
+
+
+def check_rack_t20(r, rack, expected):
+    program_changes(r, rack, expected, T20)
+
+
+def load_t20(expected):
+    expected.tools[3] = 20
+
+
+# What each scenario leaves in the rack, for the checks of those after it.
+ORDER = [("rack_changes", lambda e: [e.change(e.rack.safe(), t) for t in CHANGES]),
+         ("rack_load", load_t20), ("rack_t20", lambda e: [e.change(e.rack.safe(), t) for t in T20])]
+
+
+def main():
+    results = json.load(open(sys.argv[1]))
+    rack = Rack(json.load(open(sys.argv[2])))
+    name = sys.argv[3]
+    if results.get("error"):
+        print("the run reported: %s" % results["error"])
+    expected = Expected(rack)
+    # The scenarios run one after the other on one machine.
+    for before, effect in ORDER[:[n for n, _ in ORDER].index(name)]:
+        effect(expected)
+    by_name = {s["name"]: s for s in results["scenarios"]}
+    if name not in by_name:
+        fail("scenario %s did not run" % name)
+    globals()["check_" + name](by_name[name], rack, expected)
+
+
+if __name__ == "__main__":
+    main()
