@@ -34,6 +34,7 @@ PHASE_CHANGING = 2
 PHASE_LOADING = 3
 PHASE_UNLOADING = 4
 PHASE_FAULT = 5
+PHASE_MEASURING = 6
 # The `awaiting` pin: Awaiting.
 AWAITING_NOTHING = 0
 AWAITING_MOTION = 1
@@ -52,7 +53,8 @@ STEP_SET_SPINDLE_TOOL = 5
 PHASES = {PHASE_NOT_READY: "Machine off, not homed or in estop", PHASE_IDLE: "Idle",
           PHASE_CHANGING: "Changing tool", PHASE_LOADING: "Loading tool",
           PHASE_UNLOADING: "Unloading tool",
-          PHASE_FAULT: "FAULT: check spindle and rack, then Clear fault"}
+          PHASE_FAULT: "FAULT: check spindle and rack, then Clear fault",
+          PHASE_MEASURING: "Measuring tools (Cancel stops after the current one)"}
 # --lint's exit codes (src/io/lint.cpp): clean, problems found, an input unreadable.
 LINT_CLEAN = 0
 LINT_PROBLEMS = 1
@@ -422,7 +424,7 @@ class Handler:
         served during a change highlighted, the cut-off one in fault marked."""
         c = self.comp
         self.read_state()
-        busy = c["state"] in (PHASE_CHANGING, PHASE_LOADING, PHASE_UNLOADING)
+        busy = c["state"] in (PHASE_CHANGING, PHASE_LOADING, PHASE_UNLOADING, PHASE_MEASURING)
         served = c["pocket-served"] or (self.status or {}).get("pocket", 0)
         if not served and busy and self.state:
             # What the sequence under way recorded before it moved.

@@ -59,6 +59,9 @@ void Changer::sensors(const SensorReadings& readings) {
 void Changer::tool_change(int tool) { engine_->fsm.process_event(ToolChange{tool}); }
 void Changer::load(int tool, int pocket) { engine_->fsm.process_event(LoadRequest{tool, pocket}); }
 void Changer::unload(int tool) { engine_->fsm.process_event(UnloadRequest{tool}); }
+void Changer::measure_all(std::vector<int> tools) {
+  engine_->fsm.process_event(MeasureRequest{std::move(tools)});
+}
 void Changer::in_position() { engine_->fsm.process_event(InPosition{}); }
 void Changer::command_done() { engine_->fsm.process_event(CommandDone{}); }
 
@@ -87,6 +90,7 @@ Phase phase_of(const machine::Machine& fsm) {
   if (active<flag::Changing>(fsm)) return Phase::changing;
   if (active<flag::Loading>(fsm)) return Phase::loading;
   if (active<flag::Unloading>(fsm)) return Phase::unloading;
+  if (active<flag::Measuring>(fsm)) return Phase::measuring;
   if (active<flag::Idle>(fsm)) return Phase::idle;
   return Phase::not_ready;
 }
@@ -150,6 +154,10 @@ Status Changer::status() const {
   status.last_length = c.last_length;
   status.step_number = status.busy() ? c.sequence_step : 0;
   status.pocket = status.busy() && c.tools.in_progress ? c.tools.in_progress->pocket : 0;
+  if (status.phase == Phase::measuring) {
+    status.batch_done = static_cast<int>(c.batch.done);
+    status.batch_total = static_cast<int>(c.batch.tools.size());
+  }
   status.activity = activity_of(status, c);
   return status;
 }

@@ -44,6 +44,8 @@ class Changer {
   /// Load `tool` by hand into `pocket` (0: its own, else the nearest free one).
   void load(int tool, int pocket = 0);
   void unload(int tool);
+  /// Measure all: fetch, measure and put back each of `tools` in the rack, in order.
+  void measure_all(std::vector<int> tools);
   void in_position();
   void command_done();
   void probe_result(bool touched, double machine_z, bool tripped_before = false);

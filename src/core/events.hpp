@@ -2,6 +2,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace fatc {
 
@@ -17,6 +18,10 @@ struct ToolChange {
 struct LoadRequest {
   int tool = 0;
   int pocket = 0;  ///< where it goes; 0: its own pocket, else the nearest free one
+};
+/// The operator asks to measure `tools` one after another (measure all).
+struct MeasureRequest {
+  std::vector<int> tools;
 };
 /// The operator asks to take tool `tool` out of the machine.
 struct UnloadRequest {

@@ -6,7 +6,15 @@
 namespace fatc {
 
 /// Which flow the changer is in; the value of the `state` pin.
-enum class Phase { not_ready = 0, idle = 1, changing = 2, loading = 3, unloading = 4, fault = 5 };
+enum class Phase {
+  not_ready = 0,
+  idle = 1,
+  changing = 2,
+  loading = 3,
+  unloading = 4,
+  fault = 5,
+  measuring = 6,  ///< measure all
+};
 
 /// What the changer waits for now; the value of the `awaiting` pin.
 enum class Awaiting {
@@ -31,9 +39,12 @@ struct Status {
   std::optional<double> last_length;  ///< the last tool length measured
   int step_number = 0;  ///< the step of the sequence under way, as --plan numbers it; 0 none
   int pocket = 0;       ///< the pocket being served, 0 none
+  int batch_done = 0;   ///< measure all: tools measured (or tried) so far
+  int batch_total = 0;  ///< measure all: tools it measures; 0 when none runs
 
   bool busy() const {
-    return phase == Phase::changing || phase == Phase::loading || phase == Phase::unloading;
+    return phase == Phase::changing || phase == Phase::loading || phase == Phase::unloading ||
+           phase == Phase::measuring;
   }
   bool awaits_operator() const { return awaiting == Awaiting::operator_choice; }
 };

@@ -139,6 +139,14 @@ bool ToolState::holds(int number) const {
   return found != pockets.end() && found->second.tool != 0 && found->second.holds;
 }
 
+std::vector<int> ToolState::rack_tools() const {
+  std::vector<int> tools;
+  for (const auto& [number, pocket] : pockets) {
+    if (holds(number)) tools.push_back(pocket.tool);
+  }
+  return tools;
+}
+
 std::vector<int> ToolState::free_pockets() const {
   std::vector<int> free;
   for (const auto& [number, pocket] : pockets) {

@@ -51,6 +51,8 @@ struct ToolState {
   int tool_of(int number) const;
   /// Pocket `number` holds the tool that belongs in it.
   bool holds(int number) const;
+  /// The tools sitting in their pockets, in pocket order.
+  std::vector<int> rack_tools() const;
   /// Pockets no tool belongs in, in order.
   std::vector<int> free_pockets() const;
 

@@ -122,7 +122,8 @@ int check_state(const Options& options, const std::optional<Config>& config, std
   struct stat st;
   if (::stat(path.c_str(), &st) != 0 && errno == ENOENT) {
     out << shown_path(path)
-        << ": no state saved yet: the component starts with every pocket full\n";
+        << ": no state saved yet: the component starts with each pocket holding its first-start "
+           "tool\n";
     return 0;
   }
   const ToolStateResult state = config ? load_state_file(path, *config) : load_state_file(path);
@@ -214,15 +215,27 @@ int plan(const Options& options, std::ostream& out, std::ostream& err) {
   const Config& config = *loaded.config;
   const int from = *options.from_tool;
   const int to = *options.to_tool;
-  if (from != 0 && !config.has_pocket(from)) {
-    err << "--from " << from << ": tool " << from << " has no pocket in "
-        << shown_path(options.config_path) << "\n";
-    return 1;
+  // The rack at first start, or as the state file has it; `from` in the spindle.
+  ToolState tools = ToolState::fresh(config);
+  if (!options.state_path.empty()) {
+    auto saved = load_state_file(options.state_path, config);
+    if (!saved.state) {
+      err << saved.error << "\n";
+      return 1;
+    }
+    tools = *saved.state;
+    tools.uncertain = false;
+    tools.in_progress.reset();
   }
-  const Simulator sim = plan_change(config, from, to, config.probe_limit.z);
+  tools.spindle = from;
+  if (const auto home = tools.home_of(from)) tools.pockets[*home].holds = false;
+  const Simulator sim = plan_change(config, tools, to, config.probe_limit.z);
   out << "M6 T" << to << " with "
       << (from == 0 ? std::string("an empty spindle")
                     : "T" + std::to_string(from) + " in the spindle")
+      << (options.state_path.empty()
+              ? ", the rack as at first start"
+              : ", the rack as " + shown_path(options.state_path) + " has it")
       << "\n";
   int number = 0;
   bool refused = false;
@@ -333,7 +346,7 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
   const std::map<std::string, std::set<Mode>> used_by = {
       {"--config",
        {Mode::component, Mode::check, Mode::plan, Mode::confirm, Mode::lint, Mode::teach}},
-      {"--state", {Mode::component, Mode::check, Mode::confirm, Mode::lint}},
+      {"--state", {Mode::component, Mode::check, Mode::confirm, Mode::lint, Mode::plan}},
       {"--spindle", {Mode::confirm}},
       {"--pocket", {Mode::confirm}},
       {"--ini", {Mode::check, Mode::plan, Mode::lint, Mode::teach}},
@@ -365,7 +378,9 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
     error = "--plan needs --from A and --to B";
     return std::nullopt;
   }
-  if (used_by.at("--state").count(options.mode) != 0 && options.state_path.empty()) {
+  // --plan reads a state file only when given one; the others default to CONFIG.state.
+  if (used_by.at("--state").count(options.mode) != 0 && options.mode != Mode::plan &&
+      options.state_path.empty()) {
     options.state_path = options.config_path + ".state";
   }
   return options;

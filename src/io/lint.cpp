@@ -275,6 +275,45 @@ void sort_by_place(std::vector<gcode::Finding>& findings, const std::vector<std:
 
 }  // namespace
 
+namespace {
+
+/// The program walked as LinuxCNC would run it: its own folder, the extra
+/// subroutine folders and the INI's searched for what it calls.
+std::optional<gcode::Walk> walk_program(const Options& options, const MachineIni& machine,
+                                        std::string& error, std::string* name = nullptr) {
+  std::size_t budget = kMaxProgramBytes;
+  const auto program = read_source(options.program_path, budget, error);
+  if (!program) return std::nullopt;
+  if (name) *name = program->name;
+  std::vector<std::string> folders = {folder_of(options.program_path)};
+  if (options.subroutine_path) {
+    for (const auto& folder : folders_of(*options.subroutine_path, "")) folders.push_back(folder);
+  }
+  folders.insert(folders.end(), machine.folders.begin(), machine.folders.end());
+  FolderFinder finder(folders, budget);
+  return gcode::walk(*program, finder, machine.walk);
+}
+
+}  // namespace
+
+std::optional<std::vector<int>> program_tools(const std::string& program_path,
+                                              const std::string& ini_path, const Config& config,
+                                              std::string& error) {
+  Options options;
+  options.program_path = program_path;
+  if (!ini_path.empty()) options.ini_path = ini_path;
+  MachineIni machine;
+  if (!read_ini(options, config, machine, error)) return std::nullopt;
+  const auto walked = walk_program(options, machine, error);
+  if (!walked) return std::nullopt;
+  std::vector<int> tools;
+  for (const auto& use : walked->uses) {
+    if (!use.tool || *use.tool == 0) continue;
+    if (std::find(tools.begin(), tools.end(), *use.tool) == tools.end()) tools.push_back(*use.tool);
+  }
+  return tools;
+}
+
 int lint(const Options& options, std::ostream& out, std::ostream& err) {
   const auto loaded = load_config_file(options.config_path);
   if (!loaded.config) {
@@ -304,20 +343,13 @@ int lint(const Options& options, std::ostream& out, std::ostream& err) {
     err << error << "\n";
     return 2;
   }
-  std::size_t budget = kMaxProgramBytes;
-  const auto program = read_source(options.program_path, budget, error);
-  if (!program) {
+  std::string name;
+  auto walk = walk_program(options, machine, error, &name);
+  if (!walk) {
     err << error << "\n";
     return 2;
   }
-
-  std::vector<std::string> folders = {folder_of(options.program_path)};
-  if (options.subroutine_path) {
-    for (const auto& folder : folders_of(*options.subroutine_path, "")) folders.push_back(folder);
-  }
-  folders.insert(folders.end(), machine.folders.begin(), machine.folders.end());
-  FolderFinder finder(folders, budget);
-  gcode::Walk walked = gcode::walk(*program, finder, machine.walk);
+  gcode::Walk& walked = *walk;
 
   PreflightInput input;
   input.config = &config;
@@ -337,13 +369,13 @@ int lint(const Options& options, std::ostream& out, std::ostream& err) {
       problems.push_back({{table_name, note.line}, note.text});
   }
 
-  const std::string& name = program->name;
   struct stat st;
   const bool first_start = ::stat(options.state_path.c_str(), &st) != 0 && errno == ENOENT;
   const int spindle = state.state->spindle;
   out << name << ": at the start the spindle holds "
       << (spindle == 0 ? std::string("nothing") : "T" + std::to_string(spindle))
-      << (first_start ? " (no state file yet at " + input.state_name + ": every pocket full)"
+      << (first_start ? " (no state file yet at " + input.state_name +
+                            ": each pocket holds its first-start tool)"
                       : " (state file " + input.state_name + ")")
       << "\n";
   if (!checked.tools.empty()) {

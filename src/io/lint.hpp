@@ -2,6 +2,9 @@
 
 #include <cstddef>
 #include <iosfwd>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "cli.hpp"
 
@@ -24,5 +27,13 @@ constexpr double kAssumedRapidInch = 120.0;
 /// when the program, config, state, tool table or INI cannot be read (one
 /// line each on `err`).
 int lint(const Options& options, std::ostream& out, std::ostream& err);
+
+/// The tools the program puts in the spindle (M6, M61) as far as can be known
+/// without running it, in order of first use; nullopt and `error` when the
+/// program or the INI (`ini_path`, may be empty) cannot be read. What measure
+/// all measures for "the tools of the loaded program".
+std::optional<std::vector<int>> program_tools(const std::string& program_path,
+                                              const std::string& ini_path, const Config& config,
+                                              std::string& error);
 
 }  // namespace fatc::io

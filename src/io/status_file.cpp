@@ -21,6 +21,8 @@ const char* phase_word(Phase phase) {
       return "loading";
     case Phase::unloading:
       return "unloading";
+    case Phase::measuring:
+      return "measuring";
     case Phase::fault:
       return "fault";
   }
@@ -52,7 +54,7 @@ void StatusFile::write(const Status& status, const std::optional<InProgress>& cu
   const std::string key = std::to_string(static_cast<int>(status.phase)) + "/" +
                           std::to_string(static_cast<int>(status.awaiting)) + "/" +
                           std::to_string(serial_) + "/" + std::to_string(status.pocket) + "/" +
-                          status.activity + "/" +
+                          std::to_string(status.batch_done) + "/" + status.activity + "/" +
                           (cut_off ? cut_off->sequence + cut_off->step : std::string("-"));
   if (key == shown_) return;
   shown_ = key;  // a failed write is not retried every poll; the next change writes again
@@ -61,6 +63,7 @@ void StatusFile::write(const Status& status, const std::optional<InProgress>& cu
                          {"awaiting", static_cast<int>(status.awaiting)},
                          {"activity", status.activity},
                          {"pocket", status.pocket},
+                         {"batch", {{"done", status.batch_done}, {"total", status.batch_total}}},
                          {"cut_off", nullptr},
                          {"messages", nlohmann::json::array()},
                          {"serial", serial_}};

@@ -1,10 +1,13 @@
 #include "component.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <iostream>
 
 #include "hal_pins_detail.hpp"
 #include "io/files.hpp"
+#include "io/lint.hpp"
 #include "nml_link.hpp"
 
 namespace fatc::linuxcnc {
@@ -112,6 +115,7 @@ void Component::read_executor(std::optional<bool> interpreter_idle) {
 void Component::read_operator() {
   if (load_.rose(*pins_->load)) changer_->load(*pins_->tool_number, *pins_->pocket_number);
   if (unload_.rose(*pins_->unload)) changer_->unload(*pins_->tool_number);
+  if (measure_all_.rose(*pins_->measure_all)) measure_all();
   if (continue_.rose(*pins_->continue_)) changer_->operator_continue();
   if (cancel_.rose(*pins_->cancel)) {
     if (changer_->status().probe_cancellable && nml_) {
@@ -138,9 +142,12 @@ void Component::read_operator() {
 void Component::teach(const TeachTarget& target) {
   const std::string what = "teach " + target_name(target) + " refused: ";
   const Status status = changer_->status();
-  if (status.phase != Phase::idle || status.awaiting != Awaiting::nothing) {
+  // Idle, and nothing running: a position taken while a program or MDI moves
+  // the machine is nowhere in particular.
+  if (!status.accepting) {
     tell(MessageKind::error,
-         what + "only while the changer is idle (it is " + status.activity + ")");
+         what + (status.phase == Phase::idle ? "a program or MDI is running; teach once it stopped"
+                                             : "only while the changer is idle"));
     return;
   }
   if (!nml_) {
@@ -174,6 +181,38 @@ void Component::teach(const TeachTarget& target) {
                               io::shown_path(config_path_ + ".bak"));
 }
 
+void Component::measure_all() {
+  const ToolState& tools = changer_->tools();
+  std::vector<int> asked = tools.rack_tools();
+  const int which = *pins_->measure_which;
+  if (which == 1) {
+    asked.erase(std::remove_if(asked.begin(), asked.end(),
+                               [&](int tool) { return tools.lengths.count(tool) != 0; }),
+                asked.end());
+  } else if (which == 2) {
+    const std::string program = nml_ ? nml_->loaded_program() : std::string();
+    if (program.empty()) {
+      tell(MessageKind::error, "measure all refused: no program is loaded in LinuxCNC");
+      return;
+    }
+    std::string error;
+    const char* ini = std::getenv("INI_FILE_NAME");
+    const auto used = io::program_tools(program, ini ? ini : "", config_, error);
+    if (!used) {
+      tell(MessageKind::error, "measure all refused: " + error);
+      return;
+    }
+    asked = *used;
+  } else if (which != 0) {
+    tell(MessageKind::error,
+         "measure all refused: measure-which must be 0 (every tool in the "
+         "rack), 1 (the unmeasured) or 2 (the program's), got " +
+             std::to_string(which));
+    return;
+  }
+  changer_->measure_all(asked);
+}
+
 void Component::sync_linuxcnc_tool() {
   // LinuxCNC starts with an empty spindle, and an operator's confirmation
   // changes what the spindle holds: tell LinuxCNC what the changer knows,
@@ -203,7 +242,7 @@ void Component::start_executor_if_needed() {
   // Operator flows start from an idle machine: a step waiting with no
   // executor to take it means the executor must be run over MDI.
   const Phase phase = changer_->status().phase;
-  if (phase != Phase::loading && phase != Phase::unloading) return;
+  if (phase != Phase::loading && phase != Phase::unloading && phase != Phase::measuring) return;
   if (!task_free_ || !link_.needs_run(now_)) return;
   nml_->run_mdi("o<fixed_atc_probe_execute> call [" +
                 std::to_string(static_cast<int>(ExecutorCall::operator_flow)) + "]");
@@ -233,13 +272,16 @@ void Component::write_pins() {
   *pins_->awaiting = static_cast<int>(status.awaiting);
   *pins_->step_number = status.step_number;
   *pins_->pocket_served = status.pocket;
+  *pins_->batch_done = status.batch_done;
+  *pins_->batch_total = status.batch_total;
   *pins_->accepting = status.accepting;
   if (status.last_length) *pins_->last_length = *status.last_length;
   // An operator flow waits for the operator once its executor run has ended
   // (the GUI and jogging are then free); M6 holds its program meanwhile.
   *pins_->waiting_for_operator =
       status.awaits_operator() && (!link_.attached() || status.holds_program);
-  *pins_->can_cancel = *pins_->waiting_for_operator || (status.probe_cancellable && nml_);
+  *pins_->can_cancel = *pins_->waiting_for_operator || (status.probe_cancellable && nml_) ||
+                       status.phase == Phase::measuring;
   const auto& cut_off = changer_->cut_off();
   *pins_->cut_off_pocket = cut_off && status.phase == Phase::fault ? cut_off->pocket : 0;
   *pins_->heartbeat = !*pins_->heartbeat;

@@ -59,6 +59,8 @@ class Component : public Ports {
   void read_operator();
   /// Teaching: the machine position into config.json at `target`, if idle.
   void teach(const TeachTarget& target);
+  /// Measure all, of the tools `measure-which` names.
+  void measure_all();
   void abort(const std::string& reason);
   void start_executor_if_needed();
   void sync_linuxcnc_tool();
@@ -83,7 +85,7 @@ class Component : public Ports {
   std::optional<Clock::time_point> sync_sent_;
   io::StatusFile status_file_;
   Edge abort_, clear_, load_, unload_, continue_, cancel_;
-  Edge teach_pocket_, teach_loading_, teach_safe_, teach_sensor_;
+  Edge teach_pocket_, teach_loading_, teach_safe_, teach_sensor_, measure_all_;
 };
 
 }  // namespace fatc::linuxcnc

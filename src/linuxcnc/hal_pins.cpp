@@ -97,6 +97,10 @@ HalPins* create_pins(const std::string& name, int& id, const std::vector<int>& p
   make(id, HAL_IN, &p->teach_safe, n, "teach-safe");
   make(id, HAL_IN, &p->teach_sensor, n, "teach-sensor");
   make(id, HAL_OUT, &p->pocket_served, n, "pocket-served");
+  make(id, HAL_IN, &p->measure_all, n, "measure-all");
+  make(id, HAL_IN, &p->measure_which, n, "measure-which");
+  make(id, HAL_OUT, &p->batch_done, n, "batch-done");
+  make(id, HAL_OUT, &p->batch_total, n, "batch-total");
   make(id, HAL_IN, &p->continue_, n, "continue");
   make(id, HAL_IN, &p->cancel, n, "cancel");
   make(id, HAL_OUT, &p->waiting_for_operator, n, "waiting-for-operator");

@@ -64,6 +64,10 @@ struct HalPins {
   hal_bit_t* teach_safe;      ///< in: rising edge: ... becomes `safe`
   hal_bit_t* teach_sensor;    ///< in: rising edge: its XY becomes the touch-off sensor's
   hal_s32_t* pocket_served;   ///< out: the pocket a sequence serves now, 0 none
+  hal_bit_t* measure_all;     ///< in: rising edge: measure the tools measure-which says
+  hal_s32_t* measure_which;   ///< in: 0 every tool in the rack, 1 the unmeasured, 2 the program's
+  hal_s32_t* batch_done;      ///< out: measure all: tools done so far
+  hal_s32_t* batch_total;     ///< out: measure all: tools it measures, 0 none running
   hal_bit_t* continue_;       ///< in: rising edge: the operator is done (Continue)
   hal_bit_t* cancel;          ///< in: rising edge: the operator cancels
   hal_bit_t* waiting_for_operator;  ///< out: a prompt waits for Continue or Cancel

@@ -46,6 +46,7 @@ bool NmlLink::poll() {
     const double per_mm = stat->motion.traj.linearUnits > 0 ? stat->motion.traj.linearUnits : 1.0;
     const EmcPose& at = stat->motion.traj.actualPosition;
     position_mm_ = {at.tran.x / per_mm, at.tran.y / per_mm, at.tran.z / per_mm};
+    program_.assign(stat->task.file, strnlen(stat->task.file, sizeof stat->task.file));
     serial_ = std::max(serial_, stat->echo_serial_number);
   }
   return true;

@@ -24,6 +24,8 @@ class NmlLink {
   bool interpreter_idle() const { return interpreter_idle_; }
   /// Where the machine is (G53, actual position), in mm; what teaching writes.
   Point machine_position_mm() const { return position_mm_; }
+  /// The program loaded in LinuxCNC (task's file), empty if none.
+  const std::string& loaded_program() const { return program_; }
   /// An operator message: errors as EMC_OPERATOR_ERROR, the rest as EMC_OPERATOR_DISPLAY.
   void tell(MessageKind kind, const std::string& text);
   /// Puts task in MDI mode and runs `line` there, as halui does for its MDI
@@ -44,6 +46,7 @@ class NmlLink {
   std::unique_ptr<Channels> channels_;
   bool interpreter_idle_ = true;
   Point position_mm_;
+  std::string program_;
   int serial_ = 0;
 };
 

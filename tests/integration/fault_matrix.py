@@ -14,8 +14,8 @@ records that LinuxCNC and the changer agree. fault_matrix_check.py judges.
 Environment: FATC_RESULTS (JSON written here), FATC_MATRIX_KINDS (comma list,
 default estop,abort,kill), FATC_MATRIX_MODE (matrix | restart),
 FATC_MATRIX_STEPS (comma list of step numbers, "none", or unset: every step
-that waits); FATC_MATRIX_HOLD_STEPS (the steps of the feed-hold column, if
-not all of them); FATC_MATRIX_SPINDLE (non-empty: the spindle case too); FATC_MATRIX_PENDING (restart mode: the case the last start cut).
+that waits); FATC_MATRIX_<KIND>_STEPS, e.g. FATC_MATRIX_HOLD_STEPS (the steps
+of that column, if not those); FATC_MATRIX_SPINDLE (non-empty: the spindle case too); FATC_MATRIX_PENDING (restart mode: the case the last start cut).
 """
 import json
 import os
@@ -352,11 +352,10 @@ def main():
         else:
             kinds = os.environ.get("FATC_MATRIX_KINDS", "estop,abort,kill").split(",")
             began = time.monotonic()
-            hold_steps = os.environ.get("FATC_MATRIX_HOLD_STEPS")
             for kind in kinds:
-                steps_of_kind = at_steps
-                if kind == "hold" and hold_steps:
-                    steps_of_kind = [int(n) for n in hold_steps.split(",")]
+                # FATC_MATRIX_HOLD_STEPS, FATC_MATRIX_KILL_STEPS ...: a kind's own steps.
+                own_steps = os.environ.get("FATC_MATRIX_%s_STEPS" % kind.upper())
+                steps_of_kind = [int(n) for n in own_steps.split(",")] if own_steps else at_steps
                 for at in steps_of_kind:
                     if kind == "hold":
                         results["cases"].append(run_hold(at, steps))

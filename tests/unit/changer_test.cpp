@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "core/simulator.hpp"
+#include "sim_lines.hpp"
 #include "test_config.hpp"
 
 namespace fatc {
@@ -31,35 +32,7 @@ struct Rig {
   ~Rig() { EXPECT_TRUE(sim.unexpected_events.empty()) << sim.unexpected_events.front(); }
 
   /// The records since `from`, compactly: "rapid safe Z", "chuck open", "dwell 0.50", ...
-  Lines lines(std::size_t from = 0) const {
-    Lines out;
-    char buffer[32];
-    for (std::size_t i = from; i < sim.records.size(); ++i) {
-      const Record& r = sim.records[i];
-      switch (r.kind) {
-        case Record::Kind::step:
-          if (r.step.kind == StepKind::done || r.step.kind == StepKind::set_spindle_tool) {
-            out.push_back(std::string(step_kind_name(r.step.kind)) + " T" +
-                          std::to_string(r.step.tool));
-          } else {
-            out.push_back(std::string(step_kind_name(r.step.kind)) + " " + r.step.label);
-          }
-          break;
-        case Record::Kind::chuck:
-          out.push_back(r.chuck_open ? "chuck open" : "chuck close");
-          break;
-        case Record::Kind::dwell:
-          std::snprintf(buffer, sizeof buffer, "dwell %.2f", r.seconds);
-          out.push_back(buffer);
-          break;
-        case Record::Kind::message:
-          break;
-        case Record::Kind::save:
-          break;
-      }
-    }
-    return out;
-  }
+  Lines lines(std::size_t from = 0) const { return test::record_lines(sim, from); }
 
   /// One event the way the executor, the clock or the operator would give it.
   bool advance_once() {

@@ -133,8 +133,8 @@ TEST(Cli, shouldRefuseAnOptionTheModeDoesNotRead) {
             "--from is not used by --check");
   EXPECT_EQ(run({"--config", kConfig, "--ini", "m.ini"}).err,
             "--ini is not used by the component (no --check, --plan, --dot)");
-  EXPECT_EQ(run({"--plan", "--config", kConfig, "--from", "1", "--to", "2", "--state", "s"}).err,
-            "--state is not used by --plan");
+  EXPECT_EQ(run({"--plan", "--config", kConfig, "--from", "1", "--to", "2", "--at", "1,2,3"}).err,
+            "--at is not used by --plan");
   EXPECT_EQ(run({"--dot", "--config", kConfig}).err, "--config is not used by --dot");
 }
 

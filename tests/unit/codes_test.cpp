@@ -56,6 +56,7 @@ const Codes kPhases = {
     {"loading", {"Phase::loading", static_cast<int>(Phase::loading)}},
     {"unloading", {"Phase::unloading", static_cast<int>(Phase::unloading)}},
     {"fault", {"Phase::fault", static_cast<int>(Phase::fault)}},
+    {"measuring", {"Phase::measuring", static_cast<int>(Phase::measuring)}},
 };
 const Codes kAwaiting = {
     {"nothing", {"Awaiting::nothing", static_cast<int>(Awaiting::nothing)}},

@@ -138,7 +138,7 @@ TEST_F(Lint, shouldListEveryChangeInTheOrderOfTheProgramWithItsPocket) {
 TEST_F(Lint, shouldSayWhatTheSpindleHoldsAtTheStart) {
   EXPECT_LINE(lint(program("manual.ngc")),
               "manual.ngc: at the start the spindle holds nothing (no state file yet at " +
-                  no_state() + ": every pocket full)\n");
+                  no_state() + ": each pocket holds its first-start tool)\n");
   const LintRun r = lint(program("manual.ngc"), {"--state", kPrograms + "/measured.state"});
   EXPECT_LINE(r, "manual.ngc: at the start the spindle holds T2 (state file " + kPrograms +
                      "/measured.state)\n");

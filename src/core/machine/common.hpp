@@ -31,6 +31,7 @@ struct Busy {};          ///< a flow runs
 struct Changing {};      ///< the M6 flow
 struct Loading {};       ///< the load-and-probe flow
 struct Unloading {};     ///< the unload flow
+struct Measuring {};     ///< the measure-all flow
 struct AwaitsMotion {};  ///< the executor performs a move or a command
 struct AwaitsProbe {};   ///< the executor performs a probe move
 struct AwaitsTimer {};

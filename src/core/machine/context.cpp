@@ -283,6 +283,34 @@ std::optional<std::string> why_not_load(const Context& ctx, int tool, int pocket
   return why_spindle_cannot_be_emptied(ctx, false);
 }
 
+std::vector<int> measurable_tools(const Context& ctx, const std::vector<int>& asked,
+                                  std::string& skipped) {
+  std::vector<int> tools;
+  for (const int tool : asked) {
+    if (std::find(tools.begin(), tools.end(), tool) != tools.end()) continue;
+    const bool in_spindle = tool != 0 && tool == ctx.tools.spindle && ctx.return_pocket(tool);
+    if (ctx.tools.pocket_holding(tool) || in_spindle) {
+      tools.push_back(tool);
+    } else if (tool != 0) {
+      skipped += (skipped.empty() ? "" : ", ") + ("T" + std::to_string(tool));
+    }
+  }
+  return tools;
+}
+
+std::optional<std::string> why_not_measure(const Context& ctx, const std::vector<int>& asked) {
+  if (ctx.task_busy) return ctx.task_busy;
+  if (auto busy = why_not_busy(ctx)) return busy;
+  if (!ctx.spindle_at_standstill()) return std::string("the spindle is turning; stop it first");
+  if (auto air = why_no_air(ctx)) return air;
+  std::string skipped;
+  if (measurable_tools(ctx, asked, skipped).empty()) {
+    return "no tool to measure in the rack" +
+           (skipped.empty() ? std::string() : " (not in the rack: " + skipped + ")");
+  }
+  return why_spindle_cannot_be_emptied(ctx, false);
+}
+
 std::optional<std::string> why_not_unload(const Context& ctx, int tool) {
   if (ctx.task_busy) return ctx.task_busy;
   if (tool <= 0) return "unload needs a tool number above 0, got " + std::to_string(tool);

@@ -3,6 +3,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "../config.hpp"
 #include "../events.hpp"
@@ -25,8 +26,16 @@ class Context {
   Ports& ports;
   ToolState tools;
 
-  int requested_tool = 0;       ///< the tool the current request is about
-  int load_pocket = 0;          ///< the pocket the load flow puts its tool in
+  int requested_tool = 0;  ///< the tool the current request is about
+  int load_pocket = 0;     ///< the pocket the load flow puts its tool in
+  /// Measure all: the tools to measure, in order, and how far it got.
+  struct Batch {
+    std::vector<int> tools;
+    std::size_t done = 0;          ///< tools measured or tried
+    bool cancel = false;           ///< stop once the tool under way is back in its pocket
+    std::optional<double> stored;  ///< the length of the tool under way before it was measured
+    std::vector<std::string> report;
+  } batch;
   bool machine_ready = false;   ///< latest Ready/NotReady
   bool spindle_stopped = true;  ///< LinuxCNC's spindle is off (`spindle-stopped`)
   SensorReadings sensors;       ///< what the optional sensors read
@@ -111,6 +120,8 @@ class Context {
   void fail_check(std::string reason, bool uncertain);
   /// Why the last probe measured nothing, in words (for the fault after M6).
   std::string probe_problem;
+  /// The operator stopped the last probe.
+  bool probe_cancelled = false;
 };
 
 /// Why M6 to `tool` cannot start now, or nothing if it can.
@@ -126,6 +137,12 @@ LoadPocket choose_load_pocket(const Context& ctx, int tool, int asked);
 /// Why loading tool `tool` by hand (into pocket `pocket`, 0: chosen) cannot
 /// start now, or nothing if it can.
 std::optional<std::string> why_not_load(const Context& ctx, int tool, int pocket);
+/// The tools of `asked` that measure all can fetch (in the rack, or in the
+/// spindle with a pocket to go to), in order, once each; `skipped` names the others.
+std::vector<int> measurable_tools(const Context& ctx, const std::vector<int>& asked,
+                                  std::string& skipped);
+/// Why measuring `tools` one after another cannot start now, or nothing if it can.
+std::optional<std::string> why_not_measure(const Context& ctx, const std::vector<int>& tools);
 /// Why unloading tool `tool` cannot start now, or nothing if it can.
 std::optional<std::string> why_not_unload(const Context& ctx, int tool);
 

@@ -179,11 +179,121 @@ struct UnloadFlow_ : Flow<UnloadFlow_> {
 };
 using UnloadFlow = msm::back::state_machine<UnloadFlow_>;
 
+// ================================================================ measure all
+/// Measure all: each tool fetched from its pocket, measured on the sensor and
+/// put back, one after another, with a report of each length and its change.
+/// Cancel stops the batch once the tool under way is back in its pocket (a
+/// probe under way stops too). The legs are the load's and M6's own types, so
+/// the machine grows by one table, not by new copies of the legs.
+/// docs/sequences.md#measure-all.
+struct MeasureAllFlow_ : Flow<MeasureAllFlow_> {
+  using flag_list = boost::mpl::vector2<flag::Busy, flag::Measuring>;
+
+  using Returning = ReturnLeg<Before>;
+  using Probe = ProbingLeg<OverMdi>;
+  /// The spindle's tool goes back first; then the next tool, if any is left.
+  struct DecidingNextTool : Decision {};
+  struct OverSensor : Moving<to::SensorXY> {};
+
+  struct ToolsLeft {
+    template <class Event, class Fsm, class Source, class Target>
+    bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      const Context::Batch& b = fsm.ctx->batch;
+      return !b.cancel && b.done < b.tools.size();
+    }
+  };
+  struct TakeNextTool {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      Context& c = *fsm.ctx;
+      const int tool = c.batch.tools[c.batch.done];
+      c.requested_tool = tool;
+      const auto stored = c.tools.lengths.find(tool);
+      c.batch.stored =
+          stored == c.tools.lengths.end() ? std::nullopt : std::optional<double>(stored->second);
+      c.tell(MessageKind::info, "measure all: tool " + std::to_string(tool) + " (" +
+                                    std::to_string(c.batch.done + 1) + " of " +
+                                    std::to_string(c.batch.tools.size()) + ")");
+    }
+  };
+  struct RecordMeasured {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      Context& c = *fsm.ctx;
+      const double now = *c.last_length;
+      std::string line =
+          "T" + std::to_string(c.requested_tool) + " " + format_length(c.config, now);
+      if (c.batch.stored) {
+        char change[32];
+        std::snprintf(change, sizeof change, "%+.4f", now - *c.batch.stored);
+        line += " (was " + format_length(c.config, *c.batch.stored) + ", " + change + ")";
+      } else {
+        line += " (first measurement)";
+      }
+      c.batch.report.push_back(line);
+      ++c.batch.done;
+    }
+  };
+  struct RecordNotMeasured {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      Context& c = *fsm.ctx;
+      c.batch.report.push_back("T" + std::to_string(c.requested_tool) +
+                               " not measured: " + c.probe_problem);
+      ++c.batch.done;
+    }
+  };
+  struct SayReport {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      Context& c = *fsm.ctx;
+      std::string text =
+          "measure all " + std::string(c.batch.cancel ? "cancelled after " : "done: ") +
+          std::to_string(c.batch.done) + " of " + std::to_string(c.batch.tools.size()) + " tools";
+      for (const auto& line : c.batch.report) text += "; " + line;
+      c.tell(MessageKind::info, text);
+    }
+  };
+
+  using initial_state = DecidingNextTool;
+  // clang-format off
+  using transition_table = boost::mpl::vector<
+  //    Start                               Event        Next              Action             Guard
+  // +-----------------------------------+------------+-----------------+------------------+-----------------------------------+
+  Row < DecidingNextTool                  , none       , Returning       , none             , SpindleHoldsTool                  >,
+  Row < DecidingNextTool                  , none       , RetrieveLeg     , TakeNextTool     , And<Not<SpindleHoldsTool>, ToolsLeft> >,
+  Row < DecidingNextTool                  , none       , Finished        , SayReport        , And<Not<SpindleHoldsTool>, Not<ToolsLeft>> >,
+  Row < Returning::exit_pt<Finished>      , LegDone    , DecidingNextTool, none             , none                              >,
+  Row < RetrieveLeg::exit_pt<Finished>    , LegDone    , ToLoadingZ      , none             , none                              >,
+  Row < ToLoadingZ                        , InPosition , OverSensor      , none             , none                              >,
+  Row < OverSensor                        , InPosition , Probe           , none             , none                              >,
+  Row < Probe::exit_pt<Finished>          , LegDone    , DecidingNextTool, RecordMeasured   , none                              >,
+  Row < Probe::exit_pt<Probe::NotMeasured>, LegDone    , DecidingNextTool, RecordNotMeasured, none                              >
+  >;
+  // clang-format on
+  /// Cancel asks the batch to stop after the tool under way is put back.
+  struct AskToStop {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      fsm.ctx->batch.cancel = true;
+      fsm.ctx->tell(MessageKind::info, "measure all stops once tool " +
+                                           std::to_string(fsm.ctx->requested_tool) +
+                                           " is back in its pocket");
+    }
+  };
+  using internal_transition_table =
+      boost::mpl::vector<msmf::Internal<OperatorCancel, AskToStop, none>>;
+};
+using MeasureAllFlow = msm::back::state_machine<MeasureAllFlow_>;
+
 // ================================================================ requests and refusals
 inline std::string request_name(const ToolChange& e) { return "M6 T" + std::to_string(e.tool); }
 inline std::string request_name(const LoadRequest& e) {
   return "load of tool " + std::to_string(e.tool) +
          (e.pocket != 0 ? " into pocket " + std::to_string(e.pocket) : std::string());
+}
+inline std::string request_name(const MeasureRequest& e) {
+  return "measure all (" + std::to_string(e.tools.size()) + " tools)";
 }
 inline std::string request_name(const UnloadRequest& e) {
   return "unload of tool " + std::to_string(e.tool);
@@ -194,6 +304,9 @@ inline std::optional<std::string> why_not(const Context& c, const ToolChange& e)
 }
 inline std::optional<std::string> why_not(const Context& c, const LoadRequest& e) {
   return why_not_load(c, e.tool, e.pocket);
+}
+inline std::optional<std::string> why_not(const Context& c, const MeasureRequest& e) {
+  return why_not_measure(c, e.tools);
 }
 inline std::optional<std::string> why_not(const Context& c, const UnloadRequest& e) {
   return why_not_unload(c, e.tool);
@@ -248,7 +361,8 @@ struct BecauseBusy {
 template <class Because>
 using RefusesRequests = boost::mpl::vector<msmf::Internal<ToolChange, Refuse<Because>, none>,
                                            msmf::Internal<LoadRequest, Refuse<Because>, none>,
-                                           msmf::Internal<UnloadRequest, Refuse<Because>, none>>;
+                                           msmf::Internal<UnloadRequest, Refuse<Because>, none>,
+                                           msmf::Internal<MeasureRequest, Refuse<Because>, none>>;
 
 // ================================================================ operating
 /// The machine on and homed: idle, or running one flow.
@@ -294,9 +408,16 @@ struct Operating_ : Flow<Operating_> {
   struct TakeRequest {
     template <class Request, class Fsm, class Source, class Target>
     void operator()(const Request& e, Fsm& fsm, Source&, Target&) const {
-      fsm.ctx->requested_tool = e.tool;
+      if constexpr (!std::is_same_v<Request, MeasureRequest>) fsm.ctx->requested_tool = e.tool;
       if constexpr (std::is_same_v<Request, LoadRequest>) {
         fsm.ctx->load_pocket = choose_load_pocket(*fsm.ctx, e.tool, e.pocket).pocket;
+      }
+      if constexpr (std::is_same_v<Request, MeasureRequest>) {
+        std::string skipped;
+        fsm.ctx->batch = {measurable_tools(*fsm.ctx, e.tools, skipped), 0, false, {}, {}};
+        if (!skipped.empty()) {
+          fsm.ctx->tell(MessageKind::info, "measure all skips what is not in the rack: " + skipped);
+        }
       }
       fsm.ctx->begin_sequence(request_name(e));
     }
@@ -330,25 +451,35 @@ struct Operating_ : Flow<Operating_> {
 
   using initial_state = ComparingSensors;
   // clang-format off
-  using transition_table = boost::mpl::vector<
-  //    Start                            Event          Next        Action                      Guard
-  // +--------------------------------+--------------+-----------+---------------------------+-----------------------------------+
-  Row < ComparingSensors               , SensorReport , Idle      , none                      , SensorsAgree                      >,
-  Row < ComparingSensors               , TimerElapsed , Failed    , SaySensorsDisagree        , none                              >,
-  Row < Idle                           , SensorReport , ComparingSensors, none                , Not<SensorsAgree>                 >,
-  Row < Idle                           , ToolChange   , none      , Refuse<BecauseNotPossible>, Refused                           >,
-  Row < Idle                           , ToolChange   , none      , AnswerDone                , And<Not<Refused>, AlreadyInSpindle> >,
-  Row < Idle                           , ToolChange   , ChangeFlow, TakeRequest               , And<Not<Refused>, Not<AlreadyInSpindle>> >,
-  Row < Idle                           , LoadRequest  , none      , Refuse<BecauseNotPossible>, Refused                           >,
-  Row < Idle                           , LoadRequest  , LoadFlow  , TakeRequest               , Not<Refused>                      >,
-  Row < Idle                           , UnloadRequest, none      , Refuse<BecauseNotPossible>, Refused                           >,
-  Row < Idle                           , UnloadRequest, UnloadFlow, TakeRequest               , Not<Refused>                      >,
-  Row < ChangeFlow::exit_pt<Finished>  , LegDone      , ComparingSensors, AnswerDone          , none                              >,
-  Row < ChangeFlow::exit_pt<Failed>    , FlowFailed   , Failed    , none                      , none                              >,
-  Row < ChangeFlow::exit_pt<Cancelled> , LegDone      , ComparingSensors, StopProgram         , none                              >,
-  Row < LoadFlow::exit_pt<Finished>    , LegDone      , ComparingSensors, AnswerDone          , none                              >,
-  Row < UnloadFlow::exit_pt<Finished>  , LegDone      , ComparingSensors, AnswerDone          , none                              >
+  /// Requests taken while idle: refused with a reason, or their flow started.
+  using requests = boost::mpl::vector<
+  //    Start                            Event           Next        Action                      Guard
+  // +--------------------------------+---------------+-----------+---------------------------+-----------------------------------+
+  Row < Idle                           , ToolChange    , none      , Refuse<BecauseNotPossible>, Refused                           >,
+  Row < Idle                           , ToolChange    , none      , AnswerDone                , And<Not<Refused>, AlreadyInSpindle> >,
+  Row < Idle                           , ToolChange    , ChangeFlow, TakeRequest               , And<Not<Refused>, Not<AlreadyInSpindle>> >,
+  Row < Idle                           , LoadRequest   , none      , Refuse<BecauseNotPossible>, Refused                           >,
+  Row < Idle                           , LoadRequest   , LoadFlow  , TakeRequest               , Not<Refused>                      >,
+  Row < Idle                           , UnloadRequest , none      , Refuse<BecauseNotPossible>, Refused                           >,
+  Row < Idle                           , UnloadRequest , UnloadFlow, TakeRequest               , Not<Refused>                      >,
+  Row < Idle                           , MeasureRequest, none      , Refuse<BecauseNotPossible>, Refused                           >,
+  Row < Idle                           , MeasureRequest, MeasureAllFlow, TakeRequest           , Not<Refused>                      >
   >;
+  /// Comparing the sensors before work, and where each flow ends.
+  using around_the_flows = boost::mpl::vector<
+  //    Start                              Event          Next              Action              Guard
+  // +----------------------------------+--------------+-----------------+-------------------+--------------------+
+  Row < ComparingSensors                 , SensorReport , Idle            , none              , SensorsAgree       >,
+  Row < ComparingSensors                 , TimerElapsed , Failed          , SaySensorsDisagree, none               >,
+  Row < Idle                             , SensorReport , ComparingSensors, none              , Not<SensorsAgree>  >,
+  Row < ChangeFlow::exit_pt<Finished>    , LegDone      , ComparingSensors, AnswerDone        , none               >,
+  Row < ChangeFlow::exit_pt<Failed>      , FlowFailed   , Failed          , none              , none               >,
+  Row < ChangeFlow::exit_pt<Cancelled>   , LegDone      , ComparingSensors, StopProgram       , none               >,
+  Row < LoadFlow::exit_pt<Finished>      , LegDone      , ComparingSensors, AnswerDone        , none               >,
+  Row < UnloadFlow::exit_pt<Finished>    , LegDone      , ComparingSensors, AnswerDone        , none               >,
+  Row < MeasureAllFlow::exit_pt<Finished>, LegDone      , ComparingSensors, AnswerDone        , none               >
+  >;
+  using transition_table = boost::mpl::joint_view<requests, around_the_flows>;
   /// Idle answers every request above; these answer them while a flow runs.
   using internal_transition_table = RefusesRequests<BecauseBusy>;
   // clang-format on

@@ -381,6 +381,7 @@ struct ProbingLeg_ : Flow<ProbingLeg_<Run>> {
   void on_entry(const Event& e, Parent& parent) {
     Flow<ProbingLeg_<Run>>::on_entry(e, parent);
     this->ctx->record_progress("measuring tool " + std::to_string(this->tool), 0);
+    this->ctx->probe_cancelled = false;
   }
 
   struct NotMeasured : msmf::exit_pseudo_state<LegDone> {};
@@ -470,6 +471,8 @@ struct ProbingLeg_ : Flow<ProbingLeg_<Run>> {
   struct SayCancelled {
     template <class Fsm, class Source, class Target>
     void operator()(const OperatorCancel&, Fsm& fsm, Source&, Target&) const {
+      fsm.ctx->probe_problem = "the probe was cancelled by the operator";
+      fsm.ctx->probe_cancelled = true;
       fsm.ctx->tell(MessageKind::info, "probe of tool " + std::to_string(fsm.tool) +
                                            " cancelled by the operator; nothing written");
     }
