@@ -4,7 +4,8 @@ Makes the panel's HAL pins, turns button clicks into the pulses the
 component's rising-edge inputs want, shows what the changer reports in the
 machinist's words, and enables a button only when the component says it can
 act. The Setup page's Teach buttons pulse the component's teach pins, which
-write the machine position into config.json. The rack (each pocket, its tool, the tool's length, its approach) comes
+write the machine position into config.json. Measure all pulses measure-all
+with the chosen measure-which and shows the batch's progress. The rack (each pocket, its tool, the tool's length, its approach) comes
 from the component's state file and config, the paths named in
 [FIXED_ATC_PROBE] of the INI; the program loaded in the GUI is checked with
 `fixed_atc_probe --lint` in a subprocess, never in the GTK loop."""
@@ -17,7 +18,7 @@ import linuxcnc
 from gi.repository import Gio, GLib, Gtk
 
 # Each button pulses the component pin of its name (the button's id in the .ui).
-OPERATOR_BUTTONS = ("load", "unload", "continue", "cancel", "clear-fault")
+OPERATOR_BUTTONS = ("load", "unload", "continue", "cancel", "clear-fault", "measure-all")
 # The Setup page: nothing moves, config.json is written.
 TEACH_BUTTONS = ("teach-pocket", "teach-loading", "teach-safe", "teach-sensor")
 BUTTONS = OPERATOR_BUTTONS + TEACH_BUTTONS
@@ -55,6 +56,10 @@ PHASES = {PHASE_NOT_READY: "Machine off, not homed or in estop", PHASE_IDLE: "Id
           PHASE_UNLOADING: "Unloading tool",
           PHASE_FAULT: "FAULT: check spindle and rack, then Clear fault",
           PHASE_MEASURING: "Measuring tools (Cancel stops after the current one)"}
+# The `measure-which` pin (docs/sequences.md#measure-all): the selector's item ids.
+MEASURE_EVERY = 0
+MEASURE_NEVER_MEASURED = 1
+MEASURE_PROGRAM = 2
 # --lint's exit codes (src/io/lint.cpp): clean, problems found, an input unreadable.
 LINT_CLEAN = 0
 LINT_PROBLEMS = 1
@@ -176,7 +181,7 @@ def summarize_lint(code, out, err):
     for line in lines:
         if line.startswith("tools in the order of the changes:"):
             order = line.split(":", 1)[1].split()
-    where, never, manual = {}, [], []
+    where, never, never_in_rack, manual = {}, [], [], []
     section = None
     problems, unknown = [], 0
     for line in lines:
@@ -191,6 +196,8 @@ def summarize_lint(code, out, err):
                                else None)
             if "never measured" in rest and tool not in never:
                 never.append(tool)
+            if "never measured" in rest and pocket and tool not in never_in_rack:
+                never_in_rack.append(tool)
             if rest.startswith("manual") and tool not in manual:
                 manual.append(tool)
             continue
@@ -208,11 +215,20 @@ def summarize_lint(code, out, err):
             summary["time"] = line.split(":", 1)[1].split(", from")[0].strip()
     summary["tools"] = ", ".join("%s (%s)" % (t, where[t]) if where.get(t) else t for t in order)
     summary["never"] = never
+    summary["never_in_rack"] = never_in_rack  # what Measure these offers to measure
     summary["manual"] = manual
     summary["problem_lines"] = problems
     summary["problems"] = len(problems)
     summary["unknown"] = unknown
     return summary
+
+
+def batch_progress(done, total):
+    """batch-done counts the tools measured: the one under way is the next
+    (the last stays shown while it goes back). "" when no batch runs."""
+    if total <= 0:
+        return ""
+    return "Measuring tool %d of %d" % (min(done + 1, total), total)
 
 
 def preflight_lines(summary):
@@ -245,8 +261,9 @@ class Handler:
             halcomp.newpin(name + "-enabled", hal.HAL_BIT, hal.HAL_OUT)
         halcomp.newpin("tool-number", hal.HAL_S32, hal.HAL_OUT)
         halcomp.newpin("pocket-number", hal.HAL_S32, hal.HAL_OUT)
+        halcomp.newpin("measure-which", hal.HAL_S32, hal.HAL_OUT)
         for name in ("state", "awaiting", "tool-in-spindle", "step-kind", "cut-off-pocket",
-                     "pocket-served"):
+                     "pocket-served", "batch-done", "batch-total"):
             halcomp.newpin(name, hal.HAL_S32, hal.HAL_IN)
         halcomp.newpin("confirm-tool", hal.HAL_S32, hal.HAL_OUT)
         halcomp.newpin("confirm-pocket", hal.HAL_S32, hal.HAL_OUT)
@@ -270,6 +287,7 @@ class Handler:
         self.linuxcnc_stat = linuxcnc.stat()
         self.lint_key = None  # what the shown preflight was made from
         self.lint_run = None  # (subprocess, its timeout source) while one runs
+        self.never_in_rack = []  # the preflight's never-measured tools that sit in the rack
         GLib.timeout_add(100, self.refresh)
         GLib.timeout_add(PROGRAM_POLL_MS, self.watch_program)
 
@@ -296,6 +314,15 @@ class Handler:
         self.comp["pocket-number"] = pocket
         self.builder.get_object("teach-pocket").set_label(
             "Teach pocket %d" % pocket if pocket > 0 else "Teach pocket")
+
+    def on_measure_which_changed(self, combo):
+        self.comp["measure-which"] = int(combo.get_active_id() or MEASURE_EVERY)
+
+    def on_measure_these_clicked(self, _button):
+        """The program page's offer: Measure all with the program's tools (those
+        in the rack; the component skips the others and says so)."""
+        self.builder.get_object("measure_which").set_active_id(str(MEASURE_PROGRAM))
+        self.on_button_clicked(self.builder.get_object("measure-all"))
 
     def on_button_clicked(self, button):
         name = Gtk.Buildable.get_name(button)
@@ -338,13 +365,18 @@ class Handler:
         length = c["last-length"]
         get("last_length").set_text("%.4f %s" % (length, "in" if c["units-inch"] else "mm") if length else "-")
         self.show_rack()
+        progress = batch_progress(c["batch-done"], c["batch-total"])
+        get("batch_progress").set_text(progress)
+        get("batch_progress").set_visible(bool(progress))
+        get("measure_these").set_visible(bool(self.never_in_rack))
+        get("measure_these").set_sensitive(bool(self.never_in_rack) and c["accepting"])
         wanted = c["tool-number"] > 0
         # A teach while a program or MDI runs would take the position of a
         # moving machine: only when Load could start (idle, task free).
         teach = c["accepting"]
         enabled = {"load": c["accepting"] and wanted, "unload": c["accepting"] and wanted,
                    "continue": c["waiting-for-operator"], "cancel": c["can-cancel"],
-                   "clear-fault": state == PHASE_FAULT,
+                   "clear-fault": state == PHASE_FAULT, "measure-all": c["accepting"],
                    "teach-pocket": teach and c["pocket-number"] > 0, "teach-loading": teach,
                    "teach-safe": teach, "teach-sensor": teach}
         for name, on in enabled.items():
@@ -491,6 +523,7 @@ class Handler:
     def start_lint(self, program):
         """fixed_atc_probe --lint over the program, found on the PATH as the
         HAL file's loadusr finds the component; its end arrives in lint_done."""
+        self.never_in_rack = []  # nothing to offer until this program is checked
         if not program:
             self.show_preflight("No program loaded", [], "")
             return
@@ -545,6 +578,7 @@ class Handler:
             return
         code = process.get_exit_status() if process.get_if_exited() else None
         summary = summarize_lint(code, text(out), text(err))
+        self.never_in_rack = summary.get("never_in_rack", [])
         self.show_preflight(summary["title"], preflight_lines(summary), text(out) + text(err),
                             trouble=summary["problems"] > 0)
 

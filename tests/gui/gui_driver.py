@@ -31,7 +31,8 @@ COORDS_SCREEN = 0
 
 PANEL_PINS = ["load-enabled", "unload-enabled", "continue-enabled", "cancel-enabled",
               "clear-fault-enabled", "load", "unload", "continue", "cancel", "tool-number",
-              "teach-pocket-enabled", "teach-loading-enabled", "pocket-number"]
+              "teach-pocket-enabled", "teach-loading-enabled", "pocket-number",
+              "measure-all-enabled", "measure-which"]
 
 xdisplay = display.Display()
 result = {"steps": [], "messages": [], "error": None, "screenshots": []}
@@ -281,6 +282,7 @@ def run():
     driver.bring_up()
     note("idle, tool number 0")
     result["idle_tool0_sensitive"] = {b: sensitive(b) for b in ("Load / Probe", "Unload", "Continue", "Cancel")}
+    result["measure_all_sensitive_idle"] = sensitive("Measure all")
     result["rack_start"] = rack()
 
     # The demo program opened in AXIS: the panel checks it with --lint.

@@ -20,7 +20,9 @@ PINS = ["fixed_atc_probe.chuck", "fixed_atc_probe.waiting-for-operator", "fixed_
         "fixed_atc_probe.step-request", "iocontrol.0.tool-prepare", "iocontrol.0.tool-prepared",
         "iocontrol.0.tool-change", "iocontrol.0.tool-changed", "iocontrol.0.tool-number",
         "motion.probe-input", "spindle.0.on", "iocontrol.0.coolant-flood", "fatc-chuck-guard.chuck",
-        "fatc-chuck-guard.alive", "fixed_atc_probe.cut-off-pocket", "fixed_atc_probe.pocket-served"]
+        "fatc-chuck-guard.alive", "fixed_atc_probe.cut-off-pocket", "fixed_atc_probe.pocket-served",
+        "fixed_atc_probe.batch-done", "fixed_atc_probe.batch-total", "fixed_atc_probe.step-number",
+        "fixed_atc_probe.can-cancel"]
 COMPONENT = "fixed_atc_probe"
 
 stat = linuxcnc.stat()
@@ -435,6 +437,13 @@ def perform(step, result, start):
         result.setdefault("files", {})[step["name"]] = {
             "t": now(), "pos": list(stat.actual_position[:3]),
             "config": read_text(config_path()), "bak": read_text(config_path() + ".bak")}
+    elif step["do"] == "program_open":
+        # A program loaded as a GUI's File > Open does, not run (measure-which 2 reads it).
+        command.mode(linuxcnc.MODE_AUTO)
+        command.wait_complete()
+        command.program_open(os.path.join(os.environ["FATC_ROOT"], step["program"]))
+        command.wait_complete()
+        wait(lambda: stat.file.endswith(step["program"]), 10, "LinuxCNC to load " + step["program"])
     elif step["do"] == "program":
         # A program run from an operator scenario: sampled until the interpreter is idle again.
         wait(lambda: stat.interp_state == linuxcnc.INTERP_IDLE, 60, "task free for the program")
@@ -484,6 +493,11 @@ def run_operator(scenario):
             pin, value = step["wait"]
             sampled_wait(lambda: hal.get_value(pin) == value, step.get("timeout", 180),
                          "%s == %s" % (pin, value))
+        elif "wait_pins" in step:
+            # Every pin at its value in the same sample.
+            pins = step["wait_pins"]
+            sampled_wait(lambda: all(hal.get_value(p) == v for p, v in pins.items()),
+                         step.get("timeout", 180), " and ".join("%s == %s" % i for i in pins.items()))
         elif "wait_message" in step:
             sampled_wait(lambda: any(step["wait_message"] in m for m in messages[first_message:]), 60,
                          "a message saying " + step["wait_message"])
@@ -529,6 +543,8 @@ def finish(result, start, first_message):
     result["start_pos"] = result["samples"][0]["pos"]
     result["duration"] = time.monotonic() - start
     result["tool_table_file"] = open(os.path.join(os.path.dirname(sys.argv[2]), "sim.tbl")).read()
+    # The lengths LinuxCNC holds in memory (stat), beside the file it wrote.
+    result["tool_table"] = {str(t.id): t.zoffset for t in stat.tool_table if t.id > 0}
     result["state_file"] = read_json(state_path())
     result["status_file"] = read_json(state_path() + ".status")
 

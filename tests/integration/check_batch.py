@@ -1,0 +1,196 @@
+#!/usr/bin/env python3
+"""Checks one scenario of the measure-all run (integration_batch_run) against
+what LinuxCNC reported: its tool table (in memory and the file it wrote), its
+tool in spindle through the batch, the sampled positions, the component's
+batch-done / batch-total / state pins, its messages, its state and status files.
+   check_batch.py RESULTS.json CONFIG.json SCENARIO
+CONFIG.json is the run's config (three pockets, T1 to T3)."""
+import json
+import math
+import sys
+
+from check import (Rack, distinct, fail, measured_to_truth, no_fault, ok, said, sensor_truth,
+                   spindle_holds, tool_table_length, visits_in_order)
+from check_teach import scenario
+
+P = "fixed_atc_probe."
+# The lengths each scenario sets by G10 L1 before its batch: what a tool keeps
+# when the batch leaves it alone.
+BEFORE = {1: 30.0, 2: 35.0, 3: 40.0}
+AWAY = 1.0  # mm: farther than this from a pocket, the spindle never went there
+
+
+def batch_samples(r):
+    return [s for s in r["samples"] if s[P + "batch-total"]]
+
+
+def measured(r, rack, tools, what):
+    """Each of `tools` has the sensor's length in LinuxCNC's tool table (the file
+    and stat agree); every other tool kept the length it had before the batch."""
+    for tool in tools:
+        length = measured_to_truth(r, rack.c, tool, what)
+        if abs(r["tool_table"][str(tool)] - length) > 1e-6:
+            fail("LinuxCNC holds %.4f for tool %d, its file %.4f" % (r["tool_table"][str(tool)], tool, length))
+    for tool, before in BEFORE.items():
+        if tool in tools:
+            continue
+        for where, length in (("file", tool_table_length(r, tool)),
+                              ("stat", r["tool_table"][str(tool)])):
+            if abs(length - before) > 1e-6:
+                fail("%s: tool %d was not to be measured, LinuxCNC's %s has %.4f (was %.4f)" % (
+                    what, tool, where, length, before))
+        ok("%s: tool %d left alone, still %.4f in LinuxCNC's tool table (file and stat)" % (what, tool, before))
+
+
+def fetched_and_returned(r, rack, tools):
+    """In order, each tool fetched out of its pocket and put back (every waypoint of
+    both legs from the config); LinuxCNC's tool in spindle 0, T, 0, T', ... 0."""
+    route = []
+    for tool in tools:
+        route += rack.retrieve_waypoints(tool) + rack.return_waypoints(tool)
+    visits_in_order(r["samples"], route)
+    ok("fetched and returned, in order: %s" % tools)
+    wanted = [0]
+    for tool in tools:
+        wanted += [tool, 0]
+    went = distinct(r["samples"], "tool_in_spindle")
+    if went != wanted:
+        fail("LinuxCNC's tool in spindle went %s, expected %s" % (went, wanted))
+    ok("LinuxCNC's tool in spindle went %s" % went)
+
+
+def never_near(r, rack, tools):
+    for tool in tools:
+        for name, target in (("pocket", rack.pocket(tool)), ("side of pocket", rack.side(tool))):
+            closest = min(r["samples"], key=lambda s: math.dist(s["pos"], target))
+            if math.dist(closest["pos"], target) < AWAY:
+                fail("the spindle went to %s %d %s (t=%.3f: %s)" % (name, tool, target, closest["t"],
+                                                                   closest["pos"]))
+        ok("never near pocket %d (tool %d not fetched)" % (tool, tool))
+
+
+def progress(r, total, wanted_done):
+    """batch-done while batch-total is set, state 6 meanwhile, total 0 again at the end."""
+    during = batch_samples(r)
+    if not during:
+        fail("batch-total was never set")
+    totals = distinct(during, P + "batch-total")
+    if totals != [total]:
+        fail("batch-total went %s, expected %d" % (totals, total))
+    done = distinct(during, P + "batch-done")
+    if done != wanted_done:
+        fail("batch-done went %s of %d, expected %s" % (done, total, wanted_done))
+    states = distinct(during, P + "state")
+    if states != [6]:
+        fail("the state pin was %s while the batch ran, expected 6 (measuring)" % states)
+    if not all(s[P + "can-cancel"] for s in during):
+        fail("can-cancel was off while measuring")
+    last = r["samples"][-1]
+    if last[P + "batch-total"] != 0 or last[P + "state"] != 1:
+        fail("after the batch: batch-total %s, state %s" % (last[P + "batch-total"], last[P + "state"]))
+    ok("batch-done went %s of %d, state 6 and can-cancel on meanwhile; total 0 and idle after"
+       % (done, total))
+
+
+def files_consistent(r, rack):
+    """The state file: the spindle empty, every pocket holding its tool; the status file idle."""
+    state = r["state_file"]
+    wanted = {str(p): {"in_pocket": True, "tool": t} for p, t in rack.first_tools().items()}
+    if state.get("spindle") != 0 or state.get("pockets") != wanted or "in_progress" in state or \
+            state.get("uncertain"):
+        fail("the state file after the batch: %s" % state)
+    ok("the state file: spindle empty, pockets %s" % {k: v["tool"] for k, v in state["pockets"].items()})
+    batch = r["status_file"].get("batch")
+    if (batch or {}).get("total") != 0:
+        fail("the status file's batch after the batch: %s" % batch)
+    ok("the status file's batch after the batch: %s" % batch)
+
+
+def reported(r, rack, line):
+    truth = "%.4f mm" % sensor_truth(rack.c)
+    said(r, line)
+    report = next(m for m in r["messages"] if line in m)
+    return report, truth
+
+
+def check_batch_all(results, r, rack):
+    no_fault(r)
+    progress(r, 3, [0, 1, 2, 3])
+    one = r["snapshots"]["one done"]
+    if one["status_file"].get("batch") != {"done": 1, "total": 3}:
+        fail("the status file with one tool done: batch %s" % one["status_file"].get("batch"))
+    ok("the status file with one tool done: batch %s" % one["status_file"]["batch"])
+    for n, tool in enumerate([1, 2, 3], 1):
+        said(r, "measure all: tool %d (%d of 3)" % (tool, n))
+    report, truth = reported(r, rack, "measure all done: 3 of 3 tools")
+    for tool in (1, 2, 3):
+        if "T%d %s (first measurement)" % (tool, truth) not in report:
+            fail("the report does not give T%d %s (first measurement): %s" % (tool, truth, report))
+    ok("the report lists T1, T2, T3 at %s, each a first measurement" % truth)
+    measured(r, rack, [1, 2, 3], "measure all")
+    fetched_and_returned(r, rack, [1, 2, 3])
+    spindle_holds(r, 0, "after measure all")
+    ok("the spindle is empty (LinuxCNC and the changer)")
+    files_consistent(r, rack)
+    lengths = r["state_file"].get("lengths", {})
+    if sorted(lengths) != ["1", "2", "3"]:
+        fail("the state file's measured lengths: %s" % lengths)
+    ok("the state file records T1 to T3 as measured: %s" % lengths)
+
+
+def check_batch_cancel(results, r, rack):
+    no_fault(r)
+    at = r["snapshots"]["cancel"]
+    if at["pins"][P + "batch-done"] != 0 or at["pins"][P + "pocket-served"] != 1 or \
+            at["tool_in_spindle"] != 0:
+        fail("cancel was not pressed while tool 1 was being fetched: %s" % at["pins"])
+    ok("cancel pressed at t=%.2f, while tool 1 was being fetched (pocket-served 1, batch-done 0)"
+       % at["t"])
+    said(r, "measure all stops once tool 1 is back in its pocket")
+    report, truth = reported(r, rack, "measure all cancelled after 1 of 3 tools")
+    if "T1 %s" % truth not in report or "T2" in report or "T3" in report:
+        fail("the report should list T1 alone: %s" % report)
+    ok("the report lists T1 alone: %s" % report)
+    for tool in (2, 3):
+        if any("measure all: tool %d" % tool in m for m in r["messages"]):
+            fail("tool %d was started: %s" % (tool, r["messages"]))
+    progress(r, 3, [0, 1])
+    measured(r, rack, [1], "cancelled measure all")
+    fetched_and_returned(r, rack, [1])
+    never_near(r, rack, [2, 3])
+    # The batch ended with tool 1 back: after it, nothing moved into the rack.
+    spindle_holds(r, 0, "after the cancelled measure all")
+    ok("the spindle is empty (LinuxCNC and the changer)")
+    files_consistent(r, rack)
+
+
+def check_batch_program(results, r, rack):
+    no_fault(r)
+    said(r, "measure all skips what is not in the rack: ")
+    skip = next(m for m in r["messages"] if "measure all skips" in m)
+    if "5" not in skip or "7" not in skip:
+        fail("the skip message does not name T5 and T7: %s" % skip)
+    ok("skipped: %s" % skip)
+    said(r, "measure all: tool 2 (1 of 1)")
+    report, truth = reported(r, rack, "measure all done: 1 of 1 tools")
+    if "T2 %s" % truth not in report:
+        fail("the report does not give T2 %s: %s" % (truth, report))
+    progress(r, 1, [0, 1])
+    measured(r, rack, [2], "measure all of the loaded program's tools")
+    fetched_and_returned(r, rack, [2])
+    never_near(r, rack, [1, 3])
+    spindle_holds(r, 0, "after measuring the program's tools")
+    files_consistent(r, rack)
+
+
+def main():
+    results_path, config_path, name = sys.argv[1:4]
+    results = json.load(open(results_path))
+    rack = Rack(json.load(open(config_path)))
+    r = scenario(results, name)
+    globals()["check_" + name](results, r, rack)
+    print("%s: %.1f s, %d samples" % (name, r["duration"], len(r["samples"])))
+
+
+if __name__ == "__main__":
+    main()
