@@ -282,7 +282,6 @@ def run():
     driver.bring_up()
     note("idle, tool number 0")
     result["idle_tool0_sensitive"] = {b: sensitive(b) for b in ("Load / Probe", "Unload", "Continue", "Cancel")}
-    result["measure_all_sensitive_idle"] = sensitive("Measure all")
     result["rack_start"] = rack()
 
     # The demo program opened in AXIS: the panel checks it with --lint.
@@ -290,6 +289,7 @@ def run():
                    check=True, timeout=30)
     wait_for(lambda: "Tools:" in preflight(), 30, "the preflight of demo.ngc")
     note("program opened")
+    result["measure_all_sensitive_idle"] = sensitive("Measure all")
 
     # Unload tool 4, then load it back and measure it, all from the panel.
     set_tool_number(4)

@@ -361,9 +361,17 @@ def check_unload_missing(r, rack):
     nothing_moved(r)
 
 
+def in_pockets(state):
+    """The tools a state file records sitting in their pockets, sorted: version 2's
+    `pockets` map, or version 1's `in_pocket` (pocket N held tool N)."""
+    if "pockets" in state:
+        return sorted(p["tool"] for p in state["pockets"].values() if p["in_pocket"])
+    return sorted(state.get("in_pocket", []))
+
+
 def check_load_no_pocket(r, rack):
     no_fault(r)
-    ok("refused: %s" % [m for m in r["messages"] if "no pocket" in m][0])
+    ok("refused: %s" % [m for m in r["messages"] if "into pocket 2 refused" in m][0])
     nothing_moved(r)
 
 
@@ -653,12 +661,12 @@ def check_restart_after_kill(r, rack):
     if confirmed["pins"]["fixed_atc_probe.state"] != 1 or confirmed["tool_in_spindle"] != 0:
         fail("after the confirm: state %s, LinuxCNC T%s" % (confirmed["pins"]["fixed_atc_probe.state"],
                                                           confirmed["tool_in_spindle"]))
-    if state.get("spindle") != 0 or 1 not in state.get("in_pocket", []) or "in_progress" in state or \
+    if state.get("spindle") != 0 or 1 not in in_pockets(state) or "in_progress" in state or \
             state.get("uncertain"):
         fail("the state file after the confirm: %s" % state)
     ok("confirmed (spindle empty, pocket 1 holds its tool): idle %.2f s after Clear fault, "
        "LinuxCNC's tool 1 -> 0 by the component's M61, state file spindle 0, in_pocket %s" %
-       (r["idle_after_confirm_at"] - r["confirmed_at"], state["in_pocket"]))
+       (r["idle_after_confirm_at"] - r["confirmed_at"], in_pockets(state)))
 
     tools = distinct(r["samples"], "tool_in_spindle")
     if tools != [1, 0, 3]:

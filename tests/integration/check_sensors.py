@@ -8,7 +8,7 @@ import json
 import os
 import sys
 
-from check import Rack, distinct, fail, near, ok, said
+from check import Rack, distinct, fail, in_pockets, near, ok, said
 
 GRIP_FAULT = "tool 2 not in the spindle after the chuck closed at pocket 2 (tool-present off, retried once)"
 AIR_FAULT = "air pressure low (air-pressure-ok off) before the chuck opened to flush it; it stayed closed"
@@ -88,8 +88,8 @@ def check_sensors_changes(r, rack, log):
     if moved[:4] != expected:
         fail("the simulated rack saw %s, expected %s" % (moved[:4], expected))
     ok("the simulated rack: %s" % moved[:4])
-    if r["state_file"].get("in_pocket") != sorted(rack.pockets):
-        fail("the state file says %s in their pockets" % r["state_file"].get("in_pocket"))
+    if in_pockets(r["state_file"]) != sorted(rack.pockets):
+        fail("the state file says %s in their pockets" % in_pockets(r["state_file"]))
     ok("every tool home again, as the state file says")
 
 
@@ -161,15 +161,15 @@ def check_sensors_start_disagree(r, rack, log):
     if faulted["status_file"].get("activity") != "fault: " + DISAGREEMENT:
         fail("the status file says %r" % faulted["status_file"].get("activity"))
     ok("restarted with tool 1 gone from its pocket: %s" % faulted["status_file"]["activity"])
-    if faulted["state_file"].get("in_pocket", []).count(1) != 1:
+    if in_pockets(faulted["state_file"]).count(1) != 1:
         fail("the state file changed before the operator confirmed: %s" % faulted["state_file"])
     said(r, "M6 T3 refused: the changer is in fault")
     ok("M6 refused until the operator confirms")
     said(r, "pocket 1 recorded empty, as pocket-occupied-1 reads (off)")
     confirmed = r["snapshots"]["confirmed"]["state_file"]
-    if 1 in confirmed.get("in_pocket", []) or confirmed.get("uncertain"):
+    if 1 in in_pockets(confirmed) or confirmed.get("uncertain"):
         fail("after the confirmation the state file says %s" % confirmed)
-    ok("after the confirmation the state file has pocket 1 empty: %s" % confirmed["in_pocket"])
+    ok("after the confirmation the state file has pocket 1 empty: %s" % in_pockets(confirmed))
     if r["samples"][-1]["tool_in_spindle"] != 3 or r["samples"][-1]["fixed_atc_probe.fault"]:
         fail("M6 T3 after the confirmation did not complete: %s" % r["samples"][-1])
     ok("M6 T3 after the confirmation: tool 3 in the spindle")
