@@ -75,6 +75,8 @@ template <class Which>
 struct ReportingSpindleTool : Commanding<to::SpindleTool> {};
 struct AfterInsertion {};
 struct AtTheEnd {};
+struct AfterFetch {};
+struct AfterReturn {};
 
 // ================================================================ load and probe
 /// The operator loads a tool by hand at `loading`; it is measured on the
@@ -194,6 +196,9 @@ struct MeasureAllFlow_ : Flow<MeasureAllFlow_> {
   /// The spindle's tool goes back first; then the next tool, if any is left.
   struct DecidingNextTool : Decision {};
   struct OverSensor : Moving<to::SensorXY> {};
+  /// LinuxCNC is told (M61) what the spindle holds after each fetch and return.
+  using ReportingFetched = ReportingSpindleTool<AfterFetch>;
+  using ReportingReturned = ReportingSpindleTool<AfterReturn>;
 
   struct ToolsLeft {
     template <class Event, class Fsm, class Source, class Target>
@@ -263,8 +268,10 @@ struct MeasureAllFlow_ : Flow<MeasureAllFlow_> {
   Row < DecidingNextTool                  , none       , Returning       , none             , SpindleHoldsTool                  >,
   Row < DecidingNextTool                  , none       , RetrieveLeg     , TakeNextTool     , And<Not<SpindleHoldsTool>, ToolsLeft> >,
   Row < DecidingNextTool                  , none       , Finished        , SayReport        , And<Not<SpindleHoldsTool>, Not<ToolsLeft>> >,
-  Row < Returning::exit_pt<Finished>      , LegDone    , DecidingNextTool, none             , none                              >,
-  Row < RetrieveLeg::exit_pt<Finished>    , LegDone    , ToLoadingZ      , none             , none                              >,
+  Row < Returning::exit_pt<Finished>      , LegDone    , ReportingReturned, none            , none                              >,
+  Row < ReportingReturned                 , CommandDone, DecidingNextTool, none             , none                              >,
+  Row < RetrieveLeg::exit_pt<Finished>    , LegDone    , ReportingFetched, none             , none                              >,
+  Row < ReportingFetched                  , CommandDone, ToLoadingZ      , none             , none                              >,
   Row < ToLoadingZ                        , InPosition , OverSensor      , none             , none                              >,
   Row < OverSensor                        , InPosition , Probe           , none             , none                              >,
   Row < Probe::exit_pt<Finished>          , LegDone    , DecidingNextTool, RecordMeasured   , none                              >,
