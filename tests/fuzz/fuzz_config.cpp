@@ -34,12 +34,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   check_point(c.loading, "loading");
   check_point(c.probe_limit, "probe_limit");
   check_point(c.safe, "safe");
-  for (const auto& [tool, pocket] : c.pockets) {
-    check_point(pocket, "pocket");
+  for (const auto& [number, pocket] : c.pockets) {
+    check_point(pocket.at, "pocket");
     // The waypoints the changer moves through: a coordinate plus an offset.
-    check_finite(pocket.z + c.pocket_above_clearance_offset_z, "above_clearance");
-    check_finite(pocket.x + c.pocket_side_offset.x, "side x");
-    check_finite(pocket.y + c.pocket_side_offset.y, "side y");
+    check_finite(pocket.at.z + c.pocket_above_clearance_offset_z, "above_clearance");
+    check_finite(pocket.at.x + pocket.side_offset.x, "side x");
+    check_finite(pocket.at.y + pocket.side_offset.y, "side y");
+    if (pocket.first_tool < 0) fatc::fuzz::broken("a first-start tool is 0 or a tool", "tool");
   }
   if (!(c.probe_latch_feed > 0 && c.probe_latch_feed <= c.probe_seek_feed)) {
     fatc::fuzz::broken("latch feed above 0 and not above the seek feed", text.substr(0, 200));
