@@ -143,8 +143,7 @@ class Checker {
         tools_.pockets[*back] = {tools_.spindle, true};
       }
     }
-    if (const auto from = tools_.home_of(tool)) tools_.pockets[*from].holds = false;
-    tools_.spindle = tool;
+    tools_.put_in_spindle(tool);
     spindle_known_ = true;
   }
 

@@ -38,8 +38,7 @@ SequencesChecked check_sequences(const Config& config, const std::optional<SoftL
     ToolState full = ToolState::fresh(config);
     full.pockets[number] = {tool, true};
     ToolState in_spindle = full;
-    in_spindle.spindle = tool;
-    in_spindle.pockets[number].holds = false;
+    in_spindle.put_in_spindle(tool);
     ToolState free = full;
     free.pockets[number] = {};
     const std::string t = "T" + std::to_string(tool);

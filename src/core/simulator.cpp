@@ -214,8 +214,7 @@ namespace fatc {
 
 ToolState with_in_spindle(const Config& config, int tool) {
   ToolState tools = ToolState::fresh(config);
-  tools.spindle = tool;
-  if (const auto home = tools.home_of(tool)) tools.pockets[*home].holds = false;
+  tools.put_in_spindle(tool);
   return tools;
 }
 

@@ -147,6 +147,11 @@ std::vector<int> ToolState::rack_tools() const {
   return tools;
 }
 
+void ToolState::put_in_spindle(int tool) {
+  spindle = tool;
+  if (const auto home = home_of(tool)) pockets[*home].holds = false;
+}
+
 std::vector<int> ToolState::free_pockets() const {
   std::vector<int> free;
   for (const auto& [number, pocket] : pockets) {
@@ -161,8 +166,7 @@ void ToolState::confirm(int spindle_tool, std::optional<bool> pocket_holds_tool)
       pockets[cut_off].tool != 0) {
     pockets[cut_off].holds = *pocket_holds_tool;
   }
-  spindle = spindle_tool;
-  if (const auto home = home_of(spindle_tool)) pockets[*home].holds = false;
+  put_in_spindle(spindle_tool);
   uncertain = false;
   in_progress.reset();
 }

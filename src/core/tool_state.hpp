@@ -53,6 +53,8 @@ struct ToolState {
   bool holds(int number) const;
   /// The tools sitting in their pockets, in pocket order.
   std::vector<int> rack_tools() const;
+  /// `tool` is in the spindle (0: it is empty); its pocket, if any, no longer holds it.
+  void put_in_spindle(int tool);
   /// Pockets no tool belongs in, in order.
   std::vector<int> free_pockets() const;
 

@@ -227,8 +227,7 @@ int plan(const Options& options, std::ostream& out, std::ostream& err) {
     tools.uncertain = false;
     tools.in_progress.reset();
   }
-  tools.spindle = from;
-  if (const auto home = tools.home_of(from)) tools.pockets[*home].holds = false;
+  tools.put_in_spindle(from);
   const Simulator sim = plan_change(config, tools, to, config.probe_limit.z);
   out << "M6 T" << to << " with "
       << (from == 0 ? std::string("an empty spindle")

@@ -82,8 +82,7 @@ std::optional<int> Context::return_pocket(int tool) const {
 }
 
 void Context::record_in_spindle(int tool) {
-  tools.spindle = tool;
-  if (const auto home = tools.home_of(tool)) tools.pockets[*home].holds = false;
+  tools.put_in_spindle(tool);
   ports.save(tools);
 }
 
