@@ -352,6 +352,28 @@ TEST(MeasureAll, shouldStopAfterTheToolUnderWayIsBackWhenCancelled) {
             "measure all cancelled after 1 of 3 tools; T12 35.0000 mm (first measurement)");
 }
 
+TEST(MeasureAll, shouldStopTheProbeAndTheBatchWhenCancelledDuringAProbe) {
+  RackRig rig;
+  rig.sim.sensor_z = -60.0;
+  rig.changer->measure_all({12, 7, 3});
+  for (int i = 0; i < 100 && rig.changer->status().awaiting != Awaiting::probe; ++i) {
+    rig.sim.run(*rig.changer, 1);
+  }
+  ASSERT_EQ(rig.changer->status().awaiting, Awaiting::probe);
+  ASSERT_TRUE(rig.changer->status().probe_cancellable);
+  rig.changer->operator_cancel();
+  std::size_t from = 0;
+  rig.run(from);
+  EXPECT_EQ(rig.changer->status().phase, Phase::idle);
+  EXPECT_EQ(rig.changer->tools().spindle, 0);
+  EXPECT_TRUE(rig.changer->tools().holds(1)) << "T12 was put back before the batch stopped";
+  EXPECT_EQ(rig.changer->tools().lengths.count(12), 0u) << "the cancelled probe wrote nothing";
+  EXPECT_EQ(rig.changer->tools().lengths.count(7), 0u) << "T7 was never fetched";
+  EXPECT_EQ(rig.sim.messages(MessageKind::info).back(),
+            "measure all cancelled after 1 of 3 tools; T12 not measured: the probe was cancelled "
+            "by the operator");
+}
+
 TEST(MeasureAll, shouldReturnTheSpindlesToolFirst) {
   ToolState start = ToolState::fresh(rack_config());
   start.spindle = 12;

@@ -120,8 +120,6 @@ class Context {
   void fail_check(std::string reason, bool uncertain);
   /// Why the last probe measured nothing, in words (for the fault after M6).
   std::string probe_problem;
-  /// The operator stopped the last probe.
-  bool probe_cancelled = false;
 };
 
 /// Why M6 to `tool` cannot start now, or nothing if it can.

@@ -5,6 +5,9 @@
 
 #include <boost/core/demangle.hpp>
 #include <boost/mpl/for_each.hpp>
+#include <boost/mpl/if.hpp>
+#include <boost/mpl/is_sequence.hpp>
+#include <boost/mpl/vector.hpp>
 #include <boost/msm/back/state_machine.hpp>
 #include <boost/msm/front/functor_row.hpp>
 #include <boost/msm/front/states.hpp>
@@ -17,8 +20,8 @@ namespace fatc::machine {
 
 template <class T>
 struct IsComposite : std::false_type {};
-template <class Front>
-struct IsComposite<boost::msm::back::state_machine<Front>> : std::true_type {
+template <class Front, class... Policies>
+struct IsComposite<boost::msm::back::state_machine<Front, Policies...>> : std::true_type {
   using front = Front;
 };
 
@@ -68,10 +71,12 @@ class DotWriter {
 
   template <class Front>
   void machine(const std::string& path) {
+    // One initial state, or one for each region.
     using Initial = typename Front::initial_state;
+    using Initials = typename boost::mpl::if_<boost::mpl::is_sequence<Initial>, Initial,
+                                              boost::mpl::vector1<Initial>>::type;
     out << "  \"" << path << "/start\" [shape=point, label=\"\"];\n";
-    const std::string initial = node<Initial>(path);
-    out << "  \"" << path << "/start\" -> \"" << initial << "\";\n";
+    boost::mpl::for_each<Initials, Wrap<boost::mpl::placeholders::_1>>(StartVisitor{this, path});
     boost::mpl::for_each<typename Front::transition_table, Wrap<boost::mpl::placeholders::_1>>(
         RowVisitor{this, path});
   }
@@ -86,6 +91,16 @@ class DotWriter {
     template <class Row>
     void operator()(Wrap<Row>) const {
       writer->row<Row>(path);
+    }
+  };
+
+  struct StartVisitor {
+    DotWriter* writer;
+    std::string path;
+    template <class State>
+    void operator()(Wrap<State>) const {
+      const std::string initial = writer->node<State>(path);
+      writer->out << "  \"" << path << "/start\" -> \"" << initial << "\";\n";
     }
   };
 

@@ -68,7 +68,7 @@ struct ChangeFlow_ : Flow<ChangeFlow_> {
   >;
   // clang-format on
 };
-using ChangeFlow = msm::back::state_machine<ChangeFlow_>;
+using ChangeFlow = Machine_of<ChangeFlow_>;
 
 /// Tells LinuxCNC (M61) what the spindle holds; `Which` tells uses apart.
 template <class Which>
@@ -132,7 +132,7 @@ struct LoadFlow_ : Flow<LoadFlow_> {
   >;
   // clang-format on
 };
-using LoadFlow = msm::back::state_machine<LoadFlow_>;
+using LoadFlow = Machine_of<LoadFlow_>;
 
 // ================================================================ unload
 /// The requested tool is fetched (if not in the spindle already) and taken
@@ -179,7 +179,7 @@ struct UnloadFlow_ : Flow<UnloadFlow_> {
   >;
   // clang-format on
 };
-using UnloadFlow = msm::back::state_machine<UnloadFlow_>;
+using UnloadFlow = Machine_of<UnloadFlow_>;
 
 // ================================================================ measure all
 /// Measure all: each tool fetched from its pocket, measured on the sensor and
@@ -260,25 +260,8 @@ struct MeasureAllFlow_ : Flow<MeasureAllFlow_> {
     }
   };
 
-  using initial_state = DecidingNextTool;
-  // clang-format off
-  using transition_table = boost::mpl::vector<
-  //    Start                               Event        Next              Action             Guard
-  // +-----------------------------------+------------+-----------------+------------------+-----------------------------------+
-  Row < DecidingNextTool                  , none       , Returning       , none             , SpindleHoldsTool                  >,
-  Row < DecidingNextTool                  , none       , RetrieveLeg     , TakeNextTool     , And<Not<SpindleHoldsTool>, ToolsLeft> >,
-  Row < DecidingNextTool                  , none       , Finished        , SayReport        , And<Not<SpindleHoldsTool>, Not<ToolsLeft>> >,
-  Row < Returning::exit_pt<Finished>      , LegDone    , ReportingReturned, none            , none                              >,
-  Row < ReportingReturned                 , CommandDone, DecidingNextTool, none             , none                              >,
-  Row < RetrieveLeg::exit_pt<Finished>    , LegDone    , ReportingFetched, none             , none                              >,
-  Row < ReportingFetched                  , CommandDone, ToLoadingZ      , none             , none                              >,
-  Row < ToLoadingZ                        , InPosition , OverSensor      , none             , none                              >,
-  Row < OverSensor                        , InPosition , Probe           , none             , none                              >,
-  Row < Probe::exit_pt<Finished>          , LegDone    , DecidingNextTool, RecordMeasured   , none                              >,
-  Row < Probe::exit_pt<Probe::NotMeasured>, LegDone    , DecidingNextTool, RecordNotMeasured, none                              >
-  >;
-  // clang-format on
-  /// Cancel asks the batch to stop after the tool under way is put back.
+  /// Cancel asks the batch to stop after the tool under way is put back; a
+  /// probe under way stops too (its own row), and this still stops the batch.
   struct AskToStop {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
@@ -288,10 +271,30 @@ struct MeasureAllFlow_ : Flow<MeasureAllFlow_> {
                                            " is back in its pocket");
     }
   };
-  using internal_transition_table =
-      boost::mpl::vector<msmf::Internal<OperatorCancel, AskToStop, none>>;
+  /// A second region: it hears Cancel whatever the batch is doing.
+  struct ListeningForCancel : msmf::state<> {};
+
+  using initial_state = boost::mpl::vector<DecidingNextTool, ListeningForCancel>;
+  // clang-format off
+  using transition_table = boost::mpl::vector<
+  //    Start                               Event         Next              Action             Guard
+  // +-----------------------------------+--------------+-----------------+------------------+-----------------------------------+
+  Row < DecidingNextTool                  , none          , Returning       , none             , SpindleHoldsTool                  >,
+  Row < DecidingNextTool                  , none          , RetrieveLeg     , TakeNextTool     , And<Not<SpindleHoldsTool>, ToolsLeft> >,
+  Row < DecidingNextTool                  , none          , Finished        , SayReport        , And<Not<SpindleHoldsTool>, Not<ToolsLeft>> >,
+  Row < Returning::exit_pt<Finished>      , LegDone       , ReportingReturned, none            , none                              >,
+  Row < ReportingReturned                 , CommandDone   , DecidingNextTool, none             , none                              >,
+  Row < RetrieveLeg::exit_pt<Finished>    , LegDone       , ReportingFetched, none             , none                              >,
+  Row < ReportingFetched                  , CommandDone   , ToLoadingZ      , none             , none                              >,
+  Row < ToLoadingZ                        , InPosition    , OverSensor      , none             , none                              >,
+  Row < OverSensor                        , InPosition    , Probe           , none             , none                              >,
+  Row < Probe::exit_pt<Finished>          , LegDone       , DecidingNextTool, RecordMeasured   , none                              >,
+  Row < Probe::exit_pt<Probe::NotMeasured>, LegDone       , DecidingNextTool, RecordNotMeasured, none                              >,
+  Row < ListeningForCancel                , OperatorCancel, none            , AskToStop        , none                              >
+  >;
+  // clang-format on
 };
-using MeasureAllFlow = msm::back::state_machine<MeasureAllFlow_>;
+using MeasureAllFlow = Machine_of<MeasureAllFlow_>;
 
 // ================================================================ requests and refusals
 inline std::string request_name(const ToolChange& e) { return "M6 T" + std::to_string(e.tool); }
@@ -487,11 +490,9 @@ struct Operating_ : Flow<Operating_> {
   Row < MeasureAllFlow::exit_pt<Finished>, LegDone      , ComparingSensors, AnswerDone        , none               >
   >;
   using transition_table = boost::mpl::joint_view<requests, around_the_flows>;
-  /// Idle answers every request above; these answer them while a flow runs.
-  using internal_transition_table = RefusesRequests<BecauseBusy>;
   // clang-format on
 };
-using Operating = msm::back::state_machine<Operating_>;
+using Operating = Machine_of<Operating_>;
 
 // ================================================================ top
 struct Machine_ : msmf::state_machine_def<Machine_> {
@@ -645,14 +646,19 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
   Row < Faulted                    , Abort         , none            , none            , none                  >,
   Row < Faulted                    , InternalError , none            , none            , none                  >
   >;
-  /// What no state above answers: the operator pressed a button that has
-  /// nothing to act on, or the spindle or a sensor changed (facts the guards read).
-  using internal_transition_table = boost::mpl::vector<
+  /// What no state above answers: a request while a flow runs (Idle and the
+  /// other states answer every request themselves), the operator pressed a
+  /// button that has nothing to act on, or the spindle or a sensor changed
+  /// (facts the guards read). Kept here, not in Operating: an internal table
+  /// of a submachine breaks its anonymous rows under favor_compile_time.
+  using nothing_else_answers = boost::mpl::vector<
   Internal < OperatorContinue, Say<NothingWaitsToContinue>, none >,
   Internal < OperatorCancel  , Say<NothingWaitsToCancel>  , none >,
   Internal < ClearFault      , Say<ThereIsNoFault>        , none >,
   Internal < SensorReport    , none                       , none >
   >;
+  using internal_transition_table =
+      boost::mpl::joint_view<RefusesRequests<BecauseBusy>, nothing_else_answers>;
   // clang-format on
 
   template <class Fsm, class Event>
@@ -669,6 +675,6 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
     fsm.process_event(InternalError{std::string("internal error: ") + error.what()});
   }
 };
-using Machine = msm::back::state_machine<Machine_>;
+using Machine = Machine_of<Machine_>;
 
 }  // namespace fatc::machine

@@ -51,7 +51,7 @@ struct InsertLeg_ : Flow<InsertLeg_<How>> {
   // clang-format on
 };
 template <class How>
-using InsertLeg = msm::back::state_machine<InsertLeg_<How>>;
+using InsertLeg = Machine_of<InsertLeg_<How>>;
 
 // ================================================================ remove
 /// The operator takes the tool in the spindle out.
@@ -95,7 +95,7 @@ struct RemoveLeg_ : Flow<RemoveLeg_<How>> {
   // clang-format on
 };
 template <class How>
-using RemoveLeg = msm::back::state_machine<RemoveLeg_<How>>;
+using RemoveLeg = Machine_of<RemoveLeg_<How>>;
 
 // ================================================================ hand out (M6)
 /// Takes the manual tool in the spindle out of the machine at `loading`.
@@ -119,7 +119,7 @@ struct HandOutLeg_ : Flow<HandOutLeg_> {
   >;
   // clang-format on
 };
-using HandOutLeg = msm::back::state_machine<HandOutLeg_>;
+using HandOutLeg = Machine_of<HandOutLeg_>;
 
 // ================================================================ hand in (M6)
 /// Puts the requested manual tool in the spindle at `loading`, then up to
@@ -149,6 +149,6 @@ struct HandInLeg_ : Flow<HandInLeg_> {
   >;
   // clang-format on
 };
-using HandInLeg = msm::back::state_machine<HandInLeg_>;
+using HandInLeg = Machine_of<HandInLeg_>;
 
 }  // namespace fatc::machine

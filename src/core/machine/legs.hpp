@@ -71,7 +71,7 @@ struct FlushLeg_ : Flow<FlushLeg_> {
   >;
   // clang-format on
 };
-using FlushLeg = msm::back::state_machine<FlushLeg_>;
+using FlushLeg = Machine_of<FlushLeg_>;
 
 // ================================================================ return
 /// The return of whatever the spindle held before: to its own pocket.
@@ -189,7 +189,7 @@ struct ReturnLeg_ : Flow<ReturnLeg_<Which>> {
   using transition_table = boost::mpl::joint_view<into_the_pocket, release_and_away>;
 };
 template <class Which>
-using ReturnLeg = msm::back::state_machine<ReturnLeg_<Which>>;
+using ReturnLeg = Machine_of<ReturnLeg_<Which>>;
 
 // ================================================================ retrieve
 /// Takes the requested tool out of its pocket (docs/sequences.md#retrieve).
@@ -344,7 +344,7 @@ struct RetrieveLeg_ : Flow<RetrieveLeg_> {
   // clang-format on
   using transition_table = boost::mpl::joint_view<to_the_tool, grip_and_away>;
 };
-using RetrieveLeg = msm::back::state_machine<RetrieveLeg_>;
+using RetrieveLeg = Machine_of<RetrieveLeg_>;
 
 // ================================================================ probing
 /// The load flow runs the probe over MDI: the operator may cancel it, and it
@@ -381,7 +381,6 @@ struct ProbingLeg_ : Flow<ProbingLeg_<Run>> {
   void on_entry(const Event& e, Parent& parent) {
     Flow<ProbingLeg_<Run>>::on_entry(e, parent);
     this->ctx->record_progress("measuring tool " + std::to_string(this->tool), 0);
-    this->ctx->probe_cancelled = false;
   }
 
   struct NotMeasured : msmf::exit_pseudo_state<LegDone> {};
@@ -472,7 +471,6 @@ struct ProbingLeg_ : Flow<ProbingLeg_<Run>> {
     template <class Fsm, class Source, class Target>
     void operator()(const OperatorCancel&, Fsm& fsm, Source&, Target&) const {
       fsm.ctx->probe_problem = "the probe was cancelled by the operator";
-      fsm.ctx->probe_cancelled = true;
       fsm.ctx->tell(MessageKind::info, "probe of tool " + std::to_string(fsm.tool) +
                                            " cancelled by the operator; nothing written");
     }
@@ -505,7 +503,7 @@ struct ProbingLeg_ : Flow<ProbingLeg_<Run>> {
   // clang-format on
 };
 template <class Run>
-using ProbingLeg = msm::back::state_machine<ProbingLeg_<Run>>;
+using ProbingLeg = Machine_of<ProbingLeg_<Run>>;
 
 // ================================================================ measure after M6
 /// `probe_after_change`: takes the tool just put in the spindle to the sensor
@@ -565,6 +563,6 @@ struct MeasureLeg_ : Flow<MeasureLeg_> {
   >;
   // clang-format on
 };
-using MeasureLeg = msm::back::state_machine<MeasureLeg_>;
+using MeasureLeg = Machine_of<MeasureLeg_>;
 
 }  // namespace fatc::machine
