@@ -428,6 +428,26 @@ void read_sensors(Reader& reader, const Json& root, Config& config) {
   }
 }
 
+/// `rack_cover`: present (even `{}`) means the rack has a cover to drive.
+void read_rack_cover(Reader& reader, const Json& root, Config& config) {
+  const Json* cover = reader.object(root, "", "rack_cover", false);
+  if (!cover) return;
+  reader.reject_unknown_keys(*cover, "rack_cover",
+                             {"opened_sensor", "closed_sensor", "seconds", "timeout_seconds"});
+  RackCoverConfig rack_cover;
+  const std::pair<const char*, bool*> sensors[] = {{"opened_sensor", &rack_cover.opened_sensor},
+                                                   {"closed_sensor", &rack_cover.closed_sensor}};
+  for (const auto& [key, target] : sensors) {
+    if (const auto found = cover->find(key); found != cover->end()) {
+      if (const auto value = boolean(reader, *found, join_path("rack_cover", key)))
+        *target = *value;
+    }
+  }
+  reader.read(*cover, "rack_cover", "seconds", rack_cover.seconds, kTimeout, false);
+  reader.read(*cover, "rack_cover", "timeout_seconds", rack_cover.timeout_seconds, kTimeout, false);
+  config.rack_cover = rack_cover;
+}
+
 /// A side offset says where the spindle slows down before entering a pocket:
 /// it must lead out of the pocket's keep-out.
 /// (pocket_side_offset itself is held against rack_keepout_margin below.)
@@ -574,7 +594,9 @@ ConfigResult parse_config(const std::string& json_text) {
                               "manual_tools",
                               "sensors",
                               "sensor_timeout_seconds",
-                              "probe_window"});
+                              "probe_window",
+                              "rack_cover",
+                              "air_blast"});
 
   Config config;
   if (const auto units = root.find("units"); units != root.end()) {
@@ -626,6 +648,10 @@ ConfigResult parse_config(const std::string& json_text) {
   reader.read(root, "", "sensor_timeout_seconds", config.sensor_timeout_seconds, kSensorTimeout,
               false);
   config.probe_window = reader.ranged(root, "", "probe_window", kOffset, false);
+  read_rack_cover(reader, root, config);
+  if (const auto blast = root.find("air_blast"); blast != root.end()) {
+    if (const auto value = boolean(reader, *blast, "air_blast")) config.air_blast = *value;
+  }
 
   // Relations between keys only mean something once every key read cleanly.
   if (reader.count() == 0) check_geometry(reader, config);

@@ -26,6 +26,15 @@ struct FlushConfig {
   double pause_seconds = 0.2;  ///< how long it stays closed between pulses
 };
 
+/// `rack_cover`: a dust cover over the rack, opened before the first move into
+/// the rack and closed once the changer is done with it.
+struct RackCoverConfig {
+  bool opened_sensor = false;    ///< `rack-cover-opened` is wired
+  bool closed_sensor = false;    ///< `rack-cover-closed` is wired
+  double seconds = 1.0;          ///< how long it takes to open, where no sensor says
+  double timeout_seconds = 5.0;  ///< how long a wired sensor may take to confirm
+};
+
 /// How the spindle enters and leaves a pocket (docs/sequences.md).
 enum class Approach {
   side,  ///< in from the side to return, out the side after fetching (the prototype's)
@@ -90,6 +99,8 @@ struct Config {
   SensorConfig sensors;                 ///< all off unless config.json says they are wired
   double sensor_timeout_seconds = 1.0;  ///< how long a wired sensor may take to confirm a change
   std::optional<double> probe_window;   ///< unset: 10 mm or 0.4 inch
+  std::optional<RackCoverConfig> rack_cover;  ///< unset: no cover
+  bool air_blast = false;  ///< `air-blast` cleans the taper while the chuck is open at a pocket
 
   bool has_pocket(int number) const { return pockets.count(number) != 0; }
   /// The pocket that holds `tool` at first start, if any.

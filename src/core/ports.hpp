@@ -22,6 +22,10 @@ class Ports {
   virtual void publish(const Step& step) = 0;
   /// true opens the chuck (drops or takes a tool), false closes it.
   virtual void set_chuck_open(bool open) = 0;
+  /// true opens the rack cover, false closes it (only with `rack_cover`).
+  virtual void set_rack_cover_open(bool open) = 0;
+  /// The air blast that cleans the spindle taper (only with `air_blast`).
+  virtual void set_air_blast(bool on) = 0;
   /// Arms the one timer; TimerElapsed arrives after `seconds`. Re-arming replaces it.
   virtual void start_timer(double seconds) = 0;
   virtual void cancel_timer() = 0;

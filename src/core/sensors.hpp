@@ -18,6 +18,8 @@ struct SensorReadings {
   bool air_pressure_ok = false;         ///< `air-pressure-ok`
   bool zero_speed = false;              ///< `zero-speed`: the spindle's zero-speed feedback
   std::map<int, bool> pocket_occupied;  ///< `pocket-occupied-N`, by pocket number
+  bool rack_cover_opened = false;       ///< `rack-cover-opened`
+  bool rack_cover_closed = false;       ///< `rack-cover-closed`
 
   bool occupied(int pocket) const {
     const auto found = pocket_occupied.find(pocket);
@@ -26,7 +28,9 @@ struct SensorReadings {
   bool operator==(const SensorReadings& other) const {
     return tool_present == other.tool_present && drawbar_open == other.drawbar_open &&
            drawbar_closed == other.drawbar_closed && air_pressure_ok == other.air_pressure_ok &&
-           zero_speed == other.zero_speed && pocket_occupied == other.pocket_occupied;
+           zero_speed == other.zero_speed && pocket_occupied == other.pocket_occupied &&
+           rack_cover_opened == other.rack_cover_opened &&
+           rack_cover_closed == other.rack_cover_closed;
   }
   bool operator!=(const SensorReadings& other) const { return !(*this == other); }
 };

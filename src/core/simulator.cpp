@@ -15,6 +15,10 @@ std::string describe(const Record& record) {
       return describe(record.step);
     case Record::Kind::chuck:
       return record.chuck_open ? "chuck      open" : "chuck      close";
+    case Record::Kind::cover:
+      return record.on ? "rack cover open" : "rack cover close";
+    case Record::Kind::blast:
+      return record.on ? "air blast  on" : "air blast  off";
     case Record::Kind::dwell:
       std::snprintf(buffer, sizeof buffer, "dwell      %.2f s", record.seconds);
       return buffer;
@@ -68,6 +72,25 @@ void Simulator::set_chuck_open(bool open) {
   }
 }
 
+void Simulator::set_rack_cover_open(bool open) {
+  Record record;
+  record.kind = Record::Kind::cover;
+  record.on = open;
+  records.push_back(record);
+  cover_open = open;
+  if (!rack.modelled || rack.cover_jammed || rack.cover_open == open) return;
+  rack.cover_open = open;
+  if (changer_) report_sensors(*changer_);
+}
+
+void Simulator::set_air_blast(bool on) {
+  Record record;
+  record.kind = Record::Kind::blast;
+  record.on = on;
+  records.push_back(record);
+  blowing = on;
+}
+
 int Rack::pocket_at(const Config& config) const {
   if (known_axes != axis_xyz) return 0;
   for (const auto& entry : config.pockets) {
@@ -82,7 +105,9 @@ int Rack::pocket_at(const Config& config) const {
 void Simulator::model_rack(const Config& config, const ToolState& tools) {
   config_ = &config;
   rack = Rack{};
-  rack.modelled = config.sensors.any();
+  rack.modelled =
+      config.sensors.any() ||
+      (config.rack_cover && (config.rack_cover->opened_sensor || config.rack_cover->closed_sensor));
   rack.spindle = tools.spindle;
   for (const auto& entry : config.pockets) {
     rack.pockets[entry.first] = tools.holds(entry.first) ? tools.tool_of(entry.first) : 0;
@@ -98,6 +123,8 @@ SensorReadings Simulator::readings() const {
   r.air_pressure_ok = rack.air;
   r.zero_speed = rack.spindle_still;
   for (const auto& [pocket, tool] : rack.pockets) r.pocket_occupied[pocket] = tool != 0;
+  r.rack_cover_opened = rack.cover_open;
+  r.rack_cover_closed = !rack.cover_open;
   return r;
 }
 

@@ -9,11 +9,13 @@
 
 namespace fatc {
 
-/// One thing the changer did, in order: a step, a chuck change, a dwell, a message.
+/// One thing the changer did, in order: a step, a chuck, rack cover or air
+/// blast change, a dwell, a message.
 struct Record {
-  enum class Kind { step, chuck, dwell, message, save } kind = Kind::step;
+  enum class Kind { step, chuck, cover, blast, dwell, message, save } kind = Kind::step;
   Step step;
   bool chuck_open = false;
+  bool on = false;  ///< the cover opened, the blast on
   double seconds = 0.0;
   MessageKind message_kind = MessageKind::info;
   std::string text;
@@ -36,6 +38,8 @@ struct Rack {
   bool tool_sticks = false;     ///< a released tool stays in the spindle
   bool drawbar_jammed = false;  ///< the drawbar does not move (its feedback stays)
   bool drawbar_open = false;    ///< where the drawbar is
+  bool cover_open = false;      ///< where the rack cover is
+  bool cover_jammed = false;    ///< the rack cover does not move (its feedback stays)
   Point at;                     ///< where the spindle is (known_axes of it)
   unsigned known_axes = 0;
 
@@ -70,6 +74,10 @@ class Simulator : public Ports {
 
   void publish(const Step& step) override;
   void set_chuck_open(bool open) override;
+  void set_rack_cover_open(bool open) override;
+  void set_air_blast(bool on) override;
+  bool cover_open = false;
+  bool blowing = false;
   void start_timer(double seconds) override;
   void cancel_timer() override;
   void tell(MessageKind kind, const std::string& text) override;

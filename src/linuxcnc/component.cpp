@@ -55,6 +55,10 @@ void Component::read_machine(std::optional<bool> interpreter_idle) {
   if (wired_.drawbar_open) sensors.drawbar_open = *pins_->drawbar_open;
   if (wired_.drawbar_closed) sensors.drawbar_closed = *pins_->drawbar_closed;
   if (wired_.air_pressure) sensors.air_pressure_ok = *pins_->air_pressure_ok;
+  if (const auto& cover = config_.rack_cover) {
+    if (cover->opened_sensor) sensors.rack_cover_opened = *pins_->rack_cover_opened;
+    if (cover->closed_sensor) sensors.rack_cover_closed = *pins_->rack_cover_closed;
+  }
   for (int i = 0; i < pins_->pocket_count; ++i) {
     const int pocket = pins_->pocket_tools[i];
     if (wired_.pocket(pocket)) sensors.pocket_occupied[pocket] = *pins_->pocket_occupied[i];
@@ -288,6 +292,8 @@ void Component::write_pins() {
 }
 
 void Component::set_chuck_open(bool open) { *pins_->chuck = open; }
+void Component::set_rack_cover_open(bool open) { *pins_->rack_cover_open = open; }
+void Component::set_air_blast(bool on) { *pins_->air_blast = on; }
 
 void Component::start_timer(double seconds) {
   deadline_ =

@@ -37,6 +37,8 @@ class Component : public Ports {
 
   void publish(const Step& step) override { link_.publish(step); }
   void set_chuck_open(bool open) override;
+  void set_rack_cover_open(bool open) override;
+  void set_air_blast(bool on) override;
   void start_timer(double seconds) override;
   void cancel_timer() override { deadline_.reset(); }
   void tell(MessageKind kind, const std::string& text) override;

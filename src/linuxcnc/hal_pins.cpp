@@ -43,6 +43,11 @@ HalPins* create_pins(const std::string& name, int& id, const std::vector<int>& p
   make(id, HAL_IN, &p->drawbar_open, n, "drawbar-open");
   make(id, HAL_IN, &p->drawbar_closed, n, "drawbar-closed");
   make(id, HAL_IN, &p->air_pressure_ok, n, "air-pressure-ok");
+  // What the rack may need around it: each driven only where config.json names it.
+  make(id, HAL_OUT, &p->rack_cover_open, n, "rack-cover-open");
+  make(id, HAL_IN, &p->rack_cover_opened, n, "rack-cover-opened");
+  make(id, HAL_IN, &p->rack_cover_closed, n, "rack-cover-closed");
+  make(id, HAL_OUT, &p->air_blast, n, "air-blast");
   p->pocket_count = static_cast<int>(pockets.size());
   p->pocket_occupied =
       static_cast<hal_bit_t**>(hal_malloc(sizeof(hal_bit_t*) * (pockets.size() + 1)));

@@ -7,19 +7,23 @@
 namespace fatc::linuxcnc {
 
 struct HalPins {
-  hal_s32_t* number;           ///< in: tool being prepared (iocontrol.0.tool-prep-number)
-  hal_bit_t* tool_prepare;     ///< in: iocontrol.0.tool-prepare
-  hal_bit_t* prepared;         ///< out: iocontrol.0.tool-prepared
-  hal_bit_t* tool_change;      ///< in: iocontrol.0.tool-change
-  hal_bit_t* changed;          ///< out: iocontrol.0.tool-changed; high until tool-change drops
-  hal_bit_t* chuck;            ///< out: true opens the chuck
-  hal_bit_t* probe;            ///< in: the touch-off sensor
-  hal_bit_t* spindle_stopped;  ///< in: the spindle stands still, as LinuxCNC commands it
-  hal_bit_t* zero_speed;       ///< in: the spindle's zero-speed feedback (sensors.zero_speed)
-  hal_bit_t* tool_present;     ///< in: a tool is clamped in the spindle (sensors.tool_present)
-  hal_bit_t* drawbar_open;     ///< in: the drawbar is released (sensors.drawbar_open)
-  hal_bit_t* drawbar_closed;   ///< in: the drawbar is clamped (sensors.drawbar_closed)
-  hal_bit_t* air_pressure_ok;  ///< in: the drawbar has air (sensors.air_pressure)
+  hal_s32_t* number;             ///< in: tool being prepared (iocontrol.0.tool-prep-number)
+  hal_bit_t* tool_prepare;       ///< in: iocontrol.0.tool-prepare
+  hal_bit_t* prepared;           ///< out: iocontrol.0.tool-prepared
+  hal_bit_t* tool_change;        ///< in: iocontrol.0.tool-change
+  hal_bit_t* changed;            ///< out: iocontrol.0.tool-changed; high until tool-change drops
+  hal_bit_t* chuck;              ///< out: true opens the chuck
+  hal_bit_t* probe;              ///< in: the touch-off sensor
+  hal_bit_t* spindle_stopped;    ///< in: the spindle stands still, as LinuxCNC commands it
+  hal_bit_t* zero_speed;         ///< in: the spindle's zero-speed feedback (sensors.zero_speed)
+  hal_bit_t* tool_present;       ///< in: a tool is clamped in the spindle (sensors.tool_present)
+  hal_bit_t* drawbar_open;       ///< in: the drawbar is released (sensors.drawbar_open)
+  hal_bit_t* drawbar_closed;     ///< in: the drawbar is clamped (sensors.drawbar_closed)
+  hal_bit_t* air_pressure_ok;    ///< in: the drawbar has air (sensors.air_pressure)
+  hal_bit_t* rack_cover_open;    ///< out: true opens the rack cover (`rack_cover`)
+  hal_bit_t* rack_cover_opened;  ///< in: the cover reads open (rack_cover.opened_sensor)
+  hal_bit_t* rack_cover_closed;  ///< in: the cover reads closed (rack_cover.closed_sensor)
+  hal_bit_t* air_blast;          ///< out: cleans the spindle taper (`air_blast`)
   /// in: pocket-occupied-N, one per configured pocket, in the order of
   /// `pocket_tools` (sensors.pocket_occupancy); HAL memory, `pocket_count` long
   hal_bit_t** pocket_occupied;

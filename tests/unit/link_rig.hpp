@@ -33,6 +33,12 @@ struct LinkedPorts : Ports {
     chuck_open = open;
     log.push_back(std::string("  changer: chuck ") + (open ? "open" : "close"));
   }
+  void set_rack_cover_open(bool open) override {
+    log.push_back(std::string("  changer: rack cover ") + (open ? "open" : "close"));
+  }
+  void set_air_blast(bool on) override {
+    log.push_back(std::string("  changer: air blast ") + (on ? "on" : "off"));
+  }
   void start_timer(double seconds) override {
     char text[48];
     std::snprintf(text, sizeof text, "  changer: timer %.2f s", seconds);

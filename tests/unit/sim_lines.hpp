@@ -29,6 +29,12 @@ inline Lines record_lines(const Simulator& sim, std::size_t from = 0) {
       case Record::Kind::chuck:
         out.push_back(r.chuck_open ? "chuck open" : "chuck close");
         break;
+      case Record::Kind::cover:
+        out.push_back(r.on ? "cover open" : "cover close");
+        break;
+      case Record::Kind::blast:
+        out.push_back(r.on ? "blast on" : "blast off");
+        break;
       case Record::Kind::dwell:
         std::snprintf(buffer, sizeof buffer, "dwell %.2f", r.seconds);
         out.push_back(buffer);

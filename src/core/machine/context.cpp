@@ -36,12 +36,47 @@ void Context::publish(const Step& next) {
 
 void Context::open_chuck() {
   ++sequence_step;
+  chuck_open = true;
   ports.set_chuck_open(true);
+  blow_if_due();
 }
 
 void Context::close_chuck() {
   ++sequence_step;
+  chuck_open = false;
+  blow_if_due();
   ports.set_chuck_open(false);
+}
+
+void Context::blow_if_due() {
+  // The taper is cleaned only at a pocket: at `loading` the operator's hand
+  // is at the spindle.
+  const bool due = config.air_blast && chuck_open && tools.spindle == 0 && tools.in_progress &&
+                   tools.in_progress->pocket != 0;
+  if (due == blowing) return;
+  blowing = due;
+  ports.set_air_blast(due);
+}
+
+void Context::open_cover() {
+  if (!config.rack_cover || cover_open) return;
+  cover_open = true;
+  cover_settled = false;
+  ++sequence_step;
+  ports.set_rack_cover_open(true);
+}
+
+void Context::close_cover() {
+  if (!config.rack_cover || !cover_open) return;
+  cover_open = false;
+  ++sequence_step;
+  ports.set_rack_cover_open(false);
+}
+
+bool Context::cover_reads_open() const {
+  if (!config.rack_cover) return true;
+  if (!cover_open) return false;
+  return config.rack_cover->opened_sensor ? sensors.rack_cover_opened : cover_settled;
 }
 
 void Context::wait(double seconds, std::string what) {
@@ -84,6 +119,7 @@ std::optional<int> Context::return_pocket(int tool) const {
 void Context::record_in_spindle(int tool) {
   tools.put_in_spindle(tool);
   ports.save(tools);
+  blow_if_due();
 }
 
 void Context::record_in_pocket(int tool, int pocket) {
@@ -91,6 +127,7 @@ void Context::record_in_pocket(int tool, int pocket) {
   if (const auto home = tools.home_of(tool); home && *home != pocket) tools.pockets[*home] = {};
   tools.pockets[pocket] = {tool, true};
   ports.save(tools);
+  blow_if_due();
 }
 
 void Context::record_out_of_machine(int tool) {
@@ -146,7 +183,12 @@ bool Context::pocket_reads(int pocket, bool occupied) const {
 }
 
 std::vector<std::string> Context::disagreements() const {
-  return sensor_disagreements(config.sensors, sensors, tools);
+  auto found = sensor_disagreements(config.sensors, sensors, tools);
+  if (config.rack_cover && config.rack_cover->closed_sensor && !cover_open &&
+      !sensors.rack_cover_closed) {
+    found.push_back("the rack cover is not closed (rack-cover-closed off)");
+  }
+  return found;
 }
 
 std::string Context::drawbar_words() const {

@@ -54,8 +54,11 @@ class Context {
   /// Raises SensorReport in the machine (queued behind the current event):
   /// a state that waits for a sensor looks at it once on entry this way.
   std::function<void()> recheck_sensors;
-  Point position;           ///< where the last published moves lead
-  unsigned known_axes = 0;  ///< which axes of `position` are known
+  bool chuck_open = false;    ///< as last commanded
+  bool cover_open = false;    ///< the rack cover, as last commanded
+  bool cover_settled = true;  ///< an unsensed cover has had `rack_cover.seconds` to move
+  Point position;             ///< where the last published moves lead
+  unsigned known_axes = 0;    ///< which axes of `position` are known
   bool at_safe() const;
 
   // What the status view's activity is derived from.
@@ -68,6 +71,8 @@ class Context {
   int sequence_step = 0;
 
   void publish(const Step& step);
+  /// The chuck; with `air_blast`, the blast follows: on while the chuck is
+  /// open at a pocket with the spindle empty.
   void open_chuck();
   void close_chuck();
   void wait(double seconds, std::string what);
@@ -107,7 +112,15 @@ class Context {
   bool spindle_reads(bool holds) const;
   /// `pocket-occupied-N` of pocket `pocket` reads `occupied`.
   bool pocket_reads(int pocket, bool occupied) const;
-  /// Where the wired sensors contradict the tool state, one phrase each.
+  /// The rack cover (`rack_cover`): commanded open or closed. Closing is
+  /// not waited for here: SensorsAgree waits for `rack-cover-closed`.
+  void open_cover();
+  void close_cover();
+  /// No cover, or it is open: `rack-cover-opened` on where wired, else it
+  /// has had its `seconds`.
+  bool cover_reads_open() const;
+  /// Where the wired sensors contradict the tool state (or the rack cover
+  /// its command), one phrase each.
   std::vector<std::string> disagreements() const;
   /// What the wired drawbar sensors read, for a message: "drawbar-open off, drawbar-closed on".
   std::string drawbar_words() const;
@@ -120,6 +133,10 @@ class Context {
   void fail_check(std::string reason, bool uncertain);
   /// Why the last probe measured nothing, in words (for the fault after M6).
   std::string probe_problem;
+
+ private:
+  void blow_if_due();
+  bool blowing = false;
 };
 
 /// Why M6 to `tool` cannot start now, or nothing if it can.

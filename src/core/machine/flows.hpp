@@ -3,6 +3,7 @@
 // The flows a machinist starts: M6 (change), load and probe, unload; and the
 // top of the machine that holds them.
 
+#include <algorithm>
 #include <boost/core/demangle.hpp>
 #include <type_traits>
 
@@ -389,12 +390,26 @@ struct Operating_ : Flow<Operating_> {
   struct Idle : msmf::state<> {
     using flag_list = boost::mpl::vector1<flag::Idle>;
   };
+  /// The changer is done with the rack: its cover (if any) closes, and
+  /// `rack-cover-closed` (if wired) has its own timeout to say so.
+  struct SensorOrCoverTimeout {
+    double operator()(const Config& c) const {
+      return c.rack_cover && c.rack_cover->closed_sensor
+                 ? std::max(c.sensor_timeout_seconds, c.rack_cover->timeout_seconds)
+                 : c.sensor_timeout_seconds;
+    }
+  };
   /// Before the changer takes work (at start, after a fault, after every
   /// flow, and whenever a sensor changes while idle) the wired sensors must
   /// agree with the tool state, or come to within sensor_timeout_seconds.
-  struct ComparingSensors : AwaitingSensor<SensorsAgree> {
+  struct ComparingSensors : AwaitingSensor<SensorsAgree, SensorOrCoverTimeout> {
     using flag_list = boost::mpl::vector2<flag::Idle, flag::AwaitsSensor>;
     using internal_transition_table = RefusesRequests<BecauseSensorsDisagree>;
+    template <class Event, class Fsm>
+    void on_entry(const Event& e, Fsm& fsm) {
+      fsm.ctx->close_cover();
+      AwaitingSensor::on_entry(e, fsm);
+    }
   };
   struct SaySensorsDisagree {
     template <class Event, class Fsm, class Source, class Target>
