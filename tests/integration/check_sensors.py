@@ -16,6 +16,10 @@ DISAGREEMENT = ("the sensors disagree with the saved tool state; pocket 1 reads 
                 "(pocket-occupied-1 off), but tool 1 is recorded in it")
 
 
+COVER_FAULT = ("the rack cover did not open within rack_cover.timeout_seconds (2.0 s, "
+               "rack-cover-opened off): nothing moved into the rack")
+
+
 def rack_log(results_path):
     """What the simulated rack did, in order: gripped, released, grip failed, ..."""
     path = os.path.join(os.path.dirname(os.path.abspath(results_path)), "rack_sim.log")
@@ -31,6 +35,52 @@ def rises(samples, pin):
             times.append(s["t"])
         last = s[pin]
     return times
+
+
+def intervals(samples, pin):
+    """(from, to) of each time `pin` was high."""
+    spans, since = [], None
+    for s in samples:
+        if s[pin] and since is None:
+            since = s["t"]
+        elif not s[pin] and since is not None:
+            spans.append((since, s["t"]))
+            since = None
+    if since is not None:
+        spans.append((since, samples[-1]["t"]))
+    return spans
+
+
+def check_cover_and_blast(r):
+    """The rack cover opened before the first move and closed after the last;
+    the chuck acted at a pocket only with the cover reading open; the air blast
+    blew only while the chuck was open."""
+    samples = r["samples"]
+    opened = rises(samples, "fixed_atc_probe.rack-cover-opened")
+    first = samples[0]["pos"]
+    moved = next((s["t"] for s in samples if not near(s["pos"], first)), None)
+    if not opened or moved is None or moved < opened[0]:
+        fail("the machine moved at %s s, the rack cover read open at %s" % (moved, opened))
+    ok("rack-cover-opened at %.2f s, the first move at %.2f s" % (opened[0], moved))
+    bad = [s["t"] for s in samples if s["fixed_atc_probe.chuck"] and s["fixed_atc_probe.pocket-served"]
+           and not s["fixed_atc_probe.rack-cover-opened"]]
+    if bad:
+        fail("the chuck acted at a pocket with the rack cover not reading open, at %s" % bad[:5])
+    last = at_end(r)
+    if last["fixed_atc_probe.rack-cover-open"] or not last["fixed_atc_probe.rack-cover-closed"]:
+        fail("the rack cover is not closed at the end: %s" % last)
+    ok("the chuck acted at a pocket only with the cover open (%d rises of rack-cover-opened); "
+       "closed at the end" % len(opened))
+    chuck = intervals(samples, "fixed_atc_probe.chuck")
+    blasts = intervals(samples, "fixed_atc_probe.air-blast")
+    if len(blasts) < 2:
+        fail("the air blast blew %d times, expected at every return and fetch" % len(blasts))
+    slack = 0.05  # the sampler reads one pin after the other
+    for on, off in blasts:
+        if not any(c_on - slack <= on and off <= c_off + slack for c_on, c_off in chuck):
+            fail("the air blast blew from %.3f to %.3f s outside an opening of the chuck %s"
+                 % (on, off, chuck))
+    ok("the air blast blew %d times, each within an opening of the chuck" % len(blasts))
 
 
 def settled(r):
@@ -91,6 +141,7 @@ def check_sensors_changes(r, rack, log):
     if in_pockets(r["state_file"]) != sorted(rack.pockets):
         fail("the state file says %s in their pockets" % in_pockets(r["state_file"]))
     ok("every tool home again, as the state file says")
+    check_cover_and_blast(r)
 
 
 def check_sensors_grip_fails(r, rack, log):
@@ -145,6 +196,19 @@ def check_sensors_air_lost(r, rack, log):
     ok("the tool state stays certain: the chuck never moved")
     if not any(e["what"] == "air cut" for e in log):
         fail("the simulated rack never cut the air")
+
+
+def check_sensors_cover_stuck(r, rack, log):
+    faulted_with(r, COVER_FAULT)
+    still_after(r, 0.0)
+    if rises(r["samples"], "fixed_atc_probe.chuck"):
+        fail("the chuck opened although the cover never did")
+    if r["state_file"].get("uncertain"):
+        fail("the spindle is marked uncertain though nothing moved")
+    last = at_end(r)
+    if not last["fixed_atc_probe.rack-cover-open"] or last["fixed_atc_probe.air-blast"]:
+        fail("at the fault the cover output should stay open and the blast be off: %s" % last)
+    ok("nothing moved, the state stays certain, the cover stays as it was and the blast is off")
 
 
 def check_sensors_kill(r, rack, log):

@@ -22,7 +22,9 @@ PINS = ["fixed_atc_probe.chuck", "fixed_atc_probe.waiting-for-operator", "fixed_
         "motion.probe-input", "spindle.0.on", "iocontrol.0.coolant-flood", "fatc-chuck-guard.chuck",
         "fatc-chuck-guard.alive", "fixed_atc_probe.cut-off-pocket", "fixed_atc_probe.pocket-served",
         "fixed_atc_probe.batch-done", "fixed_atc_probe.batch-total", "fixed_atc_probe.step-number",
-        "fixed_atc_probe.can-cancel"]
+        "fixed_atc_probe.can-cancel", "fixed_atc_probe.rack-cover-open",
+        "fixed_atc_probe.rack-cover-opened", "fixed_atc_probe.rack-cover-closed",
+        "fixed_atc_probe.air-blast"]
 COMPONENT = "fixed_atc_probe"
 
 stat = linuxcnc.stat()
@@ -425,7 +427,9 @@ def perform(step, result, start):
         wait(lambda: time.monotonic() - pressed > 0.1, 5, "the press")
         hal.set_p(COMPONENT + ".clear-fault", "0")
         result["confirmed_at"] = now()
-        wait(lambda: hal.get_value(COMPONENT + ".state") == 1, 30, "the changer idle after the confirm")
+        # Idle, and done comparing the sensors (a rack cover may still be closing).
+        wait(lambda: hal.get_value(COMPONENT + ".state") == 1 and
+             hal.get_value(COMPONENT + ".awaiting") == 0, 30, "the changer idle after the confirm")
         result["idle_after_confirm_at"] = now()
         hal.set_p(COMPONENT + ".confirm-tool", "-1")
         hal.set_p(COMPONENT + ".confirm-pocket", "-1")

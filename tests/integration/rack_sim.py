@@ -29,6 +29,7 @@ import hal
 
 PERIOD = 0.005
 DRAWBAR_SECONDS = 0.05
+COVER_SECONDS = 0.2  # the rack cover takes this long to open or close
 SPIN_DOWN_SECONDS = 0.3
 AT = 0.01  # mm: the sim follows its commands exactly
 
@@ -56,11 +57,12 @@ def main():
     c = hal.component("fatc-rack-sim")
     for name in ("x", "y", "z"):
         c.newpin(name, hal.HAL_FLOAT, hal.HAL_IN)
-    for name in ("chuck", "spindle-on", "grip-fails", "air-off", "air-cut"):
+    for name in ("chuck", "spindle-on", "grip-fails", "air-off", "air-cut", "cover", "cover-jam"):
         c.newpin(name, hal.HAL_BIT, hal.HAL_IN)
     c.newpin("air-cut-seconds", hal.HAL_FLOAT, hal.HAL_IN)
     c.newpin("take-from-pocket", hal.HAL_S32, hal.HAL_IN)
-    for name in ("tool-present", "drawbar-open", "drawbar-closed", "air-pressure-ok", "zero-speed"):
+    for name in ("tool-present", "drawbar-open", "drawbar-closed", "air-pressure-ok", "zero-speed",
+                 "cover-opened", "cover-closed"):
         c.newpin(name, hal.HAL_BIT, hal.HAL_OUT)
     c.newpin("spindle-tool", hal.HAL_S32, hal.HAL_OUT)
     for tool in pockets:
@@ -78,6 +80,8 @@ def main():
     spindle = 0
     drawbar_open = False
     moving_since = None
+    cover_open = False
+    cover_moving_since = None
     air_off_until = 0.0
     last_cut = False
     last_take = 0
@@ -121,6 +125,16 @@ def main():
         else:
             moving_since = None
 
+        # The rack cover follows its valve after COVER_SECONDS; a jammed one does not open.
+        if c["cover"] != cover_open and not (c["cover"] and c["cover-jam"]):
+            cover_moving_since = now if cover_moving_since is None else cover_moving_since
+            if now - cover_moving_since >= COVER_SECONDS:
+                cover_open = c["cover"]
+                cover_moving_since = None
+                note("cover opened" if cover_open else "cover closed")
+        else:
+            cover_moving_since = None
+
         take = c["take-from-pocket"]
         if take != last_take and take > 0 and holder.get(take):
             note("taken out by hand", tool=holder[take], pocket=take)
@@ -133,6 +147,8 @@ def main():
         c["air-pressure-ok"] = air
         c["drawbar-open"] = drawbar_open
         c["drawbar-closed"] = not drawbar_open
+        c["cover-opened"] = cover_open and cover_moving_since is None
+        c["cover-closed"] = not cover_open and cover_moving_since is None
         c["tool-present"] = spindle != 0
         c["spindle-tool"] = spindle
         for tool in pockets:
