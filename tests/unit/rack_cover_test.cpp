@@ -200,5 +200,44 @@ TEST(AirBlast, shouldStopOnAFaultAndLeaveTheCoverAsItIs) {
   EXPECT_TRUE(rig.sim.cover_open) << "the cover stays as it is";
 }
 
+// ---------------------------------------------------------------- the fault matrix
+
+/// An M6 from tool 1 to tool 2 with cover and blast, cut off after each of its
+/// events by an abort and by an estop: the blast is off, the chuck closed, the
+/// cover as it was.
+TEST(FaultMatrixAroundTheRack, shouldStopTheBlastAndLeaveTheCoverWhereverAChangeIsCutOff) {
+  const std::string extra = R"("rack_cover": {}, "air_blast": true)";
+  int events = 0;
+  {
+    CoverRig rig(extra, 1);
+    rig.changer->tool_change(2);
+    while (rig.changer->status().busy() && rig.sim.run(*rig.changer, 1) == 1) ++events;
+    ASSERT_EQ(rig.changer->tools().spindle, 2);
+  }
+  ASSERT_GT(events, 20);
+  int blowing = 0;
+  int covered = 0;
+  for (const bool estop : {false, true}) {
+    for (int at = 0; at < events; ++at) {
+      CoverRig rig(extra, 1);
+      rig.changer->tool_change(2);
+      for (int i = 0; i < at; ++i) ASSERT_EQ(rig.sim.run(*rig.changer, 1), 1);
+      const bool cover_was_open = rig.sim.cover_open;
+      blowing += rig.sim.blowing;
+      covered += cover_was_open;
+      if (estop) {
+        rig.changer->not_ready();
+      } else {
+        rig.changer->abort("LinuxCNC aborted the program");
+      }
+      EXPECT_FALSE(rig.sim.blowing) << "event " << at << (estop ? " estop" : " abort");
+      EXPECT_FALSE(rig.sim.chuck_open) << "event " << at;
+      EXPECT_EQ(rig.sim.cover_open, cover_was_open) << "event " << at;
+    }
+  }
+  EXPECT_GT(blowing, 0) << "some cases cut the change off while blowing";
+  EXPECT_GT(covered, 0) << "some cases cut the change off with the cover open";
+}
+
 }  // namespace
 }  // namespace fatc
