@@ -3,6 +3,10 @@
 // Building blocks shared by every table: the flow base, the kinds of state
 // (moving, timed, waiting for the operator), targets, guards and actions.
 
+#include <boost/mpl/contains.hpp>
+#include <boost/mpl/count_if.hpp>
+#include <boost/mpl/not.hpp>
+#include <boost/mpl/or.hpp>
 #include <boost/msm/back/favor_compile_time.hpp>
 #include <boost/msm/back/state_machine.hpp>
 #include <boost/msm/front/functor_row.hpp>
@@ -76,6 +80,19 @@ using TakesEveryEvent =
                        Takes<SensorReport>, Takes<OperatorContinue>, Takes<OperatorCancel>,
                        Takes<Abort>, Takes<InternalError>, Takes<UnsafeStep>, Takes<CheckFailed>,
                        Takes<ClearFault>, Takes<LegDone>, Takes<FlowFailed>>;
+
+/// Every event a machine's own rows take is in TakesEveryEvent; a new event
+/// left out would never reach a submachine.
+template <class Front>
+struct TakesListedEvents {
+  template <class Row>
+  struct Listed : boost::mpl::or_<std::is_same<typename Row::Evt, msmf::none>,
+                                  boost::mpl::contains<TakesEveryEvent, Takes<typename Row::Evt>>> {
+  };
+  static constexpr bool value =
+      boost::mpl::count_if<typename Front::transition_table,
+                           boost::mpl::not_<Listed<boost::mpl::placeholders::_1>>>::value == 0;
+};
 
 struct Finished : msmf::exit_pseudo_state<LegDone> {};
 struct Failed : msmf::exit_pseudo_state<FlowFailed> {};
@@ -506,5 +523,7 @@ struct CloseChuck {
 template <class Front>
 struct boost::msm::back::recursive_get_transition_table<
     boost::msm::back::state_machine<Front, boost::msm::back::favor_compile_time>> {
+  static_assert(fatc::machine::TakesListedEvents<Front>::value,
+                "a row takes an event missing from TakesEveryEvent (common.hpp)");
   using type = fatc::machine::TakesEveryEvent;
 };
