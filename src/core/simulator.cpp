@@ -42,11 +42,16 @@ void Simulator::publish(const Step& step) {
   }
 }
 
-void Simulator::set_chuck_open(bool open) {
+void Simulator::record_output(Record::Kind kind, bool on) {
   Record record;
-  record.kind = Record::Kind::chuck;
-  record.chuck_open = open;
+  record.kind = kind;
+  record.chuck_open = kind == Record::Kind::chuck && on;
+  record.on = on;
   records.push_back(record);
+}
+
+void Simulator::set_chuck_open(bool open) {
+  record_output(Record::Kind::chuck, open);
   chuck_open = open;
   if (!rack.modelled || rack.drawbar_jammed || rack.drawbar_open == open) return;
   rack.drawbar_open = open;
@@ -73,10 +78,7 @@ void Simulator::set_chuck_open(bool open) {
 }
 
 void Simulator::set_rack_cover_open(bool open) {
-  Record record;
-  record.kind = Record::Kind::cover;
-  record.on = open;
-  records.push_back(record);
+  record_output(Record::Kind::cover, open);
   cover_open = open;
   if (!rack.modelled || rack.cover_jammed || rack.cover_open == open) return;
   rack.cover_open = open;
@@ -84,10 +86,7 @@ void Simulator::set_rack_cover_open(bool open) {
 }
 
 void Simulator::set_air_blast(bool on) {
-  Record record;
-  record.kind = Record::Kind::blast;
-  record.on = on;
-  records.push_back(record);
+  record_output(Record::Kind::blast, on);
   blowing = on;
 }
 

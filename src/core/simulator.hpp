@@ -94,6 +94,8 @@ class Simulator : public Ports {
   int saves = 0;
 
  private:
+  /// Records a change of the chuck, the rack cover or the air blast.
+  void record_output(Record::Kind kind, bool on);
   const Config* config_ = nullptr;
   Changer* changer_ = nullptr;
   std::optional<SensorReadings> reported_;
