@@ -4,8 +4,9 @@ Makes the panel's HAL pins, turns button clicks into the pulses the
 component's rising-edge inputs want, shows what the changer reports in the
 machinist's words, and enables a button only when the component says it can
 act. The Setup page's Teach buttons pulse the component's teach pins, which
-write the machine position into config.json. Measure all pulses measure-all
-with the chosen measure-which and shows the batch's progress. The rack (each pocket, its tool, the tool's length, its approach) comes
+write the machine position into config.json; Verify pocket pulses
+verify-pocket, a dry run through the pocket's approach. Measure all pulses
+measure-all with the chosen measure-which and shows the batch's progress. The rack (each pocket, its tool, the tool's length, its approach) comes
 from the component's state file and config, the paths named in
 [FIXED_ATC_PROBE] of the INI; the program loaded in the GUI is checked with
 `fixed_atc_probe --lint` in a subprocess, never in the GTK loop."""
@@ -18,7 +19,8 @@ import linuxcnc
 from gi.repository import Gio, GLib, Gtk
 
 # Each button pulses the component pin of its name (the button's id in the .ui).
-OPERATOR_BUTTONS = ("load", "unload", "continue", "cancel", "clear-fault", "measure-all")
+OPERATOR_BUTTONS = ("load", "unload", "continue", "cancel", "clear-fault", "measure-all",
+                    "verify-pocket")
 # The Setup page: nothing moves, config.json is written.
 TEACH_BUTTONS = ("teach-pocket", "teach-loading", "teach-safe", "teach-sensor")
 BUTTONS = OPERATOR_BUTTONS + TEACH_BUTTONS
@@ -36,6 +38,7 @@ PHASE_LOADING = 3
 PHASE_UNLOADING = 4
 PHASE_FAULT = 5
 PHASE_MEASURING = 6
+PHASE_VERIFYING = 7
 # The `awaiting` pin: Awaiting.
 AWAITING_NOTHING = 0
 AWAITING_MOTION = 1
@@ -55,7 +58,8 @@ PHASES = {PHASE_NOT_READY: "Machine off, not homed or in estop", PHASE_IDLE: "Id
           PHASE_CHANGING: "Changing tool", PHASE_LOADING: "Loading tool",
           PHASE_UNLOADING: "Unloading tool",
           PHASE_FAULT: "FAULT: check spindle and rack, then Clear fault",
-          PHASE_MEASURING: "Measuring tools (Cancel stops after the current one)"}
+          PHASE_MEASURING: "Measuring tools (Cancel stops after the current one)",
+          PHASE_VERIFYING: "Verifying a pocket: Continue at each stop, Cancel stops there"}
 # The `measure-which` pin (docs/sequences.md#measure-all): the selector's item ids.
 MEASURE_EVERY = 0
 MEASURE_NEVER_MEASURED = 1
@@ -314,6 +318,8 @@ class Handler:
         self.comp["pocket-number"] = pocket
         self.builder.get_object("teach-pocket").set_label(
             "Teach pocket %d" % pocket if pocket > 0 else "Teach pocket")
+        self.builder.get_object("verify-pocket").set_label(
+            "Verify pocket %d" % pocket if pocket > 0 else "Verify pocket")
 
     def on_measure_which_changed(self, combo):
         self.comp["measure-which"] = int(combo.get_active_id() or MEASURE_EVERY)
@@ -378,6 +384,7 @@ class Handler:
                    "continue": c["waiting-for-operator"], "cancel": c["can-cancel"],
                    "clear-fault": state == PHASE_FAULT, "measure-all": c["accepting"],
                    "teach-pocket": teach and c["pocket-number"] > 0, "teach-loading": teach,
+                   "verify-pocket": c["accepting"] and c["pocket-number"] > 0,
                    "teach-safe": teach, "teach-sensor": teach}
         for name, on in enabled.items():
             get(name).set_sensitive(bool(on))
@@ -456,7 +463,8 @@ class Handler:
         served during a change highlighted, the cut-off one in fault marked."""
         c = self.comp
         self.read_state()
-        busy = c["state"] in (PHASE_CHANGING, PHASE_LOADING, PHASE_UNLOADING, PHASE_MEASURING)
+        busy = c["state"] in (PHASE_CHANGING, PHASE_LOADING, PHASE_UNLOADING, PHASE_MEASURING,
+                              PHASE_VERIFYING)
         served = c["pocket-served"] or (self.status or {}).get("pocket", 0)
         if not served and busy and self.state:
             # What the sequence under way recorded before it moved.

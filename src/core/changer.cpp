@@ -62,6 +62,7 @@ void Changer::unload(int tool) { engine_->fsm.process_event(UnloadRequest{tool})
 void Changer::measure_all(std::vector<int> tools) {
   engine_->fsm.process_event(MeasureRequest{std::move(tools)});
 }
+void Changer::verify(int pocket) { engine_->fsm.process_event(VerifyRequest{pocket}); }
 void Changer::in_position() { engine_->fsm.process_event(InPosition{}); }
 void Changer::command_done() { engine_->fsm.process_event(CommandDone{}); }
 
@@ -91,6 +92,7 @@ Phase phase_of(const machine::Machine& fsm) {
   if (active<flag::Loading>(fsm)) return Phase::loading;
   if (active<flag::Unloading>(fsm)) return Phase::unloading;
   if (active<flag::Measuring>(fsm)) return Phase::measuring;
+  if (active<flag::Verifying>(fsm)) return Phase::verifying;
   if (active<flag::Idle>(fsm)) return Phase::idle;
   return Phase::not_ready;
 }

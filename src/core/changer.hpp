@@ -46,6 +46,8 @@ class Changer {
   void unload(int tool);
   /// Measure all: fetch, measure and put back each of `tools` in the rack, in order.
   void measure_all(std::vector<int> tools);
+  /// A dry run through pocket `pocket`'s approach, held at each waypoint.
+  void verify(int pocket);
   void in_position();
   void command_done();
   void probe_result(bool touched, double machine_z, bool tripped_before = false);

@@ -596,7 +596,8 @@ ConfigResult parse_config(const std::string& json_text) {
                               "sensor_timeout_seconds",
                               "probe_window",
                               "rack_cover",
-                              "air_blast"});
+                              "air_blast",
+                              "verify_feed"});
 
   Config config;
   if (const auto units = root.find("units"); units != root.end()) {
@@ -634,6 +635,7 @@ ConfigResult parse_config(const std::string& json_text) {
   reader.read(root, "", "pocket_feed", config.pocket_feed, kFeed, false);
   reader.read(root, "", "probe_seek_feed", config.probe_seek_feed, kFeed, false);
   reader.read(root, "", "probe_latch_feed", config.probe_latch_feed, kFeed, false);
+  config.verify_feed = reader.ranged(root, "", "verify_feed", kFeed, false);
   reader.read(root, "", "probe_backoff", config.probe_backoff, kOffset, false);
   read_flush(reader, root, config);
   reader.read(root, "", "spindle_stop_timeout_seconds", config.spindle_stop_timeout_seconds,

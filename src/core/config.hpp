@@ -101,6 +101,7 @@ struct Config {
   std::optional<double> probe_window;   ///< unset: 10 mm or 0.4 inch
   std::optional<RackCoverConfig> rack_cover;  ///< unset: no cover
   bool air_blast = false;  ///< `air-blast` cleans the taper while the chuck is open at a pocket
+  std::optional<double> verify_feed;  ///< unset: pocket_feed
 
   bool has_pocket(int number) const { return pockets.count(number) != 0; }
   /// The pocket that holds `tool` at first start, if any.
@@ -110,6 +111,8 @@ struct Config {
   /// How far from its stored length a tool may first touch the sensor in a
   /// probe after M6: a touch outside stops the probe.
   double window() const;
+  /// The feed of every move of a dry run through a pocket (verify).
+  double dry_run_feed() const { return verify_feed.value_or(pocket_feed); }
 };
 
 /// Either a Config or every problem found, one line each, each naming the

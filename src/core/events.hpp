@@ -27,6 +27,10 @@ struct MeasureRequest {
 struct UnloadRequest {
   int tool = 0;
 };
+/// The operator asks for a dry run through pocket `pocket`'s approach (verify).
+struct VerifyRequest {
+  int pocket = 0;
+};
 /// The executor finished the last published move.
 struct InPosition {};
 /// The executor finished the last published command (M61, G10): nothing moved.

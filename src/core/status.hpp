@@ -14,6 +14,7 @@ enum class Phase {
   unloading = 4,
   fault = 5,
   measuring = 6,  ///< measure all
+  verifying = 7,  ///< a dry run through one pocket's approach
 };
 
 /// What the changer waits for now; the value of the `awaiting` pin.
@@ -44,7 +45,7 @@ struct Status {
 
   bool busy() const {
     return phase == Phase::changing || phase == Phase::loading || phase == Phase::unloading ||
-           phase == Phase::measuring;
+           phase == Phase::measuring || phase == Phase::verifying;
   }
   bool awaits_operator() const { return awaiting == Awaiting::operator_choice; }
 };

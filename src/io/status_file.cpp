@@ -23,6 +23,8 @@ const char* phase_word(Phase phase) {
       return "unloading";
     case Phase::measuring:
       return "measuring";
+    case Phase::verifying:
+      return "verifying";
     case Phase::fault:
       return "fault";
   }

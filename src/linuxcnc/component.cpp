@@ -120,6 +120,7 @@ void Component::read_operator() {
   if (load_.rose(*pins_->load)) changer_->load(*pins_->tool_number, *pins_->pocket_number);
   if (unload_.rose(*pins_->unload)) changer_->unload(*pins_->tool_number);
   if (measure_all_.rose(*pins_->measure_all)) measure_all();
+  if (verify_.rose(*pins_->verify_pocket)) changer_->verify(*pins_->pocket_number);
   if (continue_.rose(*pins_->continue_)) changer_->operator_continue();
   if (cancel_.rose(*pins_->cancel)) {
     if (changer_->status().probe_cancellable && nml_) {
@@ -246,7 +247,10 @@ void Component::start_executor_if_needed() {
   // Operator flows start from an idle machine: a step waiting with no
   // executor to take it means the executor must be run over MDI.
   const Phase phase = changer_->status().phase;
-  if (phase != Phase::loading && phase != Phase::unloading && phase != Phase::measuring) return;
+  if (phase != Phase::loading && phase != Phase::unloading && phase != Phase::measuring &&
+      phase != Phase::verifying) {
+    return;
+  }
   if (!task_free_ || !link_.needs_run(now_)) return;
   nml_->run_mdi("o<fixed_atc_probe_execute> call [" +
                 std::to_string(static_cast<int>(ExecutorCall::operator_flow)) + "]");
@@ -287,7 +291,11 @@ void Component::write_pins() {
   *pins_->can_cancel = *pins_->waiting_for_operator || (status.probe_cancellable && nml_) ||
                        status.phase == Phase::measuring;
   const auto& cut_off = changer_->cut_off();
-  *pins_->cut_off_pocket = cut_off && status.phase == Phase::fault ? cut_off->pocket : 0;
+  // Only a pocket with a tool of its own has a question to answer.
+  *pins_->cut_off_pocket =
+      cut_off && status.phase == Phase::fault && changer_->tools().tool_of(cut_off->pocket) != 0
+          ? cut_off->pocket
+          : 0;
   *pins_->heartbeat = !*pins_->heartbeat;
 }
 

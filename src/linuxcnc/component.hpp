@@ -87,7 +87,7 @@ class Component : public Ports {
   std::optional<Clock::time_point> sync_sent_;
   io::StatusFile status_file_;
   Edge abort_, clear_, load_, unload_, continue_, cancel_;
-  Edge teach_pocket_, teach_loading_, teach_safe_, teach_sensor_, measure_all_;
+  Edge teach_pocket_, teach_loading_, teach_safe_, teach_sensor_, measure_all_, verify_;
 };
 
 }  // namespace fatc::linuxcnc

@@ -101,6 +101,7 @@ HalPins* create_pins(const std::string& name, int& id, const std::vector<int>& p
   make(id, HAL_IN, &p->teach_loading, n, "teach-loading");
   make(id, HAL_IN, &p->teach_safe, n, "teach-safe");
   make(id, HAL_IN, &p->teach_sensor, n, "teach-sensor");
+  make(id, HAL_IN, &p->verify_pocket, n, "verify-pocket");
   make(id, HAL_OUT, &p->pocket_served, n, "pocket-served");
   make(id, HAL_IN, &p->measure_all, n, "measure-all");
   make(id, HAL_IN, &p->measure_which, n, "measure-which");

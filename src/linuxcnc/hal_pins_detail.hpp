@@ -62,11 +62,13 @@ struct HalPins {
   hal_s32_t* tool_number;     ///< in: the tool the operator buttons are about
   hal_bit_t* load;            ///< in: rising edge: load and probe tool-number
   hal_bit_t* unload;          ///< in: rising edge: unload tool-number
-  hal_s32_t* pocket_number;   ///< in: the pocket load and teach-pocket are about (0: load chooses)
+  hal_s32_t* pocket_number;   ///< in: the pocket load, teach-pocket and verify-pocket are about (0:
+                              ///< load chooses)
   hal_bit_t* teach_pocket;    ///< in: rising edge: the machine position becomes pocket-number's
   hal_bit_t* teach_loading;   ///< in: rising edge: ... becomes `loading`
   hal_bit_t* teach_safe;      ///< in: rising edge: ... becomes `safe`
   hal_bit_t* teach_sensor;    ///< in: rising edge: its XY becomes the touch-off sensor's
+  hal_bit_t* verify_pocket;   ///< in: rising edge: a dry run through pocket-number's approach
   hal_s32_t* pocket_served;   ///< out: the pocket a sequence serves now, 0 none
   hal_bit_t* measure_all;     ///< in: rising edge: measure the tools measure-which says
   hal_s32_t* measure_which;   ///< in: 0 every tool in the rack, 1 the unmeasured, 2 the program's

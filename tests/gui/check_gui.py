@@ -81,11 +81,12 @@ def main():
     for what, teach in (("program opened", True), ("removal prompt", False),
                         ("probing", False), ("loaded", True)):
         s = stage(r, what)
-        got = (s["fatc-panel.teach-loading-enabled"], s["fatc-panel.teach-pocket-enabled"])
-        if got != (teach, False):
-            fail("at '%s' Teach loading/Teach pocket enabled %s, expected %s (pocket 0)"
-                 % (what, got, (teach, False)))
-    ok("Teach loading enabled only while the changer is idle; Teach pocket never (pocket 0)")
+        got = (s["fatc-panel.teach-loading-enabled"], s["fatc-panel.teach-pocket-enabled"],
+               s["fatc-panel.verify-pocket-enabled"])
+        if got != (teach, False, False):
+            fail("at '%s' Teach loading/Teach pocket/Verify pocket enabled %s, expected %s (pocket 0)"
+                 % (what, got, (teach, False, False)))
+    ok("Teach loading enabled only while the changer is idle; Teach and Verify pocket never (pocket 0)")
     # Right after bring-up task is still busy: nothing is accepted yet (as Load).
     for what, measure in (("idle, tool number 0", False), ("program opened", True),
                           ("removal prompt", False), ("probing", False)):

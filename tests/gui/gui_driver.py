@@ -32,7 +32,7 @@ COORDS_SCREEN = 0
 PANEL_PINS = ["load-enabled", "unload-enabled", "continue-enabled", "cancel-enabled",
               "clear-fault-enabled", "load", "unload", "continue", "cancel", "tool-number",
               "teach-pocket-enabled", "teach-loading-enabled", "pocket-number",
-              "measure-all-enabled", "measure-which"]
+              "measure-all-enabled", "measure-which", "verify-pocket-enabled"]
 
 xdisplay = display.Display()
 result = {"steps": [], "messages": [], "error": None, "screenshots": []}

@@ -297,13 +297,112 @@ def check_rack_t20(r, rack, expected):
     program_changes(r, rack, expected, T20)
 
 
+def verify_runs(r):
+    """The sample ranges where the state pin said verifying (7), in order."""
+    runs, first = [], None
+    for i, s in enumerate(r["samples"]):
+        if s["fixed_atc_probe.state"] == 7 and first is None:
+            first = i
+        elif s["fixed_atc_probe.state"] != 7 and first is not None:
+            runs.append((first, i))
+            first = None
+    return runs
+
+
+def holds(r, first, last):
+    """Where the spindle stood each time the dry run held for Continue, in order:
+    the last sample of each hold (the first may show the status a poll late); a
+    new step number is a new hold, as two waypoints may be one place."""
+    places, held = [], None
+    for s in r["samples"][first:last]:
+        step = s["fixed_atc_probe.step-number"]
+        if not s["fixed_atc_probe.waiting-for-operator"]:
+            continue
+        if step == held:
+            places[-1] = s
+        else:
+            places.append(s)
+            held = step
+    return places
+
+
+def check_rack_verify(r, rack, expected):
+    """M6 T3 over MDI empties top pocket 4; a dry run through it held at every
+    waypoint; pocket 1 (T12 in it) refused; a second run cancelled in the pocket."""
+    no_fault(r)
+    if distinct(r["samples"], "tool_in_spindle") != [3]:
+        fail("LinuxCNC's tool in spindle went %s after M6 T3, expected [3] throughout" %
+             distinct(r["samples"], "tool_in_spindle"))
+    runs = verify_runs(r)
+    if len(runs) != 2:
+        fail("the state pin read verifying (7) in %d runs, expected 2" % len(runs))
+    p = rack.pocket(4)
+    safe_z = rack.c["safe"]["z"]
+    clearance = rack.above(4, "pocket_above_clearance_offset_z")
+    waypoints = [("safe Z", None), ("safe XY", rack.safe()), ("over pocket 4", [p[0], p[1], safe_z]),
+                 ("above-clearance 4", clearance), ("pocket 4", p), ("above-clearance 4", clearance),
+                 ("safe Z over pocket 4", [p[0], p[1], safe_z])]
+    for (first, last), wanted in zip(runs, (waypoints, waypoints[:5])):
+        held = holds(r, first, last)
+        if len(held) != len(wanted):
+            fail("the dry run held %d times, expected %d: %s" % (
+                len(held), len(wanted), [[round(v, 3) for v in s["pos"]] for s in held]))
+        for s, (name, target) in zip(held, wanted):
+            at = s["pos"]
+            if (target is None and abs(at[2] - safe_z) > 1e-3) or (target and not near(at, target)):
+                fail("held for Continue at %s, expected %s %s" % (at, name, target or "Z %s" % safe_z))
+            if s[SERVED] != 4 or s["fixed_atc_probe.can-cancel"] is not True:
+                fail("at %s pocket-served read %s, can-cancel %s" % (name, s[SERVED], s["fixed_atc_probe.can-cancel"]))
+        ok("held for Continue %d times, each at the config's waypoint: %s" % (
+            len(held), " > ".join(n for n, _ in wanted)))
+        during = r["samples"][first:last]
+        for pin in ("fixed_atc_probe.chuck", "fatc-chuck-guard.chuck", "fixed_atc_probe.air-blast"):
+            if any(s[pin] for s in during):
+                fail("%s went on during the dry run" % pin)
+        fastest = max(s["vel"] for s in during) * 60.0
+        if fastest > rack.c["verify_feed"] * 1.02:
+            fail("the dry run moved at %.0f per minute, faster than verify_feed %s" % (
+                fastest, rack.c["verify_feed"]))
+        ok("the chuck and the air blast stayed off; fastest move F%.0f (verify_feed %s)" % (
+            fastest, rack.c["verify_feed"]))
+    end_of_first = r["samples"][runs[0][1]]
+    if not near(end_of_first["pos"], rack.safe()):
+        fail("the full dry run ended at %s, expected safe %s" % (end_of_first["pos"], rack.safe()))
+    ok("the full dry run ended at safe %s" % rack.safe())
+    last = r["samples"][-1]
+    if not near(last["pos"], p) or last["fixed_atc_probe.state"] != 1:
+        fail("after Cancel the spindle is at %s (state %s), expected to stay in pocket 4 %s, idle" % (
+            last["pos"], last["fixed_atc_probe.state"], p))
+    ok("after Cancel the spindle stayed in pocket 4 %s and the changer is idle" % p)
+    said = {
+        "refused": "verify of pocket 1 refused: pocket 1 holds tool 12; fetch it first (M6 T12) to "
+                   "verify with it in the spindle",
+        "done": "verify of pocket 4 done: 8 moves through its approach at F3000, back at safe XY",
+        "cancelled": "verify of pocket 4 cancelled by the operator; the spindle stays where it stopped: pocket 4 "
+                     "(X=200.000 Y=20.000 Z=-80.000), below the rack's clearance: jog it out the "
+                     "way it came in before the next change"}
+    status_said = [m["text"] for m in (r["status_file"] or {}).get("messages", [])]
+    for what, line in said.items():
+        if not any(line in m for m in r["messages"]):
+            fail("LinuxCNC never showed the %s line %r: %s" % (what, line, r["messages"][-6:]))
+        if line not in status_said:
+            fail("the status file (the panel's words) lacks the %s line: %s" % (what, status_said))
+    ok("LinuxCNC and the status file said: refused, done, cancelled in the machinist's words")
+    # Until the cancelled run ended: the spindle then stays in pocket 4, served by nothing.
+    outside_other_columns({"samples": r["samples"][:runs[1][1]]}, rack)
+    if r["state_file"].get("spindle") != 3 or r["state_file"]["pockets"]["4"] != {"tool": 3, "in_pocket": False}:
+        fail("the state file after the dry runs: %s" % r["state_file"])
+    ok("the state file still has T3 in the spindle, pocket 4 its but empty: a dry run records nothing")
+
+
 def load_t20(expected):
     expected.tools[3] = 20
 
 
 # What each scenario leaves in the rack, for the checks of those after it.
 ORDER = [("rack_changes", lambda e: [e.change(e.rack.safe(), t) for t in CHANGES]),
-         ("rack_load", load_t20), ("rack_t20", lambda e: [e.change(e.rack.safe(), t) for t in T20])]
+         ("rack_load", load_t20), ("rack_t20", lambda e: [e.change(e.rack.safe(), t) for t in T20]),
+         ("rack_verify", None)]
 
 
 def main():

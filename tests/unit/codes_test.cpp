@@ -57,6 +57,7 @@ const Codes kPhases = {
     {"unloading", {"Phase::unloading", static_cast<int>(Phase::unloading)}},
     {"fault", {"Phase::fault", static_cast<int>(Phase::fault)}},
     {"measuring", {"Phase::measuring", static_cast<int>(Phase::measuring)}},
+    {"verifying", {"Phase::verifying", static_cast<int>(Phase::verifying)}},
 };
 const Codes kAwaiting = {
     {"nothing", {"Awaiting::nothing", static_cast<int>(Awaiting::nothing)}},

@@ -153,6 +153,7 @@ INSTANTIATE_TEST_SUITE_P(Each, BadConfigs, ::testing::Values(
   BadConfig{"units_unknown", [](Json& j) { j["units"] = "cm"; }, "units: expected \"mm\" or \"inch\", got \"cm\""},
   BadConfig{"feed_zero", [](Json& j) { j["pocket_feed"] = 0; }, "pocket_feed: must be from 0.01 to 100000 mm/min, got 0"},
   BadConfig{"latch_negative", [](Json& j) { j["probe_latch_feed"] = -5; }, "probe_latch_feed: must be from 0.01 to 100000 mm/min, got -5"},
+  BadConfig{"verify_feed_text", [](Json& j) { j["verify_feed"] = "slow"; }, "verify_feed: expected a number, got \"slow\""},
   BadConfig{"backoff_zero", [](Json& j) { j["probe_backoff"] = 0; }, "probe_backoff: must be from 0.001 to 1000 mm, got 0"},
   BadConfig{"retract_zero", [](Json& j) { j["probe_retract_offset_z"] = 0; }, "probe_retract_offset_z: must be from 0.001 to 1000 mm, got 0"},
   BadConfig{"flush_fraction", [](Json& j) { j["flush"] = {{"pulses", 1.5}}; }, "flush.pulses: must be a whole number from 0 to 20"},

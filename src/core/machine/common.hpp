@@ -7,6 +7,7 @@
 #include <boost/mpl/count_if.hpp>
 #include <boost/mpl/not.hpp>
 #include <boost/mpl/or.hpp>
+#include <boost/mpl/vector/vector30.hpp>
 #include <boost/msm/back/favor_compile_time.hpp>
 #include <boost/msm/back/state_machine.hpp>
 #include <boost/msm/front/functor_row.hpp>
@@ -44,6 +45,7 @@ struct Changing {};      ///< the M6 flow
 struct Loading {};       ///< the load-and-probe flow
 struct Unloading {};     ///< the unload flow
 struct Measuring {};     ///< the measure-all flow
+struct Verifying {};     ///< the dry run through a pocket
 struct AwaitsMotion {};  ///< the executor performs a move or a command
 struct AwaitsProbe {};   ///< the executor performs a probe move
 struct AwaitsTimer {};
@@ -73,13 +75,13 @@ template <class Event>
 struct Takes {
   using transition_event = Event;
 };
-using TakesEveryEvent =
-    boost::mpl::vector<Takes<Ready>, Takes<NotReady>, Takes<ToolChange>, Takes<LoadRequest>,
-                       Takes<MeasureRequest>, Takes<UnloadRequest>, Takes<InPosition>,
-                       Takes<CommandDone>, Takes<ProbeResult>, Takes<TimerElapsed>,
-                       Takes<SensorReport>, Takes<OperatorContinue>, Takes<OperatorCancel>,
-                       Takes<Abort>, Takes<InternalError>, Takes<UnsafeStep>, Takes<CheckFailed>,
-                       Takes<ClearFault>, Takes<LegDone>, Takes<FlowFailed>>;
+/// The numbered form: more than mpl::vector's 20 elements.
+using TakesEveryEvent = boost::mpl::vector21<
+    Takes<Ready>, Takes<NotReady>, Takes<ToolChange>, Takes<LoadRequest>, Takes<MeasureRequest>,
+    Takes<UnloadRequest>, Takes<VerifyRequest>, Takes<InPosition>, Takes<CommandDone>,
+    Takes<ProbeResult>, Takes<TimerElapsed>, Takes<SensorReport>, Takes<OperatorContinue>,
+    Takes<OperatorCancel>, Takes<Abort>, Takes<InternalError>, Takes<UnsafeStep>,
+    Takes<CheckFailed>, Takes<ClearFault>, Takes<LegDone>, Takes<FlowFailed>>;
 
 /// Every event a machine's own rows take is in TakesEveryEvent; a new event
 /// left out would never reach a submachine.
@@ -183,8 +185,9 @@ struct AskingOperator : msmf::state<> {
   }
 };
 
-/// Asks the operator inside a running program (M6): nothing is published, so
-/// the executor keeps waiting for its next step; Continue or Cancel follow.
+/// Asks the operator while the executor runs (inside M6, or a dry run over
+/// MDI): nothing is published, so the executor keeps waiting for its next
+/// step and nothing can be jogged meanwhile; Continue or Cancel follow.
 template <class Prompt>
 struct HoldingForOperator : msmf::state<> {
   using flag_list = boost::mpl::vector2<flag::AwaitsOperator, flag::HoldsProgram>;

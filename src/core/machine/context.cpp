@@ -363,4 +363,24 @@ std::optional<std::string> why_not_unload(const Context& ctx, int tool) {
   return why_spindle_cannot_be_emptied(ctx, false);
 }
 
+std::optional<std::string> why_not_verify(const Context& ctx, int pocket) {
+  if (ctx.task_busy) return ctx.task_busy;
+  std::vector<int> numbers;
+  for (const auto& [number, entry] : ctx.config.pockets) numbers.push_back(number);
+  if (!ctx.config.has_pocket(pocket)) {
+    return "pocket-number " + std::to_string(pocket) + " is not a pocket of the config (" +
+           pocket_list(numbers) + ")";
+  }
+  if (auto busy = why_not_busy(ctx)) return busy;
+  if (!ctx.spindle_at_standstill()) return std::string("the spindle is turning; stop it first");
+  // The spindle goes where the tool would sit: only an empty pocket can be
+  // driven into (a wired pocket sensor that disagrees stops all work before this).
+  if (ctx.tools.holds(pocket)) {
+    const std::string tool = std::to_string(ctx.tools.tool_of(pocket));
+    return "pocket " + std::to_string(pocket) + " holds tool " + tool + "; fetch it first (M6 T" +
+           tool + ") to verify with it in the spindle";
+  }
+  return std::nullopt;
+}
+
 }  // namespace fatc

@@ -28,6 +28,7 @@ class Context {
 
   int requested_tool = 0;  ///< the tool the current request is about
   int load_pocket = 0;     ///< the pocket the load flow puts its tool in
+  int verify_pocket = 0;   ///< the pocket a dry run goes through
   /// Measure all: the tools to measure, in order, and how far it got.
   struct Batch {
     std::vector<int> tools;
@@ -160,5 +161,7 @@ std::vector<int> measurable_tools(const Context& ctx, const std::vector<int>& as
 std::optional<std::string> why_not_measure(const Context& ctx, const std::vector<int>& tools);
 /// Why unloading tool `tool` cannot start now, or nothing if it can.
 std::optional<std::string> why_not_unload(const Context& ctx, int tool);
+/// Why a dry run through pocket `pocket` cannot start now, or nothing if it can.
+std::optional<std::string> why_not_verify(const Context& ctx, int pocket);
 
 }  // namespace fatc

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <boost/core/demangle.hpp>
+#include <boost/mpl/for_each.hpp>
+#include <cstdio>
 #include <type_traits>
 
 #include "handover.hpp"
@@ -297,6 +299,144 @@ struct MeasureAllFlow_ : Flow<MeasureAllFlow_> {
 };
 using MeasureAllFlow = Machine_of<MeasureAllFlow_>;
 
+// ================================================================ verify a pocket
+/// A dry run through one pocket's approach, before its geometry is trusted:
+/// the way a return goes in and a fetch comes out, every move at
+/// `verify_feed`, the chuck closed throughout, the run held at each waypoint
+/// until Continue (nothing can be jogged meanwhile, so the next move starts
+/// where the last one ended). Cancel ends the run where it stands.
+/// docs/sequences.md#verify-a-pocket.
+struct VerifyFlow_ : Flow<VerifyFlow_> {
+  using flag_list = boost::mpl::vector2<flag::Busy, flag::Verifying>;
+  static int served_tool(const Context& ctx) { return ctx.tools.spindle; }
+  static int served_pocket(const Context& ctx, int) { return ctx.verify_pocket; }
+
+  /// The waypoints, in order: in from the side (a return's way in), out to
+  /// the side (a fetch's way out), or down from above and back up.
+  using from_the_side =
+      boost::mpl::vector<to::SafeZ, to::SafeXY, to::SideAtSafeZ, to::Side, to::SlowlyIntoPocket,
+                         to::SlowlyToSide, to::SafeZOverPocket, to::SafeXY>;
+  using from_above = boost::mpl::vector<to::SafeZ, to::SafeXY, to::PocketAtSafeZ,
+                                        to::AboveClearance, to::SlowlyDownToPocket,
+                                        to::SlowlyUpToClearance, to::SafeZOverPocket, to::SafeXY>;
+  std::vector<Step> route;
+  std::size_t reached = 0;  ///< the index of the waypoint moved to last
+
+  template <class Event, class Parent>
+  void on_entry(const Event& e, Parent& parent) {
+    Flow::on_entry(e, parent);
+    route.clear();
+    reached = 0;
+    if (ctx->config.pockets.at(pocket).approach == Approach::top) {
+      boost::mpl::for_each<from_above>([this](auto target) { add(target); });
+    } else {
+      boost::mpl::for_each<from_the_side>([this](auto target) { add(target); });
+    }
+    ctx->record_progress("verifying pocket " + std::to_string(pocket), pocket);
+  }
+  /// Every move at the dry run's feed, or slower where the leg itself is.
+  template <class Target>
+  void add(Target target) {
+    Step step = target(*ctx, *this);
+    const double feed = ctx->config.dry_run_feed();
+    step.feed = step.kind == StepKind::feed ? std::min(step.feed, feed) : feed;
+    step.kind = StepKind::feed;
+    route.push_back(step);
+  }
+
+  struct NextWaypoint {
+    template <class Leg>
+    Step operator()(const Context&, const Leg& leg) const {
+      return leg.route.at(leg.reached);
+    }
+  };
+  struct ToWaypoint : Moving<NextWaypoint> {};
+  struct StopPrompt {
+    template <class Leg>
+    std::string operator()(const Context& c, const Leg& leg) const {
+      return "Verify pocket " + std::to_string(leg.pocket) + ", stop " +
+             std::to_string(leg.reached + 1) + " of " + std::to_string(leg.route.size() - 1) +
+             ": " + leg.where(c) + ". Look at the clearance, then press Continue (Cancel " +
+             "stops here)";
+    }
+  };
+  struct AtWaypoint : HoldingForOperator<StopPrompt> {};
+
+  /// "side of pocket 3 (X=120.000 Y=40.000 Z=-50.000)": what the spindle
+  /// reached last, and where that is (the axes known), as --plan writes it.
+  std::string where(const Context& c) const {
+    std::string words = route.at(reached).label + " (";
+    const char* names[] = {"X", "Y", "Z"};
+    const double values[] = {c.position.x, c.position.y, c.position.z};
+    for (int axis = 0; axis < 3; ++axis) {
+      if (!(c.known_axes & (1u << axis))) continue;
+      char coordinate[48];
+      std::snprintf(coordinate, sizeof coordinate, "%s%s=%.3f", words.back() == '(' ? "" : " ",
+                    names[axis], values[axis]);
+      words += coordinate;
+    }
+    return words + ")";
+  }
+  /// Below the pocket's clearance height, where only its own approach is safe.
+  bool inside_rack(const Context& c) const {
+    return (c.known_axes & axis_z) &&
+           c.position.z < pocket_waypoints(c.config, pocket).above_clearance.z - 1e-9;
+  }
+
+  struct LastWaypoint {
+    template <class Event, class Fsm, class Source, class Target>
+    bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      return fsm.reached + 1 >= fsm.route.size();
+    }
+  };
+  struct Onward {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      ++fsm.reached;
+    }
+  };
+  struct SayVerified {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      char feed[32];
+      std::snprintf(feed, sizeof feed, "F%g", fsm.ctx->config.dry_run_feed());
+      fsm.ctx->tell(MessageKind::info, "verify of pocket " + std::to_string(fsm.pocket) +
+                                           " done: " + std::to_string(fsm.route.size()) +
+                                           " moves through its approach at " + feed + ", back at " +
+                                           fsm.route.back().label);
+    }
+  };
+  struct SayStoppedHere {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      const Context& c = *fsm.ctx;
+      std::string text =
+          "verify of pocket " + std::to_string(fsm.pocket) +
+          " cancelled by the operator; the spindle stays where it stopped: " + fsm.where(c);
+      if (fsm.inside_rack(c)) {
+        text +=
+            ", below the rack's clearance: jog it out the way it came in before the next change";
+      }
+      fsm.ctx->tell(MessageKind::info, text);
+    }
+  };
+
+  using initial_state = OpeningCover;
+  // clang-format off
+  using transition_table = boost::mpl::vector<
+  //    Start          Event             Next        Action                Guard
+  // +--------------+-----------------+-----------+---------------------+----------------------+
+  Row < OpeningCover , SensorReport    , ToWaypoint, none                , CoverOpen            >,
+  Row < OpeningCover , TimerElapsed    , Halted    , FaultCoverDidNotOpen, CoverHasOpenedSensor >,
+  Row < ToWaypoint   , InPosition      , AtWaypoint, none                , Not<LastWaypoint>    >,
+  Row < ToWaypoint   , InPosition      , Finished  , SayVerified         , LastWaypoint         >,
+  Row < AtWaypoint   , OperatorContinue, ToWaypoint, Onward              , none                 >,
+  Row < AtWaypoint   , OperatorCancel  , Cancelled , SayStoppedHere      , none                 >
+  >;
+  // clang-format on
+};
+using VerifyFlow = Machine_of<VerifyFlow_>;
+
 // ================================================================ requests and refusals
 inline std::string request_name(const ToolChange& e) { return "M6 T" + std::to_string(e.tool); }
 inline std::string request_name(const LoadRequest& e) {
@@ -308,6 +448,9 @@ inline std::string request_name(const MeasureRequest& e) {
 }
 inline std::string request_name(const UnloadRequest& e) {
   return "unload of tool " + std::to_string(e.tool);
+}
+inline std::string request_name(const VerifyRequest& e) {
+  return "verify of pocket " + std::to_string(e.pocket);
 }
 
 inline std::optional<std::string> why_not(const Context& c, const ToolChange& e) {
@@ -321,6 +464,9 @@ inline std::optional<std::string> why_not(const Context& c, const MeasureRequest
 }
 inline std::optional<std::string> why_not(const Context& c, const UnloadRequest& e) {
   return why_not_unload(c, e.tool);
+}
+inline std::optional<std::string> why_not(const Context& c, const VerifyRequest& e) {
+  return why_not_verify(c, e.pocket);
 }
 
 /// Refuses a request, saying why `Because` gives. An M6's executor waits for a
@@ -365,15 +511,18 @@ struct BecauseBusy {
       return "the changer is busy loading tool " + tool;
     if (fsm.template is_flag_active<flag::Unloading>())
       return "the changer is busy unloading tool " + tool;
+    if (fsm.template is_flag_active<flag::Verifying>())
+      return "the changer is busy verifying pocket " + std::to_string(fsm.ctx->verify_pocket);
     return "the changer is busy changing to tool " + tool;
   }
 };
-/// The three requests, refused for one reason: a state's internal rows.
+/// The requests, refused for one reason: a state's internal rows.
 template <class Because>
 using RefusesRequests = boost::mpl::vector<msmf::Internal<ToolChange, Refuse<Because>, none>,
                                            msmf::Internal<LoadRequest, Refuse<Because>, none>,
                                            msmf::Internal<UnloadRequest, Refuse<Because>, none>,
-                                           msmf::Internal<MeasureRequest, Refuse<Because>, none>>;
+                                           msmf::Internal<MeasureRequest, Refuse<Because>, none>,
+                                           msmf::Internal<VerifyRequest, Refuse<Because>, none>>;
 
 // ================================================================ operating
 /// The machine on and homed: idle, or running one flow.
@@ -386,6 +535,21 @@ struct BecauseSensorsDisagree {
   }
 };
 
+/// A dry run cut off by an abort or the machine going off: nothing to
+/// record, no fault; but the spindle stopped somewhere along the approach.
+struct StopDryRun {
+  template <class Event, class Fsm, class Source, class Target>
+  void operator()(const Event& e, Fsm& fsm, Source&, Target&) const {
+    Context& c = *fsm.ctx;
+    std::string why = "the machine went off, lost homing or entered estop";
+    if constexpr (std::is_same_v<Event, Abort>) why = e.reason;
+    c.end_sequence();
+    c.tell(MessageKind::info, "verify of pocket " + std::to_string(c.verify_pocket) + " stopped (" +
+                                  why +
+                                  "); nothing was recorded. The spindle may be in the rack: jog "
+                                  "it out the way it came in before the next change");
+  }
+};
 struct Operating_ : Flow<Operating_> {
   struct Idle : msmf::state<> {
     using flag_list = boost::mpl::vector1<flag::Idle>;
@@ -433,7 +597,12 @@ struct Operating_ : Flow<Operating_> {
   struct TakeRequest {
     template <class Request, class Fsm, class Source, class Target>
     void operator()(const Request& e, Fsm& fsm, Source&, Target&) const {
-      if constexpr (!std::is_same_v<Request, MeasureRequest>) fsm.ctx->requested_tool = e.tool;
+      if constexpr (std::is_same_v<Request, VerifyRequest>) {
+        fsm.ctx->requested_tool = fsm.ctx->tools.spindle;
+        fsm.ctx->verify_pocket = e.pocket;
+      } else if constexpr (!std::is_same_v<Request, MeasureRequest>) {
+        fsm.ctx->requested_tool = e.tool;
+      }
       if constexpr (std::is_same_v<Request, LoadRequest>) {
         fsm.ctx->load_pocket = choose_load_pocket(*fsm.ctx, e.tool, e.pocket).pocket;
       }
@@ -488,7 +657,9 @@ struct Operating_ : Flow<Operating_> {
   Row < Idle                           , UnloadRequest , none      , Refuse<BecauseNotPossible>, Refused                           >,
   Row < Idle                           , UnloadRequest , UnloadFlow, TakeRequest               , Not<Refused>                      >,
   Row < Idle                           , MeasureRequest, none      , Refuse<BecauseNotPossible>, Refused                           >,
-  Row < Idle                           , MeasureRequest, MeasureAllFlow, TakeRequest           , Not<Refused>                      >
+  Row < Idle                           , MeasureRequest, MeasureAllFlow, TakeRequest           , Not<Refused>                      >,
+  Row < Idle                           , VerifyRequest , none      , Refuse<BecauseNotPossible>, Refused                           >,
+  Row < Idle                           , VerifyRequest , VerifyFlow, TakeRequest               , Not<Refused>                      >
   >;
   /// Comparing the sensors before work, and where each flow ends.
   using around_the_flows = boost::mpl::vector<
@@ -502,7 +673,10 @@ struct Operating_ : Flow<Operating_> {
   Row < ChangeFlow::exit_pt<Cancelled>   , LegDone      , ComparingSensors, StopProgram       , none               >,
   Row < LoadFlow::exit_pt<Finished>      , LegDone      , ComparingSensors, AnswerDone        , none               >,
   Row < UnloadFlow::exit_pt<Finished>    , LegDone      , ComparingSensors, AnswerDone        , none               >,
-  Row < MeasureAllFlow::exit_pt<Finished>, LegDone      , ComparingSensors, AnswerDone        , none               >
+  Row < MeasureAllFlow::exit_pt<Finished>, LegDone      , ComparingSensors, AnswerDone        , none               >,
+  Row < VerifyFlow::exit_pt<Finished>    , LegDone      , ComparingSensors, AnswerDone        , none               >,
+  Row < VerifyFlow::exit_pt<Cancelled>   , LegDone      , ComparingSensors, AnswerDone        , none               >,
+  Row < VerifyFlow                       , Abort        , ComparingSensors, StopDryRun        , none               >
   >;
   using transition_table = boost::mpl::joint_view<requests, around_the_flows>;
   // clang-format on
@@ -536,6 +710,13 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       return fsm.template is_flag_active<flag::Busy>();
+    }
+  };
+  /// A dry run (verify): the chuck stays closed, so the tools are where they were.
+  struct DryRun {
+    template <class Event, class Fsm, class Source, class Target>
+    bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      return fsm.template is_flag_active<flag::Verifying>();
     }
   };
   struct SpindleUncertain {
@@ -637,7 +818,8 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
 
   using initial_state = MachineNotReady;
   // clang-format off
-  using transition_table = boost::mpl::vector<
+  /// Off, on and working, and what makes the changer fault.
+  using until_a_fault = boost::mpl::vector<
   //    Start                        Event           Next              Action            Guard
   // +----------------------------+---------------+-----------------+-----------------+-----------------------+
   Row < MachineNotReady            , Ready         , Operating       , none            , Not<SpindleUncertain> >,
@@ -647,13 +829,19 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
   Row < MachineNotReady            , InternalError , Faulted         , MarkInterrupted , none                  >,
   Row < Operating                  , Ready         , none            , none            , none                  >,
   Row < Operating                  , NotReady      , MachineNotReady , none            , Not<IsBusy>           >,
-  Row < Operating                  , NotReady      , Faulted         , MarkInterrupted , IsBusy                >,
+  Row < Operating                  , NotReady      , MachineNotReady , StopDryRun      , DryRun                >,
+  Row < Operating                  , NotReady      , Faulted         , MarkInterrupted , And<IsBusy, Not<DryRun>> >,
   Row < Operating                  , Abort         , none            , none            , Not<IsBusy>           >,
   Row < Operating                  , Abort         , Faulted         , MarkInterrupted , IsBusy                >,
   Row < Operating                  , InternalError , Faulted         , MarkInterrupted , none                  >,
   Row < Operating                  , UnsafeStep    , Faulted         , RecordUnsafeStep, none                  >,
   Row < Operating                  , CheckFailed   , Faulted         , RecordFailedCheck, none                 >,
-  Row < Operating::exit_pt<Failed> , FlowFailed    , Faulted         , none            , none                  >,
+  Row < Operating::exit_pt<Failed> , FlowFailed    , Faulted         , none            , none                  >
+  >;
+  /// A fault holds until the operator says what the spindle holds.
+  using after_a_fault = boost::mpl::vector<
+  //    Start                        Event           Next              Action            Guard
+  // +----------------------------+---------------+-----------------+-----------------+-----------------------+
   Row < Faulted                    , ClearFault    , Operating       , ClearTheFault   , MachineIsReady        >,
   Row < Faulted                    , ClearFault    , MachineNotReady , ClearTheFault   , Not<MachineIsReady>   >,
   Row < Faulted                    , Ready         , none            , none            , none                  >,
@@ -661,6 +849,7 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
   Row < Faulted                    , Abort         , none            , none            , none                  >,
   Row < Faulted                    , InternalError , none            , none            , none                  >
   >;
+  using transition_table = boost::mpl::joint_view<until_a_fault, after_a_fault>;
   /// What no state above answers: a request while a flow runs (Idle and the
   /// other states answer every request themselves), the operator pressed a
   /// button that has nothing to act on, or the spindle or a sensor changed
