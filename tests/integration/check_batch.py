@@ -10,7 +10,7 @@ import math
 import re
 import sys
 
-from check import (Rack, distinct, fail, measured_to_truth, no_fault, ok, said, sensor_truth,
+from check import (Rack, distinct, load_results, fail, measured_to_truth, no_fault, ok, said, sensor_truth,
                    spindle_holds, tool_table_length, visits_in_order)
 from check_teach import scenario
 
@@ -192,7 +192,7 @@ def check_batch_program(results, r, rack):
 
 def main():
     results_path, config_path, name = sys.argv[1:4]
-    results = json.load(open(results_path))
+    results = load_results(results_path, name)
     rack = Rack(json.load(open(config_path)))
     r = scenario(results, name)
     globals()["check_" + name](results, r, rack)

@@ -10,7 +10,8 @@ import json
 import math
 import sys
 
-from check import TOLERANCE, Rack, distinct, fail, measured_to_truth, near, no_fault, ok, stops
+from check import (TOLERANCE, Rack, distinct, fail, load_results, measured_to_truth, near, no_fault, ok,
+                   stops)
 
 SERVED = "fixed_atc_probe.pocket-served"
 
@@ -406,7 +407,7 @@ ORDER = [("rack_changes", lambda e: [e.change(e.rack.safe(), t) for t in CHANGES
 
 
 def main():
-    results = json.load(open(sys.argv[1]))
+    results = load_results(sys.argv[1], sys.argv[3])
     rack = Rack(json.load(open(sys.argv[2])))
     name = sys.argv[3]
     if results.get("error"):

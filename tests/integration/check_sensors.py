@@ -8,7 +8,7 @@ import json
 import os
 import sys
 
-from check import Rack, distinct, fail, in_pockets, near, ok, said
+from check import Rack, distinct, fail, in_pockets, load_results, near, ok, said
 
 GRIP_FAULT = "tool 2 not in the spindle after the chuck closed at pocket 2 (tool-present off, retried once)"
 AIR_FAULT = "air pressure low (air-pressure-ok off) before the chuck opened to flush it; it stayed closed"
@@ -243,7 +243,7 @@ def check_sensors_start_disagree(r, rack, log):
 
 def main():
     results_path, config_path, name = sys.argv[1:4]
-    results = json.load(open(results_path))
+    results = load_results(results_path, name)
     if results.get("error"):
         fail("the run failed: %s" % results["error"])
     rack = Rack(json.load(open(config_path)))

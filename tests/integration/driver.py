@@ -586,6 +586,18 @@ def main():
     except Exception as e:  # the checker reports it; LinuxCNC must still shut down
         results["error"] = "%s: %s (last messages: %s)" % (type(e).__name__, e, messages[-4:])
     json.dump(results, open(os.environ["FATC_RESULTS"], "w"))
+    write_per_scenario(os.environ["FATC_RESULTS"], results)
+
+
+def write_per_scenario(path, results):
+    """Each scenario also alone beside RESULTS (check.load_results reads it):
+    a checker of one scenario then parses its own samples, not every one's."""
+    folder = path + ".d"
+    os.makedirs(folder, exist_ok=True)
+    for scenario in results["scenarios"]:
+        json.dump(scenario, open(os.path.join(folder, scenario["name"] + ".json"), "w"))
+    json.dump({"error": results["error"], "names": [s["name"] for s in results["scenarios"]]},
+              open(os.path.join(folder, "run.json"), "w"))
 
 
 if __name__ == "__main__":
