@@ -597,7 +597,8 @@ ConfigResult parse_config(const std::string& json_text) {
                               "probe_window",
                               "rack_cover",
                               "air_blast",
-                              "verify_feed"});
+                              "verify_feed",
+                              "path"});
 
   Config config;
   if (const auto units = root.find("units"); units != root.end()) {
@@ -643,6 +644,15 @@ ConfigResult parse_config(const std::string& json_text) {
   config.rack_keepout_margin = reader.ranged(root, "", "rack_keepout_margin", kMargin, false);
 
   read_probe_after_change(reader, root, config);
+  if (const auto path = root.find("path"); path != root.end()) {
+    if (*path == "prototype") {
+      config.path = Path::prototype;
+    } else if (*path == "direct") {
+      config.path = Path::direct;
+    } else {
+      reader.error("path", "expected \"prototype\" or \"direct\", got " + describe(*path));
+    }
+  }
   if (const auto manual = root.find("manual_tools"); manual != root.end()) {
     if (const auto value = boolean(reader, *manual, "manual_tools")) config.manual_tools = *value;
   }

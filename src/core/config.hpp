@@ -19,6 +19,12 @@ enum class ProbeAfterChange {
   check,    ///< measure it and fault if it differs from the stored length
 };
 
+/// Which way the sequences go between the rack and `safe` (`path`).
+enum class Path {
+  prototype,  ///< the prototype's literal sequences: through safe XY before and after each leg
+  direct,     ///< over the rack at safe Z, no trip to safe XY between a return and a fetch
+};
+
 /// How the spindle drops whatever it may hold before it receives a tool.
 struct FlushConfig {
   int pulses = 1;              ///< chuck openings; 0 disables the flush
@@ -102,6 +108,7 @@ struct Config {
   std::optional<RackCoverConfig> rack_cover;  ///< unset: no cover
   bool air_blast = false;  ///< `air-blast` cleans the taper while the chuck is open at a pocket
   std::optional<double> verify_feed;  ///< unset: pocket_feed
+  Path path = Path::prototype;
 
   bool has_pocket(int number) const { return pockets.count(number) != 0; }
   /// The pocket that holds `tool` at first start, if any.

@@ -24,6 +24,8 @@ class Rack:
         self.c = config
         default = config.get("pocket_default", {})
         self.pockets = {int(k): {**default, **v} for k, v in config["pockets"].items()}
+        # `path: "direct"`: over the rack at safe Z, no safe XY between a return and a fetch.
+        self.direct = config.get("path") == "direct"
 
     def pocket(self, t):
         p = self.pockets[t]

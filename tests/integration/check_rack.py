@@ -34,7 +34,9 @@ class Expected:
         return {str(n): {"tool": t, "in_pocket": n in self.home} for n, t in self.tools.items()}
 
     def to_safe(self, at):
-        return [("safe Z", self.rack.at_safe_z(at), False), ("safe", self.rack.safe(), False)]
+        """Up to safe Z, then (the prototype's path) over to safe XY."""
+        up = [("safe Z", self.rack.at_safe_z(at), False)]
+        return up if self.rack.direct else up + [("safe", self.rack.safe(), False)]
 
     def put_back(self, at):
         """The spindle's tool back to its own pocket: (stops, pocket)."""
@@ -48,7 +50,9 @@ class Expected:
         route, served = [], []
         if self.spindle:
             legs, pocket = self.put_back(at)
-            route, served, at = legs, [pocket], self.rack.safe()
+            if tool and self.rack.direct:
+                legs = legs[:-1]  # the fetch starts at safe Z over the pocket the return left
+            route, served, at = legs, [pocket], legs[-1][1]
         if tool:
             pocket = self.pocket_of(tool)
             self.home.discard(pocket)
@@ -420,6 +424,8 @@ def main():
     if name not in by_name:
         fail("scenario %s did not run" % name)
     globals()["check_" + name](by_name[name], rack, expected)
+    print("%s on the %s path: %.1f s" % (name, "direct" if rack.direct else "prototype",
+                                         by_name[name]["duration"]))
 
 
 if __name__ == "__main__":

@@ -29,6 +29,9 @@ class Context {
   int requested_tool = 0;  ///< the tool the current request is about
   int load_pocket = 0;     ///< the pocket the load flow puts its tool in
   int verify_pocket = 0;   ///< the pocket a dry run goes through
+  /// A fetch follows the return of the spindle's tool (M6 to a tool in the
+  /// rack, unload): on the direct path the return may end at safe Z.
+  bool fetch_follows_return = false;
   /// Measure all: the tools to measure, in order, and how far it got.
   struct Batch {
     std::vector<int> tools;

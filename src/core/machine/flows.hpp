@@ -597,6 +597,12 @@ struct Operating_ : Flow<Operating_> {
   struct TakeRequest {
     template <class Request, class Fsm, class Source, class Target>
     void operator()(const Request& e, Fsm& fsm, Source&, Target&) const {
+      Context& c = *fsm.ctx;
+      if constexpr (std::is_same_v<Request, ToolChange>) {
+        c.fetch_follows_return = c.tools.pocket_holding(e.tool).has_value();
+      } else {
+        c.fetch_follows_return = std::is_same_v<Request, UnloadRequest>;
+      }
       if constexpr (std::is_same_v<Request, VerifyRequest>) {
         fsm.ctx->requested_tool = fsm.ctx->tools.spindle;
         fsm.ctx->verify_pocket = e.pocket;

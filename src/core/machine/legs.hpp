@@ -80,6 +80,24 @@ struct CoverHasOpenedSensor {
   }
 };
 
+// ================================================================ the way to the rack
+/// `path: "direct"`: between the rack and the program, safe Z is the lane;
+/// safe XY is where a leg ends only when the program or the operator comes next.
+struct DirectPath {
+  template <class Event, class Fsm, class Source, class Target>
+  bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+    return fsm.ctx->config.path == Path::direct;
+  }
+};
+/// A fetch comes next (M6 to a tool in the rack, unload): a direct return
+/// ends at safe Z over its pocket, where the fetch starts.
+struct FetchFollows {
+  template <class Event, class Fsm, class Source, class Target>
+  bool operator()(const Event& e, Fsm& fsm, Source& s, Target& t) const {
+    return DirectPath{}(e, fsm, s, t) && fsm.ctx->fetch_follows_return;
+  }
+};
+
 // ================================================================ flush
 /// Opens the chuck briefly, `flush.pulses` times, so that whatever the spindle
 /// may still hold drops before it receives a tool (docs/sequences.md#flush).
@@ -222,7 +240,9 @@ struct ReturnLeg_ : Flow<ReturnLeg_<Which>> {
   // +----------------------+--------------+---------------------+-------------------------------------+-----------------------+
   Row < OpeningCover         , SensorReport , ToSafeZ             , none                                , CoverOpen             >,
   Row < OpeningCover         , TimerElapsed , Halted              , FaultCoverDidNotOpen                , CoverHasOpenedSensor  >,
-  Row < ToSafeZ              , InPosition   , ToSafeXY            , none                                , none                  >,
+  Row < ToSafeZ              , InPosition   , ToSafeXY            , none                                , Not<DirectPath>       >,
+  Row < ToSafeZ              , InPosition   , OverSide            , none                                , And<DirectPath, Not<FromAbove>> >,
+  Row < ToSafeZ              , InPosition   , OverPocket          , none                                , And<DirectPath, FromAbove> >,
   Row < ToSafeXY             , InPosition   , OverSide            , none                                , Not<FromAbove>        >,
   Row < OverSide             , InPosition   , DownToSide          , none                                , none                  >,
   Row < DownToSide           , InPosition   , IntoPocket          , none                                , PocketReadsEmpty      >,
@@ -249,7 +269,8 @@ struct ReturnLeg_ : Flow<ReturnLeg_<Which>> {
   Row < CheckingDrawbarClosed, SensorReport , UpToClearance       , none                                , DrawbarClosed         >,
   Row < CheckingDrawbarClosed, TimerElapsed , Halted              , FaultDrawbarStayedOpen<AbovePocket> , none                  >,
   Row < UpToClearance        , InPosition   , UpToSafeZ           , none                                , none                  >,
-  Row < UpToSafeZ            , InPosition   , BackToSafeXY        , none                                , none                  >,
+  Row < UpToSafeZ            , InPosition   , BackToSafeXY        , none                                , Not<FetchFollows>     >,
+  Row < UpToSafeZ            , InPosition   , Finished            , none                                , FetchFollows          >,
   Row < BackToSafeXY         , InPosition   , Finished            , none                                , none                  >
   >;
   // clang-format on
@@ -314,10 +335,13 @@ struct RetrieveLeg_ : Flow<RetrieveLeg_> {
   struct UpToSafeZ : Moving<to::SafeZOverPocket> {};
   struct BackToSafeXY : Moving<to::SafeXY> {};
 
+  /// At safe, or, on the direct path, anywhere at safe Z (where a direct return ends).
   struct AlreadyAtSafe {
     template <class Event, class Fsm, class Source, class Target>
-    bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      return fsm.ctx->at_safe();
+    bool operator()(const Event& e, Fsm& fsm, Source& s, Target& t) const {
+      const Context& c = *fsm.ctx;
+      const bool at_safe_z = (c.known_axes & axis_z) && c.position.z == c.config.safe.z;
+      return c.at_safe() || (DirectPath{}(e, fsm, s, t) && at_safe_z);
     }
   };
   /// The grip was tried once more already.
@@ -366,9 +390,6 @@ struct RetrieveLeg_ : Flow<RetrieveLeg_> {
     }
   };
 
-  /// The pocket must read occupied and the spindle empty before anything
-  /// moves, and the rack cover open; a return just before ended at safe: no
-  /// need to go there again.
   struct Starting : Decision {};
   using initial_state = Starting;
   // clang-format off
@@ -381,7 +402,8 @@ struct RetrieveLeg_ : Flow<RetrieveLeg_> {
   Row < OpeningCover               , SensorReport , ToSafeZ            , none                                 , And<CoverOpen, Not<AlreadyAtSafe>>    >,
   Row < OpeningCover               , SensorReport , OverPocket         , none                                 , And<CoverOpen, AlreadyAtSafe>         >,
   Row < OpeningCover               , TimerElapsed , Halted             , FaultCoverDidNotOpen                 , CoverHasOpenedSensor                  >,
-  Row < ToSafeZ                    , InPosition   , ToSafeXY           , none                                 , none                                  >,
+  Row < ToSafeZ                    , InPosition   , ToSafeXY           , none                                 , Not<DirectPath>                       >,
+  Row < ToSafeZ                    , InPosition   , OverPocket         , none                                 , DirectPath                            >,
   Row < ToSafeXY                   , InPosition   , OverPocket         , none                                 , none                                  >,
   Row < OverPocket                 , InPosition   , DownToClearance    , none                                 , none                                  >,
   Row < DownToClearance            , InPosition   , DownToAboveChuck   , none                                 , none                                  >,
