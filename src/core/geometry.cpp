@@ -54,10 +54,14 @@ std::string format(const char* pattern, double value) {
 PocketWaypoints pocket_waypoints(const Config& config, int number) {
   const Pocket& entry = config.pockets.at(number);
   const Point pocket = entry.at;
+  // The side lies outside the column (config validation): the edge is short of it.
+  const double edge =
+      config.keepout_margin() / std::hypot(entry.side_offset.x, entry.side_offset.y);
   return {pocket,
           {pocket.x + entry.side_offset.x, pocket.y + entry.side_offset.y, pocket.z},
           {pocket.x, pocket.y, pocket.z + config.pocket_above_chuck_offset_z},
-          {pocket.x, pocket.y, pocket.z + config.pocket_above_clearance_offset_z}};
+          {pocket.x, pocket.y, pocket.z + config.pocket_above_clearance_offset_z},
+          {pocket.x + entry.side_offset.x * edge, pocket.y + entry.side_offset.y * edge, pocket.z}};
 }
 
 std::vector<std::string> check_move(const Config& config, const Point& from, unsigned known,

@@ -16,6 +16,9 @@ struct PocketWaypoints {
       side;  ///< beside the pocket, at pocket height: where the slow move in starts (side approach)
   Point above_chuck;      ///< where the chuck opens or closes over the holder
   Point above_clearance;  ///< high enough to move in XY over the rack
+  /// On the way from the side to the pocket, where the pocket's keep-out
+  /// column begins: outside it nothing of the pocket is engaged.
+  Point column_edge;
 };
 
 /// The waypoints of pocket `number` (a key of Config::pockets).

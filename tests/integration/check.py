@@ -37,6 +37,16 @@ class Rack:
         offset = self.pockets[t].get("side_offset", self.c["pocket_side_offset"])
         return [p[0] + offset["x"], p[1] + offset["y"], p[2]]
 
+    def column_edge(self, t):
+        """Between pocket t's side and the pocket, where its keep-out column begins:
+        the direct path's side approach is fast up to there."""
+        p, side = self.pocket(t), self.side(t)
+        reach = math.dist(p, side)
+        margin = self.c.get("rack_keepout_margin", math.hypot(self.c["pocket_side_offset"]["x"],
+                                                              self.c["pocket_side_offset"]["y"]) / 2.0)
+        edge = margin / reach
+        return [p[k] + (side[k] - p[k]) * edge for k in range(3)]
+
     def top(self, t):
         """Pocket t is approached straight down from above (`"approach": "top"`)."""
         return self.pockets[t].get("approach", "side") == "top"
@@ -71,7 +81,10 @@ class Rack:
                     ("pocket %d" % t, self.pocket(t), True)]
         else:
             into = [("side of pocket %d at safe Z" % t, self.at_safe_z(self.side(t)), False),
-                    ("side of pocket %d" % t, self.side(t), False), ("pocket %d" % t, self.pocket(t), True)]
+                    ("side of pocket %d" % t, self.side(t), False)]
+            if self.direct:
+                into.append(("column edge %d" % t, self.column_edge(t), False))
+            into.append(("pocket %d" % t, self.pocket(t), True))
         return into + [("above-chuck %d" % t, self.above(t, "pocket_above_chuck_offset_z"), False),
                        clearance, ("pocket %d at safe Z" % t, self.at_safe_z(self.pocket(t)), False),
                        ("safe", self.safe(), False)]
@@ -85,7 +98,9 @@ class Rack:
         if self.top(t):
             route += [clearance[:2] + (True,), ("pocket %d at safe Z" % t, self.at_safe_z(self.pocket(t)), False)]
         else:
-            route += [("side of pocket %d" % t, self.side(t), True),
+            if self.direct:
+                route.append(("column edge %d" % t, self.column_edge(t), True))
+            route += [("side of pocket %d" % t, self.side(t), not self.direct),
                       ("side of pocket %d at safe Z" % t, self.at_safe_z(self.side(t)), False)]
         return route + [("safe", self.safe(), False)]
 

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 
 #include "core/config.hpp"
@@ -53,10 +54,11 @@ TEST(DirectPath, shouldGoFromOnePocketToTheNextAtSafeZ) {
   const Simulator sim = plan_change(direct(), 1, 2, -70.0);
   EXPECT_EQ(moves(sim),
             (Lines{"rapid safe Z", "rapid over the side of pocket 1", "rapid side of pocket 1",
-                   "feed pocket 1", "rapid above-chuck of pocket 1",
-                   "rapid above-clearance of pocket 1", "rapid safe Z", "rapid over pocket 2",
-                   "rapid above-clearance of pocket 2", "rapid above-chuck of pocket 2",
-                   "feed pocket 2", "feed side of pocket 2", "rapid safe Z", "rapid safe XY"}));
+                   "rapid column edge of pocket 1", "feed pocket 1",
+                   "rapid above-chuck of pocket 1", "rapid above-clearance of pocket 1",
+                   "rapid safe Z", "rapid over pocket 2", "rapid above-clearance of pocket 2",
+                   "rapid above-chuck of pocket 2", "feed pocket 2", "feed column edge of pocket 2",
+                   "rapid side of pocket 2", "rapid safe Z", "rapid safe XY"}));
   const Lines prototype = moves(plan_change(valid_config(), 1, 2, -70.0));
   EXPECT_EQ(count(prototype, "rapid safe XY"), 3) << "before the return, after it, at the end";
 }
@@ -70,10 +72,34 @@ TEST(DirectPath, shouldEndAtSafeXYWhereTheProgramOrTheOperatorComesNext) {
     const Lines lines = moves(sim);
     const auto back = std::find(lines.begin(), lines.end(), "rapid safe XY");
     ASSERT_NE(back, lines.end()) << what;
-    EXPECT_EQ(back - lines.begin(), 7) << what << ": the return ends at safe XY";
+    EXPECT_EQ(back - lines.begin(), 8) << what << ": the return ends at safe XY";
   }
   const Lines unload = moves(plan_unload(config, 2, 3));
   EXPECT_EQ(count(unload, "rapid safe XY"), 1) << "the fetch of tool 2 follows the return of 3";
+}
+
+/// The length of the slow moves (feed) of a plan.
+double slow_length(const Simulator& sim) {
+  double length = 0.0;
+  Point at;
+  for (const Step& step : sim.motion_steps()) {
+    Point to = at;
+    if (step.axes & axis_x) to.x = step.target.x;
+    if (step.axes & axis_y) to.y = step.target.y;
+    if (step.axes & axis_z) to.z = step.target.z;
+    if (step.kind == StepKind::feed) length += std::hypot(to.x - at.x, to.y - at.y, to.z - at.z);
+    at = to;
+  }
+  return length;
+}
+
+TEST(DirectPath, shouldCrossOnlyThePocketsColumnSlowly) {
+  // Side offset 40, keep-out margin 20 (half of it): the return's 40 into the
+  // pocket, the fetch's 20 down and 40 out, of which only the column's part slowly.
+  EXPECT_DOUBLE_EQ(slow_length(plan_change(valid_config(), 1, 2, -70.0)), 40.0 + 20.0 + 40.0);
+  EXPECT_DOUBLE_EQ(slow_length(plan_change(direct(), 1, 2, -70.0)), 20.0 + 20.0 + 20.0);
+  const Config wider = valid_config(R"("path": "direct", "rack_keepout_margin": 30.0)");
+  EXPECT_DOUBLE_EQ(slow_length(plan_change(wider, 1, 2, -70.0)), 30.0 + 20.0 + 30.0);
 }
 
 /// Every change between every two tools of the rack, and from and to an
@@ -89,8 +115,7 @@ void every_change(const Config& prototype, const Config& shorter) {
       for (const Config* config : {&prototype, &shorter}) {
         const Simulator sim = plan_change(*config, from, to, -70.0);
         const auto violations = check_steps(*config, sim.motion_steps(), std::nullopt);
-        EXPECT_TRUE(violations.empty())
-            << from << "->" << to << ": " << violations.front().what;
+        EXPECT_TRUE(violations.empty()) << from << "->" << to << ": " << violations.front().what;
         const Step& last = sim.motion_steps().back();
         EXPECT_EQ(last.label, "safe XY") << from << "->" << to;
         time[i++] = seconds(*config, sim);
@@ -107,9 +132,7 @@ void every_change(const Config& prototype, const Config& shorter) {
             << " % less estimated time over every change (rapids at 3000/min)\n";
 }
 
-TEST(DirectPath, shouldKeepClearOfTheRackOnEveryChange) {
-  every_change(valid_config(), direct());
-}
+TEST(DirectPath, shouldKeepClearOfTheRackOnEveryChange) { every_change(valid_config(), direct()); }
 
 TEST(DirectPath, shouldKeepClearOfTheRackWithTopPockets) {
   const std::string side = R"("pocket_default": {"y": 20.0, "z": -80.0})";

@@ -295,6 +295,30 @@ struct SlowlyToSide {
                 of_pocket("side", leg.pocket), leg.pocket, true, c.config.pocket_feed);
   }
 };
+/// On the direct path, the side approach crosses to the pocket's column at
+/// rapid; only inside the column (the holder engaged) is it slow.
+struct ColumnEdge {
+  template <class Leg>
+  Step operator()(const Context& c, const Leg& leg) const {
+    return move(StepKind::rapid, axis_xy, pocket_waypoints(c.config, leg.pocket).column_edge,
+                of_pocket("column edge", leg.pocket), leg.pocket, true);
+  }
+};
+struct SlowlyToColumnEdge {
+  template <class Leg>
+  Step operator()(const Context& c, const Leg& leg) const {
+    return move(StepKind::feed, axis_xy, pocket_waypoints(c.config, leg.pocket).column_edge,
+                of_pocket("column edge", leg.pocket), leg.pocket, true, c.config.pocket_feed);
+  }
+};
+/// Out of the column, the rest of the way to the side at rapid.
+struct OutToSide {
+  template <class Leg>
+  Step operator()(const Context& c, const Leg& leg) const {
+    return move(StepKind::rapid, axis_xy, pocket_waypoints(c.config, leg.pocket).side,
+                of_pocket("side", leg.pocket), leg.pocket, true);
+  }
+};
 struct SlowlyIntoPocket {
   template <class Leg>
   Step operator()(const Context& c, const Leg& leg) const {

@@ -184,6 +184,7 @@ struct ReturnLeg_ : Flow<ReturnLeg_<Which>> {
   struct ToSafeXY : Moving<to::SafeXY> {};
   struct OverSide : Moving<to::SideAtSafeZ> {};
   struct DownToSide : Moving<to::Side> {};
+  struct ToColumnEdge : Moving<to::ColumnEdge> {};
   struct IntoPocket : Moving<to::SlowlyIntoPocket> {};
   struct OverPocket : Moving<to::PocketAtSafeZ> {};
   struct DownToClearance : Moving<to::AboveClearance> {};
@@ -245,8 +246,10 @@ struct ReturnLeg_ : Flow<ReturnLeg_<Which>> {
   Row < ToSafeZ              , InPosition   , OverPocket          , none                                , And<DirectPath, FromAbove> >,
   Row < ToSafeXY             , InPosition   , OverSide            , none                                , Not<FromAbove>        >,
   Row < OverSide             , InPosition   , DownToSide          , none                                , none                  >,
-  Row < DownToSide           , InPosition   , IntoPocket          , none                                , PocketReadsEmpty      >,
+  Row < DownToSide           , InPosition   , IntoPocket          , none                                , And<PocketReadsEmpty, Not<DirectPath>> >,
+  Row < DownToSide           , InPosition   , ToColumnEdge        , none                                , And<PocketReadsEmpty, DirectPath> >,
   Row < DownToSide           , InPosition   , Halted              , FaultPocketFull                     , Not<PocketReadsEmpty> >,
+  Row < ToColumnEdge         , InPosition   , IntoPocket          , none                                , none                  >,
   Row < IntoPocket           , InPosition   , WaitingToOpen       , none                                , none                  >,
   Row < ToSafeXY             , InPosition   , OverPocket          , none                                , FromAbove             >,
   Row < OverPocket           , InPosition   , DownToClearance     , none                                , none                  >,
@@ -331,6 +334,8 @@ struct RetrieveLeg_ : Flow<RetrieveLeg_> {
   };
   struct CheckingGrip : AwaitingSensor<Gripped> {};
   struct SlowlyOutToSide : Moving<to::SlowlyToSide> {};
+  struct SlowlyOutOfColumn : Moving<to::SlowlyToColumnEdge> {};
+  struct OutToSide : Moving<to::OutToSide> {};
   struct SlowlyUpOut : Moving<to::SlowlyUpToClearance> {};
   struct UpToSafeZ : Moving<to::SafeZOverPocket> {};
   struct BackToSafeXY : Moving<to::SafeXY> {};
@@ -423,12 +428,15 @@ struct RetrieveLeg_ : Flow<RetrieveLeg_> {
   // +----------------------------+--------------+--------------------+--------------------------------------+---------------------------------------+
   Row < Settling                   , TimerElapsed , GrippingTool       , none                                 , none                                  >,
   Row < GrippingTool               , TimerElapsed , CheckingGrip       , none                                 , none                                  >,
-  Row < CheckingGrip               , SensorReport , SlowlyOutToSide    , RecordToolInSpindle                  , And<Gripped, Not<FromAbove>>          >,
+  Row < CheckingGrip               , SensorReport , SlowlyOutToSide    , RecordToolInSpindle                  , And<Gripped, And<Not<FromAbove>, Not<DirectPath>>> >,
+  Row < CheckingGrip               , SensorReport , SlowlyOutOfColumn  , RecordToolInSpindle                  , And<Gripped, And<Not<FromAbove>, DirectPath>> >,
   Row < CheckingGrip               , SensorReport , SlowlyUpOut        , RecordToolInSpindle                  , And<Gripped, FromAbove>               >,
   Row < CheckingGrip               , TimerElapsed , Halted             , FaultDrawbarStayedOpen<AtPocket>     , Not<DrawbarClosed>                    >,
   Row < CheckingGrip               , TimerElapsed , WaitingToOpen      , SayGrippingAgain                     , And<DrawbarClosed, Not<Retried>>      >,
   Row < CheckingGrip               , TimerElapsed , Halted             , FaultToolNotGripped                  , And<DrawbarClosed, Retried>           >,
   Row < SlowlyOutToSide            , InPosition   , UpToSafeZ          , none                                 , none                                  >,
+  Row < SlowlyOutOfColumn          , InPosition   , OutToSide          , none                                 , none                                  >,
+  Row < OutToSide                  , InPosition   , UpToSafeZ          , none                                 , none                                  >,
   Row < SlowlyUpOut                , InPosition   , UpToSafeZ          , none                                 , none                                  >,
   Row < UpToSafeZ                  , InPosition   , BackToSafeXY       , none                                 , none                                  >,
   Row < BackToSafeXY               , InPosition   , Finished           , none                                 , none                                  >
