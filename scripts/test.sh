@@ -5,7 +5,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
 status=0
-ctest --test-dir build --output-on-failure "$@" || status=$?
+# The benchmarks (label bench) print figures and take minutes: run them alone.
+ctest --test-dir build --output-on-failure -LE bench "$@" || status=$?
 # The fault matrices, as tables (ctest shows a passing test's output only with -V).
 for results in build/tests/integration/fault_matrix/results.json \
                build/tests/integration/fault_matrix_restarts.json; do
