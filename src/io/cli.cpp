@@ -13,6 +13,7 @@
 
 #include "core/changer.hpp"
 #include "core/geometry.hpp"
+#include "core/preflight.hpp"
 #include "core/quote.hpp"
 #include "core/sequence_check.hpp"
 #include "core/simulator.hpp"
@@ -209,6 +210,27 @@ int check(const Options& options, std::ostream& out, std::ostream& err) {
   return violations == 0 && problems == 0 ? 0 : 1;
 }
 
+/// The planned change's time on its path and on the other one, as --lint
+/// estimates it: moves at their feed, rapids at the machine's speed, dwells.
+void print_estimate(const Options& options, const Config& config, const ToolState& tools, int to,
+                    const Simulator& sim, std::ostream& out) {
+  std::string error;
+  const auto rapid = rapid_speed(options.ini_path, config, error);
+  if (!rapid) return;  // the INI was read already: this cannot fail now
+  Config other = config;
+  other.path = config.path == Path::direct ? Path::prototype : Path::direct;
+  const Simulator other_sim = plan_change(other, tools, to, config.probe_limit.z);
+  int waits = 0;
+  const double seconds = estimate_seconds(sim, config.safe, rapid->per_minute, waits);
+  const double other_seconds = estimate_seconds(other_sim, config.safe, rapid->per_minute, waits);
+  const char* name = config.path == Path::direct ? "direct" : "prototype";
+  const char* other_name = config.path == Path::direct ? "prototype" : "direct";
+  out << "estimated " << seconds_text(seconds) << " on the " << name << " path ("
+      << seconds_text(other_seconds) << " on the " << other_name
+      << " path): from safe, moves at their feed, " << rapid->source
+      << ", plus the dwells (acceleration, latency and the operator not counted)\n";
+}
+
 int plan(const Options& options, std::ostream& out, std::ostream& err) {
   const Loaded loaded = load(options, err);
   if (!loaded.config || loaded.problems > 0) return 1;
@@ -246,6 +268,7 @@ int plan(const Options& options, std::ostream& out, std::ostream& err) {
     out << prefix << describe(record) << "\n";
   }
   const int violations = report(check_sequence("M6", config, sim, loaded.limits), out);
+  if (!refused) print_estimate(options, config, tools, to, sim, out);
   return refused || violations != 0 ? 1 : 0;
 }
 

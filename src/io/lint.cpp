@@ -139,39 +139,50 @@ struct MachineIni {
   std::vector<std::string> folders;
 };
 
-/// Reads what --lint uses of the INI; false and one line in `error` when it cannot be read.
-bool read_ini(const Options& options, const Config& config, MachineIni& machine,
-              std::string& error) {
+}  // namespace
+
+std::optional<RapidSpeed> rapid_speed(const std::optional<std::string>& ini_path,
+                                      const Config& config, std::string& error) {
   const char* unit = config.units == Units::inch ? "inch/min" : "mm/min";
   const double assumed = config.units == Units::inch ? kAssumedRapidInch : kAssumedRapidMm;
   char buffer[160];
-  if (!options.ini_path) {
-    machine.rapid_per_minute = assumed;
+  if (!ini_path) {
     std::snprintf(buffer, sizeof buffer,
                   "rapids at %.0f %s, assumed (--ini gives the machine's "
                   "[TRAJ]MAX_LINEAR_VELOCITY)",
                   assumed, unit);
-    machine.rapid_source = buffer;
-    return true;
+    return RapidSpeed{assumed, buffer};
   }
-  const auto ini = IniFile::read(*options.ini_path, error);
-  if (!ini) return false;
-  const std::string base = folder_of(*options.ini_path);
+  const auto ini = IniFile::read(*ini_path, error);
+  if (!ini) return std::nullopt;
   const auto velocity = ini->number("TRAJ", "MAX_LINEAR_VELOCITY");
   const auto per_mm = ini->linear_units();
   if (velocity && per_mm && std::isfinite(*velocity) && *velocity > 0.0 && std::isfinite(*per_mm) &&
       *per_mm > 0.0) {
     const double mm_per_minute = *velocity / *per_mm * 60.0;
-    machine.rapid_per_minute = config.units == Units::inch ? mm_per_minute / 25.4 : mm_per_minute;
+    const double per_minute = config.units == Units::inch ? mm_per_minute / 25.4 : mm_per_minute;
     std::snprintf(buffer, sizeof buffer, "rapids at %.0f %s ([TRAJ]MAX_LINEAR_VELOCITY of ",
-                  machine.rapid_per_minute, unit);
-    machine.rapid_source = buffer + shown_path(*options.ini_path) + ")";
-  } else {
-    machine.rapid_per_minute = assumed;
-    std::snprintf(buffer, sizeof buffer, "rapids at %.0f %s, assumed (", assumed, unit);
-    machine.rapid_source = buffer + shown_path(*options.ini_path) +
-                           " has no usable [TRAJ]MAX_LINEAR_VELOCITY and LINEAR_UNITS)";
+                  per_minute, unit);
+    return RapidSpeed{per_minute, buffer + shown_path(*ini_path) + ")"};
   }
+  std::snprintf(buffer, sizeof buffer, "rapids at %.0f %s, assumed (", assumed, unit);
+  return RapidSpeed{assumed, buffer + shown_path(*ini_path) +
+                                 " has no usable [TRAJ]MAX_LINEAR_VELOCITY and LINEAR_UNITS)"};
+}
+
+namespace {
+
+/// Reads what --lint uses of the INI; false and one line in `error` when it cannot be read.
+bool read_ini(const Options& options, const Config& config, MachineIni& machine,
+              std::string& error) {
+  const auto rapid = rapid_speed(options.ini_path, config, error);
+  if (!rapid) return false;
+  machine.rapid_per_minute = rapid->per_minute;
+  machine.rapid_source = rapid->source;
+  if (!options.ini_path) return true;
+  const auto ini = IniFile::read(*options.ini_path, error);
+  if (!ini) return false;
+  const std::string base = folder_of(*options.ini_path);
   machine.walk.remaps_known = true;
   for (const std::string& line : ini->get_all("RS274NGC", "REMAP")) {
     if (const auto remap = gcode::parse_remap(line)) machine.walk.remaps[remap->code] = *remap;
@@ -184,6 +195,8 @@ bool read_ini(const Options& options, const Config& config, MachineIni& machine,
   return true;
 }
 
+}  // namespace
+
 std::string seconds_text(double seconds) {
   char buffer[48];
   if (seconds < 59.95) {
@@ -194,6 +207,8 @@ std::string seconds_text(double seconds) {
   }
   return buffer;
 }
+
+namespace {
 
 std::string padded(const std::string& text, std::size_t width) {
   return text.size() >= width ? text + " " : text + std::string(width - text.size(), ' ');

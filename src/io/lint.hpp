@@ -18,6 +18,20 @@ constexpr std::size_t kMaxProgramBytes = 64 * 1024 * 1024;
 constexpr double kAssumedRapidMm = 3000.0;
 constexpr double kAssumedRapidInch = 120.0;
 
+/// The machine's rapid speed for an estimate, in the config's units per
+/// minute, and where it came from, in words ("rapids at 12000 mm/min
+/// ([TRAJ]MAX_LINEAR_VELOCITY of sim.ini)"); assumed without an INI. nullopt
+/// and `error` when the INI cannot be read.
+struct RapidSpeed {
+  double per_minute = 0.0;
+  std::string source;
+};
+std::optional<RapidSpeed> rapid_speed(const std::optional<std::string>& ini_path,
+                                      const Config& config, std::string& error);
+
+/// "12.3 s", or "2 min 05 s" from a minute on.
+std::string seconds_text(double seconds);
+
 /// --lint: reads the program named in `options` without running it and
 /// reports its tool changes against the config, the state file, the tool
 /// table, the INI's remaps and its rapid speed: which tools, where each is,

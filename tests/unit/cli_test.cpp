@@ -26,6 +26,25 @@ TEST(Cli, shouldPrintThePlanOfAChangeOneStepALine) {
   EXPECT_NE(r.out.find("done       T5"), std::string::npos);
 }
 
+TEST(Cli, shouldEstimateThePlannedChangeOnBothPaths) {
+  const CliRun r = run({"--plan", "--config", kConfig, "--from", "2", "--to", "5"});
+  const auto at = r.out.find("estimated ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const std::string line = r.out.substr(at, r.out.find('\n', at) - at);
+  EXPECT_NE(line.find(" on the prototype path ("), std::string::npos) << line;
+  EXPECT_NE(line.find(" on the direct path): from safe, moves at their feed, rapids at 3000 "
+                      "mm/min, assumed (--ini gives the machine's [TRAJ]MAX_LINEAR_VELOCITY), "
+                      "plus the dwells"),
+            std::string::npos)
+      << line;
+  double prototype = 0.0, direct = 0.0;
+  ASSERT_EQ(std::sscanf(line.c_str(), "estimated %lf s on the prototype path (%lf s", &prototype,
+                        &direct),
+            2)
+      << line;
+  EXPECT_LT(direct, prototype) << line;
+}
+
 TEST(Cli, shouldExitOneWhenThePlannedChangeIsRefused) {
   nlohmann::json config = nlohmann::json::parse(std::ifstream(kConfig));
   config["manual_tools"] = false;
