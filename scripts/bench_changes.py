@@ -5,7 +5,7 @@ direct path, the model time of each path's plan, and the bound; ratios side
 by side. Prints, never asserts.
    bench_changes.py WORKDIR BINARY
 WORKDIR holds one run per path (prototype/, direct/: results.json, config.json,
-sim.ini as run_sim.sh left them).
+sim.ini as run_sim.sh left them) and the idle run (idle/results.json).
 
 The model time of a plan (`fixed_atc_probe --plan`): every move an exact stop
 with a trapezoidal profile at the INI's velocities and accelerations (per axis,
@@ -106,8 +106,18 @@ def handshake(samples):
     return waits
 
 
+def print_idle(work):
+    idle = json.load(open("%s/idle/results.json" % work))
+    if idle["error"]:
+        print("idle measurement failed: %s" % idle["error"])
+        return
+    print("idle for %.0f s: the component used %.3f %% of a core; resident %.1f MiB (peak %.1f MiB)"
+          % (idle["seconds"], idle["cpu_share"] * 100, idle["rss_kib"] / 1024, idle["peak_kib"] / 1024))
+
+
 def main():
     work, binary = sys.argv[1:3]
+    print_idle(work)
     measured, model = {}, {}
     for path in PATHS:
         run = json.load(open("%s/%s/results.json" % (work, path)))
