@@ -21,7 +21,7 @@ import statistics
 import subprocess
 import sys
 
-from demo_report import stops
+from demo_report import intervals, stops
 
 PATHS = ("prototype", "direct")
 # tests/bench/changes.ngc: from, to.
@@ -80,14 +80,7 @@ def plan_seconds(binary, config, ini, machine, start, frm, to):
 
 
 def busy_spans(samples):
-    spans, start = [], None
-    for i, s in enumerate(samples):
-        if s["fixed_atc_probe.busy"] and start is None:
-            start = i
-        elif not s["fixed_atc_probe.busy"] and start is not None:
-            spans.append((start, i))
-            start = None
-    return spans
+    return intervals(samples, "fixed_atc_probe.busy")
 
 
 def handshake(samples):

@@ -342,19 +342,33 @@ void read_flush(Reader& reader, const Json& root, Config& config) {
   reader.read(*flush, "flush", "pause_seconds", config.flush.pause_seconds, kPulse, false);
 }
 
-void read_probe_after_change(Reader& reader, const Json& root, Config& config) {
-  if (const auto mode = root.find("probe_after_change"); mode != root.end()) {
-    if (*mode == "off") {
-      config.probe_after_change = ProbeAfterChange::off;
-    } else if (*mode == "measure") {
-      config.probe_after_change = ProbeAfterChange::measure;
-    } else if (*mode == "check") {
-      config.probe_after_change = ProbeAfterChange::check;
-    } else {
-      reader.error("probe_after_change",
-                   "expected \"off\", \"measure\" or \"check\", got " + describe(*mode));
+/// A top-level key naming one of a few words: `target` takes the value of the
+/// word given, left as it was when absent; anything else is one message
+/// listing the words.
+template <class T>
+void read_choice(Reader& reader, const Json& root, const char* key,
+                 std::initializer_list<std::pair<const char*, T>> words, T& target) {
+  const auto given = root.find(key);
+  if (given == root.end()) return;
+  std::string listed;
+  std::size_t i = 0;
+  for (const auto& [word, value] : words) {
+    if (*given == word) {
+      target = value;
+      return;
     }
+    ++i;
+    listed += std::string(i == 1 ? "" : i == words.size() ? " or " : ", ") + "\"" + word + "\"";
   }
+  reader.error(key, "expected " + listed + ", got " + describe(*given));
+}
+
+void read_probe_after_change(Reader& reader, const Json& root, Config& config) {
+  read_choice(
+      reader, root, "probe_after_change",
+      {std::pair{"off", ProbeAfterChange::off}, std::pair{"measure", ProbeAfterChange::measure},
+       std::pair{"check", ProbeAfterChange::check}},
+      config.probe_after_change);
   config.probe_check_tolerance =
       reader.ranged(root, "", "probe_check_tolerance", kTolerance, false);
 }
@@ -601,15 +615,8 @@ ConfigResult parse_config(const std::string& json_text) {
                               "path"});
 
   Config config;
-  if (const auto units = root.find("units"); units != root.end()) {
-    if (*units == "mm") {
-      config.units = Units::mm;
-    } else if (*units == "inch") {
-      config.units = Units::inch;
-    } else {
-      reader.error("units", "expected \"mm\" or \"inch\", got " + describe(*units));
-    }
-  }
+  read_choice(reader, root, "units", {std::pair{"mm", Units::mm}, std::pair{"inch", Units::inch}},
+              config.units);
   reader.units = config.units;
   reader.read(root, "", "probe_length_compensation_offset", config.probe_length_compensation_offset,
               kCoordinate, true);
@@ -644,15 +651,9 @@ ConfigResult parse_config(const std::string& json_text) {
   config.rack_keepout_margin = reader.ranged(root, "", "rack_keepout_margin", kMargin, false);
 
   read_probe_after_change(reader, root, config);
-  if (const auto path = root.find("path"); path != root.end()) {
-    if (*path == "prototype") {
-      config.path = Path::prototype;
-    } else if (*path == "direct") {
-      config.path = Path::direct;
-    } else {
-      reader.error("path", "expected \"prototype\" or \"direct\", got " + describe(*path));
-    }
-  }
+  read_choice(reader, root, "path",
+              {std::pair{"prototype", Path::prototype}, std::pair{"direct", Path::direct}},
+              config.path);
   if (const auto manual = root.find("manual_tools"); manual != root.end()) {
     if (const auto value = boolean(reader, *manual, "manual_tools")) config.manual_tools = *value;
   }

@@ -151,12 +151,14 @@ def near(a, b):
     return math.dist(a, b) < TOLERANCE
 
 
-def passes_near(a, b, target):
-    """The straight path from a to b comes within TOLERANCE of target."""
+def distance_to_segment(p, a, b):
+    """How far p is from the straight path a to b."""
     ab = [b[k] - a[k] for k in range(3)]
     length = sum(v * v for v in ab)
-    t = 0.0 if length == 0.0 else max(0.0, min(1.0, sum((target[k] - a[k]) * ab[k] for k in range(3)) / length))
-    return math.dist(target, [a[k] + t * ab[k] for k in range(3)]) < TOLERANCE
+    if length == 0.0:
+        return math.dist(p, a)
+    t = max(0.0, min(1.0, sum((p[k] - a[k]) * ab[k] for k in range(3)) / length))
+    return math.dist(p, [a[k] + t * ab[k] for k in range(3)])
 
 
 def visits_in_order(samples, waypoints):
@@ -166,7 +168,7 @@ def visits_in_order(samples, waypoints):
     i = 0
     for name, target in waypoints:
         while i < len(samples) and not near(samples[i]["pos"], target) and not (
-                i > 0 and passes_near(samples[i - 1]["pos"], samples[i]["pos"], target)):
+                i > 0 and distance_to_segment(target, samples[i - 1]["pos"], samples[i]["pos"]) < TOLERANCE):
             i += 1
         if i == len(samples):
             fail("the machine never reached %s %s after the previous waypoint" % (name, target))

@@ -10,7 +10,7 @@ import json
 import math
 import sys
 
-from check import (TOLERANCE, Rack, distinct, fail, load_results, measured_to_truth, near, no_fault, ok,
+from check import (TOLERANCE, Rack, distance_to_segment, distinct, fail, load_results, measured_to_truth, near, no_fault, ok,
                    stops)
 
 SERVED = "fixed_atc_probe.pocket-served"
@@ -116,15 +116,6 @@ def straight_and_slow(r, route, found, offset, feed):
                     route[i][0], seconds, route[i - 1][0], least))
             slow += 1
     ok("every move straight between its stops; %d slow moves at pocket_feed or slower" % slow)
-
-
-def distance_to_segment(p, a, b):
-    ab = [b[k] - a[k] for k in range(3)]
-    length = sum(v * v for v in ab)
-    if length == 0.0:
-        return math.dist(p, a)
-    t = max(0.0, min(1.0, sum((p[k] - a[k]) * ab[k] for k in range(3)) / length))
-    return math.dist(p, [a[k] + t * ab[k] for k in range(3)])
 
 
 def outside_other_columns(r, rack):
