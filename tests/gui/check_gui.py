@@ -87,8 +87,7 @@ def main():
             fail("at '%s' Teach loading/Teach pocket/Verify pocket enabled %s, expected %s (pocket 0)"
                  % (what, got, (teach, False, False)))
     ok("Teach loading enabled only while the changer is idle; Teach and Verify pocket never (pocket 0)")
-    # Right after bring-up task is still busy: nothing is accepted yet (as Load).
-    for what, measure in (("idle, tool number 0", False), ("program opened", True),
+    for what, measure in (("idle, tool number 0", True), ("program opened", True),
                           ("removal prompt", False), ("probing", False)):
         s = stage(r, what)
         if s["fatc-panel.measure-all-enabled"] != measure or s["fatc-panel.measure-which"] != 0:

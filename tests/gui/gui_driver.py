@@ -280,6 +280,9 @@ def run():
     Accessible.connect()
     wait_for(panel_ready, 120, "the panel's buttons over AT-SPI")
     driver.bring_up()
+    # Task settles a moment after homing; the panel follows `accepting`.
+    wait_for(pin("fatc-panel.accepting", True), 60, "the changer accepting requests")
+    wait_for(pin("fatc-panel.measure-all-enabled", True), 10, "Measure all enabled once the changer accepts")
     note("idle, tool number 0")
     result["idle_tool0_sensitive"] = {b: sensitive(b) for b in ("Load / Probe", "Unload", "Continue", "Cancel")}
     result["rack_start"] = rack()
