@@ -1,21 +1,18 @@
 #!/usr/bin/env python3
-"""Prints the tool-change benchmark (scripts/bench_changes.sh): each change of
-tests/bench/changes.ngc as LinuxCNC ran it on the prototype's path and on the
-direct path, the model time of each path's plan, and the bound; ratios side
-by side. Prints, never asserts.
+"""Prints the tool-change benchmark (scripts/bench_changes.sh): each change,
+chip to chip, as LinuxCNC ran it, side by side with the bound and ratios.
+Prints, never asserts.
    bench_changes.py WORKDIR BINARY
-WORKDIR holds one run per path (prototype/, direct/: results.json, config.json,
-sim.ini as run_sim.sh left them) and the idle run (idle/results.json).
+WORKDIR holds the runs as run_sim.sh left them (results.json, config.json,
+sim.ini): prototype/ and direct/ (tests/bench/changes.ngc on the rack of
+rack_config.json), row_prototype/, row_direct/ and row_peer/
+(tests/bench/peer_changes.ngc on rack_y.json; the peer is LinuxCNC's
+rack-toolchange example), and the idle run (idle/results.json).
 
-The model time of a plan (`fixed_atc_probe --plan`): every move an exact stop
-with a trapezoidal profile at the INI's velocities and accelerations (per axis,
-along the move's direction, and [TRAJ]), feeds at their F, plus the dwells.
-The bound is the model time of the direct path's plan: the waypoints the rack
-requires, each reached as fast as the machine can without blending, and
-nothing else (no handshake, no planner or task latency)."""
-import configparser
+The bound is what `fixed_atc_probe --plan` prints as such: the direct
+path's moves at the INI's velocities and accelerations, each an exact stop
+with a trapezoidal profile, plus the dwells; no handshake, no latency."""
 import json
-import math
 import re
 import statistics
 import subprocess
@@ -24,63 +21,34 @@ import sys
 from demo_report import intervals, stops
 
 PATHS = ("prototype", "direct")
-# tests/bench/changes.ngc: from, to.
-CHANGES = [(0, 12), (12, 7), (7, 6), (6, 3), (3, 0)]
-WHAT = {(0, 12): "empty -> pocket 1", (12, 7): "pocket 1 -> adjacent 2",
-        (7, 6): "pocket 2 -> farthest 6", (6, 3): "side pocket 2 -> top pocket 4",
-        (3, 0): "top pocket 4 -> empty"}
+MARK = "motion.digital-out-02"  # toggled between two changes by the programs
+# tests/bench/changes.ngc on rack_config.json: from, to, what.
+CHANGES = [(0, 12, "empty -> pocket 1"), (12, 7, "pocket 1 -> adjacent 2"),
+           (7, 6, "pocket 2 -> farthest 6"), (6, 3, "side pocket 2 -> top pocket 4"),
+           (3, 0, "top pocket 4 -> empty")]
+# tests/bench/peer_changes.ngc on rack_y.json (tool N in pocket N).
+ROW_CHANGES = [(0, 1, "empty -> pocket 1"), (1, 2, "pocket 1 -> adjacent 2"),
+               (2, 6, "pocket 2 -> farthest 6"), (6, 6, "the same tool 6 again"),
+               (6, 0, "pocket 6 -> empty")]
 
 
-class Machine:
-    """[TRAJ] and [AXIS_X/Y/Z] limits of the run's INI, in its units per second."""
-
-    def __init__(self, ini_path):
-        ini = configparser.ConfigParser(strict=False, interpolation=None, inline_comment_prefixes=("#",))
-        ini.read_string(re.sub(r"^\s*#.*$", "", open(ini_path).read(), flags=re.M))
-        self.velocity = [float(ini["AXIS_" + a]["MAX_VELOCITY"]) for a in "XYZ"]
-        self.acceleration = [float(ini["AXIS_" + a]["MAX_ACCELERATION"]) for a in "XYZ"]
-        self.linear_velocity = float(ini["TRAJ"]["MAX_LINEAR_VELOCITY"])
-        self.linear_acceleration = float(ini["TRAJ"].get("MAX_LINEAR_ACCELERATION",
-                                                         max(self.acceleration)))
-
-    def move_seconds(self, a, b, feed_per_minute=None):
-        d = math.dist(a, b)
-        if d == 0.0:
-            return 0.0
-        direction = [abs(b[k] - a[k]) / d for k in range(3)]
-        v = min([self.linear_velocity] + [self.velocity[k] / direction[k] for k in range(3) if direction[k]])
-        acc = min([self.linear_acceleration] +
-                  [self.acceleration[k] / direction[k] for k in range(3) if direction[k]])
-        if feed_per_minute:
-            v = min(v, feed_per_minute / 60.0)
-        if d >= v * v / acc:
-            return d / v + v / acc
-        return 2.0 * math.sqrt(d / acc)
-
-
-def plan_seconds(binary, config, ini, machine, start, frm, to):
-    """The model time of `--plan --from frm --to to`, starting at `start`."""
+def plan_bounds(binary, config, ini, frm, to):
+    """(the bound, the prototype path's time at the same limits) of --plan."""
     out = subprocess.run([binary, "--plan", "--config", config, "--ini", ini, "--from", str(frm),
                           "--to", str(to)], capture_output=True, text=True).stdout
-    at, seconds = list(start), 0.0
-    for line in out.splitlines():
-        words = line.split()
-        if len(words) < 2:
-            continue
-        if words[1] == "dwell":
-            seconds += float(words[2])
-        elif words[1] in ("rapid", "feed"):
-            target = list(at)
-            for axis, value in re.findall(r"\b([XYZ])=(-?[\d.]+)", line):
-                target["XYZ".index(axis)] = float(value)
-            feed = re.search(r"\bF([\d.]+)", line)
-            seconds += machine.move_seconds(at, target, float(feed.group(1)) if words[1] == "feed" else None)
-            at = target
-    return seconds, at
+    line = re.search(r"^bound (.*)$", out, re.M)
+    if not line:
+        return 0.0, 0.0
+    times = re.findall(r"(?:(\d+) min )?([\d.]+) s", line.group(1))
+    seconds = [int(m or 0) * 60 + float(s) for m, s in times]
+    return seconds[0], seconds[-1]
 
 
-def busy_spans(samples):
-    return intervals(samples, "fixed_atc_probe.busy")
+def change_seconds(samples):
+    """Each change's time, chip to chip: from one toggle of MARK to the next
+    (the program toggles it after the move to safe and after each M6)."""
+    edges = [samples[i]["t"] for i in range(1, len(samples)) if samples[i][MARK] != samples[i - 1][MARK]]
+    return [b - a for a, b in zip(edges, edges[1:])]
 
 
 def handshake(samples):
@@ -90,7 +58,7 @@ def handshake(samples):
     edges = [samples[i]["t"] for i in range(1, len(samples))
              if samples[i]["fixed_atc_probe.chuck"] != samples[i - 1]["fixed_atc_probe.chuck"]]
     waits = []
-    for a, b in busy_spans(samples):
+    for a, b in intervals(samples, "fixed_atc_probe.busy"):
         span = samples[a:b + 1]
         for first, last in stops(span):
             near_chuck = any(span[first]["t"] - 0.05 <= t <= span[last]["t"] + 0.05 for t in edges)
@@ -108,45 +76,75 @@ def print_idle(work):
           % (idle["seconds"], idle["cpu_share"] * 100, idle["rss_kib"] / 1024, idle["peak_kib"] / 1024))
 
 
+def load(work, name, changes):
+    """The run's scenario, its change times; exits when the run failed."""
+    run = json.load(open("%s/%s/results.json" % (work, name)))
+    if run["error"]:
+        print("%s run failed: %s" % (name, run["error"]))
+        sys.exit(1)
+    scenario = run["scenarios"][0]
+    seconds = change_seconds(scenario["samples"])
+    if len(seconds) != len(changes):
+        print("%s: %d changes seen, expected %d" % (name, len(seconds), len(changes)))
+        sys.exit(1)
+    return scenario, seconds
+
+
+def bound(work, name, binary, changes, which=0):
+    """Each change's bound (which=1: the prototype path's plan at the same limits)."""
+    config, ini = "%s/%s/config.json" % (work, name), "%s/%s/sim.ini" % (work, name)
+    return [plan_bounds(binary, config, ini, frm, to)[which] for frm, to, _ in changes]
+
+
+def print_usage(name, scenario):
+    before, after = scenario.get("usage_before"), scenario.get("usage_after")
+    if before and after:
+        print("%s: during the changes (%.0f s) the component used %.2f %% of a core; peak resident %.1f MiB"
+              % (name, scenario["duration"], 100 * (after["cpu_seconds"] - before["cpu_seconds"])
+                 / scenario["duration"], after["peak_kib"] / 1024))
+
+
+def print_handshake(name, scenario):
+    waits = handshake(scenario["samples"])
+    if waits:
+        print("%s: standing still between two moves (handshake and latency): median %.1f ms, "
+              "max %.1f ms over %d steps" % (name, statistics.median(waits) * 1000, max(waits) * 1000, len(waits)))
+
+
+def print_table(title, columns, rows, changes):
+    """rows: {column: [seconds per change]}; ratios of the first columns to the last ones."""
+    print("\n%-32s %s   ratios" % (title, " ".join("%10s" % c for c in columns)))
+    for i in list(range(len(changes))) + [None]:
+        what = changes[i][2] if i is not None else "all five"
+        value = {c: (rows[c][i] if i is not None else sum(rows[c])) for c in columns}
+        ratios = []
+        for a, b in RATIOS:
+            if a in value and b in value and value[b] > 0:
+                ratios.append("%s ratio to %s %.2f" % (a, b, value[a] / value[b]))
+        print("%-32s %s   %s" % (what, " ".join("%9.2fs" % value[c] for c in columns), ", ".join(ratios)))
+
+
+RATIOS = [("direct", "prototype"), ("direct", "bound"), ("prototype", "bound"), ("direct", "peer"),
+          ("prototype", "peer")]
+
+
 def main():
     work, binary = sys.argv[1:3]
     print_idle(work)
-    measured, model = {}, {}
+    rack, row = {}, {}
     for path in PATHS:
-        run = json.load(open("%s/%s/results.json" % (work, path)))
-        if run["error"]:
-            print("%s run failed: %s" % (path, run["error"]))
-            sys.exit(1)
-        samples = run["scenarios"][0]["samples"]
-        spans = busy_spans(samples)
-        if len(spans) != len(CHANGES):
-            print("%s: %d changes seen, expected %d" % (path, len(spans), len(CHANGES)))
-            sys.exit(1)
-        measured[path] = [samples[b]["t"] - samples[a]["t"] for a, b in spans]
-        config, ini = "%s/%s/config.json" % (work, path), "%s/%s/sim.ini" % (work, path)
-        machine = Machine(ini)
-        safe = json.load(open(config))["safe"]
-        at = [safe["x"], safe["y"], safe["z"]]
-        model[path] = []
-        for frm, to in CHANGES:
-            seconds, at = plan_seconds(binary, config, ini, machine, at, frm, to)
-            model[path].append(seconds)
-        waits = handshake(samples)
-        if waits:
-            print("%s path: standing still between two moves (handshake and latency): median %.1f ms, "
-                  "max %.1f ms over %d steps"
-                  % (path, statistics.median(waits) * 1000, max(waits) * 1000, len(waits)))
-    print("\n%-32s %10s %10s %10s   %s" % ("change (tests/bench/changes.ngc)", "prototype", "direct",
-                                          "bound", "ratios"))
-    for i, change in enumerate(CHANGES):
-        p, d, bound = measured["prototype"][i], measured["direct"][i], model["direct"][i]
-        print("%-32s %9.2fs %9.2fs %9.2fs   direct/prototype %.2f, prototype ratio to bound %.2f, "
-              "direct ratio to bound %.2f" % (WHAT[change], p, d, bound, d / p, p / bound, d / bound))
-    p, d, bound = (sum(measured["prototype"]), sum(measured["direct"]), sum(model["direct"]))
-    print("%-32s %9.2fs %9.2fs %9.2fs   direct/prototype %.2f, prototype ratio to bound %.2f, "
-          "direct ratio to bound %.2f" % ("all five", p, d, bound, d / p, p / bound, d / bound))
-    print("model time of the prototype's plan: %.2f s (%.2f of the bound)"
-          % (sum(model["prototype"]), sum(model["prototype"]) / bound))
+        scenario, rack[path] = load(work, path, CHANGES)
+        print_handshake("%s path" % path, scenario)
+        print_usage("%s path" % path, scenario)
+        row[path] = load(work, "row_" + path, ROW_CHANGES)[1]
+    row["peer"] = load(work, "row_peer", ROW_CHANGES)[1]
+    rack["bound"] = bound(work, "direct", binary, CHANGES)
+    row["bound"] = bound(work, "row_direct", binary, ROW_CHANGES)
+    print_table("tests/bench/changes.ngc", ("prototype", "direct", "bound"), rack, CHANGES)
+    prototype = sum(bound(work, "direct", binary, CHANGES, which=1))
+    print("the prototype's plan at the same limits: %.2f s (%.2f of the bound)"
+          % (prototype, prototype / sum(rack["bound"])))
+    print_table("peer_changes.ngc, top pockets", ("prototype", "direct", "peer", "bound"), row, ROW_CHANGES)
 
 
 if __name__ == "__main__":

@@ -1,27 +1,43 @@
 #!/usr/bin/env bash
-# The tool-change benchmark (issue 11): tests/bench/changes.ngc on the
-# simulated mill at its own speeds, the rack of tests/integration/rack_config.json
-# with default feeds and 0.4 s dwells, once on the prototype's path and once on
-# the direct path, each its own LinuxCNC run. Prints each change's time, the
-# model time and the bound, and the ratios; before them, the component's CPU
-# and memory while the machine stands idle for a minute. Never asserts.
+# The tool-change benchmark (issue 11), on the simulated mill at its own
+# speeds with default feeds (pocket_feed 500) and 0.4 s dwells, each run its
+# own LinuxCNC start:
+#  - tests/bench/changes.ngc on the rack of tests/integration/rack_config.json
+#    (side pockets and a top pocket), on the prototype's path and the direct one;
+#  - tests/bench/peer_changes.ngc on tests/bench/rack_y.json (six top pockets
+#    along Y), on both paths and with LinuxCNC's own rack-toolchange remap
+#    example instead of the changer (tests/bench/peer_ini.py), the peer.
+# Prints each change's time, the bound and the ratios; the component's CPU and
+# memory idle for a minute and during the changes. Never asserts.
 #   scripts/bench_changes.sh          (ctest: ctest --test-dir build -L bench -V)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 binary=${FATC_BINARY:-$PWD/build/fixed_atc_probe}
 work=$(mktemp -d /tmp/fixed_atc_bench.XXXXXX)
 chmod 755 "$work"
-printf '[{"name": "changes", "program": "tests/bench/changes.ngc", "timeout": 900}]\n' > "$work/scenarios.json"
-chmod 644 "$work/scenarios.json"
+
+# run NAME PROGRAM CONFIG TOOL_TABLE [ENV...]: one LinuxCNC start, the program run once.
+run() {
+  local name=$1 program=$2 config=$3 table=$4
+  shift 4
+  printf '[{"name": "changes", "program": "%s", "timeout": 900}]\n' "$program" > "$work/$name.json"
+  chmod 644 "$work/$name.json"
+  env "$@" FATC_BINARY="$binary" FATC_SCENARIOS="$work/$name.json" FATC_RESULTS="$work/$name/results.json" \
+    FATC_CONFIG="$PWD/$config" FATC_TOOL_TABLE="$PWD/$table" \
+    tests/integration/run_sim.sh "$work/$name" "$PWD/tests/integration/driver.py" > "$work/$name.log" 2>&1 || {
+    echo "LinuxCNC failed; its output is in $work/$name.log"; exit 1; }
+}
+
 # The component alone for a minute first: its CPU and memory doing nothing.
 FATC_BINARY="$binary" FATC_RESULTS="$work/idle/results.json" \
   tests/integration/run_sim.sh "$work/idle" "$PWD/tests/bench/idle_bench.py" > "$work/idle.log" 2>&1 || {
   echo "LinuxCNC failed; its output is in $work/idle.log"; exit 1; }
 for path in prototype direct; do
-  FATC_BINARY="$binary" FATC_SCENARIOS="$work/scenarios.json" FATC_RESULTS="$work/$path/results.json" \
-    FATC_CONFIG="$PWD/tests/integration/rack_config.json" FATC_TOOL_TABLE="$PWD/tests/integration/rack.tbl" \
-    FATC_CONFIG_SET="{\"path\": \"$path\", \"pocket_feed\": 500, \"chuck_seconds\": 0.4}" \
-    tests/integration/run_sim.sh "$work/$path" "$PWD/tests/integration/driver.py" > "$work/$path.log" 2>&1 || {
-    echo "LinuxCNC failed; its output is in $work/$path.log"; exit 1; }
+  run "$path" tests/bench/changes.ngc tests/integration/rack_config.json tests/integration/rack.tbl \
+    FATC_CONFIG_SET="{\"path\": \"$path\", \"pocket_feed\": 500, \"chuck_seconds\": 0.4}"
+  run "row_$path" tests/bench/peer_changes.ngc tests/bench/rack_y.json tests/bench/rack_y.tbl \
+    FATC_CONFIG_SET="{\"path\": \"$path\"}"
 done
+run row_peer tests/bench/peer_changes.ngc tests/bench/rack_y.json tests/bench/rack_y.tbl \
+  FATC_NO_CHANGER=1 FATC_INI_FILTER="$PWD/tests/bench/peer_ini.py"
 python3 scripts/bench_changes.py "$work" "$binary"

@@ -9,36 +9,83 @@
 
 namespace fatc {
 
-double estimate_seconds(const Simulator& plan, const Point& start, double rapid_per_minute,
-                        int& operator_waits) {
-  Point at = start;
-  double minutes = 0.0;
-  double seconds = 0.0;
-  for (const Record& record : plan.records) {
-    if (record.kind == Record::Kind::dwell) seconds += record.seconds;
-    // Every wait for the operator is a prompt (in M6 for a manual tool, the only sign).
-    if (record.kind == Record::Kind::message && record.message_kind == MessageKind::prompt) {
-      ++operator_waits;
-    }
-    if (record.kind != Record::Kind::step) continue;
-    const Step& step = record.step;
+namespace {
 
-    if (!is_motion(step.kind)) continue;
+/// Walks the plan's moves from `start`: `move(from, to, step)` for each (a
+/// probe ends where the plan's sensor touches); returns the dwells' seconds.
+template <class Move>
+double walk_moves(const Simulator& plan, const Point& start, Move move) {
+  Point at = start;
+  double dwells = 0.0;
+  for (const Record& record : plan.records) {
+    if (record.kind == Record::Kind::dwell) dwells += record.seconds;
+    if (record.kind != Record::Kind::step || !is_motion(record.step.kind)) continue;
+    const Step& step = record.step;
     Point to = at;
     if (step.axes & axis_x) to.x = step.target.x;
     if (step.axes & axis_y) to.y = step.target.y;
     if (step.axes & axis_z) to.z = step.target.z;
-    // A probe stops where the sensor touches (the plan's sensor), if above its limit.
     if (step.kind == StepKind::probe && plan.sensor_z && *plan.sensor_z >= step.target.z) {
       to.z = std::min(*plan.sensor_z, at.z);
     }
-    const double distance = std::hypot(to.x - at.x, to.y - at.y, to.z - at.z);
-    const double speed =
-        step.kind == StepKind::rapid ? rapid_per_minute : std::min(step.feed, rapid_per_minute);
-    if (speed > 0.0) minutes += distance / speed;
+    move(at, to, step);
     at = to;
   }
-  return seconds + minutes * 60.0;
+  return dwells;
+}
+
+}  // namespace
+
+double estimate_seconds(const Simulator& plan, const Point& start, double rapid_per_minute,
+                        int& operator_waits) {
+  for (const Record& record : plan.records) {
+    // Every wait for the operator is a prompt (in M6 for a manual tool, the only sign).
+    if (record.kind == Record::Kind::message && record.message_kind == MessageKind::prompt) {
+      ++operator_waits;
+    }
+  }
+  double minutes = 0.0;
+  const double dwells =
+      walk_moves(plan, start, [&](const Point& from, const Point& to, const Step& step) {
+        const double speed =
+            step.kind == StepKind::rapid ? rapid_per_minute : std::min(step.feed, rapid_per_minute);
+        if (speed > 0.0) minutes += std::hypot(to.x - from.x, to.y - from.y, to.z - from.z) / speed;
+      });
+  return dwells + minutes * 60.0;
+}
+
+double move_seconds(const Point& from, const Point& to, double feed_per_minute,
+                    const MotionLimits& limits) {
+  const double delta[] = {to.x - from.x, to.y - from.y, to.z - from.z};
+  const double distance = std::hypot(delta[0], delta[1], delta[2]);
+  if (distance == 0.0) return 0.0;
+  const double axis_velocity[] = {limits.velocity.x, limits.velocity.y, limits.velocity.z};
+  const double axis_acceleration[] = {limits.acceleration.x, limits.acceleration.y,
+                                      limits.acceleration.z};
+  double velocity = limits.linear_velocity;
+  double acceleration = limits.linear_acceleration;
+  for (int axis = 0; axis < 3; ++axis) {
+    const double share = std::abs(delta[axis]) / distance;
+    if (share == 0.0) continue;
+    velocity = std::min(velocity, axis_velocity[axis] / share);
+    acceleration = std::min(acceleration, axis_acceleration[axis] / share);
+  }
+  if (feed_per_minute > 0.0) velocity = std::min(velocity, feed_per_minute / 60.0);
+  if (!(velocity > 0.0) || !(acceleration > 0.0)) return 0.0;
+  // Reaches full speed: accelerate, cruise, decelerate; else a triangle.
+  if (distance >= velocity * velocity / acceleration) {
+    return distance / velocity + velocity / acceleration;
+  }
+  return 2.0 * std::sqrt(distance / acceleration);
+}
+
+double limits_seconds(const Simulator& plan, const Point& start, const MotionLimits& limits) {
+  double moves = 0.0;
+  const double dwells =
+      walk_moves(plan, start, [&](const Point& from, const Point& to, const Step& step) {
+        moves += move_seconds(from, to, step.kind == StepKind::rapid ? 0.0 : step.feed, limits);
+      });
+  return moves + dwells;
 }
 
 namespace {

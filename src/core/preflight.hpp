@@ -20,6 +20,28 @@ namespace fatc {
 double estimate_seconds(const Simulator& plan, const Point& start, double rapid_per_minute,
                         int& operator_waits);
 
+/// What the machine's motion can do, in the config's units: per second
+/// ([AXIS_x]MAX_VELOCITY, [TRAJ]MAX_LINEAR_VELOCITY) and per second squared
+/// (MAX_ACCELERATION, [TRAJ]MAX_LINEAR_ACCELERATION).
+struct MotionLimits {
+  Point velocity;
+  Point acceleration;
+  double linear_velocity = 0.0;
+  double linear_acceleration = 0.0;
+};
+
+/// The least time a straight move takes that starts and ends standing
+/// still: a trapezoidal profile at the slowest of the limits of the axes it
+/// moves (along its direction) and the linear ones, and at most
+/// `feed_per_minute` (0: a rapid, no feed).
+double move_seconds(const Point& from, const Point& to, double feed_per_minute,
+                    const MotionLimits& limits);
+
+/// The plan's steps at the machine's limits: every move an exact stop as
+/// move_seconds has it, plus the dwells; no handshake, no latency, no
+/// blending. Of the direct path's plan, the bound of a change.
+double limits_seconds(const Simulator& plan, const Point& start, const MotionLimits& limits);
+
 struct PreflightInput {
   const Config* config = nullptr;
   ToolState tools;                   ///< at the program's start

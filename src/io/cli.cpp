@@ -229,6 +229,22 @@ void print_estimate(const Options& options, const Config& config, const ToolStat
       << seconds_text(other_seconds) << " on the " << other_name
       << " path): from safe, moves at their feed, " << rapid->source
       << ", plus the dwells (acceleration, latency and the operator not counted)\n";
+  if (!options.ini_path) {
+    out << "bound: --ini gives it (the machine's velocities and accelerations)\n";
+    return;
+  }
+  const auto ini = IniFile::read(*options.ini_path, error);
+  const auto limits = ini ? motion_limits(*ini, config.units, error) : std::nullopt;
+  if (!limits) {
+    out << "bound: not known: " << error << "\n";
+    return;
+  }
+  const Simulator& direct = config.path == Path::direct ? sim : other_sim;
+  const Simulator& prototype = config.path == Path::direct ? other_sim : sim;
+  out << "bound " << seconds_text(limits_seconds(direct, config.safe, *limits))
+      << ": the direct path's moves at the velocities and accelerations of "
+      << shown_path(*options.ini_path) << ", each an exact stop, plus the dwells (the prototype "
+      << "path's: " << seconds_text(limits_seconds(prototype, config.safe, *limits)) << ")\n";
 }
 
 int plan(const Options& options, std::ostream& out, std::ostream& err) {

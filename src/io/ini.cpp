@@ -9,6 +9,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <inifile.hh>
+#include <limits>
 
 #include "core/quote.hpp"
 #include "files.hpp"
@@ -209,6 +210,51 @@ std::optional<SoftLimits> soft_limits(const IniFile& ini, Units units, std::stri
     axes[i]->min = found[0] * to_config;
     axes[i]->max = found[1] * to_config;
   }
+  return limits;
+}
+
+std::optional<MotionLimits> motion_limits(const IniFile& ini, Units units, std::string& error) {
+  const auto per_mm = ini.linear_units();
+  if (!per_mm || !std::isfinite(*per_mm) || *per_mm <= 0.0) {
+    error = ini.path() + ": [TRAJ]LINEAR_UNITS: expected mm, inch or machine units per mm";
+    return std::nullopt;
+  }
+  const double to_config = (units == Units::inch ? 1.0 / 25.4 : 1.0) / *per_mm;
+  // One value: a positive finite number, in the config's units; `required`
+  // false: a missing one is no limit.
+  auto value = [&](const char* section, const char* key, bool required) -> std::optional<double> {
+    int line = 0;
+    const auto text = ini.get(section, key, line);
+    const std::string where = ini.path() + ": " + key_name(section, key, line);
+    if (!text) {
+      if (!required) return std::numeric_limits<double>::infinity();
+      error = where + ": missing (the bound needs every axis' velocity and acceleration)";
+      return std::nullopt;
+    }
+    const auto number = ini.number(section, key);
+    if (!number || !std::isfinite(*number) || *number <= 0.0) {
+      error = where + ": expected a positive number, got " + quote(*text);
+      return std::nullopt;
+    }
+    return *number * to_config;
+  };
+  MotionLimits limits;
+  double* velocity[] = {&limits.velocity.x, &limits.velocity.y, &limits.velocity.z};
+  double* acceleration[] = {&limits.acceleration.x, &limits.acceleration.y, &limits.acceleration.z};
+  const char* names[] = {"AXIS_X", "AXIS_Y", "AXIS_Z"};
+  for (int i = 0; i < 3; ++i) {
+    const auto v = value(names[i], "MAX_VELOCITY", true);
+    const auto a = v ? value(names[i], "MAX_ACCELERATION", true) : std::nullopt;
+    if (!a) return std::nullopt;
+    *velocity[i] = *v;
+    *acceleration[i] = *a;
+  }
+  const auto linear_velocity = value("TRAJ", "MAX_LINEAR_VELOCITY", false);
+  const auto linear_acceleration =
+      linear_velocity ? value("TRAJ", "MAX_LINEAR_ACCELERATION", false) : std::nullopt;
+  if (!linear_acceleration) return std::nullopt;
+  limits.linear_velocity = *linear_velocity;
+  limits.linear_acceleration = *linear_acceleration;
   return limits;
 }
 

@@ -8,6 +8,7 @@
 
 #include "core/config.hpp"
 #include "core/geometry.hpp"
+#include "core/preflight.hpp"
 
 namespace fatc::io {
 
@@ -51,5 +52,12 @@ class IniFile {
 /// any is missing, is no number to LinuxCNC, or makes no sense as a limit
 /// (not finite, beyond 1e99, MIN above MAX, LINEAR_UNITS unknown).
 std::optional<SoftLimits> soft_limits(const IniFile& ini, Units units, std::string& error);
+
+/// The velocities and accelerations of axes X, Y and Z ([AXIS_n]
+/// MAX_VELOCITY, MAX_ACCELERATION) and [TRAJ]MAX_LINEAR_VELOCITY and
+/// MAX_LINEAR_ACCELERATION (each optional: no limit of its own), converted
+/// into `units`. nullopt and one line in `error` when an axis value is
+/// missing, or any is no positive finite number.
+std::optional<MotionLimits> motion_limits(const IniFile& ini, Units units, std::string& error);
 
 }  // namespace fatc::io

@@ -37,6 +37,10 @@ if [ -n "${FATC_INI_SED:-}" ]; then
   # A sed script for the copied INI: the same machine, e.g. with faster axes.
   sed -i -e "$FATC_INI_SED" "$work/sim.ini"
 fi
+if [ -n "${FATC_INI_FILTER:-}" ]; then
+  # A program that rewrites the copied INI in place: another machine setup.
+  $FATC_INI_FILTER "$work/sim.ini"
+fi
 if [ -n "${FATC_APP:-}" ]; then
   # A program LinuxCNC starts beside its GUI (the GUI test's driver).
   printf '\n[APPLICATIONS]\nAPP = %s\n' "$FATC_APP" >> "$work/sim.ini"
@@ -51,5 +55,5 @@ cd "$work"
 # FATC_WRAP: a command LinuxCNC runs under (the GUI test's D-Bus session).
 exec runuser -u "$user" -- ${FATC_WRAP:-} env PATH="$bin_dir:$PATH" HOME="$(getent passwd "$user" | cut -d: -f6)" \
   FATC_ROOT="$root" FATC_SCENARIOS="${FATC_SCENARIOS:-}" FATC_RESULTS="${FATC_RESULTS:-}" \
-  FATC_ARTIFACTS="${FATC_ARTIFACTS:-}" FATC_MATRIX_MODE="${FATC_MATRIX_MODE:-}" FATC_MATRIX_KINDS="${FATC_MATRIX_KINDS:-}" FATC_MATRIX_STEPS="${FATC_MATRIX_STEPS:-}" FATC_MATRIX_PENDING="${FATC_MATRIX_PENDING:-}" FATC_MATRIX_SPINDLE="${FATC_MATRIX_SPINDLE:-}" FATC_MATRIX_HOLD_STEPS="${FATC_MATRIX_HOLD_STEPS:-}" FATC_BENCH_REPEATS="${FATC_BENCH_REPEATS:-}" DISPLAY="${DISPLAY:-}" XAUTHORITY="${XAUTHORITY:-}" \
+  FATC_ARTIFACTS="${FATC_ARTIFACTS:-}" FATC_MATRIX_MODE="${FATC_MATRIX_MODE:-}" FATC_MATRIX_KINDS="${FATC_MATRIX_KINDS:-}" FATC_MATRIX_STEPS="${FATC_MATRIX_STEPS:-}" FATC_MATRIX_PENDING="${FATC_MATRIX_PENDING:-}" FATC_MATRIX_SPINDLE="${FATC_MATRIX_SPINDLE:-}" FATC_MATRIX_HOLD_STEPS="${FATC_MATRIX_HOLD_STEPS:-}" FATC_BENCH_REPEATS="${FATC_BENCH_REPEATS:-}" FATC_NO_CHANGER="${FATC_NO_CHANGER:-}" DISPLAY="${DISPLAY:-}" XAUTHORITY="${XAUTHORITY:-}" \
   RUNTESTS=1 linuxcnc "$work/sim.ini"

@@ -45,6 +45,56 @@ TEST(Cli, shouldEstimateThePlannedChangeOnBothPaths) {
   EXPECT_LT(direct, prototype) << line;
 }
 
+TEST(Cli, shouldPrintTheBoundFromTheInisVelocitiesAndAccelerations) {
+  const std::string ini = FATC_SOURCE_DIR "/config/sim/fixed_atc_sim.ini";
+  const CliRun r = run({"--plan", "--config", kConfig, "--from", "2", "--to", "5", "--ini", ini});
+  const auto at = r.out.find("bound ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const std::string line = r.out.substr(at, r.out.find('\n', at) - at);
+  double bound = 0.0, prototype = 0.0;
+  ASSERT_EQ(std::sscanf(line.c_str(),
+                        "bound %lf s: the direct path's moves at the velocities and "
+                        "accelerations of %*s each an exact stop, plus the dwells "
+                        "(the prototype path's: %lf s)",
+                        &bound, &prototype),
+            2)
+      << line;
+  EXPECT_LT(bound, prototype) << line;
+  // Acceleration counted: never less than the estimate at full speed throughout.
+  double estimate = 0.0;
+  ASSERT_EQ(std::sscanf(r.out.substr(r.out.find("estimated ")).c_str(),
+                        "estimated %*f s on the "
+                        "prototype path (%lf s",
+                        &estimate),
+            1);
+  EXPECT_GE(bound, estimate) << r.out;
+
+  const CliRun without = run({"--plan", "--config", kConfig, "--from", "2", "--to", "5"});
+  EXPECT_NE(
+      without.out.find("\nbound: --ini gives it (the machine's velocities and accelerations)\n"),
+      std::string::npos)
+      << without.out;
+}
+
+TEST(Cli, shouldSayWhyThereIsNoBoundWhenTheIniLacksAVelocity) {
+  const std::string ini = ::testing::TempDir() + "fatc_no_velocity.ini";
+  std::ifstream in(FATC_SOURCE_DIR "/config/sim/fixed_atc_sim.ini");
+  std::ofstream out(ini);
+  bool in_axis_y = false;
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty() && line[0] == '[') in_axis_y = line == "[AXIS_Y]";
+    if (!(in_axis_y && line.rfind("MAX_VELOCITY", 0) == 0)) out << line << "\n";
+  }
+  out.close();
+  const CliRun r = run({"--plan", "--config", kConfig, "--from", "2", "--to", "5", "--ini", ini});
+  std::remove(ini.c_str());
+  EXPECT_NE(r.out.find("\nbound: not known: " + ini +
+                       ": [AXIS_Y]MAX_VELOCITY: missing (the bound needs every axis' velocity "
+                       "and acceleration)\n"),
+            std::string::npos)
+      << r.out;
+}
+
 TEST(Cli, shouldExitOneWhenThePlannedChangeIsRefused) {
   nlohmann::json config = nlohmann::json::parse(std::ifstream(kConfig));
   config["manual_tools"] = false;

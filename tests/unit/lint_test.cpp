@@ -12,6 +12,7 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -458,6 +459,58 @@ TEST(Estimate, shouldAddMovesAtTheirFeedAndTheDwells) {
   int waits = 0;
   EXPECT_NEAR(estimate_seconds(plan, {0, 0, 0}, 600.0, waits), 63.5, 1e-9);
   EXPECT_EQ(waits, 1);
+}
+
+MotionLimits limits_of(double velocity, double acceleration) {
+  MotionLimits limits;
+  limits.velocity = {velocity, velocity, velocity};
+  limits.acceleration = {acceleration, acceleration, acceleration};
+  limits.linear_velocity = std::numeric_limits<double>::infinity();
+  limits.linear_acceleration = std::numeric_limits<double>::infinity();
+  return limits;
+}
+
+TEST(Bound, shouldTakeATrapezoidWhenTheMoveReachesFullSpeed) {
+  // 100 at 10/s with 10/s²: 1 s up, 8 s at speed, 1 s down.
+  EXPECT_NEAR(move_seconds({0, 0, 0}, {100, 0, 0}, 0.0, limits_of(10, 10)), 11.0, 1e-9);
+}
+
+TEST(Bound, shouldTakeATriangleWhenTheMoveIsTooShortForFullSpeed) {
+  // 4 with 1/s²: 2 s up to 2/s, 2 s down, never at 10/s.
+  EXPECT_NEAR(move_seconds({0, 0, 0}, {0, 0, 4}, 0.0, limits_of(10, 1)), 4.0, 1e-9);
+}
+
+TEST(Bound, shouldHoldAFeedBelowTheMachinesSpeed) {
+  // 100 at F600 (10/s) on a 100/s machine with 10/s²: 10 s + 1 s.
+  EXPECT_NEAR(move_seconds({0, 0, 0}, {0, 100, 0}, 600.0, limits_of(100, 10)), 11.0, 1e-9);
+}
+
+TEST(Bound, shouldLetTheSlowestAxisAndTheLinearLimitsDecide) {
+  MotionLimits limits = limits_of(100, 1000);
+  limits.velocity.z = 10;  // a slow Z: along X and Z at once, Z's share decides
+  // 30 along X, 40 along Z: Z has 0.8 of the move, so at most 12.5/s along it.
+  const double diagonal = move_seconds({0, 0, 0}, {30, 0, 40}, 0.0, limits);
+  EXPECT_NEAR(diagonal, 50.0 / 12.5 + 12.5 / (1000 / 0.8), 1e-9);
+  limits.linear_velocity = 5;
+  EXPECT_NEAR(move_seconds({0, 0, 0}, {30, 0, 40}, 0.0, limits), 50.0 / 5 + 5 / 1250.0, 1e-9);
+  EXPECT_EQ(move_seconds({1, 2, 3}, {1, 2, 3}, 0.0, limits), 0.0);
+}
+
+TEST(Bound, shouldAddEveryMoveAsAnExactStopAndTheDwells) {
+  Simulator plan;
+  Step up;
+  up.kind = StepKind::rapid;
+  up.axes = axis_z;
+  up.target = {0, 0, 4};
+  plan.publish(up);  // 4 with 1/s²: 4 s
+  plan.start_timer(0.5);
+  Step over = up;
+  over.kind = StepKind::feed;
+  over.axes = axis_xy;
+  over.target = {100, 0, 0};
+  over.feed = 600;
+  plan.publish(over);  // 100 at 10/s: 10 s + 10 s of ramps at 1/s²
+  EXPECT_NEAR(limits_seconds(plan, {0, 0, 0}, limits_of(100, 1)), 4.0 + 0.5 + 20.0, 1e-9);
 }
 
 TEST_F(Lint, shouldEstimateTheChangeTimeFromThePlannedSteps) {
