@@ -76,27 +76,32 @@ class Rack:
         """Every stop of a return into pocket t from safe (docs/sequences.md#return):
         (name, position, reached slowly at pocket_feed)."""
         clearance = ("above-clearance %d" % t, self.above(t, "pocket_above_clearance_offset_z"), False)
+        above_chuck = ("above-chuck %d" % t, self.above(t, "pocket_above_chuck_offset_z"), False)
+        # The direct path stops once on a straight way up or down: not at above-clearance.
+        lift = [] if self.direct else [clearance]
         if self.top(t):
-            into = [("pocket %d at safe Z" % t, self.at_safe_z(self.pocket(t)), False), clearance,
-                    ("pocket %d" % t, self.pocket(t), True)]
+            into = [("pocket %d at safe Z" % t, self.at_safe_z(self.pocket(t)), False),
+                    above_chuck if self.direct else clearance, ("pocket %d" % t, self.pocket(t), True)]
         else:
             into = [("side of pocket %d at safe Z" % t, self.at_safe_z(self.side(t)), False),
                     ("side of pocket %d" % t, self.side(t), False)]
             if self.direct:
                 into.append(("column edge %d" % t, self.column_edge(t), False))
             into.append(("pocket %d" % t, self.pocket(t), True))
-        return into + [("above-chuck %d" % t, self.above(t, "pocket_above_chuck_offset_z"), False),
-                       clearance, ("pocket %d at safe Z" % t, self.at_safe_z(self.pocket(t)), False),
-                       ("safe", self.safe(), False)]
+        return into + [above_chuck] + lift + [
+            ("pocket %d at safe Z" % t, self.at_safe_z(self.pocket(t)), False), ("safe", self.safe(), False)]
 
     def retrieve_stops(self, t):
         """Every stop of a retrieve out of pocket t from safe (docs/sequences.md#retrieve)."""
         clearance = ("above-clearance %d" % t, self.above(t, "pocket_above_clearance_offset_z"), False)
-        route = [("pocket %d at safe Z" % t, self.at_safe_z(self.pocket(t)), False), clearance,
-                 ("above-chuck %d" % t, self.above(t, "pocket_above_chuck_offset_z"), False),
-                 ("pocket %d" % t, self.pocket(t), True)]
+        above_chuck = ("above-chuck %d" % t, self.above(t, "pocket_above_chuck_offset_z"), False)
+        route = [("pocket %d at safe Z" % t, self.at_safe_z(self.pocket(t)), False)] + \
+            ([] if self.direct else [clearance]) + [above_chuck, ("pocket %d" % t, self.pocket(t), True)]
         if self.top(t):
-            route += [clearance[:2] + (True,), ("pocket %d at safe Z" % t, self.at_safe_z(self.pocket(t)), False)]
+            # Slowly up while the holder can touch the pocket: to above-clearance,
+            # on the direct path only to above-chuck.
+            out = above_chuck if self.direct else clearance
+            route += [out[:2] + (True,), ("pocket %d at safe Z" % t, self.at_safe_z(self.pocket(t)), False)]
         else:
             if self.direct:
                 route.append(("column edge %d" % t, self.column_edge(t), True))

@@ -55,10 +55,10 @@ TEST(DirectPath, shouldGoFromOnePocketToTheNextAtSafeZ) {
   EXPECT_EQ(moves(sim),
             (Lines{"rapid safe Z", "rapid over the side of pocket 1", "rapid side of pocket 1",
                    "rapid column edge of pocket 1", "feed pocket 1",
-                   "rapid above-chuck of pocket 1", "rapid above-clearance of pocket 1",
-                   "rapid safe Z", "rapid over pocket 2", "rapid above-clearance of pocket 2",
+                   "rapid above-chuck of pocket 1", "rapid safe Z", "rapid over pocket 2",
                    "rapid above-chuck of pocket 2", "feed pocket 2", "feed column edge of pocket 2",
-                   "rapid side of pocket 2", "rapid safe Z", "rapid safe XY"}));
+                   "rapid side of pocket 2", "rapid safe Z", "rapid safe XY"}))
+      << "no stop at above-clearance on the way straight up or down";
   const Lines prototype = moves(plan_change(valid_config(), 1, 2, -70.0));
   EXPECT_EQ(count(prototype, "rapid safe XY"), 3) << "before the return, after it, at the end";
 }
@@ -72,7 +72,7 @@ TEST(DirectPath, shouldEndAtSafeXYWhereTheProgramOrTheOperatorComesNext) {
     const Lines lines = moves(sim);
     const auto back = std::find(lines.begin(), lines.end(), "rapid safe XY");
     ASSERT_NE(back, lines.end()) << what;
-    EXPECT_EQ(back - lines.begin(), 8) << what << ": the return ends at safe XY";
+    EXPECT_EQ(back - lines.begin(), 7) << what << ": the return ends at safe XY";
   }
   const Lines unload = moves(plan_unload(config, 2, 3));
   EXPECT_EQ(count(unload, "rapid safe XY"), 1) << "the fetch of tool 2 follows the return of 3";
@@ -134,14 +134,33 @@ void every_change(const Config& prototype, const Config& shorter) {
 
 TEST(DirectPath, shouldKeepClearOfTheRackOnEveryChange) { every_change(valid_config(), direct()); }
 
-TEST(DirectPath, shouldKeepClearOfTheRackWithTopPockets) {
+/// The valid config with every pocket approached from the top, on `path`.
+Config top_pockets(const char* path) {
   const std::string side = R"("pocket_default": {"y": 20.0, "z": -80.0})";
   const std::string top = R"("pocket_default": {"y": 20.0, "z": -80.0, "approach": "top"})";
   std::string text = test::kValidConfig;
   text.replace(text.find(side), side.size(), top);
-  const Config prototype = parse_config(text).config.value();
-  text.insert(text.rfind('}'), R"(,"path": "direct")");
-  every_change(prototype, parse_config(text).config.value());
+  text.insert(text.rfind('}'), std::string(R"(,"path": ")") + path + "\"");
+  return parse_config(text).config.value();
+}
+
+TEST(DirectPath, shouldKeepClearOfTheRackWithTopPockets) {
+  every_change(top_pockets("prototype"), top_pockets("direct"));
+}
+
+TEST(DirectPath, shouldMoveSlowlyOnlyBelowAboveChuckInATopPocket) {
+  // Above-chuck 20, above-clearance 60 over the pocket: the prototype goes
+  // slowly from above-clearance down and back up; the direct path only while
+  // the holder can touch the pocket, below above-chuck.
+  EXPECT_DOUBLE_EQ(slow_length(plan_change(top_pockets("prototype"), 1, 2, -70.0)),
+                   60.0 + 20.0 + 60.0);
+  EXPECT_DOUBLE_EQ(slow_length(plan_change(top_pockets("direct"), 1, 2, -70.0)),
+                   20.0 + 20.0 + 20.0);
+  EXPECT_EQ(moves(plan_change(top_pockets("direct"), 1, 2, -70.0)),
+            (Lines{"rapid safe Z", "rapid over pocket 1", "rapid above-chuck of pocket 1",
+                   "feed pocket 1", "rapid above-chuck of pocket 1", "rapid safe Z",
+                   "rapid over pocket 2", "rapid above-chuck of pocket 2", "feed pocket 2",
+                   "feed above-chuck of pocket 2", "rapid safe Z", "rapid safe XY"}));
 }
 
 }  // namespace

@@ -341,6 +341,14 @@ struct SlowlyUpToClearance {
                 of_pocket("above-clearance", leg.pocket), leg.pocket, true, c.config.pocket_feed);
   }
 };
+/// The direct path's top approach: slowly only while the holder is engaged.
+struct SlowlyUpToAboveChuck {
+  template <class Leg>
+  Step operator()(const Context& c, const Leg& leg) const {
+    return move(StepKind::feed, axis_z, pocket_waypoints(c.config, leg.pocket).above_chuck,
+                of_pocket("above-chuck", leg.pocket), leg.pocket, true, c.config.pocket_feed);
+  }
+};
 struct PocketAtSafeZ {
   template <class Leg>
   Step operator()(const Context& c, const Leg& leg) const {

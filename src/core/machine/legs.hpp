@@ -188,6 +188,7 @@ struct ReturnLeg_ : Flow<ReturnLeg_<Which>> {
   struct IntoPocket : Moving<to::SlowlyIntoPocket> {};
   struct OverPocket : Moving<to::PocketAtSafeZ> {};
   struct DownToClearance : Moving<to::AboveClearance> {};
+  struct DownToAboveChuck : Moving<to::AboveChuck> {};
   struct DownIntoPocket : Moving<to::SlowlyDownToPocket> {};
   struct WaitingToOpen : WaitingToOpenChuck<AtPocket> {};
   struct ReleasingTool : Timed {
@@ -252,9 +253,12 @@ struct ReturnLeg_ : Flow<ReturnLeg_<Which>> {
   Row < ToColumnEdge         , InPosition   , IntoPocket          , none                                , none                  >,
   Row < IntoPocket           , InPosition   , WaitingToOpen       , none                                , none                  >,
   Row < ToSafeXY             , InPosition   , OverPocket          , none                                , FromAbove             >,
-  Row < OverPocket           , InPosition   , DownToClearance     , none                                , none                  >,
+  Row < OverPocket           , InPosition   , DownToClearance     , none                                , Not<DirectPath>       >,
+  Row < OverPocket           , InPosition   , DownToAboveChuck    , none                                , DirectPath            >,
   Row < DownToClearance      , InPosition   , DownIntoPocket      , none                                , PocketReadsEmpty      >,
   Row < DownToClearance      , InPosition   , Halted              , FaultPocketFull                     , Not<PocketReadsEmpty> >,
+  Row < DownToAboveChuck     , InPosition   , DownIntoPocket      , none                                , PocketReadsEmpty      >,
+  Row < DownToAboveChuck     , InPosition   , Halted              , FaultPocketFull                     , Not<PocketReadsEmpty> >,
   Row < DownIntoPocket       , InPosition   , WaitingToOpen       , none                                , none                  >
   >;
   /// The tool let go in the pocket, and the spindle away.
@@ -269,7 +273,8 @@ struct ReturnLeg_ : Flow<ReturnLeg_<Which>> {
   Row < UpToAboveChuck       , InPosition   , CheckingToolLeft    , none                                , none                  >,
   Row < CheckingToolLeft     , SensorReport , CheckingDrawbarClosed, CloseChuck                         , SpindleReadsEmpty     >,
   Row < CheckingToolLeft     , TimerElapsed , Halted              , FaultToolStillInSpindle             , none                  >,
-  Row < CheckingDrawbarClosed, SensorReport , UpToClearance       , none                                , DrawbarClosed         >,
+  Row < CheckingDrawbarClosed, SensorReport , UpToClearance       , none                                , And<DrawbarClosed, Not<DirectPath>> >,
+  Row < CheckingDrawbarClosed, SensorReport , UpToSafeZ           , none                                , And<DrawbarClosed, DirectPath> >,
   Row < CheckingDrawbarClosed, TimerElapsed , Halted              , FaultDrawbarStayedOpen<AbovePocket> , none                  >,
   Row < UpToClearance        , InPosition   , UpToSafeZ           , none                                , none                  >,
   Row < UpToSafeZ            , InPosition   , BackToSafeXY        , none                                , Not<FetchFollows>     >,
@@ -337,6 +342,7 @@ struct RetrieveLeg_ : Flow<RetrieveLeg_> {
   struct SlowlyOutOfColumn : Moving<to::SlowlyToColumnEdge> {};
   struct OutToSide : Moving<to::OutToSide> {};
   struct SlowlyUpOut : Moving<to::SlowlyUpToClearance> {};
+  struct SlowlyUpToAboveChuck : Moving<to::SlowlyUpToAboveChuck> {};
   struct UpToSafeZ : Moving<to::SafeZOverPocket> {};
   struct BackToSafeXY : Moving<to::SafeXY> {};
 
@@ -410,7 +416,8 @@ struct RetrieveLeg_ : Flow<RetrieveLeg_> {
   Row < ToSafeZ                    , InPosition   , ToSafeXY           , none                                 , Not<DirectPath>                       >,
   Row < ToSafeZ                    , InPosition   , OverPocket         , none                                 , DirectPath                            >,
   Row < ToSafeXY                   , InPosition   , OverPocket         , none                                 , none                                  >,
-  Row < OverPocket                 , InPosition   , DownToClearance    , none                                 , none                                  >,
+  Row < OverPocket                 , InPosition   , DownToClearance    , none                                 , Not<DirectPath>                       >,
+  Row < OverPocket                 , InPosition   , DownToAboveChuck   , none                                 , DirectPath                            >,
   Row < DownToClearance            , InPosition   , DownToAboveChuck   , none                                 , none                                  >,
   Row < DownToAboveChuck           , InPosition   , FlushLeg           , none                                 , none                                  >,
   Row < FlushLeg::exit_pt<Finished>, LegDone      , WaitingToOpen      , none                                 , none                                  >,
@@ -430,7 +437,8 @@ struct RetrieveLeg_ : Flow<RetrieveLeg_> {
   Row < GrippingTool               , TimerElapsed , CheckingGrip       , none                                 , none                                  >,
   Row < CheckingGrip               , SensorReport , SlowlyOutToSide    , RecordToolInSpindle                  , And<Gripped, And<Not<FromAbove>, Not<DirectPath>>> >,
   Row < CheckingGrip               , SensorReport , SlowlyOutOfColumn  , RecordToolInSpindle                  , And<Gripped, And<Not<FromAbove>, DirectPath>> >,
-  Row < CheckingGrip               , SensorReport , SlowlyUpOut        , RecordToolInSpindle                  , And<Gripped, FromAbove>               >,
+  Row < CheckingGrip               , SensorReport , SlowlyUpOut        , RecordToolInSpindle                  , And<Gripped, And<FromAbove, Not<DirectPath>>> >,
+  Row < CheckingGrip               , SensorReport , SlowlyUpToAboveChuck, RecordToolInSpindle                 , And<Gripped, And<FromAbove, DirectPath>> >,
   Row < CheckingGrip               , TimerElapsed , Halted             , FaultDrawbarStayedOpen<AtPocket>     , Not<DrawbarClosed>                    >,
   Row < CheckingGrip               , TimerElapsed , WaitingToOpen      , SayGrippingAgain                     , And<DrawbarClosed, Not<Retried>>      >,
   Row < CheckingGrip               , TimerElapsed , Halted             , FaultToolNotGripped                  , And<DrawbarClosed, Retried>           >,
@@ -438,6 +446,7 @@ struct RetrieveLeg_ : Flow<RetrieveLeg_> {
   Row < SlowlyOutOfColumn          , InPosition   , OutToSide          , none                                 , none                                  >,
   Row < OutToSide                  , InPosition   , UpToSafeZ          , none                                 , none                                  >,
   Row < SlowlyUpOut                , InPosition   , UpToSafeZ          , none                                 , none                                  >,
+  Row < SlowlyUpToAboveChuck       , InPosition   , UpToSafeZ          , none                                 , none                                  >,
   Row < UpToSafeZ                  , InPosition   , BackToSafeXY       , none                                 , none                                  >,
   Row < BackToSafeXY               , InPosition   , Finished           , none                                 , none                                  >
   >;
