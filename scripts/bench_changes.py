@@ -7,7 +7,8 @@ WORKDIR holds the runs as run_sim.sh left them (results.json, config.json,
 sim.ini): prototype/ and direct/ (tests/bench/changes.ngc on the rack of
 rack_config.json), row_prototype/, row_direct/ and row_peer/
 (tests/bench/peer_changes.ngc on rack_y.json; the peer is LinuxCNC's
-rack-toolchange example), and the idle run (idle/results.json).
+rack-toolchange example), demo_prototype/ and demo_direct/ (the demo
+program), and the idle run (idle/results.json).
 
 The bound is what `fixed_atc_probe --plan` prints as such: the direct
 path's moves at the INI's velocities and accelerations, each an exact stop
@@ -128,6 +129,31 @@ RATIOS = [("direct", "prototype"), ("direct", "bound"), ("prototype", "bound"), 
           ("prototype", "peer")]
 
 
+def print_demo(work, binary):
+    """The demo program on both paths: its time in all, its changes' (the
+    changer busy) and their bounds from safe."""
+    runs = {}
+    for path in PATHS:
+        run = json.load(open("%s/demo_%s/results.json" % (work, path)))
+        if run["error"]:
+            print("demo on the %s path failed: %s" % (path, run["error"]))
+            return
+        runs[path] = run["scenarios"][0]
+    samples = runs["direct"]["samples"]
+    tools = [samples[0]["tool_in_spindle"]] + [b["tool_in_spindle"] for a, b in zip(samples, samples[1:])
+                                               if a["tool_in_spindle"] != b["tool_in_spindle"]]
+    changes = [(a, b, "") for a, b in zip(tools, tools[1:])]
+    bounds = bound(work, "demo_direct", binary, changes)
+    busy = {p: sum(r["samples"][b]["t"] - r["samples"][a]["t"]
+                   for a, b in intervals(r["samples"], "fixed_atc_probe.busy")) for p, r in runs.items()}
+    print("\nnc_files/demo.ngc (tools %s): the program %.2f s on the prototype path, %.2f s on the "
+          "direct path (ratio %.2f); its changes %.2f s and %.2f s (ratio %.2f), bound %.2f s from safe "
+          "(direct ratio to bound %.2f)"
+          % (" > ".join("T%d" % t for t in tools), runs["prototype"]["duration"], runs["direct"]["duration"],
+             runs["direct"]["duration"] / runs["prototype"]["duration"], busy["prototype"], busy["direct"],
+             busy["direct"] / busy["prototype"], sum(bounds), busy["direct"] / sum(bounds)))
+
+
 def main():
     work, binary = sys.argv[1:3]
     print_idle(work)
@@ -145,6 +171,7 @@ def main():
     print("the prototype's plan at the same limits: %.2f s (%.2f of the bound)"
           % (prototype, prototype / sum(rack["bound"])))
     print_table("peer_changes.ngc, top pockets", ("prototype", "direct", "peer", "bound"), row, ROW_CHANGES)
+    print_demo(work, binary)
 
 
 if __name__ == "__main__":

@@ -6,7 +6,8 @@
 #    (side pockets and a top pocket), on the prototype's path and the direct one;
 #  - tests/bench/peer_changes.ngc on tests/bench/rack_y.json (six top pockets
 #    along Y), on both paths and with LinuxCNC's own rack-toolchange remap
-#    example instead of the changer (tests/bench/peer_ini.py), the peer.
+#    example instead of the changer (tests/bench/peer_ini.py), the peer;
+#  - the demo program, nc_files/demo.ngc, as the demo runs it, on both paths.
 # Prints each change's time, the bound and the ratios; the component's CPU and
 # memory idle for a minute and during the changes. Never asserts.
 #   scripts/bench_changes.sh          (ctest: ctest --test-dir build -L bench -V)
@@ -36,6 +37,10 @@ for path in prototype direct; do
   run "$path" tests/bench/changes.ngc tests/integration/rack_config.json tests/integration/rack.tbl \
     FATC_CONFIG_SET="{\"path\": \"$path\", \"pocket_feed\": 500, \"chuck_seconds\": 0.4}"
   run "row_$path" tests/bench/peer_changes.ngc tests/bench/rack_y.json tests/bench/rack_y.tbl \
+    FATC_CONFIG_SET="{\"path\": \"$path\"}"
+done
+for path in prototype direct; do
+  run "demo_$path" nc_files/demo.ngc config/config.json config/sim/sim.tbl \
     FATC_CONFIG_SET="{\"path\": \"$path\"}"
 done
 run row_peer tests/bench/peer_changes.ngc tests/bench/rack_y.json tests/bench/rack_y.tbl \
