@@ -105,6 +105,25 @@ def print_usage(name, scenario):
                  / scenario["duration"], after["peak_kib"] / 1024))
 
 
+def first_motion(samples):
+    """Per change: from the end of the one before (the mark) to the first move
+    the change commands: the latency of M6 up to its first motion."""
+    edges = [i for i in range(1, len(samples)) if samples[i][MARK] != samples[i - 1][MARK]]
+    out = []
+    for i in edges[:-1]:
+        moved = next((j for j in range(i + 1, len(samples)) if samples[j]["cmd"] != samples[i]["cmd"]), None)
+        if moved is not None and (i == edges[-1] or moved < edges[edges.index(i) + 1]):
+            out.append(samples[moved]["t"] - samples[i]["t"])
+    return out
+
+
+def print_latency(name, scenario):
+    waits = first_motion(scenario["samples"])
+    if waits:
+        print("%s: from the end of a change to the first motion of the next: median %.0f ms, max %.0f ms"
+              % (name, statistics.median(waits) * 1000, max(waits) * 1000))
+
+
 def print_handshake(name, scenario):
     waits = handshake(scenario["samples"])
     if waits:
@@ -162,8 +181,10 @@ def main():
         scenario, rack[path] = load(work, path, CHANGES)
         print_handshake("%s path" % path, scenario)
         print_usage("%s path" % path, scenario)
+        print_latency("%s path" % path, scenario)
         row[path] = load(work, "row_" + path, ROW_CHANGES)[1]
-    row["peer"] = load(work, "row_peer", ROW_CHANGES)[1]
+    peer, row["peer"] = load(work, "row_peer", ROW_CHANGES)
+    print_latency("LinuxCNC's rack-toolchange example", peer)
     rack["bound"] = bound(work, "direct", binary, CHANGES)
     row["bound"] = bound(work, "row_direct", binary, ROW_CHANGES)
     print_table("tests/bench/changes.ngc", ("prototype", "direct", "bound"), rack, CHANGES)

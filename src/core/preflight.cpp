@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <set>
 #include <tuple>
+#include <utility>
 
 namespace fatc {
 
@@ -13,13 +15,19 @@ namespace {
 
 /// Walks the plan's moves from `start`: `move(from, to, step)` for each (a
 /// probe ends where the plan's sensor touches); returns the dwells' seconds.
-template <class Move>
-double walk_moves(const Simulator& plan, const Point& start, Move move) {
+/// `between()` at each record that stops motion between two moves (a dwell,
+/// the chuck, the cover, the blast, a step that is no move).
+template <class Move, class Between = void (*)()>
+double walk_moves(
+    const Simulator& plan, const Point& start, Move move, Between between = [] {}) {
   Point at = start;
   double dwells = 0.0;
   for (const Record& record : plan.records) {
     if (record.kind == Record::Kind::dwell) dwells += record.seconds;
-    if (record.kind != Record::Kind::step || !is_motion(record.step.kind)) continue;
+    const bool a_move = record.kind == Record::Kind::step && is_motion(record.step.kind);
+    const bool no_stop = record.kind == Record::Kind::message || record.kind == Record::Kind::save;
+    if (!a_move && !no_stop) between();
+    if (!a_move) continue;
     const Step& step = record.step;
     Point to = at;
     if (step.axes & axis_x) to.x = step.target.x;
@@ -54,29 +62,76 @@ double estimate_seconds(const Simulator& plan, const Point& start, double rapid_
   return dwells + minutes * 60.0;
 }
 
-double move_seconds(const Point& from, const Point& to, double feed_per_minute,
-                    const MotionLimits& limits) {
-  const double delta[] = {to.x - from.x, to.y - from.y, to.z - from.z};
-  const double distance = std::hypot(delta[0], delta[1], delta[2]);
-  if (distance == 0.0) return 0.0;
+namespace {
+
+/// The speed and acceleration a straight move of `delta` can have: the
+/// slowest of the limits of the axes it moves, along its direction, and the
+/// linear ones.
+std::pair<double, double> move_limits(const Point& delta, const MotionLimits& limits) {
+  const double d[] = {delta.x, delta.y, delta.z};
+  const double distance = std::hypot(d[0], d[1], d[2]);
   const double axis_velocity[] = {limits.velocity.x, limits.velocity.y, limits.velocity.z};
   const double axis_acceleration[] = {limits.acceleration.x, limits.acceleration.y,
                                       limits.acceleration.z};
   double velocity = limits.linear_velocity;
   double acceleration = limits.linear_acceleration;
-  for (int axis = 0; axis < 3; ++axis) {
-    const double share = std::abs(delta[axis]) / distance;
+  for (int axis = 0; axis < 3 && distance > 0.0; ++axis) {
+    const double share = std::abs(d[axis]) / distance;
     if (share == 0.0) continue;
     velocity = std::min(velocity, axis_velocity[axis] / share);
     acceleration = std::min(acceleration, axis_acceleration[axis] / share);
   }
-  if (feed_per_minute > 0.0) velocity = std::min(velocity, feed_per_minute / 60.0);
-  if (!(velocity > 0.0) || !(acceleration > 0.0)) return 0.0;
-  // Reaches full speed: accelerate, cruise, decelerate; else a triangle.
+  return {velocity, acceleration};
+}
+
+/// Standing still to standing still over `distance`: accelerate, cruise,
+/// decelerate; a triangle when it never reaches `velocity`.
+double trapezoid_seconds(double distance, double velocity, double acceleration) {
+  if (distance == 0.0 || !(velocity > 0.0) || !(acceleration > 0.0)) return 0.0;
   if (distance >= velocity * velocity / acceleration) {
     return distance / velocity + velocity / acceleration;
   }
   return 2.0 * std::sqrt(distance / acceleration);
+}
+
+}  // namespace
+
+double move_seconds(const Point& from, const Point& to, double feed_per_minute,
+                    const MotionLimits& limits) {
+  const Point delta{to.x - from.x, to.y - from.y, to.z - from.z};
+  auto [velocity, acceleration] = move_limits(delta, limits);
+  if (feed_per_minute > 0.0) velocity = std::min(velocity, feed_per_minute / 60.0);
+  return trapezoid_seconds(std::hypot(delta.x, delta.y, delta.z), velocity, acceleration);
+}
+
+double blended_seconds(const Simulator& plan, const Point& start, const MotionLimits& limits) {
+  double seconds = 0.0;
+  // The run of rapids under way: its length, and the lowest limits of its moves.
+  double length = 0.0;
+  double velocity = std::numeric_limits<double>::infinity();
+  double acceleration = std::numeric_limits<double>::infinity();
+  auto end_run = [&] {
+    seconds += trapezoid_seconds(length, velocity, acceleration);
+    length = 0.0;
+    velocity = acceleration = std::numeric_limits<double>::infinity();
+  };
+  const double dwells = walk_moves(
+      plan, start,
+      [&](const Point& from, const Point& to, const Step& step) {
+        if (step.kind != StepKind::rapid) {
+          end_run();
+          seconds += move_seconds(from, to, step.feed, limits);
+          return;
+        }
+        const Point delta{to.x - from.x, to.y - from.y, to.z - from.z};
+        const auto [v, a] = move_limits(delta, limits);
+        length += std::hypot(delta.x, delta.y, delta.z);
+        velocity = std::min(velocity, v);
+        acceleration = std::min(acceleration, a);
+      },
+      end_run);
+  end_run();
+  return seconds + dwells;
 }
 
 double limits_seconds(const Simulator& plan, const Point& start, const MotionLimits& limits) {

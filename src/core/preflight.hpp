@@ -42,6 +42,11 @@ double move_seconds(const Point& from, const Point& to, double feed_per_minute,
 /// blending. Of the direct path's plan, the bound of a change.
 double limits_seconds(const Simulator& plan, const Point& start, const MotionLimits& limits);
 
+/// As limits_seconds, but each run of rapids with nothing between them (no
+/// chuck, dwell or command) as one straight move of their whole length: more
+/// than blending the corners could ever save, so what blending is worth at most.
+double blended_seconds(const Simulator& plan, const Point& start, const MotionLimits& limits);
+
 struct PreflightInput {
   const Config* config = nullptr;
   ToolState tools;                   ///< at the program's start

@@ -51,15 +51,17 @@ TEST(Cli, shouldPrintTheBoundFromTheInisVelocitiesAndAccelerations) {
   const auto at = r.out.find("bound ");
   ASSERT_NE(at, std::string::npos) << r.out;
   const std::string line = r.out.substr(at, r.out.find('\n', at) - at);
-  double bound = 0.0, prototype = 0.0;
+  double bound = 0.0, prototype = 0.0, blended = 0.0;
   ASSERT_EQ(std::sscanf(line.c_str(),
                         "bound %lf s: the direct path's moves at the velocities and "
                         "accelerations of %*s each an exact stop, plus the dwells "
-                        "(the prototype path's: %lf s)",
-                        &bound, &prototype),
-            2)
+                        "(the prototype path's: %lf s; with each run of rapids as one move, "
+                        "more than blending could save: %lf s)",
+                        &bound, &prototype, &blended),
+            3)
       << line;
   EXPECT_LT(bound, prototype) << line;
+  EXPECT_LT(blended, bound) << line;
   // Acceleration counted: never less than the estimate at full speed throughout.
   double estimate = 0.0;
   ASSERT_EQ(std::sscanf(r.out.substr(r.out.find("estimated ")).c_str(),

@@ -513,6 +513,28 @@ TEST(Bound, shouldAddEveryMoveAsAnExactStopAndTheDwells) {
   EXPECT_NEAR(limits_seconds(plan, {0, 0, 0}, limits_of(100, 1)), 4.0 + 0.5 + 20.0, 1e-9);
 }
 
+TEST(Bound, shouldTakeARunOfRapidsAsOneMoveForWhatBlendingIsWorthAtMost) {
+  Simulator plan;
+  auto publish = [&](StepKind kind, unsigned axes, Point target, double feed) {
+    Step step;
+    step.kind = kind;
+    step.axes = axes;
+    step.target = target;
+    step.feed = feed;
+    plan.publish(step);
+  };
+  publish(StepKind::rapid, axis_z, {0, 0, 50}, 0);    // 50 up
+  publish(StepKind::rapid, axis_xy, {50, 0, 0}, 0);   // 50 over: one run of 100
+  publish(StepKind::feed, axis_xy, {60, 0, 0}, 600);  // 10 at 10/s, on its own
+  publish(StepKind::rapid, axis_z, {0, 0, 0}, 0);     // 50 down
+  plan.start_timer(0.5);                              // a dwell ends the run
+  publish(StepKind::rapid, axis_xy, {0, 0, 0}, 0);    // 60 back
+  const MotionLimits limits = limits_of(10, 100);
+  // At 10/s with 100/s²: a move of d stopped at both ends takes d/10 + 0.1 s.
+  EXPECT_NEAR(blended_seconds(plan, {0, 0, 0}, limits), 10.1 + 1.1 + 5.1 + 0.5 + 6.1, 1e-9);
+  EXPECT_NEAR(limits_seconds(plan, {0, 0, 0}, limits), 5.1 + 5.1 + 1.1 + 5.1 + 0.5 + 6.1, 1e-9);
+}
+
 TEST_F(Lint, shouldEstimateTheChangeTimeFromThePlannedSteps) {
   const LintRun r =
       lint(write("two.ngc", "T1 M6\nT2 M6\nM2\n"), {"--state", state_with_lengths({1, 2})});
