@@ -6,6 +6,8 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <fstream>
 #include <map>
 #include <ostream>
 #include <set>
@@ -20,6 +22,7 @@
 #include "files.hpp"
 #include "ini.hpp"
 #include "lint.hpp"
+#include "plot.hpp"
 
 namespace fatc::io {
 
@@ -42,6 +45,8 @@ const char* const kUsage =
     "                                     write a machine position (G53) into config.json,\n"
     "                                     checked as --check checks; the old file kept as\n"
     "                                     FILE.bak (sensor: X and Y only)\n"
+    "       fixed_atc_probe --plot FILE.svg --config FILE [--state FILE] [--from A --to B]\n"
+    "                                     draw the rack from above, and the path of M6 A to B\n"
     "       fixed_atc_probe --dot         the state machine as Graphviz\n";
 
 namespace {
@@ -210,6 +215,58 @@ int check(const Options& options, std::ostream& out, std::ostream& err) {
   return violations == 0 && problems == 0 ? 0 : 1;
 }
 
+/// The rack at first start, or as --state has it (nothing uncertain, nothing
+/// under way); nullopt and the line on `err` when the state file is bad.
+std::optional<ToolState> rack_of(const Options& options, const Config& config, std::ostream& err) {
+  if (options.state_path.empty()) return ToolState::fresh(config);
+  auto saved = load_state_file(options.state_path, config);
+  if (!saved.state) {
+    err << saved.error << "\n";
+    return std::nullopt;
+  }
+  saved.state->uncertain = false;
+  saved.state->in_progress.reset();
+  return saved.state;
+}
+
+/// --plot: the rack from above into an SVG file, with the path of one change if asked.
+int plot(const Options& options, std::ostream& out, std::ostream& err) {
+  const Loaded loaded = load(options, err);
+  if (!loaded.config || loaded.problems > 0) return 1;
+  const Config& config = *loaded.config;
+  auto rack = rack_of(options, config, err);
+  if (!rack) return 1;
+  std::string title = shown_path(options.config_path);
+  std::optional<Simulator> change;
+  if (options.from_tool) {
+    rack->put_in_spindle(*options.from_tool);
+    change = plan_change(config, *rack, *options.to_tool, config.probe_limit.z);
+    for (const auto& record : change->records) {
+      if (record.kind == Record::Kind::step && record.step.kind == StepKind::fail) {
+        err << "M6 T" << *options.to_tool << " with T" << *options.from_tool
+            << " in the spindle is refused: " << record.step.label << "\n";
+        return 1;
+      }
+    }
+    title +=
+        ": M6 T" + std::to_string(*options.to_tool) + " with " +
+        (*options.from_tool == 0 ? std::string("an empty spindle")
+                                 : "T" + std::to_string(*options.from_tool) + " in the spindle") +
+        ", the " + (config.path == Path::direct ? "direct" : "prototype") + " path";
+  }
+  std::ofstream file(options.plot_path, std::ios::trunc);
+  file << rack_svg(config, *rack, change ? &*change : nullptr, title);
+  file.close();
+  if (!file) {
+    err << shown_path(options.plot_path) << ": cannot write the drawing: " << std::strerror(errno)
+        << "\n";
+    return 2;
+  }
+  out << "wrote " << shown_path(options.plot_path) << ": " << config.pockets.size() << " pockets"
+      << (change ? ", and the path of the change" : "") << "\n";
+  return 0;
+}
+
 /// The planned change's time on its path and on the other one, as --lint
 /// estimates it: moves at their feed, rapids at the machine's speed, dwells.
 void print_estimate(const Options& options, const Config& config, const ToolState& tools, int to,
@@ -255,18 +312,9 @@ int plan(const Options& options, std::ostream& out, std::ostream& err) {
   const Config& config = *loaded.config;
   const int from = *options.from_tool;
   const int to = *options.to_tool;
-  // The rack at first start, or as the state file has it; `from` in the spindle.
-  ToolState tools = ToolState::fresh(config);
-  if (!options.state_path.empty()) {
-    auto saved = load_state_file(options.state_path, config);
-    if (!saved.state) {
-      err << saved.error << "\n";
-      return 1;
-    }
-    tools = *saved.state;
-    tools.uncertain = false;
-    tools.in_progress.reset();
-  }
+  auto rack = rack_of(options, config, err);
+  if (!rack) return 1;
+  ToolState& tools = *rack;
   tools.put_in_spindle(from);
   const Simulator sim = plan_change(config, tools, to, config.probe_limit.z);
   out << "M6 T" << to << " with "
@@ -300,9 +348,9 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
   for (std::size_t i = 0; i < args.size(); ++i) {
     const std::string& arg = args[i];
     static const std::map<std::string, Mode> modes = {
-        {"--check", Mode::check},     {"--plan", Mode::plan},  {"--dot", Mode::dot},
-        {"--confirm", Mode::confirm}, {"--help", Mode::help},  {"-h", Mode::help},
-        {"--lint", Mode::lint},       {"--teach", Mode::teach}};
+        {"--check", Mode::check},     {"--plan", Mode::plan},   {"--dot", Mode::dot},
+        {"--confirm", Mode::confirm}, {"--help", Mode::help},   {"-h", Mode::help},
+        {"--lint", Mode::lint},       {"--teach", Mode::teach}, {"--plot", Mode::plot}};
     if (const auto mode = modes.find(arg); mode != modes.end()) {
       if (mode_flag) {
         error = *mode_flag == arg ? arg + " given twice"
@@ -311,8 +359,8 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
       }
       mode_flag = arg;
       options.mode = mode->second;
-      // --lint takes the program as its value, --teach the target.
-      if (arg != "--lint" && arg != "--teach") continue;
+      // --lint takes the program as its value, --teach the target, --plot the drawing.
+      if (arg != "--lint" && arg != "--teach" && arg != "--plot") continue;
     } else if (arg != "--config" && arg != "--state" && arg != "--ini" && arg != "--from" &&
                arg != "--to" && arg != "--spindle" && arg != "--pocket" && arg != "--tool-table" &&
                arg != "--subroutine-path" && arg != "--at") {
@@ -360,6 +408,8 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
       options.state_path = text;
     } else if (arg == "--lint") {
       options.program_path = text;
+    } else if (arg == "--plot") {
+      options.plot_path = text;
     } else if (arg == "--tool-table") {
       options.tool_table_path = text;
     } else if (arg == "--subroutine-path") {
@@ -385,16 +435,18 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
       mode_flag ? *mode_flag : "the component (no --check, --plan, --dot)";
   const std::map<std::string, std::set<Mode>> used_by = {
       {"--config",
-       {Mode::component, Mode::check, Mode::plan, Mode::confirm, Mode::lint, Mode::teach}},
-      {"--state", {Mode::component, Mode::check, Mode::confirm, Mode::lint, Mode::plan}},
+       {Mode::component, Mode::check, Mode::plan, Mode::confirm, Mode::lint, Mode::teach,
+        Mode::plot}},
+      {"--state",
+       {Mode::component, Mode::check, Mode::confirm, Mode::lint, Mode::plan, Mode::plot}},
       {"--spindle", {Mode::confirm}},
       {"--pocket", {Mode::confirm}},
       {"--ini", {Mode::check, Mode::plan, Mode::lint, Mode::teach}},
       {"--at", {Mode::teach}},
       {"--tool-table", {Mode::lint}},
       {"--subroutine-path", {Mode::lint}},
-      {"--from", {Mode::plan}},
-      {"--to", {Mode::plan}}};
+      {"--from", {Mode::plan, Mode::plot}},
+      {"--to", {Mode::plan, Mode::plot}}};
   for (const auto& [option, modes] : used_by) {
     if (given.count(option) != 0 && modes.count(options.mode) == 0) {
       error = option + " is not used by " + mode_name;
@@ -418,9 +470,13 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
     error = "--plan needs --from A and --to B";
     return std::nullopt;
   }
-  // --plan reads a state file only when given one; the others default to CONFIG.state.
+  if (options.mode == Mode::plot && options.from_tool.has_value() != options.to_tool.has_value()) {
+    error = "--plot: --from A and --to B go together (the change to draw)";
+    return std::nullopt;
+  }
+  // --plan and --plot read a state file only when given one; the others default to CONFIG.state.
   if (used_by.at("--state").count(options.mode) != 0 && options.mode != Mode::plan &&
-      options.state_path.empty()) {
+      options.mode != Mode::plot && options.state_path.empty()) {
     options.state_path = options.config_path + ".state";
   }
   return options;
@@ -510,6 +566,8 @@ int run_tool_mode(const Options& options, std::ostream& out, std::ostream& err) 
       return lint(options, out, err);
     case Options::Mode::teach:
       return teach_position(options, out, err);
+    case Options::Mode::plot:
+      return plot(options, out, err);
     case Options::Mode::help:
       out << kUsage;
       return 0;

@@ -12,7 +12,7 @@ namespace fatc::io {
 
 /// The component's command line.
 struct Options {
-  enum class Mode { component, check, plan, dot, help, confirm, lint, teach };
+  enum class Mode { component, check, plan, dot, help, confirm, lint, teach, plot };
   Mode mode = Mode::component;
   std::string config_path;
   std::string state_path;  ///< component, --check, --lint: CONFIG.state unless --state is given
@@ -26,6 +26,7 @@ struct Options {
   std::optional<std::string> subroutine_path;  ///< --lint: folders of subroutines, ':' between
   std::optional<TeachTarget> teach_target;     ///< --teach TARGET
   std::optional<Point> teach_at;               ///< --teach: --at X,Y,Z, machine coordinates
+  std::string plot_path;                       ///< --plot FILE.svg
 };
 
 /// Parses argv; nullopt and one line in `error` on a usage mistake: an
@@ -40,7 +41,8 @@ extern const char* const kUsage;
 /// the keep-out or the soft limits, 1 otherwise. --plan: 0 printed, 1 refused or invalid. --dot: 0.
 /// --lint: 0 clean, 1 problems found in the program, 2 an input it cannot read (see lint.hpp).
 /// --teach: 0 written, 1 refused (nothing written), 2 the config or INI cannot be read or the
-/// config cannot be written.
+/// config cannot be written. --plot: 0 written, 1 the config or state is invalid or the
+/// change refused, 2 the drawing cannot be written.
 int run_tool_mode(const Options& options, std::ostream& out, std::ostream& err);
 
 }  // namespace fatc::io

@@ -1,0 +1,191 @@
+#include "plot.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+#include <vector>
+
+#include "core/geometry.hpp"
+
+namespace fatc::io {
+
+namespace {
+
+constexpr double kSize = 900.0;   ///< the drawing's larger side, in pixels
+constexpr double kMargin = 70.0;  ///< room for the labels around it
+constexpr double kTitle = 40.0;   ///< the title's band at the top
+constexpr double kLegend = 80.0;  ///< the legend's band at the bottom
+
+std::string escaped(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      default:
+        out += c;
+    }
+  }
+  return out;
+}
+
+std::string number(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.1f", value);
+  return buffer;
+}
+
+/// Machine XY to the drawing's pixels: X right, Y up, the whole rack in view.
+class View {
+ public:
+  void include(const Point& p, double around = 0.0) {
+    min_x_ = std::min(min_x_, p.x - around);
+    max_x_ = std::max(max_x_, p.x + around);
+    min_y_ = std::min(min_y_, p.y - around);
+    max_y_ = std::max(max_y_, p.y + around);
+  }
+  void fit() {
+    const double span = std::max({max_x_ - min_x_, max_y_ - min_y_, 1e-9});
+    scale_ = kSize / span;
+  }
+  double x(double machine_x) const { return kMargin + (machine_x - min_x_) * scale_; }
+  double y(double machine_y) const { return kTitle + kMargin + (max_y_ - machine_y) * scale_; }
+  double length(double machine) const { return machine * scale_; }
+  double width() const { return 2 * kMargin + (max_x_ - min_x_) * scale_; }
+  double height() const { return kTitle + 2 * kMargin + (max_y_ - min_y_) * scale_ + kLegend; }
+
+ private:
+  double min_x_ = std::numeric_limits<double>::infinity();
+  double max_x_ = -std::numeric_limits<double>::infinity();
+  double min_y_ = std::numeric_limits<double>::infinity();
+  double max_y_ = -std::numeric_limits<double>::infinity();
+  double scale_ = 1.0;
+};
+
+/// The XY points the plan's moves pass, from safe, each with whether the
+/// move to it was slow.
+std::vector<std::pair<Point, bool>> path_of(const Simulator& plan, const Point& start) {
+  std::vector<std::pair<Point, bool>> path{{start, false}};
+  Point at = start;
+  for (const Step& step : plan.motion_steps()) {
+    if (step.axes & axis_x) at.x = step.target.x;
+    if (step.axes & axis_y) at.y = step.target.y;
+    if (step.axes & axis_z) at.z = step.target.z;
+    path.emplace_back(at, step.kind != StepKind::rapid);
+  }
+  return path;
+}
+
+/// A station's dot and its label, `dy` below the dot (loading and the sensor
+/// often share their XY: one label above, one below).
+void station(std::ostringstream& svg, const View& view, const Point& p, const char* colour,
+             const std::string& label, double dy) {
+  svg << "<circle cx=\"" << number(view.x(p.x)) << "\" cy=\"" << number(view.y(p.y))
+      << "\" r=\"6\" fill=\"" << colour << "\"/>\n"
+      << "<text x=\"" << number(view.x(p.x) + 9) << "\" y=\"" << number(view.y(p.y) + dy)
+      << "\" fill=\"" << colour << "\">" << escaped(label) << "</text>\n";
+}
+
+}  // namespace
+
+std::string rack_svg(const Config& config, const ToolState& tools, const Simulator* plan,
+                     const std::string& title) {
+  const double margin = config.keepout_margin();
+  View view;
+  for (const auto& [n, pocket] : config.pockets) {
+    const PocketWaypoints w = pocket_waypoints(config, n);
+    view.include(w.pocket, margin);
+    if (pocket.approach == Approach::side) view.include(w.side);
+  }
+  for (const Point& p : {config.safe, config.loading, config.probe_limit}) view.include(p);
+  std::vector<std::pair<Point, bool>> path;
+  if (plan) path = path_of(*plan, config.safe);
+  for (const auto& [p, slow] : path) view.include(p);
+  view.fit();
+
+  std::ostringstream svg;
+  svg << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
+      << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << number(view.width())
+      << "\" height=\"" << number(view.height()) << "\" viewBox=\"0 0 " << number(view.width())
+      << " " << number(view.height()) << "\" font-family=\"sans-serif\" font-size=\"13\">\n"
+      << "<defs><marker id=\"arrow\" viewBox=\"0 0 10 10\" refX=\"9\" refY=\"5\" "
+         "markerWidth=\"7\" markerHeight=\"7\" orient=\"auto-start-reverse\">"
+         "<path d=\"M 0 0 L 10 5 L 0 10 z\" fill=\"#444\"/></marker></defs>\n"
+      << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+      << "<text x=\"" << number(kMargin) << "\" y=\"26\" font-size=\"16\">" << escaped(title)
+      << "</text>\n";
+
+  for (const auto& [n, pocket] : config.pockets) {
+    const PocketWaypoints w = pocket_waypoints(config, n);
+    const double x = view.x(w.pocket.x);
+    const double y = view.y(w.pocket.y);
+    const double half = view.length(margin);
+    svg << "<rect x=\"" << number(x - half) << "\" y=\"" << number(y - half) << "\" width=\""
+        << number(2 * half) << "\" height=\"" << number(2 * half)
+        << "\" fill=\"#fbe3e3\" stroke=\"#c66\" stroke-dasharray=\"4 3\"/>\n";
+    if (pocket.approach == Approach::side) {
+      svg << "<line x1=\"" << number(view.x(w.side.x)) << "\" y1=\"" << number(view.y(w.side.y))
+          << "\" x2=\"" << number(x) << "\" y2=\"" << number(y)
+          << "\" stroke=\"#444\" stroke-width=\"1.5\" marker-end=\"url(#arrow)\"/>\n";
+    } else {
+      svg << "<circle cx=\"" << number(x) << "\" cy=\"" << number(y) << "\" r=\""
+          << number(std::max(half * 0.6, 8.0)) << "\" fill=\"none\" stroke=\"#444\"/>\n";
+    }
+    svg << "<circle cx=\"" << number(x) << "\" cy=\"" << number(y)
+        << "\" r=\"4\" fill=\"black\"/>\n";
+    const int tool = tools.tool_of(n);
+    const std::string holds = tool == 0               ? "empty"
+                              : tools.holds(n)        ? "T" + std::to_string(tool)
+                              : tools.spindle == tool ? "T" + std::to_string(tool) + " (spindle)"
+                                                      : "T" + std::to_string(tool) + " (out)";
+    svg << "<text x=\"" << number(x) << "\" y=\"" << number(y + half + 16)
+        << "\" text-anchor=\"middle\" font-weight=\"bold\">pocket " << n << "</text>\n"
+        << "<text x=\"" << number(x) << "\" y=\"" << number(y + half + 31)
+        << "\" text-anchor=\"middle\">" << escaped(holds)
+        << (pocket.approach == Approach::top ? ", top" : "") << "</text>\n";
+  }
+
+  if (!path.empty()) {
+    for (std::size_t i = 1; i < path.size(); ++i) {
+      const auto& [a, unused] = path[i - 1];
+      const auto& [b, slow] = path[i];
+      if (a.x == b.x && a.y == b.y) continue;
+      svg << "<line x1=\"" << number(view.x(a.x)) << "\" y1=\"" << number(view.y(a.y)) << "\" x2=\""
+          << number(view.x(b.x)) << "\" y2=\"" << number(view.y(b.y))
+          << (slow ? "\" stroke=\"#c00\" stroke-width=\"3\""
+                   : "\" stroke=\"#36c\" stroke-width=\"2\" stroke-dasharray=\"8 4\"")
+          << " marker-end=\"url(#arrow)\"/>\n";
+    }
+  }
+
+  station(svg, view, config.safe, "#2a2", "safe", 4);
+  station(svg, view, config.loading, "#26c", "loading", -6);
+  station(svg, view, config.probe_limit, "#d70", "touch-off sensor", 16);
+
+  const double legend = view.height() - kLegend + 20;
+  svg << "<text x=\"" << number(kMargin) << "\" y=\"" << number(legend) << "\" fill=\"#555\">"
+      << "Seen from above, machine X to the right, Y up. Dashed squares: each pocket's keep-out ("
+      << number(margin) << " around it);</text>\n"
+      << "<text x=\"" << number(kMargin) << "\" y=\"" << number(legend + 18) << "\" fill=\"#555\">"
+      << "arrows: the side approach, from the side into the pocket; circles: top pockets.</text>\n";
+  if (plan) {
+    svg << "<text x=\"" << number(kMargin) << "\" y=\"" << number(legend + 36)
+        << "\" fill=\"#555\">The change: blue dashed rapids, red solid slow moves "
+           "(pocket_feed); moves along Z alone are not drawn.</text>\n";
+  }
+  svg << "</svg>\n";
+  return svg.str();
+}
+
+}  // namespace fatc::io
