@@ -17,3 +17,5 @@ FATC_SCENARIOS="$work/scenarios.json" FATC_RESULTS="$work/run/results.json" \
   tests/integration/run_sim.sh "$work/run" "$PWD/tests/integration/driver.py" > "$work/linuxcnc.log" 2>&1 || {
   echo "LinuxCNC failed; its output is in $work/linuxcnc.log"; exit 1; }
 python3 scripts/demo_report.py "$work/run/results.json"
+# One change drawn over time: position and chuck (docs/timeline.svg is one such).
+python3 scripts/timeline_svg.py "$work/run/results.json" "$work/timeline.svg"
