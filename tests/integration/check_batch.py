@@ -81,7 +81,9 @@ def progress(r, total, wanted_done):
     done = distinct(during, P + "batch-done")
     if done != wanted_done:
         fail("batch-done went %s of %d, expected %s" % (done, total, wanted_done))
-    states = distinct(during, P + "state")
+    # A sample reads its pins one after another: at the window's first and
+    # last sample the component may have changed batch-total but not yet state.
+    states = distinct(during[1:-1] if len(during) > 2 else during, P + "state")
     if states != [6]:
         fail("the state pin was %s while the batch ran, expected 6 (measuring)" % states)
     if not all(s[P + "can-cancel"] for s in during):

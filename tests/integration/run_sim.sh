@@ -3,7 +3,9 @@
 # of our choice, as an ordinary user (rtapi_app refuses root).
 #   run_sim.sh WORKDIR DISPLAY_COMMAND   (env passes through to the display)
 set -euo pipefail
-root=$(cd "$(dirname "$0")/../.." && pwd)
+# FATC_INSTALLED: the machine from an installed package's files (its
+# share/fixed_atc_probe) instead of this checkout's.
+root=${FATC_INSTALLED:-$(cd "$(dirname "$0")/../.." && pwd)}
 work=$1
 display=$2
 user=${FATC_SIM_USER:-fatc}
