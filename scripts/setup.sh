@@ -8,7 +8,7 @@ packages=(build-essential cmake pkg-config libboost-dev nlohmann-json3-dev libgt
           linuxcnc-uspace linuxcnc-uspace-dev graphviz python3
           # the GladeVCP panel, and the GUI test: AXIS on a virtual X server
           python3-gi gir1.2-gtk-3.0 gir1.2-gtksource-3.0 xvfb xauth dbus-daemon at-spi2-core
-          python3-xlib
+          python3-xlib man-db
           # the fuzz test (tests/fuzz/run.sh): clang with libFuzzer and the sanitizers
           clang libclang-rt-14-dev)
 missing=()
