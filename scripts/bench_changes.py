@@ -167,11 +167,11 @@ def print_demo(work, binary):
     busy = {p: sum(r["samples"][b]["t"] - r["samples"][a]["t"]
                    for a, b in intervals(r["samples"], "fixed_atc_probe.busy")) for p, r in runs.items()}
     print("\nnc_files/demo.ngc (tools %s): the program %.2f s on the prototype path, %.2f s on the "
-          "direct path (ratio %.2f); its changes %.2f s and %.2f s (ratio %.2f), bound %.2f s from safe "
-          "(direct ratio to bound %.2f)"
+          "direct path (ratio %.2f); its changes %.2f s and %.2f s (ratio %.2f), bound %.2f s from safe%s"
           % (" > ".join("T%d" % t for t in tools), runs["prototype"]["duration"], runs["direct"]["duration"],
              runs["direct"]["duration"] / runs["prototype"]["duration"], busy["prototype"], busy["direct"],
-             busy["direct"] / busy["prototype"], sum(bounds), busy["direct"] / sum(bounds)))
+             busy["direct"] / busy["prototype"], sum(bounds),
+             " (direct ratio to bound %.2f)" % (busy["direct"] / sum(bounds)) if sum(bounds) > 0 else ""))
 
 
 def main():
@@ -191,9 +191,10 @@ def main():
     print_table("tests/bench/changes.ngc", ("prototype", "direct", "bound"), rack, CHANGES)
     prototype = sum(bound(work, "direct", binary, CHANGES, which=1))
     blended = sum(bound(work, "direct", binary, CHANGES, which=2))
-    print("the prototype's plan at the same limits: %.2f s (%.2f of the bound); the direct path's with "
-          "each run of rapids as one move (more than blending could save): %.2f s (%.2f of the bound)"
-          % (prototype, prototype / sum(rack["bound"]), blended, blended / sum(rack["bound"])))
+    if sum(rack["bound"]) > 0:
+        print("the prototype's plan at the same limits: %.2f s (%.2f of the bound); the direct path "
+              "with each run of rapids unstopped (more than blending could save): %.2f s (%.2f of the "
+              "bound)" % (prototype, prototype / sum(rack["bound"]), blended, blended / sum(rack["bound"])))
     print_table("peer_changes.ngc, top pockets", ("prototype", "direct", "peer", "bound"), row, ROW_CHANGES)
     print_demo(work, binary)
 

@@ -32,8 +32,8 @@ def pick(samples, wanted):
             sys.exit("timeline_svg.py: change %d asked for, the results have %d" % (wanted, len(spans)))
         return wanted, spans[wanted - 1]
     for number, (a, b) in enumerate(spans, 1):
-        if samples[a]["tool_in_spindle"] and samples[b - 1]["fixed_atc_probe.tool-in-spindle"] \
-                not in (0, samples[a]["tool_in_spindle"]):
+        after = samples[b - 1]["fixed_atc_probe.tool-in-spindle"]  # None: the pin was gone
+        if samples[a]["tool_in_spindle"] and after not in (None, 0, samples[a]["tool_in_spindle"]):
             return number, (a, b)
     return 1, spans[0]
 
@@ -63,7 +63,7 @@ def main():
            'font-family="sans-serif" font-size="12">\n' % (WIDTH, height, WIDTH, height),
            '<rect width="100%" height="100%" fill="white"/>\n',
            '<text x="%.0f" y="24" font-size="15">%s</text>\n' % (LEFT, escape(
-               "Change %d: T%d to T%d, %.2f s: the machine's position and the chuck over time"
+               "Change %d: T%s to T%s, %.2f s: the machine's position and the chuck over time"
                % (number, before, after, t1 - t0)))]
     for k, axis in enumerate("XYZ"):
         top = TOP + k * (PANEL + GAP)
@@ -103,7 +103,7 @@ def main():
     out.append("</svg>\n")
     with open(sys.argv[2], "w") as f:
         f.write("".join(out))
-    print("wrote %s: change %d, T%d to T%d, %.2f s" % (sys.argv[2], number, before, after, t1 - t0))
+    print("wrote %s: change %d, T%s to T%s, %.2f s" % (sys.argv[2], number, before, after, t1 - t0))
 
 
 if __name__ == "__main__":

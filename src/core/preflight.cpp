@@ -106,14 +106,19 @@ double move_seconds(const Point& from, const Point& to, double feed_per_minute,
 
 double blended_seconds(const Simulator& plan, const Point& start, const MotionLimits& limits) {
   double seconds = 0.0;
-  // The run of rapids under way: its length, and the lowest limits of its moves.
+  // The run of rapids under way: each axis's travel, and its whole length.
+  Point travel;
   double length = 0.0;
-  double velocity = std::numeric_limits<double>::infinity();
-  double acceleration = std::numeric_limits<double>::infinity();
+  // However the corners are blended, each axis covers its travel within its
+  // own limits and the path its length within the linear ones.
   auto end_run = [&] {
-    seconds += trapezoid_seconds(length, velocity, acceleration);
+    seconds +=
+        std::max({trapezoid_seconds(travel.x, limits.velocity.x, limits.acceleration.x),
+                  trapezoid_seconds(travel.y, limits.velocity.y, limits.acceleration.y),
+                  trapezoid_seconds(travel.z, limits.velocity.z, limits.acceleration.z),
+                  trapezoid_seconds(length, limits.linear_velocity, limits.linear_acceleration)});
+    travel = Point{};
     length = 0.0;
-    velocity = acceleration = std::numeric_limits<double>::infinity();
   };
   const double dwells = walk_moves(
       plan, start,
@@ -123,11 +128,10 @@ double blended_seconds(const Simulator& plan, const Point& start, const MotionLi
           seconds += move_seconds(from, to, step.feed, limits);
           return;
         }
-        const Point delta{to.x - from.x, to.y - from.y, to.z - from.z};
-        const auto [v, a] = move_limits(delta, limits);
-        length += std::hypot(delta.x, delta.y, delta.z);
-        velocity = std::min(velocity, v);
-        acceleration = std::min(acceleration, a);
+        travel.x += std::abs(to.x - from.x);
+        travel.y += std::abs(to.y - from.y);
+        travel.z += std::abs(to.z - from.z);
+        length += std::hypot(to.x - from.x, to.y - from.y, to.z - from.z);
       },
       end_run);
   end_run();

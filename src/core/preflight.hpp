@@ -43,8 +43,10 @@ double move_seconds(const Point& from, const Point& to, double feed_per_minute,
 double limits_seconds(const Simulator& plan, const Point& start, const MotionLimits& limits);
 
 /// As limits_seconds, but each run of rapids with nothing between them (no
-/// chuck, dwell or command) as one straight move of their whole length: more
-/// than blending the corners could ever save, so what blending is worth at most.
+/// chuck, dwell or command) as fast as its axes allow if they never stopped:
+/// the slowest of each axis covering its travel and the path its length, from
+/// standing to standing. Less than any blending of the corners could reach,
+/// so what blending is worth at most.
 double blended_seconds(const Simulator& plan, const Point& start, const MotionLimits& limits);
 
 struct PreflightInput {

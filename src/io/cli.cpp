@@ -243,8 +243,7 @@ int plot(const Options& options, std::ostream& out, std::ostream& err) {
     change = plan_change(config, *rack, *options.to_tool, config.probe_limit.z);
     for (const auto& record : change->records) {
       if (record.kind == Record::Kind::step && record.step.kind == StepKind::fail) {
-        err << "M6 T" << *options.to_tool << " with T" << *options.from_tool
-            << " in the spindle is refused: " << record.step.label << "\n";
+        err << record.step.label << "\n";
         return 1;
       }
     }
@@ -254,15 +253,19 @@ int plot(const Options& options, std::ostream& out, std::ostream& err) {
                                  : "T" + std::to_string(*options.from_tool) + " in the spindle") +
         ", the " + (config.path == Path::direct ? "direct" : "prototype") + " path";
   }
-  std::ofstream file(options.plot_path, std::ios::trunc);
+  // Written beside the drawing and renamed over it: a failed write leaves the old one.
+  const std::string written = options.plot_path + ".tmp";
+  std::ofstream file(written, std::ios::trunc);
   file << rack_svg(config, *rack, change ? &*change : nullptr, title);
   file.close();
-  if (!file) {
+  if (!file || std::rename(written.c_str(), options.plot_path.c_str()) != 0) {
     err << shown_path(options.plot_path) << ": cannot write the drawing: " << std::strerror(errno)
         << "\n";
+    std::remove(written.c_str());
     return 2;
   }
-  out << "wrote " << shown_path(options.plot_path) << ": " << config.pockets.size() << " pockets"
+  out << "wrote " << shown_path(options.plot_path) << ": " << config.pockets.size()
+      << (config.pockets.size() == 1 ? " pocket" : " pockets")
       << (change ? ", and the path of the change" : "") << "\n";
   return 0;
 }
@@ -409,6 +412,12 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
     } else if (arg == "--lint") {
       options.program_path = text;
     } else if (arg == "--plot") {
+      // A name that ends otherwise is likely the config or state given in the wrong place.
+      const std::string tail = text.size() >= 4 ? text.substr(text.size() - 4) : "";
+      if (tail != ".svg" && tail != ".SVG") {
+        error = "--plot: expected a file name ending in .svg, got " + quote(text);
+        return std::nullopt;
+      }
       options.plot_path = text;
     } else if (arg == "--tool-table") {
       options.tool_table_path = text;

@@ -232,8 +232,10 @@ std::optional<MotionLimits> motion_limits(const IniFile& ini, Units units, std::
       return std::nullopt;
     }
     const auto number = ini.number(section, key);
-    if (!number || !std::isfinite(*number) || *number <= 0.0) {
-      error = where + ": expected a positive number, got " + quote(*text);
+    // Below a millionth of a unit a second no machine moves: a typing mistake.
+    if (!number || !std::isfinite(*number) || !(*number * to_config >= 1e-6) ||
+        !std::isfinite(*number * to_config)) {
+      error = where + ": expected a positive number (at least 1e-6), got " + quote(*text);
       return std::nullopt;
     }
     return *number * to_config;

@@ -199,6 +199,8 @@ bool read_ini(const Options& options, const Config& config, MachineIni& machine,
 
 std::string seconds_text(double seconds) {
   char buffer[48];
+  // A machine that would take over a day is a limit typed wrong: no figure.
+  if (!(seconds < 86400.0)) return "over a day";
   if (seconds < 59.95) {
     std::snprintf(buffer, sizeof buffer, "%.1f s", seconds);
   } else {

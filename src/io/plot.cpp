@@ -12,10 +12,11 @@ namespace fatc::io {
 
 namespace {
 
-constexpr double kSize = 900.0;   ///< the drawing's larger side, in pixels
-constexpr double kMargin = 70.0;  ///< room for the labels around it
-constexpr double kTitle = 40.0;   ///< the title's band at the top
-constexpr double kLegend = 80.0;  ///< the legend's band at the bottom
+constexpr double kSize = 900.0;         ///< the drawing's larger side, in pixels
+constexpr double kMargin = 70.0;        ///< room for the labels around it
+constexpr double kTitle = 40.0;         ///< the title's band at the top
+constexpr double kLegend = 80.0;        ///< the legend's band at the bottom
+constexpr double kLegendWidth = 820.0;  ///< its longest line, with the margins
 
 std::string escaped(const std::string& text) {
   std::string out;
@@ -62,7 +63,8 @@ class View {
   double x(double machine_x) const { return kMargin + (machine_x - min_x_) * scale_; }
   double y(double machine_y) const { return kTitle + kMargin + (max_y_ - machine_y) * scale_; }
   double length(double machine) const { return machine * scale_; }
-  double width() const { return 2 * kMargin + (max_x_ - min_x_) * scale_; }
+  // At least as wide as the legend's longest line.
+  double width() const { return std::max(2 * kMargin + (max_x_ - min_x_) * scale_, kLegendWidth); }
   double height() const { return kTitle + 2 * kMargin + (max_y_ - min_y_) * scale_ + kLegend; }
 
  private:

@@ -31,11 +31,14 @@ def rack(config):
     if any(p.get("approach") != "top" for p in pockets.values()):
         fail("the example's rack has top pockets only; give every pocket \"approach\": \"top\"")
     numbers = sorted(pockets)
+    if len(numbers) < 2:
+        fail("the example's row needs two pockets at least, to know their spacing")
     delta = pockets[numbers[1]]["y"] - pockets[numbers[0]]["y"]
     first = pockets[numbers[0]]
     for n in numbers:
         p = pockets[n]
-        if (p["x"], p["z"]) != (first["x"], first["z"]) or p["y"] != first["y"] + (n - numbers[0]) * delta:
+        off = [p["x"] - first["x"], p["z"] - first["z"], p["y"] - first["y"] - (n - numbers[0]) * delta]
+        if any(abs(v) > 1e-6 for v in off):
             fail("pocket %d is not on the example's row (one X and Z, Y every %g)" % (n, delta))
     return first["x"], first["y"] - numbers[0] * delta, first["z"], delta
 

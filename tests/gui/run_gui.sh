@@ -9,6 +9,8 @@ root=$(cd "$here/../.." && pwd)
 work=$1
 user=${FATC_SIM_USER:-fatc}
 id "$user" >/dev/null 2>&1 || useradd -m -s /bin/bash "$user"
+# A failed run's artifacts stay beside the next run's, for whoever looks into it.
+if [ -e "$work/FAILED" ]; then rm -rf "$work.failed"; mv "$work" "$work.failed"; fi
 rm -rf "$work"
 mkdir -p "$work"
 chown "$user" "$work"
@@ -31,6 +33,7 @@ for _ in $(seq 1 300); do [ -e "/tmp/.X11-unix/X$n" ] && break; sleep 0.1; done
 FATC_APP="$here/gui_driver.py" FATC_WRAP="dbus-run-session --" \
   FATC_RESULTS="$work/results.json" FATC_ARTIFACTS="$work" FATC_BINARY="$2" \
   "$root/tests/integration/run_sim.sh" "$work/sim" axis > "$work/linuxcnc.log" 2>&1 || true
-[ -s "$work/results.json" ] || { echo "FAIL: no results; LinuxCNC said:"; tail -40 "$work/linuxcnc.log"; exit 1; }
+[ -s "$work/results.json" ] || {
+  touch "$work/FAILED"; echo "FAIL: no results; LinuxCNC said:"; tail -40 "$work/linuxcnc.log"; exit 1; }
 echo "ok: AXIS ran with the panel; results and screenshots in $work"
-python3 "$here/check_gui.py" "$work/results.json"
+python3 "$here/check_gui.py" "$work/results.json" || { touch "$work/FAILED"; exit 1; }

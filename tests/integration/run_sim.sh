@@ -41,7 +41,7 @@ if [ -n "${FATC_INI_SED:-}" ]; then
 fi
 if [ -n "${FATC_INI_FILTER:-}" ]; then
   # A program that rewrites the copied INI in place: another machine setup.
-  $FATC_INI_FILTER "$work/sim.ini"
+  "$FATC_INI_FILTER" "$work/sim.ini"
 fi
 if [ -n "${FATC_APP:-}" ]; then
   # A program LinuxCNC starts beside its GUI (the GUI test's driver).

@@ -21,6 +21,8 @@ dpkg-deb --field "$deb" Package Version Depends Recommends
 
 put_back_guard() {
   local tmp
+  # A failed run leaves nothing installed either.
+  dpkg -s fixed-atc-probe >/dev/null 2>&1 && apt-get remove --purge -y -qq fixed-atc-probe >/dev/null
   tmp=$(mktemp -d)
   cp "$root/src/rt/fatc_chuck_guard.comp" "$tmp/"
   (cd "$tmp" && halcompile --install fatc_chuck_guard.comp >/dev/null)
@@ -28,7 +30,8 @@ put_back_guard() {
 }
 trap put_back_guard EXIT
 
-apt-get install -y -qq "$deb" >/dev/null
+# --reinstall: a package of the same version left by an earlier run is replaced.
+apt-get install -y -qq --reinstall "$deb" >/dev/null
 files=$(dpkg -L fixed-atc-probe)
 for want in /usr/bin/fixed_atc_probe /usr/lib/linuxcnc/modules/fatc_chuck_guard.so \
             /usr/share/fixed_atc_probe/nc_files/fixed_atc_probe_m6.ngc \
@@ -73,7 +76,8 @@ if tools != [0, 1, 3, 0, 5]:
     sys.exit("FAIL: the demo's tools went %s, expected [0, 1, 3, 0, 5]" % tools)
 print("ok: the demo ran from the installed files: tools %s in %.1f s" % (tools, run["duration"]))
 PY
-grep -q "^CONFIG = $work/run/config.json" "$work/run/sim.ini"
+grep -q "^CONFIG = $work/run/config.json" "$work/run/sim.ini" || {
+  echo "FAIL: the demo's INI does not read the copied config"; exit 1; }
 grep -q "SUBROUTINE_PATH = /usr/share/fixed_atc_probe/nc_files" "$work/run/sim.ini" || {
   echo "FAIL: the demo's INI does not take its NGC from the package"; exit 1; }
 

@@ -531,7 +531,12 @@ TEST(Bound, shouldTakeARunOfRapidsAsOneMoveForWhatBlendingIsWorthAtMost) {
   publish(StepKind::rapid, axis_xy, {0, 0, 0}, 0);    // 60 back
   const MotionLimits limits = limits_of(10, 100);
   // At 10/s with 100/s²: a move of d stopped at both ends takes d/10 + 0.1 s.
-  EXPECT_NEAR(blended_seconds(plan, {0, 0, 0}, limits), 10.1 + 1.1 + 5.1 + 0.5 + 6.1, 1e-9);
+  // The first run: Z travels 50 and X 50, at once at best.
+  EXPECT_NEAR(blended_seconds(plan, {0, 0, 0}, limits), 5.1 + 1.1 + 5.1 + 0.5 + 6.1, 1e-9);
+  MotionLimits slow_z = limits;
+  slow_z.velocity.z = 1;  // the run's Z travel decides now: 50 at 1/s, + 0.01 s
+  EXPECT_NEAR(blended_seconds(plan, {0, 0, 0}, slow_z), 50.01 + 1.1 + 50.01 + 0.5 + 6.1, 1e-9);
+  EXPECT_LT(blended_seconds(plan, {0, 0, 0}, slow_z), limits_seconds(plan, {0, 0, 0}, slow_z));
   EXPECT_NEAR(limits_seconds(plan, {0, 0, 0}, limits), 5.1 + 5.1 + 1.1 + 5.1 + 0.5 + 6.1, 1e-9);
 }
 
