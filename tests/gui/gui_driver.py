@@ -168,6 +168,13 @@ def click(name, node=None):
     note("clicked " + name)
 
 
+def said_or_shown(words, said):
+    """LinuxCNC's message channel said `words` since message `said`, or the
+    panel shows them. AXIS reads the same channel, and NML keeps one read
+    mark for all readers: a message AXIS took first never reaches the driver."""
+    return any(words in m for m in driver.messages[said:]) or bool(panel_says(words))
+
+
 def answer(name, next_prompt=None):
     """Clicks Continue or Cancel at a prompt and waits until the changer moved
     on: the prompt closes or, where one prompt follows another, the next is
@@ -175,7 +182,7 @@ def answer(name, next_prompt=None):
     said = len(driver.messages)
     click(name)
     if next_prompt:
-        wait_for(lambda: any(next_prompt in m for m in driver.messages[said:]), 30,
+        wait_for(lambda: said_or_shown(next_prompt, said), 30,
                  "the prompt '%s' after %s" % (next_prompt, name))
     else:
         wait_for(pin("fatc-panel.continue-enabled", False), 30, "the prompt to close after " + name)
@@ -344,8 +351,7 @@ def run():
     result["teach_at"] = list(stat.actual_position[:3])
     said = len(driver.messages)
     click("Teach loading")
-    wait_for(lambda: any("fixed_atc_probe: taught loading" in m for m in driver.messages[said:]), 30,
-             "the message of the teach")
+    wait_for(lambda: said_or_shown("taught loading", said), 30, "the message of the teach")
     wait_for(lambda: panel_says("taught loading"), 10, "the panel to show the teach's message")
     result["teach_shown"] = panel_says("taught loading")
     note("taught loading")
