@@ -45,11 +45,15 @@ def plan_bounds(binary, config, ini, frm, to):
     return tuple(int(m or 0) * 60 + float(s) for m, s in times[:3])
 
 
+def mark_edges(samples):
+    """The indexes where MARK toggled: after the move to safe and after each M6."""
+    return [i for i in range(1, len(samples)) if samples[i][MARK] != samples[i - 1][MARK]]
+
+
 def change_seconds(samples):
-    """Each change's time, chip to chip: from one toggle of MARK to the next
-    (the program toggles it after the move to safe and after each M6)."""
-    edges = [samples[i]["t"] for i in range(1, len(samples)) if samples[i][MARK] != samples[i - 1][MARK]]
-    return [b - a for a, b in zip(edges, edges[1:])]
+    """Each change's time, chip to chip: from one toggle of MARK to the next."""
+    edges = mark_edges(samples)
+    return [samples[b]["t"] - samples[a]["t"] for a, b in zip(edges, edges[1:])]
 
 
 def handshake(samples):
@@ -109,12 +113,12 @@ def print_usage(name, scenario):
 def first_motion(samples):
     """Per change: from the end of the one before (the mark) to the first move
     the change commands: the latency of M6 up to its first motion."""
-    edges = [i for i in range(1, len(samples)) if samples[i][MARK] != samples[i - 1][MARK]]
+    edges = mark_edges(samples)
     out = []
-    for i in edges[:-1]:
-        moved = next((j for j in range(i + 1, len(samples)) if samples[j]["cmd"] != samples[i]["cmd"]), None)
-        if moved is not None and (i == edges[-1] or moved < edges[edges.index(i) + 1]):
-            out.append(samples[moved]["t"] - samples[i]["t"])
+    for a, b in zip(edges, edges[1:]):
+        moved = next((j for j in range(a + 1, b) if samples[j]["cmd"] != samples[a]["cmd"]), None)
+        if moved is not None:
+            out.append(samples[moved]["t"] - samples[a]["t"])
     return out
 
 

@@ -229,6 +229,19 @@ std::optional<ToolState> rack_of(const Options& options, const Config& config, s
   return saved.state;
 }
 
+/// "an empty spindle", "T3 in the spindle": the spindle a planned change starts from.
+std::string spindle_words(int tool) {
+  return tool == 0 ? "an empty spindle" : "T" + std::to_string(tool) + " in the spindle";
+}
+
+/// Why the changer refuses the planned change, if it does: its fail step's words.
+std::optional<std::string> refusal(const Simulator& plan) {
+  for (const Step& step : plan.steps()) {
+    if (step.kind == StepKind::fail) return step.label;
+  }
+  return std::nullopt;
+}
+
 /// --plot: the rack from above into an SVG file, with the path of one change if asked.
 int plot(const Options& options, std::ostream& out, std::ostream& err) {
   const Loaded loaded = load(options, err);
@@ -241,17 +254,13 @@ int plot(const Options& options, std::ostream& out, std::ostream& err) {
   if (options.from_tool) {
     rack->put_in_spindle(*options.from_tool);
     change = plan_change(config, *rack, *options.to_tool, config.probe_limit.z);
-    for (const auto& record : change->records) {
-      if (record.kind == Record::Kind::step && record.step.kind == StepKind::fail) {
-        err << record.step.label << "\n";
-        return 1;
-      }
+    if (const auto why = refusal(*change)) {
+      err << *why << "\n";
+      return 1;
     }
-    title +=
-        ": M6 T" + std::to_string(*options.to_tool) + " with " +
-        (*options.from_tool == 0 ? std::string("an empty spindle")
-                                 : "T" + std::to_string(*options.from_tool) + " in the spindle") +
-        ", the " + (config.path == Path::direct ? "direct" : "prototype") + " path";
+    title += ": M6 T" + std::to_string(*options.to_tool) + " with " +
+             spindle_words(*options.from_tool) + ", the " +
+             (config.path == Path::direct ? "direct" : "prototype") + " path";
   }
   // Written beside the drawing and renamed over it: a failed write leaves the old one.
   const std::string written = options.plot_path + ".tmp";
@@ -320,23 +329,20 @@ int plan(const Options& options, std::ostream& out, std::ostream& err) {
   ToolState& tools = *rack;
   tools.put_in_spindle(from);
   const Simulator sim = plan_change(config, tools, to, config.probe_limit.z);
-  out << "M6 T" << to << " with "
-      << (from == 0 ? std::string("an empty spindle")
-                    : "T" + std::to_string(from) + " in the spindle")
+  out << "M6 T" << to << " with " << spindle_words(from)
       << (options.state_path.empty()
               ? ", the rack as at first start"
               : ", the rack as " + shown_path(options.state_path) + " has it")
       << "\n";
   int number = 0;
-  bool refused = false;
   for (const auto& record : sim.records) {
     if (record.kind == Record::Kind::save) continue;
-    if (record.kind == Record::Kind::step && record.step.kind == StepKind::fail) refused = true;
     char prefix[16];
     std::snprintf(prefix, sizeof prefix, "%3d  ", ++number);
     out << prefix << describe(record) << "\n";
   }
   const int violations = report(check_sequence("M6", config, sim, loaded.limits), out);
+  const bool refused = refusal(sim).has_value();
   if (!refused) print_estimate(options, config, tools, to, sim, out);
   return refused || violations != 0 ? 1 : 0;
 }

@@ -439,23 +439,26 @@ TEST_F(Lint, shouldReportAnIniWithoutTheM6Remap) {
 
 // ---- the estimate ----
 
+/// A move as the changer publishes it, into a plan of the test's own.
+void publish_move(Simulator& plan, StepKind kind, unsigned axes, Point target, double feed) {
+  Step step;
+  step.kind = kind;
+  step.axes = axes;
+  step.target = target;
+  step.feed = feed;
+  plan.publish(step);
+}
+
 TEST(Estimate, shouldAddMovesAtTheirFeedAndTheDwells) {
   Simulator plan;
   plan.sensor_z = -20.0;
-  auto move = [&](StepKind kind, unsigned axes, Point target, double feed) {
-    Step step;
-    step.kind = kind;
-    step.axes = axes;
-    step.target = target;
-    step.feed = feed;
-    plan.publish(step);
-  };
-  move(StepKind::rapid, axis_z, {0, 0, 10}, 0);    // 10 at the rapid 600/min: 1 s
-  move(StepKind::feed, axis_xy, {30, 40, 0}, 60);  // 50 at 60/min: 50 s
+  publish_move(plan, StepKind::rapid, axis_z, {0, 0, 10}, 0);    // 10 at the rapid 600/min: 1 s
+  publish_move(plan, StepKind::feed, axis_xy, {30, 40, 0}, 60);  // 50 at 60/min: 50 s
   plan.start_timer(0.5);
-  move(StepKind::probe, axis_z, {0, 0, -100}, 300);  // to the sensor at -20: 30 at 300: 6 s
-  move(StepKind::feed, axis_z, {0, 0, 40}, 6000);    // 60 above the rapid: at 600: 6 s
-  plan.tell(MessageKind::prompt, "insert tool 7");   // the operator's time: not counted
+  publish_move(plan, StepKind::probe, axis_z, {0, 0, -100},
+               300);  // to the sensor at -20: 30 at 300: 6 s
+  publish_move(plan, StepKind::feed, axis_z, {0, 0, 40}, 6000);  // 60 above the rapid: at 600: 6 s
+  plan.tell(MessageKind::prompt, "insert tool 7");               // the operator's time: not counted
   int waits = 0;
   EXPECT_NEAR(estimate_seconds(plan, {0, 0, 0}, 600.0, waits), 63.5, 1e-9);
   EXPECT_EQ(waits, 1);
@@ -498,37 +501,21 @@ TEST(Bound, shouldLetTheSlowestAxisAndTheLinearLimitsDecide) {
 
 TEST(Bound, shouldAddEveryMoveAsAnExactStopAndTheDwells) {
   Simulator plan;
-  Step up;
-  up.kind = StepKind::rapid;
-  up.axes = axis_z;
-  up.target = {0, 0, 4};
-  plan.publish(up);  // 4 with 1/s²: 4 s
+  publish_move(plan, StepKind::rapid, axis_z, {0, 0, 4}, 0);  // 4 with 1/s²: 4 s
   plan.start_timer(0.5);
-  Step over = up;
-  over.kind = StepKind::feed;
-  over.axes = axis_xy;
-  over.target = {100, 0, 0};
-  over.feed = 600;
-  plan.publish(over);  // 100 at 10/s: 10 s + 10 s of ramps at 1/s²
+  publish_move(plan, StepKind::feed, axis_xy, {100, 0, 0},
+               600);  // 100 at 10/s: 10 s + 10 s of ramps at 1/s²
   EXPECT_NEAR(limits_seconds(plan, {0, 0, 0}, limits_of(100, 1)), 4.0 + 0.5 + 20.0, 1e-9);
 }
 
 TEST(Bound, shouldTakeARunOfRapidsAsOneMoveForWhatBlendingIsWorthAtMost) {
   Simulator plan;
-  auto publish = [&](StepKind kind, unsigned axes, Point target, double feed) {
-    Step step;
-    step.kind = kind;
-    step.axes = axes;
-    step.target = target;
-    step.feed = feed;
-    plan.publish(step);
-  };
-  publish(StepKind::rapid, axis_z, {0, 0, 50}, 0);    // 50 up
-  publish(StepKind::rapid, axis_xy, {50, 0, 0}, 0);   // 50 over: one run of 100
-  publish(StepKind::feed, axis_xy, {60, 0, 0}, 600);  // 10 at 10/s, on its own
-  publish(StepKind::rapid, axis_z, {0, 0, 0}, 0);     // 50 down
-  plan.start_timer(0.5);                              // a dwell ends the run
-  publish(StepKind::rapid, axis_xy, {0, 0, 0}, 0);    // 60 back
+  publish_move(plan, StepKind::rapid, axis_z, {0, 0, 50}, 0);    // 50 up
+  publish_move(plan, StepKind::rapid, axis_xy, {50, 0, 0}, 0);   // 50 over: one run of 100
+  publish_move(plan, StepKind::feed, axis_xy, {60, 0, 0}, 600);  // 10 at 10/s, on its own
+  publish_move(plan, StepKind::rapid, axis_z, {0, 0, 0}, 0);     // 50 down
+  plan.start_timer(0.5);                                         // a dwell ends the run
+  publish_move(plan, StepKind::rapid, axis_xy, {0, 0, 0}, 0);    // 60 back
   const MotionLimits limits = limits_of(10, 100);
   // At 10/s with 100/s²: a move of d stopped at both ends takes d/10 + 0.1 s.
   // The first run: Z travels 50 and X 50, at once at best.
