@@ -39,6 +39,7 @@ PHASE_UNLOADING = 4
 PHASE_FAULT = 5
 PHASE_MEASURING = 6
 PHASE_VERIFYING = 7
+PHASE_CHUCK = 8
 # The `awaiting` pin: Awaiting.
 AWAITING_NOTHING = 0
 AWAITING_MOTION = 1
@@ -59,7 +60,8 @@ PHASES = {PHASE_NOT_READY: "Machine off, not homed or in estop", PHASE_IDLE: "Id
           PHASE_UNLOADING: "Unloading tool",
           PHASE_FAULT: "FAULT: check spindle and rack, then Clear fault",
           PHASE_MEASURING: "Measuring tools (Cancel stops after the current one)",
-          PHASE_VERIFYING: "Verifying a pocket: Continue at each stop, Cancel stops there"}
+          PHASE_VERIFYING: "Verifying a pocket: Continue at each stop, Cancel stops there",
+          PHASE_CHUCK: "Chuck: releasing or clamping for G-code"}
 # The `measure-which` pin (docs/sequences.md#measure-all): the selector's item ids.
 MEASURE_EVERY = 0
 MEASURE_NEVER_MEASURED = 1

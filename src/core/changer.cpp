@@ -63,6 +63,9 @@ void Changer::measure_all(std::vector<int> tools) {
   engine_->fsm.process_event(MeasureRequest{std::move(tools)});
 }
 void Changer::verify(int pocket) { engine_->fsm.process_event(VerifyRequest{pocket}); }
+void Changer::chuck(ChuckRequest::Action action, std::optional<Point> at) {
+  engine_->fsm.process_event(ChuckRequest{action, at});
+}
 void Changer::in_position() { engine_->fsm.process_event(InPosition{}); }
 void Changer::command_done() { engine_->fsm.process_event(CommandDone{}); }
 
@@ -93,6 +96,7 @@ Phase phase_of(const machine::Machine& fsm) {
   if (active<flag::Unloading>(fsm)) return Phase::unloading;
   if (active<flag::Measuring>(fsm)) return Phase::measuring;
   if (active<flag::Verifying>(fsm)) return Phase::verifying;
+  if (active<flag::Chucking>(fsm)) return Phase::chuck;
   if (active<flag::Idle>(fsm)) return Phase::idle;
   return Phase::not_ready;
 }
@@ -113,7 +117,8 @@ std::string activity_of(const Status& status, const Context& c) {
     case Phase::not_ready:
       return "machine off, not homed or in estop";
     case Phase::idle:
-      return status.awaiting == Awaiting::sensor ? c.dwell : "idle";
+      if (status.awaiting == Awaiting::sensor) return c.dwell;
+      return why_chuck_held_open(c).value_or("idle");
     case Phase::fault:
       return "fault: " + c.fault_reason;
     default:
@@ -151,8 +156,8 @@ Status Changer::status() const {
   status.awaiting = awaiting_of(fsm);
   status.holds_program = active<machine::flag::HoldsProgram>(fsm);
   status.probe_cancellable = active<machine::flag::ProbeCancellable>(fsm);
-  status.accepting =
-      status.phase == Phase::idle && status.awaiting == Awaiting::nothing && !c.task_busy;
+  status.accepting = status.phase == Phase::idle && status.awaiting == Awaiting::nothing &&
+                     !c.task_busy && !c.chuck_open;
   status.last_length = c.last_length;
   status.step_number = status.busy() ? c.sequence_step : 0;
   status.pocket = status.busy() && c.tools.in_progress ? c.tools.in_progress->pocket : 0;

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "config.hpp"
+#include "events.hpp"
 #include "geometry.hpp"
 #include "ports.hpp"
 #include "sensors.hpp"
@@ -48,6 +49,8 @@ class Changer {
   void measure_all(std::vector<int> tools);
   /// A dry run through pocket `pocket`'s approach, held at each waypoint.
   void verify(int pocket);
+  /// A chuck atom from G-code; `at`: where the machine stands, if known.
+  void chuck(ChuckRequest::Action action, std::optional<Point> at);
   void in_position();
   void command_done();
   void probe_result(bool touched, double machine_z, bool tripped_before = false);

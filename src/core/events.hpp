@@ -4,6 +4,8 @@
 #include <string>
 #include <vector>
 
+#include "point.hpp"
+
 namespace fatc {
 
 /// The machine is on, homed and out of estop.
@@ -30,6 +32,14 @@ struct UnloadRequest {
 /// The operator asks for a dry run through pocket `pocket`'s approach (verify).
 struct VerifyRequest {
   int pocket = 0;
+};
+/// A chuck atom from G-code (nc_files/fixed_atc_probe_chuck_*.ngc): release
+/// (open) the chuck and leave it open, or clamp (close) it. `at`: where the
+/// machine stands (machine coordinates, config units), when LinuxCNC says.
+struct ChuckRequest {
+  enum class Action { release, clamp };
+  Action action = Action::clamp;
+  std::optional<Point> at;
 };
 /// The executor finished the last published move.
 struct InPosition {};

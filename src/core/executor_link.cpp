@@ -23,17 +23,29 @@ std::vector<LinkEvent> ExecutorLink::read(const LinkInputs& in, Time now) {
       executing_.reset();
     } else if (!attached_) {
       attached_ = true;
-      if (in.call == static_cast<int>(ExecutorCall::tool_change)) {
-        // Whatever waited was for no run of this M6 (a fault's fail step, say).
+      const auto call = static_cast<ExecutorCall>(in.call);
+      if (call == ExecutorCall::tool_change || call == ExecutorCall::chuck_release ||
+          call == ExecutorCall::chuck_clamp) {
+        // A request from G-code: whatever waited was for no run of it (a
+        // fault's fail step, say).
         pending_.reset();
-        LinkEvent change;
-        change.kind = LinkEvent::Kind::tool_change;
-        change.tool = in.number;
-        events.push_back(change);
-      } else if (in.call != static_cast<int>(ExecutorCall::operator_flow)) {
+        LinkEvent request;
+        request.kind = call == ExecutorCall::tool_change     ? LinkEvent::Kind::tool_change
+                       : call == ExecutorCall::chuck_release ? LinkEvent::Kind::chuck_release
+                                                             : LinkEvent::Kind::chuck_clamp;
+        request.tool = in.number;
+        events.push_back(request);
+      } else if (call != ExecutorCall::operator_flow) {
         // Its own slot: a step the changer waits to have performed stays.
-        refusal_ = failure_step("the step executor was called with executor-call " +
-                                std::to_string(in.call) + "; expected 1 (M6) or 2 (operator flow)");
+        LinkEvent wrong;
+        wrong.kind = LinkEvent::Kind::wrong_call;
+        wrong.reason = "the step executor was called with executor-call " +
+                       std::to_string(in.call) +
+                       "; expected 1 (M6), 2 (operator flow), 3 (chuck release) or 4 (chuck "
+                       "clamp): check [FIXED_ATC_PROBE]EXECUTOR_CALL_OUT and the calls of "
+                       "o<fixed_atc_probe_execute>";
+        refusal_ = failure_step(wrong.reason);
+        events.push_back(wrong);
       }
     }
   }

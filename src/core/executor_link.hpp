@@ -12,7 +12,7 @@ namespace fatc {
 /// How the step executor was called: the value of the `executor-call` pin,
 /// which nc_files/fixed_atc_probe_execute.ngc sets from its argument before
 /// its first request.
-enum class ExecutorCall { tool_change = 1, operator_flow = 2 };
+enum class ExecutorCall { tool_change = 1, operator_flow = 2, chuck_release = 3, chuck_clamp = 4 };
 
 /// What the link reads each turn: pin values and LinuxCNC's interpreter state.
 struct LinkInputs {
@@ -38,10 +38,13 @@ struct LinkOutputs {
 struct LinkEvent {
   enum class Kind {
     tool_change,    ///< M6 started its executor: `tool` is the tool it asks for
+    chuck_release,  ///< a chuck atom started its executor: release the chuck
+    chuck_clamp,    ///< a chuck atom started its executor: clamp the chuck
     in_position,    ///< the executor finished a move
     command_done,   ///< the executor finished a command (M61, G10)
     probe_result,   ///< the executor finished a probe move: touched, z, tripped_before
     executor_lost,  ///< the executor is gone (program aborted): `reason`
+    wrong_call,     ///< the executor was called with an unknown code: `reason`, failed
   };
   Kind kind = Kind::in_position;
   int tool = 0;

@@ -15,6 +15,7 @@ enum class Phase {
   fault = 5,
   measuring = 6,  ///< measure all
   verifying = 7,  ///< a dry run through one pocket's approach
+  chuck = 8,      ///< a chuck atom from G-code releases or clamps the chuck
 };
 
 /// What the changer waits for now; the value of the `awaiting` pin.
@@ -45,7 +46,7 @@ struct Status {
 
   bool busy() const {
     return phase == Phase::changing || phase == Phase::loading || phase == Phase::unloading ||
-           phase == Phase::measuring || phase == Phase::verifying;
+           phase == Phase::measuring || phase == Phase::verifying || phase == Phase::chuck;
   }
   bool awaits_operator() const { return awaiting == Awaiting::operator_choice; }
 };

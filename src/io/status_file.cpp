@@ -25,6 +25,8 @@ const char* phase_word(Phase phase) {
       return "measuring";
     case Phase::verifying:
       return "verifying";
+    case Phase::chuck:
+      return "chuck";
     case Phase::fault:
       return "fault";
   }

@@ -100,6 +100,12 @@ void Component::read_executor(std::optional<bool> interpreter_idle) {
       case LinkEvent::Kind::tool_change:
         changer_->tool_change(e.tool);
         break;
+      case LinkEvent::Kind::chuck_release:
+        changer_->chuck(ChuckRequest::Action::release, machine_position());
+        break;
+      case LinkEvent::Kind::chuck_clamp:
+        changer_->chuck(ChuckRequest::Action::clamp, machine_position());
+        break;
       case LinkEvent::Kind::in_position:
         changer_->in_position();
         break;
@@ -111,6 +117,9 @@ void Component::read_executor(std::optional<bool> interpreter_idle) {
         break;
       case LinkEvent::Kind::executor_lost:
         abort(e.reason);
+        break;
+      case LinkEvent::Kind::wrong_call:
+        tell(MessageKind::error, e.reason);
         break;
     }
   }
@@ -150,9 +159,13 @@ void Component::teach(const TeachTarget& target) {
   // Idle, and nothing running: a position taken while a program or MDI moves
   // the machine is nowhere in particular.
   if (!status.accepting) {
-    tell(MessageKind::error,
-         what + (status.phase == Phase::idle ? "a program or MDI is running; teach once it stopped"
-                                             : "only while the changer is idle"));
+    std::string why = "only while the changer is idle";
+    if (status.phase == Phase::idle) {
+      // Idle yet not accepting: task is busy, or a release holds the chuck open.
+      why = task_free_ ? status.activity
+                       : "a program or MDI command is running; teach once it stopped";
+    }
+    tell(MessageKind::error, what + why);
     return;
   }
   if (!nml_) {
@@ -165,10 +178,7 @@ void Component::teach(const TeachTarget& target) {
     tell(MessageKind::error, what + error);
     return;
   }
-  const Point mm = nml_->machine_position_mm();
-  const double scale = config_.units == Units::inch ? 1.0 / 25.4 : 1.0;
-  const TeachResult taught =
-      fatc::teach(*text, target, {mm.x * scale, mm.y * scale, mm.z * scale}, limits_);
+  const TeachResult taught = fatc::teach(*text, target, *machine_position(), limits_);
   if (!taught.text) {
     tell(MessageKind::error, taught.error);
     return;
@@ -184,6 +194,13 @@ void Component::teach(const TeachTarget& target) {
   tell(MessageKind::info, "taught " + taught.change + "; " + io::shown_path(config_path_) +
                               " written, the previous one kept as " +
                               io::shown_path(config_path_ + ".bak"));
+}
+
+std::optional<Point> Component::machine_position() const {
+  if (!nml_) return std::nullopt;
+  const Point mm = nml_->machine_position_mm();
+  const double scale = config_.units == Units::inch ? 1.0 / 25.4 : 1.0;
+  return Point{mm.x * scale, mm.y * scale, mm.z * scale};
 }
 
 void Component::measure_all() {

@@ -61,6 +61,8 @@ class Component : public Ports {
   void read_operator();
   /// Teaching: the machine position into config.json at `target`, if idle.
   void teach(const TeachTarget& target);
+  /// Where the machine stands, in machine coordinates and config units; nothing without NML.
+  std::optional<Point> machine_position() const;
   /// Measure all, of the tools `measure-which` names.
   void measure_all();
   void abort(const std::string& reason);

@@ -37,7 +37,7 @@ struct HalPins {
   hal_s32_t* cut_off_pocket;  ///< out: the pocket a cut-off sequence involved, 0 none
   hal_bit_t* heartbeat;       ///< out: toggles every poll; gates the chuck in HAL
   hal_s32_t* linuxcnc_tool;   ///< in: iocontrol.0.tool-number
-  hal_s32_t* state;  ///< out: 0 not ready, 1 idle, 2 changing, 3 loading, 4 unloading, 5 fault
+  hal_s32_t* state;  ///< out: the Phase: 0 not ready, 1 idle, 2 changing, ... 8 chuck (status.hpp)
   hal_bit_t* ready;  ///< out: idle and able to change tools
   hal_bit_t* busy;   ///< out: running a sequence
   hal_bit_t* fault;  ///< out: in fault

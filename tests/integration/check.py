@@ -597,6 +597,81 @@ def check_refuse_when_off(r, rack):
     ok("idle again once the machine is back on and homed")
 
 
+def chuck_openings(r):
+    """The sample at each rising edge of the chuck request, in order."""
+    found, last = [], False
+    for s in r["samples"]:
+        if s["fixed_atc_probe.chuck"] and not last:
+            found.append(s)
+        last = s["fixed_atc_probe.chuck"]
+    return found
+
+
+def over_a_pocket(rack, pos):
+    return any(abs(pos[0] - rack.pocket(t)[0]) < TOLERANCE and abs(pos[1] - rack.pocket(t)[1]) < TOLERANCE
+               for t in rack.pockets)
+
+
+def check_chuck_atoms(r, rack):
+    no_fault(r)
+    away = [s for s in chuck_openings(r) if not over_a_pocket(rack, s["pos"])]
+    zs = [round(s["pos"][2], 3) for s in away]
+    if len(away) != 4 or any(not near(s["pos"][:2] + [0], [150.0, 200.0, 0]) for s in away):
+        fail("expected 4 openings at X150 Y200 (M312 P2, then the lifting macro's 2), got %s" %
+             [s["pos"] for s in away])
+    if zs != [-40.0, -40.0, -40.0, -37.0]:
+        fail("the openings were at Z %s, expected -40, -40, -40 and -37 (lifted 3 after a pulse)" % zs)
+    if any(s["tool_in_spindle"] != 0 for s in away):
+        fail("the chuck opened away from the rack with a tool in the spindle")
+    ok("the eject pulsed twice and the macro twice, lifting Z between, all with the spindle empty")
+    # Each pulse: chuck_seconds to open, Q (0.1 s) more open.
+    samples, shortest = r["samples"], None
+    for first in away[:2]:
+        i = samples.index(first)
+        j = next(k for k in range(i, len(samples)) if not samples[k]["fixed_atc_probe.chuck"])
+        held = samples[j]["t"] - first["t"]
+        shortest = held if shortest is None else min(shortest, held)
+    if shortest < rack.c["chuck_seconds"] + 0.1 - 0.02:
+        fail("an eject pulse held the chuck open %.3f s, less than chuck_seconds + Q" % shortest)
+    ok("each eject pulse held the chuck open %.3f s at least (chuck_seconds %.2f + Q 0.1)" %
+       (shortest, rack.c["chuck_seconds"]))
+    if not any(s["fixed_atc_probe.state"] == 8 for s in samples):
+        fail("the state pin never read chuck (8)")
+    ok("the state pin read chuck (8) during the atoms")
+    said(r, "chuck release refused: tool 2 is in the spindle and would drop; release it only at loading")
+    said(r, "the machine is at X150.000 Y200.000 Z-40.000 mm")
+    last = samples[-1]
+    if last["interp"] != 1 or not near(last["pos"], [150.0, 200.0, -40.0]):
+        fail("the program went on past the refused release: %s" % last["pos"])
+    ok("the refused release stopped the program where it stood")
+    spindle_holds(r, 2, "after the refused release")
+    if last["fixed_atc_probe.chuck"] or last["fixed_atc_probe.state"] != 1:
+        fail("the chuck is not closed with the changer idle at the end")
+    ok("the chuck stayed closed, the changer idle")
+
+
+def check_chuck_held(r, rack):
+    no_fault(r)
+    said(r, "M6 T1 refused: the chuck is open (released from G-code); clamp it first")
+    said(r, "chuck release refused: tool 1 is in the spindle and would drop")
+    said(r, "chuck released at loading (G-code); tool 1 stays recorded in the spindle")
+    openings = [s for s in chuck_openings(r) if not over_a_pocket(rack, s["pos"])]
+    at_loading = [s for s in openings if near(s["pos"], loading(rack))]
+    elsewhere = [s for s in openings if not near(s["pos"], loading(rack))]
+    if len(at_loading) != 1 or at_loading[0]["tool_in_spindle"] != 1:
+        fail("expected one opening at loading with tool 1 in the spindle: %s" %
+             [(s["pos"], s["tool_in_spindle"]) for s in at_loading])
+    if len(elsewhere) != 1 or elsewhere[0]["tool_in_spindle"] != 0:
+        fail("expected one opening away from the rack and loading, with the spindle empty: %s" %
+             [(s["pos"], s["tool_in_spindle"]) for s in elsewhere])
+    ok("released once with the spindle empty, once with tool 1 at loading; never elsewhere")
+    spindle_holds(r, 0, "at the end")
+    last = r["samples"][-1]
+    if last["fixed_atc_probe.chuck"] or last["fixed_atc_probe.state"] != 1:
+        fail("the chuck is not closed with the changer idle at the end")
+    ok("clamped and idle at the end")
+
+
 CUT_OFF = {"sequence": "M6 T3", "step": "returning tool 1 to pocket 1", "pocket": 1}
 
 

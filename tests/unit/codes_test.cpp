@@ -20,6 +20,8 @@ namespace {
 
 const char* const kExecutor = "nc_files/fixed_atc_probe_execute.ngc";
 const char* const kRemap = "nc_files/fixed_atc_probe_m6.ngc";
+const char* const kRelease = "nc_files/fixed_atc_probe_chuck_release.ngc";
+const char* const kClamp = "nc_files/fixed_atc_probe_chuck_clamp.ngc";
 const char* const kPanel = "hal/fixed_atc_probe_panel.py";
 
 /// A code as the C++ side has it: the enumerator's spelling and its value.
@@ -58,6 +60,7 @@ const Codes kPhases = {
     {"fault", {"Phase::fault", static_cast<int>(Phase::fault)}},
     {"measuring", {"Phase::measuring", static_cast<int>(Phase::measuring)}},
     {"verifying", {"Phase::verifying", static_cast<int>(Phase::verifying)}},
+    {"chuck", {"Phase::chuck", static_cast<int>(Phase::chuck)}},
 };
 const Codes kAwaiting = {
     {"nothing", {"Awaiting::nothing", static_cast<int>(Awaiting::nothing)}},
@@ -209,19 +212,29 @@ TEST(Codes, shouldCompareByNameWhenTheExecutorTestsAStepKindOrAxes) {
   }
 }
 
-TEST(Codes, shouldCallTheExecutorAsAToolChangeWhenM6RunsIt) {
+/// One o<fixed_atc_probe_execute> call in `file`, with the code `expected`.
+void expect_one_call(const std::string& file, ExecutorCall expected, const char* name) {
   const std::regex call(R"(\s*o<fixed_atc_probe_execute>\s+call\s+\[\s*(-?[0-9]+)\s*\].*)",
                         std::regex::icase);
   int calls = 0;
-  for (const std::string& line : read_lines(kRemap)) {
+  for (const std::string& line : read_lines(file)) {
     std::smatch m;
     if (!std::regex_match(line, m, call)) continue;
     ++calls;
-    EXPECT_EQ(std::stoi(m[1]), static_cast<int>(ExecutorCall::tool_change))
-        << kRemap << ": calls the executor with [" << m[1] << "], but ExecutorCall::tool_change is "
-        << static_cast<int>(ExecutorCall::tool_change);
+    EXPECT_EQ(std::stoi(m[1]), static_cast<int>(expected))
+        << file << ": calls the executor with [" << m[1] << "], but " << name << " is "
+        << static_cast<int>(expected);
   }
-  EXPECT_EQ(calls, 1) << kRemap << ": expected one o<fixed_atc_probe_execute> call";
+  EXPECT_EQ(calls, 1) << file << ": expected one o<fixed_atc_probe_execute> call";
+}
+
+TEST(Codes, shouldCallTheExecutorAsAToolChangeWhenM6RunsIt) {
+  expect_one_call(kRemap, ExecutorCall::tool_change, "ExecutorCall::tool_change");
+}
+
+TEST(Codes, shouldCallTheExecutorAsAReleaseOrClampFromTheChuckAtoms) {
+  expect_one_call(kRelease, ExecutorCall::chuck_release, "ExecutorCall::chuck_release");
+  expect_one_call(kClamp, ExecutorCall::chuck_clamp, "ExecutorCall::chuck_clamp");
 }
 
 }  // namespace

@@ -100,6 +100,12 @@ inline std::string show(const LinkEvent& e) {
       return e.touched ? "probe touched" : "probe missed";
     case LinkEvent::Kind::executor_lost:
       return "executor_lost: " + e.reason;
+    case LinkEvent::Kind::chuck_release:
+      return "chuck_release";
+    case LinkEvent::Kind::chuck_clamp:
+      return "chuck_clamp";
+    case LinkEvent::Kind::wrong_call:
+      return "wrong_call: " + e.reason;
   }
   return "?";
 }
@@ -146,6 +152,14 @@ struct LinkRig {
           changer.abort(e.reason);
           ports.link.drop();
           break;
+        case LinkEvent::Kind::chuck_release:
+          changer.chuck(ChuckRequest::Action::release, std::nullopt);
+          break;
+        case LinkEvent::Kind::chuck_clamp:
+          changer.chuck(ChuckRequest::Action::clamp, std::nullopt);
+          break;
+        case LinkEvent::Kind::wrong_call:
+          break;  // the component tells the operator; the link fails the run
       }
     }
     if (ports.deadline && ports.now >= *ports.deadline) {

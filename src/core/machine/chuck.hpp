@@ -29,6 +29,18 @@ struct ToFlush {
     return "to flush it";
   }
 };
+struct ForRelease {
+  template <class Leg>
+  static std::string where(const Leg&) {
+    return "for the release from G-code";
+  }
+};
+struct ForClamp {
+  template <class Leg>
+  static std::string where(const Leg&) {
+    return "for the clamp from G-code";
+  }
+};
 
 // ---------------------------------------------------------------- opening
 

@@ -46,6 +46,7 @@ struct Loading {};       ///< the load-and-probe flow
 struct Unloading {};     ///< the unload flow
 struct Measuring {};     ///< the measure-all flow
 struct Verifying {};     ///< the dry run through a pocket
+struct Chucking {};      ///< a chuck atom from G-code: release or clamp
 struct AwaitsMotion {};  ///< the executor performs a move or a command
 struct AwaitsProbe {};   ///< the executor performs a probe move
 struct AwaitsTimer {};
@@ -76,12 +77,12 @@ struct Takes {
   using transition_event = Event;
 };
 /// The numbered form: more than mpl::vector's 20 elements.
-using TakesEveryEvent = boost::mpl::vector21<
+using TakesEveryEvent = boost::mpl::vector22<
     Takes<Ready>, Takes<NotReady>, Takes<ToolChange>, Takes<LoadRequest>, Takes<MeasureRequest>,
-    Takes<UnloadRequest>, Takes<VerifyRequest>, Takes<InPosition>, Takes<CommandDone>,
-    Takes<ProbeResult>, Takes<TimerElapsed>, Takes<SensorReport>, Takes<OperatorContinue>,
-    Takes<OperatorCancel>, Takes<Abort>, Takes<InternalError>, Takes<UnsafeStep>,
-    Takes<CheckFailed>, Takes<ClearFault>, Takes<LegDone>, Takes<FlowFailed>>;
+    Takes<UnloadRequest>, Takes<VerifyRequest>, Takes<ChuckRequest>, Takes<InPosition>,
+    Takes<CommandDone>, Takes<ProbeResult>, Takes<TimerElapsed>, Takes<SensorReport>,
+    Takes<OperatorContinue>, Takes<OperatorCancel>, Takes<Abort>, Takes<InternalError>,
+    Takes<UnsafeStep>, Takes<CheckFailed>, Takes<ClearFault>, Takes<LegDone>, Takes<FlowFailed>>;
 
 /// Every event a machine's own rows take is in TakesEveryEvent; a new event
 /// left out would never reach a submachine.

@@ -239,10 +239,23 @@ std::optional<std::string> why_no_air(const Context& ctx) {
   return std::string("air pressure is low (air-pressure-ok off): the chuck cannot open");
 }
 
-std::optional<std::string> why_not_busy(const Context& ctx) {
+std::optional<std::string> why_not_ready(const Context& ctx) {
   if (!ctx.machine_ready) return std::string("the machine is not on and homed, or is in estop");
   if (ctx.tools.uncertain) return "the spindle contents are uncertain: " + ctx.whereabouts();
   return std::nullopt;
+}
+
+std::optional<std::string> why_not_busy(const Context& ctx) {
+  if (auto not_ready = why_not_ready(ctx)) return not_ready;
+  return why_chuck_held_open(ctx);
+}
+
+/// "X20.000 Y150.000 Z-10.000 mm", machine coordinates.
+std::string position_words(const Config& config, const Point& at) {
+  char buffer[96];
+  std::snprintf(buffer, sizeof buffer, "X%.3f Y%.3f Z%.3f %s", at.x, at.y, at.z,
+                units_name(config.units));
+  return buffer;
 }
 
 }  // namespace
@@ -379,6 +392,38 @@ std::optional<std::string> why_not_verify(const Context& ctx, int pocket) {
     const std::string tool = std::to_string(ctx.tools.tool_of(pocket));
     return "pocket " + std::to_string(pocket) + " holds tool " + tool + "; fetch it first (M6 T" +
            tool + ") to verify with it in the spindle";
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> why_chuck_held_open(const Context& ctx) {
+  if (!ctx.chuck_open) return std::nullopt;
+  return std::string(
+      "the chuck is open (released from G-code); clamp it first (o<fixed_atc_probe_chuck_clamp> "
+      "call, or the M-code the INI remaps to it)");
+}
+
+double loading_tolerance(const Config& config) {
+  return config.units == Units::inch ? 0.002 : 0.05;
+}
+
+std::optional<std::string> why_not_chuck(const Context& ctx, const ChuckRequest& request) {
+  if (auto not_ready = why_not_ready(ctx)) return not_ready;
+  if (request.action == ChuckRequest::Action::clamp) return std::nullopt;
+  if (!ctx.spindle_stopped) return std::string("the spindle is on; stop it first (M5)");
+  if (auto air = why_no_air(ctx)) return air;
+  const int held = ctx.tools.spindle;
+  if (held == 0) return std::nullopt;
+  const Point& loading = ctx.config.loading;
+  const std::string why = tool_name(held) +
+                          " is in the spindle and would drop; release it only at loading (" +
+                          position_words(ctx.config, loading) + ") or with the spindle empty";
+  if (!request.at) return why + " (LinuxCNC does not say where the machine is)";
+  const Point& at = *request.at;
+  const double tolerance = loading_tolerance(ctx.config);
+  if (std::abs(at.x - loading.x) > tolerance || std::abs(at.y - loading.y) > tolerance ||
+      std::abs(at.z - loading.z) > tolerance) {
+    return why + "; the machine is at " + position_words(ctx.config, at);
   }
   return std::nullopt;
 }

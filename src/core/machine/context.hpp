@@ -29,6 +29,8 @@ class Context {
   int requested_tool = 0;  ///< the tool the current request is about
   int load_pocket = 0;     ///< the pocket the load flow puts its tool in
   int verify_pocket = 0;   ///< the pocket a dry run goes through
+  /// What the chuck atom under way does.
+  ChuckRequest::Action chuck_action = ChuckRequest::Action::clamp;
   /// A fetch follows the return of the spindle's tool (M6 to a tool in the
   /// rack, unload): on the direct path the return may end at safe Z.
   bool fetch_follows_return = false;
@@ -166,5 +168,13 @@ std::optional<std::string> why_not_measure(const Context& ctx, const std::vector
 std::optional<std::string> why_not_unload(const Context& ctx, int tool);
 /// Why a dry run through pocket `pocket` cannot start now, or nothing if it can.
 std::optional<std::string> why_not_verify(const Context& ctx, int pocket);
+/// A chuck atom left the chuck released: no other work until it is clamped.
+std::optional<std::string> why_chuck_held_open(const Context& ctx);
+/// How close to `loading` the machine must stand for a release with a tool
+/// in the spindle: 0.05 mm, or 0.002 inch.
+double loading_tolerance(const Config& config);
+/// Why a chuck atom cannot run now, or nothing if it can. A release drops
+/// whatever the spindle holds: with a tool recorded in it, only at `loading`.
+std::optional<std::string> why_not_chuck(const Context& ctx, const ChuckRequest& request);
 
 }  // namespace fatc

@@ -437,6 +437,72 @@ struct VerifyFlow_ : Flow<VerifyFlow_> {
 };
 using VerifyFlow = Machine_of<VerifyFlow_>;
 
+// ================================================================ chuck atoms
+/// A chuck atom from G-code (nc_files/fixed_atc_probe_chuck_*.ngc), with
+/// the interlocks of the legs: a release waits until the chuck may open
+/// (air, the spindle at a standstill), gives the chuck `chuck_seconds`, and
+/// the drawbar must then read open; the chuck stays open until a clamp, which
+/// gives it `chuck_seconds` again and must read closed. What the spindle
+/// holds stays as recorded (docs/sequences.md#chuck-atoms).
+struct ChuckFlow_ : Flow<ChuckFlow_> {
+  using flag_list = boost::mpl::vector2<flag::Busy, flag::Chucking>;
+  static int served_tool(const Context& ctx) { return ctx.tools.spindle; }
+  static int served_pocket(const Context&, int) { return 0; }
+
+  struct Releases {
+    template <class Event, class Fsm, class Source, class Target>
+    bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      return fsm.ctx->chuck_action == ChuckRequest::Action::release;
+    }
+  };
+  struct DecidingWhich : Decision {};
+  struct WaitingToOpen : WaitingToOpenChuck<ForRelease> {};
+  struct Opening : Timed {
+    template <class Event, class Fsm>
+    void on_entry(const Event&, Fsm& fsm) {
+      fsm.ctx->open_chuck();
+      fsm.ctx->wait(fsm.ctx->config.chuck_seconds, "releasing the chuck (G-code)");
+    }
+  };
+  struct Closing : Timed {
+    template <class Event, class Fsm>
+    void on_entry(const Event&, Fsm& fsm) {
+      fsm.ctx->close_chuck();
+      fsm.ctx->wait(fsm.ctx->config.chuck_seconds, "clamping the chuck (G-code)");
+    }
+  };
+  struct SayReleased {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      const int held = fsm.ctx->tools.spindle;
+      fsm.ctx->tell(MessageKind::info,
+                    held == 0 ? std::string("chuck released (G-code); clamp it before other work")
+                              : "chuck released at loading (G-code); tool " + std::to_string(held) +
+                                    " stays recorded in the spindle: clamp it, then unload it "
+                                    "with the panel if you took it out");
+    }
+  };
+
+  using initial_state = DecidingWhich;
+  // clang-format off
+  using transition_table = boost::mpl::vector<
+  //    Start                  Event          Next                   Action                                Guard
+  // +----------------------+--------------+----------------------+-------------------------------------+---------------+
+  Row < DecidingWhich        , none         , WaitingToOpen        , none                                , Releases      >,
+  Row < DecidingWhich        , none         , Closing              , none                                , Not<Releases> >,
+  Row < WaitingToOpen        , SensorReport , Opening              , none                                , ChuckMayOpen  >,
+  Row < WaitingToOpen        , TimerElapsed , Halted               , FaultChuckMayNotOpen<ForRelease>    , none          >,
+  Row < Opening              , TimerElapsed , CheckingDrawbarOpen  , none                                , none          >,
+  Row < CheckingDrawbarOpen  , SensorReport , Finished             , SayReleased                         , DrawbarOpen   >,
+  Row < CheckingDrawbarOpen  , TimerElapsed , Halted               , FaultDrawbarStayedClosed<ForRelease>, none          >,
+  Row < Closing              , TimerElapsed , CheckingDrawbarClosed, none                                , none          >,
+  Row < CheckingDrawbarClosed, SensorReport , Finished             , none                                , DrawbarClosed >,
+  Row < CheckingDrawbarClosed, TimerElapsed , Halted               , FaultDrawbarStayedOpen<ForClamp>    , none          >
+  >;
+  // clang-format on
+};
+using ChuckFlow = Machine_of<ChuckFlow_>;
+
 // ================================================================ requests and refusals
 inline std::string request_name(const ToolChange& e) { return "M6 T" + std::to_string(e.tool); }
 inline std::string request_name(const LoadRequest& e) {
@@ -451,6 +517,9 @@ inline std::string request_name(const UnloadRequest& e) {
 }
 inline std::string request_name(const VerifyRequest& e) {
   return "verify of pocket " + std::to_string(e.pocket);
+}
+inline std::string request_name(const ChuckRequest& e) {
+  return e.action == ChuckRequest::Action::release ? "chuck release" : "chuck clamp";
 }
 
 inline std::optional<std::string> why_not(const Context& c, const ToolChange& e) {
@@ -468,17 +537,21 @@ inline std::optional<std::string> why_not(const Context& c, const UnloadRequest&
 inline std::optional<std::string> why_not(const Context& c, const VerifyRequest& e) {
   return why_not_verify(c, e.pocket);
 }
+inline std::optional<std::string> why_not(const Context& c, const ChuckRequest& e) {
+  return why_not_chuck(c, e);
+}
 
-/// Refuses a request, saying why `Because` gives. An M6's executor waits for a
-/// step: it gets one that fails its program with the same words.
+/// Refuses a request, saying why `Because` gives. The executor of an M6 or a
+/// chuck atom waits for a step: it gets one that fails its program with the
+/// same words.
 template <class Because>
 struct Refuse {
   template <class Request, class Fsm, class Source, class Target>
   void operator()(const Request& e, Fsm& fsm, Source&, Target&) const {
     const std::string text = request_name(e) + " refused: " + Because{}(fsm, e);
-    if constexpr (std::is_same_v<Request, ToolChange>) {
+    if constexpr (std::is_same_v<Request, ToolChange> || std::is_same_v<Request, ChuckRequest>) {
       Step fail = failure_step(text);
-      fail.tool = e.tool;
+      if constexpr (std::is_same_v<Request, ToolChange>) fail.tool = e.tool;
       // Straight to the executor: the flow running (if any) goes on as it was.
       fsm.ctx->ports.publish(fail);
     }
@@ -513,6 +586,7 @@ struct BecauseBusy {
       return "the changer is busy unloading tool " + tool;
     if (fsm.template is_flag_active<flag::Verifying>())
       return "the changer is busy verifying pocket " + std::to_string(fsm.ctx->verify_pocket);
+    if (fsm.template is_flag_active<flag::Chucking>()) return "the changer is busy with the chuck";
     return "the changer is busy changing to tool " + tool;
   }
 };
@@ -522,7 +596,8 @@ using RefusesRequests = boost::mpl::vector<msmf::Internal<ToolChange, Refuse<Bec
                                            msmf::Internal<LoadRequest, Refuse<Because>, none>,
                                            msmf::Internal<UnloadRequest, Refuse<Because>, none>,
                                            msmf::Internal<MeasureRequest, Refuse<Because>, none>,
-                                           msmf::Internal<VerifyRequest, Refuse<Because>, none>>;
+                                           msmf::Internal<VerifyRequest, Refuse<Because>, none>,
+                                           msmf::Internal<ChuckRequest, Refuse<Because>, none>>;
 
 // ================================================================ operating
 /// The machine on and homed: idle, or running one flow.
@@ -606,6 +681,9 @@ struct Operating_ : Flow<Operating_> {
       if constexpr (std::is_same_v<Request, VerifyRequest>) {
         fsm.ctx->requested_tool = fsm.ctx->tools.spindle;
         fsm.ctx->verify_pocket = e.pocket;
+      } else if constexpr (std::is_same_v<Request, ChuckRequest>) {
+        fsm.ctx->requested_tool = fsm.ctx->tools.spindle;
+        fsm.ctx->chuck_action = e.action;
       } else if constexpr (!std::is_same_v<Request, MeasureRequest>) {
         fsm.ctx->requested_tool = e.tool;
       }
@@ -665,7 +743,9 @@ struct Operating_ : Flow<Operating_> {
   Row < Idle                           , MeasureRequest, none      , Refuse<BecauseNotPossible>, Refused                           >,
   Row < Idle                           , MeasureRequest, MeasureAllFlow, TakeRequest           , Not<Refused>                      >,
   Row < Idle                           , VerifyRequest , none      , Refuse<BecauseNotPossible>, Refused                           >,
-  Row < Idle                           , VerifyRequest , VerifyFlow, TakeRequest               , Not<Refused>                      >
+  Row < Idle                           , VerifyRequest , VerifyFlow, TakeRequest               , Not<Refused>                      >,
+  Row < Idle                           , ChuckRequest  , none      , Refuse<BecauseNotPossible>, Refused                           >,
+  Row < Idle                           , ChuckRequest  , ChuckFlow , TakeRequest               , Not<Refused>                      >
   >;
   /// Comparing the sensors before work, and where each flow ends.
   using around_the_flows = boost::mpl::vector<
@@ -682,7 +762,8 @@ struct Operating_ : Flow<Operating_> {
   Row < MeasureAllFlow::exit_pt<Finished>, LegDone      , ComparingSensors, AnswerDone        , none               >,
   Row < VerifyFlow::exit_pt<Finished>    , LegDone      , ComparingSensors, AnswerDone        , none               >,
   Row < VerifyFlow::exit_pt<Cancelled>   , LegDone      , ComparingSensors, AnswerDone        , none               >,
-  Row < VerifyFlow                       , Abort        , ComparingSensors, StopDryRun        , none               >
+  Row < VerifyFlow                       , Abort        , ComparingSensors, StopDryRun        , none               >,
+  Row < ChuckFlow::exit_pt<Finished>     , LegDone      , ComparingSensors, AnswerDone        , none               >
   >;
   using transition_table = boost::mpl::joint_view<requests, around_the_flows>;
   // clang-format on
@@ -697,6 +778,15 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
   struct MachineNotReady : msmf::state<> {
     using flag_list = boost::mpl::vector1<flag::NotReady>;
     using internal_transition_table = RefusesRequests<BecauseNotReady>;
+    /// A chuck a release left open closes with the machine, as a spring
+    /// drawbar does when its air goes.
+    template <class Event, class Fsm>
+    void on_entry(const Event&, Fsm& fsm) {
+      Context& c = *fsm.ctx;
+      if (!c.chuck_open) return;
+      c.close_chuck();
+      c.tell(MessageKind::info, "the chuck, left released by G-code, closed: the machine went off");
+    }
   };
   struct Faulted : msmf::state<> {
     using flag_list = boost::mpl::vector1<flag::Faulted>;

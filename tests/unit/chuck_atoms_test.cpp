@@ -1,0 +1,240 @@
+// The chuck atoms: release and clamp from G-code (M310/M311 in the sample
+// INI, nc_files/fixed_atc_probe_chuck_*.ngc), with the interlocks of the legs.
+#include <gtest/gtest.h>
+
+#include <memory>
+
+#include "core/changer.hpp"
+#include "core/executor_link.hpp"
+#include "core/simulator.hpp"
+#include "sim_lines.hpp"
+#include "test_config.hpp"
+
+namespace fatc {
+namespace {
+
+using test::Lines;
+using Action = ChuckRequest::Action;
+
+const Point kLoading{20.0, 150.0, -10.0};  // test::kValidConfig's
+const Point kOverTheWork{200.0, 200.0, -50.0};
+
+bool has(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+struct ChuckRig {
+  explicit ChuckRig(int spindle = 0, Config c = test::valid_config()) : config(std::move(c)) {
+    tools = ToolState::fresh(config);
+    tools.spindle = spindle;
+    test::take_out(tools, spindle);
+    sim.model_rack(config, tools);
+    changer = std::make_unique<Changer>(config, sim, tools);
+    sim.report_sensors(*changer);
+    changer->ready();
+    sim.run(*changer);
+    seen = sim.records.size();
+  }
+  ~ChuckRig() {
+    EXPECT_TRUE(sim.unexpected_events.empty())
+        << (sim.unexpected_events.empty() ? "" : sim.unexpected_events.front());
+  }
+  Lines run() {
+    sim.run(*changer);
+    const std::size_t from = seen;
+    seen = sim.records.size();
+    return test::record_lines(sim, from);
+  }
+  std::string last_message() const {
+    for (auto it = sim.records.rbegin(); it != sim.records.rend(); ++it) {
+      if (it->kind == Record::Kind::message) return it->text;
+    }
+    return "";
+  }
+  Config config;
+  ToolState tools;
+  Simulator sim;
+  std::unique_ptr<Changer> changer;
+  std::size_t seen = 0;
+};
+
+TEST(ChuckAtoms, shouldReleaseAnEmptySpindleAnywhereAndHoldItOpen) {
+  ChuckRig rig;
+  rig.changer->chuck(Action::release, kOverTheWork);
+  EXPECT_EQ(rig.run(), (Lines{"chuck open", "dwell 0.50", "done T0"}));
+  const Status held = rig.changer->status();
+  EXPECT_EQ(held.phase, Phase::idle);
+  EXPECT_FALSE(held.accepting) << "the panel offers no load while the chuck is open";
+  EXPECT_TRUE(has(held.activity, "the chuck is open (released from G-code)")) << held.activity;
+  EXPECT_TRUE(rig.sim.chuck_open);
+  EXPECT_EQ(rig.last_message(), "chuck released (G-code); clamp it before other work");
+}
+
+TEST(ChuckAtoms, shouldRefuseEveryOtherRequestWhileTheChuckIsHeldOpen) {
+  ChuckRig rig;
+  rig.changer->chuck(Action::release, kOverTheWork);
+  rig.run();
+  rig.changer->tool_change(3);
+  EXPECT_EQ(rig.run(), (Lines{"fail M6 T3 refused: the chuck is open (released from G-code); clamp "
+                              "it first (o<fixed_atc_probe_chuck_clamp> call, or the M-code the "
+                              "INI remaps to it)"}));
+  rig.changer->load(7);
+  EXPECT_TRUE(has(rig.last_message(), "load of tool 7 refused: the chuck is open"))
+      << rig.last_message();
+  EXPECT_TRUE(rig.sim.chuck_open) << "a refusal moves nothing";
+}
+
+TEST(ChuckAtoms, shouldClampAndTakeWorkAgain) {
+  ChuckRig rig;
+  rig.changer->chuck(Action::release, kOverTheWork);
+  rig.run();
+  rig.changer->chuck(Action::clamp, kOverTheWork);
+  EXPECT_EQ(rig.run(), (Lines{"chuck close", "dwell 0.50", "done T0"}));
+  EXPECT_TRUE(rig.changer->status().accepting);
+  EXPECT_FALSE(rig.sim.chuck_open);
+  rig.changer->tool_change(3);
+  const Lines change = rig.run();
+  ASSERT_FALSE(change.empty());
+  EXPECT_EQ(change.back(), "done T3");
+}
+
+TEST(ChuckAtoms, shouldRefuseToDropARecordedToolAwayFromLoading) {
+  ChuckRig rig(3);
+  rig.changer->chuck(Action::release, kOverTheWork);
+  EXPECT_EQ(rig.run(),
+            (Lines{"fail chuck release refused: tool 3 is in the spindle and would drop; release "
+                   "it only at loading (X20.000 Y150.000 Z-10.000 mm) or with the spindle empty; "
+                   "the machine is at X200.000 Y200.000 Z-50.000 mm"}));
+  EXPECT_FALSE(rig.sim.chuck_open);
+  EXPECT_TRUE(rig.changer->status().accepting);
+}
+
+TEST(ChuckAtoms, shouldRefuseToDropARecordedToolWhereLinuxcncSaysNothingOfThePosition) {
+  ChuckRig rig(3);
+  rig.changer->chuck(Action::release, std::nullopt);
+  const Lines lines = rig.run();
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_TRUE(has(lines[0], "(LinuxCNC does not say where the machine is)")) << lines[0];
+}
+
+TEST(ChuckAtoms, shouldReleaseARecordedToolAtLoadingWithinTheToleranceAndKeepItsRecord) {
+  ChuckRig rig(3);
+  rig.changer->chuck(Action::release, Point{20.04, 149.96, -10.03});
+  EXPECT_EQ(rig.run(), (Lines{"chuck open", "dwell 0.50", "done T3"}));
+  EXPECT_EQ(rig.changer->tools().spindle, 3);
+  EXPECT_TRUE(has(rig.last_message(), "tool 3 stays recorded in the spindle"))
+      << rig.last_message();
+
+  ChuckRig off(3);
+  off.changer->chuck(Action::release, Point{20.0, 150.0, -10.06});
+  EXPECT_EQ(off.run().size(), 1u) << "0.06 mm off loading is not at loading";
+  EXPECT_FALSE(off.sim.chuck_open);
+}
+
+TEST(ChuckAtoms, shouldRefuseAReleaseWhileTheSpindleIsOn) {
+  ChuckRig rig;
+  rig.changer->spindle_stopped(false);
+  rig.changer->chuck(Action::release, kOverTheWork);
+  EXPECT_EQ(rig.run(),
+            (Lines{"fail chuck release refused: the spindle is on; stop it first (M5)"}));
+  EXPECT_FALSE(rig.sim.chuck_open);
+}
+
+TEST(ChuckAtoms, shouldRefuseAReleaseWithoutAir) {
+  ChuckRig rig(0, test::valid_config(R"("sensors": {"air_pressure": true})"));
+  rig.sim.rack.air = false;
+  rig.sim.report_sensors(*rig.changer);
+  rig.changer->chuck(Action::release, kOverTheWork);
+  EXPECT_EQ(rig.run(), (Lines{"fail chuck release refused: air pressure is low (air-pressure-ok "
+                              "off): the chuck cannot open"}));
+}
+
+TEST(ChuckAtoms, shouldWaitForZeroSpeedBeforeOpening) {
+  ChuckRig rig(0, test::valid_config(R"("sensors": {"zero_speed": true})"));
+  rig.sim.rack.spindle_still = false;
+  rig.sim.report_sensors(*rig.changer);
+  rig.changer->chuck(Action::release, kOverTheWork);
+  EXPECT_EQ(rig.changer->status().phase, Phase::chuck);
+  EXPECT_EQ(rig.changer->status().activity,
+            "waiting for the spindle to stop before the chuck opens for the release from G-code");
+  EXPECT_FALSE(rig.sim.chuck_open);
+}
+
+TEST(ChuckAtoms, shouldFaultWhenTheDrawbarDoesNotOpen) {
+  ChuckRig rig(0, test::valid_config(R"("sensors": {"drawbar_open": true})"));
+  rig.sim.rack.drawbar_jammed = true;
+  rig.changer->chuck(Action::release, kOverTheWork);
+  const Lines lines = rig.run();
+  ASSERT_FALSE(lines.empty());
+  EXPECT_TRUE(has(lines.back(),
+                  "fail the drawbar did not open for the release from G-code within "
+                  "1.0 s (drawbar-open off)"))
+      << lines.back();
+  EXPECT_EQ(rig.changer->status().phase, Phase::fault);
+  EXPECT_FALSE(rig.sim.chuck_open) << "a fault closes the chuck";
+}
+
+TEST(ChuckAtoms, shouldFaultWhenTheDrawbarDoesNotClose) {
+  ChuckRig rig(0, test::valid_config(R"("sensors": {"drawbar_closed": true})"));
+  rig.changer->chuck(Action::release, kOverTheWork);
+  rig.run();
+  rig.sim.rack.drawbar_jammed = true;
+  rig.changer->chuck(Action::clamp, kOverTheWork);
+  const Lines lines = rig.run();
+  ASSERT_FALSE(lines.empty());
+  EXPECT_TRUE(has(lines.back(), "the drawbar did not close for the clamp from G-code"))
+      << lines.back();
+  EXPECT_EQ(rig.changer->status().phase, Phase::fault);
+}
+
+TEST(ChuckAtoms, shouldCloseAHeldChuckWhenTheMachineGoesOff) {
+  ChuckRig rig;
+  rig.changer->chuck(Action::release, kOverTheWork);
+  rig.run();
+  rig.changer->not_ready();
+  EXPECT_EQ(rig.run(), (Lines{"chuck close"}));
+  EXPECT_EQ(rig.last_message(), "the chuck, left released by G-code, closed: the machine went off");
+  rig.changer->ready();
+  rig.run();
+  EXPECT_TRUE(rig.changer->status().accepting);
+}
+
+TEST(ChuckAtoms, shouldRefuseWithAFailStepWhenTheMachineIsNotReadyOrFaulted) {
+  ChuckRig rig;
+  rig.changer->not_ready();
+  rig.run();
+  rig.changer->chuck(Action::clamp, kOverTheWork);
+  EXPECT_EQ(rig.run(), (Lines{"fail chuck clamp refused: the machine is not on and homed, or is "
+                              "in estop"}));
+}
+
+TEST(ChuckAtoms, shouldReachTheChangerFromTheExecutorCalls) {
+  ExecutorLink link;
+  const auto t0 = ExecutorLink::Time{};
+  LinkInputs in;
+  in.interpreter_idle = false;
+  in.step_request = true;
+  in.call = static_cast<int>(ExecutorCall::chuck_release);
+  auto events = link.read(in, t0);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].kind, LinkEvent::Kind::chuck_release);
+
+  ExecutorLink other;
+  in.call = static_cast<int>(ExecutorCall::chuck_clamp);
+  events = other.read(in, t0);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].kind, LinkEvent::Kind::chuck_clamp);
+
+  ExecutorLink wrong;
+  in.call = 5;
+  events = wrong.read(in, t0);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].kind, LinkEvent::Kind::wrong_call) << "the component says it";
+  const LinkOutputs out = wrong.write(true);
+  ASSERT_TRUE(out.step_ready);
+  EXPECT_EQ(out.step.kind, StepKind::fail);
+  EXPECT_TRUE(has(out.step.label, "3 (chuck release) or 4 (chuck clamp)")) << out.step.label;
+}
+
+}  // namespace
+}  // namespace fatc
