@@ -179,7 +179,17 @@ std::string sensors_wired(const Config& config) {
 
 int check(const Options& options, std::ostream& out, std::ostream& err) {
   const Loaded loaded = load(options, err);
-  const int problems = loaded.problems + check_state(options, loaded.config, out, err);
+  int problems = loaded.problems + check_state(options, loaded.config, out, err);
+  if (options.ini_path) {
+    std::string error;
+    if (const auto ini = IniFile::read(*options.ini_path, error)) {
+      const Config* config = loaded.config ? &*loaded.config : nullptr;
+      for (const auto& problem : executor_problems(*ini, config)) {
+        err << problem << "\n";
+        ++problems;
+      }
+    }
+  }
   if (!loaded.config) return 1;
   const Config& config = *loaded.config;
   out << shown_path(options.config_path) << ": units " << units_name(config.units) << ", "

@@ -4,8 +4,10 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <inifile.hh>
@@ -258,6 +260,95 @@ std::optional<MotionLimits> motion_limits(const IniFile& ini, Units units, std::
   limits.linear_velocity = *linear_velocity;
   limits.linear_acceleration = *linear_acceleration;
   return limits;
+}
+
+std::vector<std::string> executor_problems(const IniFile& ini, const Config* config) {
+  const char* const section = "FIXED_ATC_PROBE";
+  struct Key {
+    const char* name;
+    const char* reader;
+  };
+  const Key keys[] = {{"CONFIG", "hal/fixed_atc_probe.hal"},
+                      {"STATE", "hal/fixed_atc_probe.hal"},
+                      {"RETURN_TO_XY", "hal/fixed_atc_probe.hal"},
+                      {"MACHINE_ON_SIGNAL", "hal/fixed_atc_probe.hal"},
+                      {"STEP_READY_IN", "the HAL snippet and the executor"},
+                      {"STEP_REQUEST_OUT", "the HAL snippet and the executor"},
+                      {"PROBE_Z_OUT", "the HAL snippet and the executor"},
+                      {"PROBE_RESULT_OUT", "the HAL snippet and the executor"},
+                      {"EXECUTOR_CALL_OUT", "the HAL snippet and the executor"},
+                      {"STEP_TIMEOUT", "the executor (fixed_atc_probe_execute.ngc)"}};
+  std::vector<std::string> problems;
+  bool any = false;
+  for (const Key& key : keys) any = any || ini.get(section, key.name).has_value();
+  if (!any) return problems;
+  auto where = [&](const char* name) {
+    int line = 0;
+    ini.get(section, name, line);
+    return ini.path() + ": " + key_name(section, name, line);
+  };
+  for (const Key& key : keys) {
+    if (!ini.get(section, key.name)) {
+      problems.push_back(where(key.name) + ": missing; " + key.reader + " reads it");
+    }
+  }
+  const char* const pins[] = {"STEP_READY_IN", "STEP_REQUEST_OUT", "PROBE_Z_OUT",
+                              "PROBE_RESULT_OUT", "EXECUTOR_CALL_OUT"};
+  for (const char* pin : pins) {
+    const auto text = ini.get(section, pin);
+    if (!text) continue;
+    const bool two_digits = text->size() == 2 &&
+                            std::isdigit(static_cast<unsigned char>((*text)[0])) &&
+                            std::isdigit(static_cast<unsigned char>((*text)[1]));
+    if (!two_digits) {
+      problems.push_back(where(pin) +
+                         ": expected two digits as in the motion pin names (03), got " +
+                         quote(*text));
+    }
+  }
+  const char* const analog[] = {"PROBE_Z_OUT", "PROBE_RESULT_OUT", "EXECUTOR_CALL_OUT"};
+  for (int a = 0; a < 3; ++a) {
+    for (int b = a + 1; b < 3; ++b) {
+      const auto first = ini.get(section, analog[a]);
+      const auto second = ini.get(section, analog[b]);
+      if (first && second && *first == *second) {
+        problems.push_back(where(analog[b]) + ": motion.analog-out-" + *second + " is " +
+                           analog[a] + "'s too; each needs its own");
+      }
+    }
+  }
+  if (const auto back = ini.get(section, "RETURN_TO_XY"); back && *back != "0" && *back != "1") {
+    problems.push_back(where("RETURN_TO_XY") + ": expected 0 or 1, got " + quote(*back));
+  }
+  const auto timeout_text = ini.get(section, "STEP_TIMEOUT");
+  if (!timeout_text) return problems;
+  const auto timeout = ini.number(section, "STEP_TIMEOUT");
+  if (!timeout || !std::isfinite(*timeout) || *timeout < 1.0) {
+    problems.push_back(where("STEP_TIMEOUT") + ": expected seconds, 1 or more, got " +
+                       quote(*timeout_text));
+    return problems;
+  }
+  if (!config) return problems;
+  // The waits the executor sits through without a step: each must end well within it.
+  std::vector<std::pair<std::string, double>> waits = {
+      {"spindle_stop_timeout_seconds", config->spindle_stop_timeout_seconds},
+      {"sensor_timeout_seconds", config->sensor_timeout_seconds},
+      {"chuck_seconds", config->chuck_seconds},
+      {"the flush (flush.pulses x (pulse_seconds + pause_seconds))",
+       config->flush.pulses * (config->flush.pulse_seconds + config->flush.pause_seconds)}};
+  if (config->rack_cover) {
+    waits.push_back({"rack_cover.seconds", config->rack_cover->seconds});
+    waits.push_back({"rack_cover.timeout_seconds", config->rack_cover->timeout_seconds});
+  }
+  for (const auto& [name, seconds] : waits) {
+    if (seconds < *timeout) continue;
+    char buffer[160];
+    std::snprintf(buffer, sizeof buffer, ": %g s is not longer than config.json's %s (%g s)",
+                  *timeout, name.c_str(), seconds);
+    problems.push_back(where("STEP_TIMEOUT") + buffer +
+                       ": the executor would stop the program while the changer waits; raise it");
+  }
+  return problems;
 }
 
 }  // namespace fatc::io

@@ -60,4 +60,13 @@ std::optional<SoftLimits> soft_limits(const IniFile& ini, Units units, std::stri
 /// missing, or any is no positive finite number.
 std::optional<MotionLimits> motion_limits(const IniFile& ini, Units units, std::string& error);
 
+/// [FIXED_ATC_PROBE] as hal/fixed_atc_probe.hal and the NGC step executor
+/// read it, one line per problem: every key there, the motion pin numbers two
+/// digits as in the pin names, the analog outputs different, RETURN_TO_XY 0
+/// or 1, STEP_TIMEOUT a number of seconds longer than every wait of `config`
+/// (when given) between two steps, which the executor would take for a
+/// component that stopped answering. Nothing when the INI has no key of the
+/// section at all (an INI checked for its limits only).
+std::vector<std::string> executor_problems(const IniFile& ini, const Config* config);
+
 }  // namespace fatc::io

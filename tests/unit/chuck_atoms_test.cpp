@@ -45,12 +45,7 @@ struct ChuckRig {
     seen = sim.records.size();
     return test::record_lines(sim, from);
   }
-  std::string last_message() const {
-    for (auto it = sim.records.rbegin(); it != sim.records.rend(); ++it) {
-      if (it->kind == Record::Kind::message) return it->text;
-    }
-    return "";
-  }
+  std::string last_message() const { return test::last_message(sim); }
   Config config;
   ToolState tools;
   Simulator sim;

@@ -294,6 +294,52 @@ TEST_F(CheckRun, shouldPassTheSampleConfigOnTheSimulatedMill) {
   EXPECT_NE(r.out.find("24 sequences checked, 0 violations"), std::string::npos) << r.out;
 }
 
+/// The simulated mill's INI with `from` replaced by `to` in its text.
+std::string sim_ini_with(const std::string& from, const std::string& to) {
+  std::ifstream in(FATC_SOURCE_DIR "/config/sim/fixed_atc_sim.ini");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+TEST_F(CheckRun, shouldRefuseAStepTimeoutTheChangersWaitsOutlast) {
+  std::ifstream sample(FATC_SOURCE_DIR "/config/config.json");
+  std::string text((std::istreambuf_iterator<char>(sample)), std::istreambuf_iterator<char>());
+  const std::string ten = R"("spindle_stop_timeout_seconds": 10.0)";
+  ASSERT_NE(text.find(ten), std::string::npos);
+  text.replace(text.find(ten), ten.size(), R"("spindle_stop_timeout_seconds": 45)");
+  const std::string config = file("config.json", text);
+  const std::string ini = file("sim.ini", sim_ini_with("STEP_TIMEOUT = 30", "STEP_TIMEOUT = 30"));
+  const CliRun r = run({"--check", "--config", config, "--ini", ini});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find(ini + ": [FIXED_ATC_PROBE]STEP_TIMEOUT (line "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("): 30 s is not longer than config.json's spindle_stop_timeout_seconds (45 "
+                       "s): the executor would stop the program while the changer waits; raise "
+                       "it\n"),
+            std::string::npos)
+      << r.err;
+}
+
+TEST_F(CheckRun, shouldNameEachMissingOrMalformedExecutorKey) {
+  std::string text = sim_ini_with("STEP_READY_IN = 03", "STEP_READY_IN = 3");
+  text.replace(text.find("EXECUTOR_CALL_OUT = 01"), 22, "EXECUTOR_CALL_OUT = 02");
+  text.replace(text.find("STEP_TIMEOUT = 30\n"), 18, "");
+  const std::string ini = file("sim.ini", text);
+  const CliRun r = run({"--check", "--config", kConfig, "--ini", ini});
+  EXPECT_EQ(r.code, 1);
+  const std::vector<std::string> said = {
+      ini +
+          ": [FIXED_ATC_PROBE]STEP_TIMEOUT: missing; the executor (fixed_atc_probe_execute.ngc) "
+          "reads it\n",
+      "): expected two digits as in the motion pin names (03), got \"3\"\n",
+      "): motion.analog-out-02 is PROBE_Z_OUT's too; each needs its own\n"};
+  for (const std::string& line : said) {
+    EXPECT_NE(r.err.find(line), std::string::npos) << line << " in\n" << r.err;
+  }
+}
+
 TEST(Cli, shouldPrintTheDiagram) {
   const CliRun r = run({"--dot"});
   EXPECT_EQ(r.code, 0);

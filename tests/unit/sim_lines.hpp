@@ -47,4 +47,12 @@ inline Lines record_lines(const Simulator& sim, std::size_t from = 0) {
   return out;
 }
 
+/// The last message the changer told, of any kind; "" when none.
+inline std::string last_message(const Simulator& sim) {
+  for (auto it = sim.records.rbegin(); it != sim.records.rend(); ++it) {
+    if (it->kind == Record::Kind::message) return it->text;
+  }
+  return "";
+}
+
 }  // namespace fatc::test

@@ -48,13 +48,7 @@ struct VerifyRig {
     }
     return all;
   }
-  std::string last_message() const {
-    const auto& r = sim.records;
-    for (auto it = r.rbegin(); it != r.rend(); ++it) {
-      if (it->kind == Record::Kind::message) return it->text;
-    }
-    return "";
-  }
+  std::string last_message() const { return test::last_message(sim); }
   Config config;
   ToolState tools;
   Simulator sim;
