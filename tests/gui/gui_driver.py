@@ -30,10 +30,12 @@ from Xlib import X, display  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.environ["FATC_ROOT"], "tests", "integration"))
 import driver  # noqa: E402  (bring-up and waits shared with the integration runs)
+import linuxcnc  # noqa: E402
 from driver import hal, stat, wait_for  # noqa: E402
 from Xlib.ext import xtest  # noqa: E402
 
-STATE_SENSITIVE = 24  # AtspiStateType
+STATE_CHECKED = 4  # AtspiStateType
+STATE_SENSITIVE = 24
 COORDS_SCREEN = 0
 
 PANEL_PINS = ["load-enabled", "unload-enabled", "continue-enabled", "cancel-enabled",
@@ -89,9 +91,31 @@ class Accessible:
         return self.call("org.freedesktop.DBus.Properties", "Get",
                          GLib.Variant("(ss)", ("org.a11y.atspi.Accessible", "Name")))[0]
 
+    def description(self):
+        return self.call("org.freedesktop.DBus.Properties", "Get",
+                         GLib.Variant("(ss)", ("org.a11y.atspi.Accessible", "Description")))[0]
+
     def sensitive(self):
         low, _ = self.call("org.a11y.atspi.Accessible", "GetState")[0]
         return bool(low & (1 << STATE_SENSITIVE))
+
+    def checked(self):
+        low, _ = self.call("org.a11y.atspi.Accessible", "GetState")[0]
+        return bool(low & (1 << STATE_CHECKED))
+
+    def find_described(self, role, words):
+        """The first node (breadth first) of `role` whose description (its
+        tooltip) starts with `words`."""
+        level = [self]
+        while level:
+            below = []
+            for node in level:
+                for child in node.children():
+                    if child.role() == role and child.description().startswith(words):
+                        return child
+                    below.append(child)
+            level = below
+        return None
 
     def extents(self):
         return self.call("org.a11y.atspi.Component", "GetExtents", GLib.Variant("(u)", (COORDS_SCREEN,)))[0]
@@ -337,9 +361,40 @@ def gui_window():
     return [g.x, g.y, g.width, g.height]
 
 
+def gmoccapy_machine_on():
+    """Out of estop and on, in step with gmoccapy: its estop and on buttons
+    follow the machine's state and, toggled so, send that state again. A
+    reset gmoccapy sees only once the machine is on would turn it off; so
+    each step waits until gmoccapy's button shows it (over AT-SPI)."""
+    registry = Accessible("org.a11y.atspi.Registry", "/org/a11y/atspi/accessible/root")
+    app = None
+
+    def found():
+        nonlocal app
+        app = next((a for a in registry.children() if a.label() == "gmoccapy"), None)
+        return app is not None
+    wait_for(found, 120, "gmoccapy over AT-SPI")
+    estop = app.find_described("toggle button", "Estop the machine")
+    on = app.find_described("toggle button", "Turn the machine on")
+    if estop is None or on is None:
+        raise RuntimeError("gmoccapy's estop or on button not found over AT-SPI")
+    # gmoccapy sets its estop button from the machine once its window is up.
+    wait_for(lambda: gui_window() is not None and estop.checked(), 120, "gmoccapy showing estop")
+    driver.command.state(linuxcnc.STATE_ESTOP_RESET)
+    wait_for(lambda: stat.task_state == linuxcnc.STATE_ESTOP_RESET and not estop.checked(), 60,
+             "gmoccapy showing the estop reset")
+    driver.command.state(linuxcnc.STATE_ON)
+    wait_for(lambda: stat.task_state == linuxcnc.STATE_ON and on.checked(), 60, "gmoccapy showing the machine on")
+    note("machine on in gmoccapy")
+
+
 def run():
     Accessible.connect()
     wait_for(panel_ready, 120, "the panel's buttons over AT-SPI")
+    if gui() == "gmoccapy":
+        # gmoccapy shows each message in a popup: left to it, as to an operator's GUI.
+        driver.read_messages = False
+        gmoccapy_machine_on()
     driver.bring_up()
     # Task settles a moment after homing; the panel follows `accepting`.
     wait_for(pin("fatc-panel.accepting", True), 60, "the changer accepting requests")
