@@ -116,6 +116,11 @@ def main():
     if not shown or not shown[0].startswith("Insert tool 4 into the spindle"):
         fail("at the insert prompt the panel shows %r, not the prompt" % shown)
     ok("at the insert prompt the panel shows %r" % shown[0])
+    if not axis:
+        popup = r.get("gmoccapy_popup")
+        if not popup or not popup[0].startswith("fixed_atc_probe: Insert tool 4 into the spindle"):
+            fail("at the insert prompt gmoccapy's message popup shows %r, not the prompt" % popup)
+        ok("gmoccapy shows the prompt too, in its message popup: %r" % popup[0])
     opened = "program opened" if axis else "idle, tool number 0"
     for what, teach in ((opened, True), ("removal prompt", False),
                         ("probing", False), ("loaded", True)):

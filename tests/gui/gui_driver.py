@@ -361,19 +361,32 @@ def gui_window():
     return [g.x, g.y, g.width, g.height]
 
 
+def gmoccapy_app():
+    """gmoccapy's application node in AT-SPI (None before it registers)."""
+    registry = Accessible("org.a11y.atspi.Registry", "/org/a11y/atspi/accessible/root")
+    return next((a for a in registry.children() if a.label() == "gmoccapy"), None)
+
+
+def gmoccapy_popups(words):
+    """The texts with `words` that gmoccapy shows in its message popups: its
+    windows other than the main one (searched whole, that one is large)."""
+    window = gui_window()
+    found = []
+    for top in gmoccapy_app().children():
+        x, y, w, h = top.extents()
+        if [x, y, w, h] == window or w <= 0:
+            continue
+        found += [label.label() for label in top.labels() if words in label.label()]
+    return found
+
+
 def gmoccapy_machine_on():
     """Out of estop and on, in step with gmoccapy: its estop and on buttons
     follow the machine's state and, toggled so, send that state again. A
     reset gmoccapy sees only once the machine is on would turn it off; so
     each step waits until gmoccapy's button shows it (over AT-SPI)."""
-    registry = Accessible("org.a11y.atspi.Registry", "/org/a11y/atspi/accessible/root")
-    app = None
-
-    def found():
-        nonlocal app
-        app = next((a for a in registry.children() if a.label() == "gmoccapy"), None)
-        return app is not None
-    wait_for(found, 120, "gmoccapy over AT-SPI")
+    wait_for(lambda: gmoccapy_app() is not None, 120, "gmoccapy over AT-SPI")
+    app = gmoccapy_app()
     estop = app.find_described("toggle button", "Estop the machine")
     on = app.find_described("toggle button", "Turn the machine on")
     if estop is None or on is None:
@@ -438,6 +451,9 @@ def run():
     note("insert prompt")
     screenshot("insert_prompt", ("Continue", True), "Insert tool 4")
     result["insert_prompt_shown"] = panel_says("Insert tool 4")
+    if gui() == "gmoccapy":
+        wait_for(lambda: gmoccapy_popups("Insert tool 4"), 10, "gmoccapy's popup of the insert prompt")
+        result["gmoccapy_popup"] = gmoccapy_popups("Insert tool 4")
     answer("Continue", next_prompt="Jog it closer")
     wait_for(pin("fatc-panel.continue-enabled", True), 180, "the jog prompt")
     note("jog prompt")
