@@ -1,9 +1,11 @@
 #!/usr/bin/env python3
 """Checks the GUI test's results: the panel's HAL outputs and its buttons'
-enabled state at each stage of an unload and a load flow clicked in AXIS,
-the rack page as the panel showed it at each stage, the program page's
-preflight of the program opened in AXIS, the measured length in LinuxCNC's
-tool table, and the screenshots.
+enabled state at each stage of an unload and a load flow clicked in AXIS or
+gmoccapy, the tool LinuxCNC has in the spindle at each stage, the prompt the
+panel shows, the rack page as the panel showed it at each stage, the measured
+length in LinuxCNC's tool table, and the screenshots (the panel on the screen,
+inside gmoccapy's window); in AXIS also the program page's preflight of the
+program opened in AXIS and Teach loading.
    check_gui.py RESULTS.json"""
 import json
 import os
@@ -61,10 +63,41 @@ def expect_rack(r, key, what, holds, measured=()):
     ok("the rack %s: %s" % (what, ", ".join("%s %s" % (p, got[p]) for p in sorted(got))))
 
 
+def expect_spindle(r):
+    """LinuxCNC's tool in the spindle (linuxcnc.stat) and the changer's at each
+    stage: tool 4 from the removal prompt of the unload on, then none; tool 4
+    again once inserted (the jog prompt) until the load puts it away."""
+    for what, tool in (("idle, tool number 0", 0), ("removal prompt", 4), ("unloaded", 0),
+                       ("insert prompt", 0), ("jog prompt", 4), ("loaded", 0)):
+        s = stage(r, what)
+        if s["tool_in_spindle"] != tool or s["changer_tool"] != tool:
+            fail("at '%s' LinuxCNC has T%s in the spindle, the changer T%s, expected T%d" % (
+                what, s["tool_in_spindle"], s["changer_tool"], tool))
+    ok("LinuxCNC and the changer agree on the spindle's tool at each stage (T4 while inserted, none after the load)")
+
+
+def expect_on_screen(r):
+    """Each screenshot's panel lies on the screen and, in gmoccapy, inside its window."""
+    window = r.get("gui_window")
+    for shot in r["screenshots"]:
+        x0, y0, x1, y1 = shot["panel"]
+        width, height = shot["screen"]
+        if x0 < 0 or y0 < 0 or x1 > width or y1 > height or x1 - x0 < 300 or y1 - y0 < 300:
+            fail("%s: the panel at %s is not wholly on the %dx%d screen" % (shot["file"], shot["panel"], width, height))
+        if r["gui"] == "gmoccapy":
+            if not window:
+                fail("gmoccapy's window was not found on the screen")
+            wx, wy, ww, wh = window
+            if x0 < wx or y0 < wy or x1 > wx + ww or y1 > wy + wh:
+                fail("%s: the panel at %s is not inside gmoccapy's window %s" % (shot["file"], shot["panel"], window))
+
+
 def main():
     r = json.load(open(sys.argv[1]))
     if r["error"]:
         fail("the GUI run failed: %s (messages: %s)" % (r["error"], r["messages"][-3:]))
+    axis = r["gui"] == "axis"
+    ok("the panel in %s" % r["gui"])
     expect_enabled(r, "idle, tool number 0")
     expect_enabled(r, "unloaded", load_enabled=True, unload_enabled=True)
     expect_enabled(r, "removal prompt", continue_enabled=True, cancel_enabled=True)
@@ -78,7 +111,18 @@ def main():
         if r[key] != wanted:
             fail("the buttons' sensitivity (%s) is %s, expected %s" % (key, r[key], wanted))
     ok("the buttons on screen are enabled exactly as the panel's pins say")
-    for what, teach in (("program opened", True), ("removal prompt", False),
+    expect_spindle(r)
+    shown = r.get("insert_prompt_shown")
+    if not shown or not shown[0].startswith("Insert tool 4 into the spindle"):
+        fail("at the insert prompt the panel shows %r, not the prompt" % shown)
+    ok("at the insert prompt the panel shows %r" % shown[0])
+    if not axis:
+        popup = r.get("gmoccapy_popup")
+        if not popup or not popup[0].startswith("fixed_atc_probe: Insert tool 4 into the spindle"):
+            fail("at the insert prompt gmoccapy's message popup shows %r, not the prompt" % popup)
+        ok("gmoccapy shows the prompt too, in its message popup: %r" % popup[0])
+    opened = "program opened" if axis else "idle, tool number 0"
+    for what, teach in ((opened, True), ("removal prompt", False),
                         ("probing", False), ("loaded", True)):
         s = stage(r, what)
         got = (s["fatc-panel.teach-loading-enabled"], s["fatc-panel.teach-pocket-enabled"],
@@ -87,7 +131,7 @@ def main():
             fail("at '%s' Teach loading/Teach pocket/Verify pocket enabled %s, expected %s (pocket 0)"
                  % (what, got, (teach, False, False)))
     ok("Teach loading enabled only while the changer is idle; Teach and Verify pocket never (pocket 0)")
-    for what, measure in (("idle, tool number 0", True), ("program opened", True),
+    for what, measure in (("idle, tool number 0", True), (opened, True),
                           ("removal prompt", False), ("probing", False)):
         s = stage(r, what)
         if s["fatc-panel.measure-all-enabled"] != measure or s["fatc-panel.measure-which"] != 0:
@@ -97,7 +141,7 @@ def main():
         fail("the Measure all button on screen once the program opened: sensitive %s" % r.get("measure_all_sensitive_idle"))
     ok("Measure all on screen and enabled while the changer is idle (every tool), off during a flow")
     clicks = [s["what"] for s in r["steps"] if s["what"].startswith("clicked")]
-    ok("clicked in AXIS: %s" % ", ".join(c[8:] for c in clicks))
+    ok("clicked in %s: %s" % (r["gui"], ", ".join(c[8:] for c in clicks)))
 
     expect_rack(r, "rack_start", "at the start", {})
     if r["served_during_unload"] != ["\u25b6 4"]:
@@ -111,23 +155,9 @@ def main():
     expect_rack(r, "rack_jog", "at the jog prompt (state file version %d)" % version,
                 {4: "T4 (in the spindle)" if version == 1 else "empty"})
     expect_rack(r, "rack_loaded", "after the load", {}, measured=("4",))
-    text = r["preflight"]
-    for wanted in ("demo.ngc: 5 tool changes (M6), 0 M61, 0 problems, 0 not known",
-                   "Tools: T1 (pocket 1), T3 (pocket 3), T5 (pocket 5)",
-                   "Never measured: none", "Change time: "):
-        if wanted not in text:
-            fail("the program page does not say %r: %r" % (wanted, text))
-    ok("the program page checked demo.ngc: %s" % text.splitlines()[:3])
-
     measured_to_truth(r, json.load(open(CONFIG)), 4, "measured through the panel")
-    shown = r["teach_shown"]
-    if not shown or not shown[0].startswith("taught loading: x "):
-        fail("after Teach loading the panel shows %r, not the component's message" % shown)
-    ok("Teach loading: the panel shows %r" % shown[0][:80])
-    loading = [r["config_after_teach"]["loading"][a] for a in "xyz"]
-    if any(abs(got - round(at, 4)) > 1e-4 for got, at in zip(loading, r["teach_at"])):
-        fail("config.json's loading is %s, the machine was at %s" % (loading, r["teach_at"]))
-    ok("config.json's loading is now %s, where the machine was" % loading)
+    if axis:
+        program_and_setup(r)
     state = r["state_file"]
     if version == 1:
         in_pocket = 4 in state["in_pocket"]
@@ -144,8 +174,30 @@ def main():
             if head != b"\x89PNG\r\n\x1a\n" or os.path.getsize(path) < 2000:
                 fail("%s is not a screenshot" % path)
         ok("screenshot %s (panel at %s)" % (shot["file"], shot["panel"]))
-    if len(r["screenshots"]) != 4:
-        fail("expected four screenshots, got %d" % len(r["screenshots"]))
+    expect_on_screen(r)
+    wanted = 4 if axis else 2
+    if len(r["screenshots"]) != wanted:
+        fail("expected %d screenshots, got %d" % (wanted, len(r["screenshots"])))
+    ok("the panel wholly on the screen%s in every screenshot" % ("" if axis else " and inside gmoccapy's window"))
+
+
+def program_and_setup(r):
+    """AXIS: the program page of the program opened in AXIS, Teach loading."""
+    text = r["preflight"]
+    for wanted in ("demo.ngc: 5 tool changes (M6), 0 M61, 0 problems, 0 not known",
+                   "Tools: T1 (pocket 1), T3 (pocket 3), T5 (pocket 5)",
+                   "Never measured: none", "Change time: "):
+        if wanted not in text:
+            fail("the program page does not say %r: %r" % (wanted, text))
+    ok("the program page checked demo.ngc: %s" % text.splitlines()[:3])
+    shown = r["teach_shown"]
+    if not shown or not shown[0].startswith("taught loading: x "):
+        fail("after Teach loading the panel shows %r, not the component's message" % shown)
+    ok("Teach loading: the panel shows %r" % shown[0][:80])
+    loading = [r["config_after_teach"]["loading"][a] for a in "xyz"]
+    if any(abs(got - round(at, 4)) > 1e-4 for got, at in zip(loading, r["teach_at"])):
+        fail("config.json's loading is %s, the machine was at %s" % (loading, r["teach_at"]))
+    ok("config.json's loading is now %s, where the machine was" % loading)
 
 
 if __name__ == "__main__":

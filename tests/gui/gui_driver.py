@@ -1,13 +1,19 @@
 #!/usr/bin/python3
-"""The GUI test's operator: started by LinuxCNC beside AXIS ([APPLICATIONS]),
-it finds the fixed_atc_probe panel's widgets through AT-SPI, clicks them with
-the X server's test extension like a mouse would, follows the panel's HAL pins
-and LinuxCNC's status, takes screenshots, then quits AXIS.
+"""The GUI test's operator: started by LinuxCNC beside its GUI ([APPLICATIONS]),
+AXIS or gmoccapy ([DISPLAY]DISPLAY), it finds the fixed_atc_probe panel's
+widgets through AT-SPI, clicks them with the X server's test extension like a
+mouse would, follows the panel's HAL pins and LinuxCNC's status, takes
+screenshots, then quits the GUI.
 Writes FATC_RESULTS (JSON) and the screenshots into FATC_ARTIFACTS.
 
 The panel is a GtkPlug inside AXIS (Tk), which has no accessibility tree to
-hang it on; GTK names the plug's accessible in the _XEMBED_AT_SPI_PATH property
-of its window, and the driver walks the tree from there over D-Bus."""
+hang it on, or inside gmoccapy's GtkSocket (EMBED_TAB_COMMAND); GTK names the
+plug's accessible in the _XEMBED_AT_SPI_PATH property of its window, and the
+driver walks the tree from there over D-Bus, in either GUI.
+
+In AXIS the whole operator run: unload and load tool 4, the program page
+(a program opened with axis-remote), the Setup page's Teach loading. In
+gmoccapy the part that proves the embedding: the same unload and load."""
 import json
 import os
 import subprocess
@@ -19,14 +25,17 @@ import gi
 gi.require_version("Gdk", "3.0")
 from gi.repository import Gdk, Gio, GLib  # noqa: E402
 
+import Xlib.protocol.event  # noqa: E402
 from Xlib import X, display  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.environ["FATC_ROOT"], "tests", "integration"))
 import driver  # noqa: E402  (bring-up and waits shared with the integration runs)
+import linuxcnc  # noqa: E402
 from driver import hal, stat, wait_for  # noqa: E402
 from Xlib.ext import xtest  # noqa: E402
 
-STATE_SENSITIVE = 24  # AtspiStateType
+STATE_CHECKED = 4  # AtspiStateType
+STATE_SENSITIVE = 24
 COORDS_SCREEN = 0
 
 PANEL_PINS = ["load-enabled", "unload-enabled", "continue-enabled", "cancel-enabled",
@@ -38,10 +47,16 @@ xdisplay = display.Display()
 result = {"steps": [], "messages": [], "error": None, "screenshots": []}
 
 
+def gui():
+    """The GUI LinuxCNC runs: axis or gmoccapy."""
+    return os.path.basename(driver.ini().find("DISPLAY", "DISPLAY").split()[0])
+
+
 def note(what):
     stat.poll()
     entry = {"what": what, "t": time.monotonic(), "tool_in_spindle": stat.tool_in_spindle,
-             "state": hal.get_value("fixed_atc_probe.state")}
+             "state": hal.get_value("fixed_atc_probe.state"),
+             "changer_tool": hal.get_value("fixed_atc_probe.tool-in-spindle")}
     entry.update({"fatc-panel." + p: hal.get_value("fatc-panel." + p) for p in PANEL_PINS})
     result["steps"].append(entry)
 
@@ -76,9 +91,31 @@ class Accessible:
         return self.call("org.freedesktop.DBus.Properties", "Get",
                          GLib.Variant("(ss)", ("org.a11y.atspi.Accessible", "Name")))[0]
 
+    def description(self):
+        return self.call("org.freedesktop.DBus.Properties", "Get",
+                         GLib.Variant("(ss)", ("org.a11y.atspi.Accessible", "Description")))[0]
+
     def sensitive(self):
         low, _ = self.call("org.a11y.atspi.Accessible", "GetState")[0]
         return bool(low & (1 << STATE_SENSITIVE))
+
+    def checked(self):
+        low, _ = self.call("org.a11y.atspi.Accessible", "GetState")[0]
+        return bool(low & (1 << STATE_CHECKED))
+
+    def find_described(self, role, words):
+        """The first node (breadth first) of `role` whose description (its
+        tooltip) starts with `words`."""
+        level = [self]
+        while level:
+            below = []
+            for node in level:
+                for child in node.children():
+                    if child.role() == role and child.description().startswith(words):
+                        return child
+                    below.append(child)
+            level = below
+        return None
 
     def extents(self):
         return self.call("org.a11y.atspi.Component", "GetExtents", GLib.Variant("(u)", (COORDS_SCREEN,)))[0]
@@ -194,10 +231,13 @@ def set_tool_number(number):
     note("tool number %d" % number)
 
 
-def screenshot(name, shown):
+def screenshot(name, shown, words=None):
     """The whole screen, once the panel shows `shown` (a button name and
-    whether it is enabled), and the panel alone beside it (`-panel.png`)."""
+    whether it is enabled) and, if given, `words`, and the panel alone beside
+    it (`-panel.png`)."""
     wait_for(lambda: sensitive(shown[0]) == shown[1], 10, "the panel to show " + str(shown))
+    if words:
+        wait_for(lambda: panel_says(words), 10, "the panel to say " + words)
     time.sleep(0.3)  # the widget is updated; give GTK one frame to paint it
     root = Gdk.get_default_root_window()
     picture = Gdk.pixbuf_get_from_window(root, 0, 0, root.get_width(), root.get_height())
@@ -206,7 +246,8 @@ def screenshot(name, shown):
     x0, y0, x1, y1 = panel_region()
     panel_path = os.path.join(os.environ["FATC_ARTIFACTS"], name + "-panel.png")
     picture.new_subpixbuf(x0, y0, x1 - x0, y1 - y0).savev(panel_path, "png", [], [])
-    result["screenshots"].append({"file": path, "panel_file": panel_path, "panel": [x0, y0, x1, y1]})
+    result["screenshots"].append({"file": path, "panel_file": panel_path, "panel": [x0, y0, x1, y1],
+                                  "screen": [root.get_width(), root.get_height()]})
 
 
 def panel_region(margin=6):
@@ -283,9 +324,90 @@ def pin(name, value):
     return lambda: hal.get_value(name) == value
 
 
+def quit_gui():
+    if gui() == "axis":
+        os.system("axis-remote --quit")
+        return
+    # gmoccapy: its window closed as a window manager would (WM_DELETE_WINDOW);
+    # gmoccapy then turns the machine off, ends its panel and quits.
+    window = gmoccapy_window()
+    if window is None:
+        return
+    protocols = xdisplay.intern_atom("WM_PROTOCOLS")
+    delete = xdisplay.intern_atom("WM_DELETE_WINDOW")
+    window.send_event(Xlib.protocol.event.ClientMessage(
+        window=window, client_type=protocols, data=(32, [delete, X.CurrentTime, 0, 0, 0])))
+    xdisplay.sync()
+
+
+def gmoccapy_window():
+    """gmoccapy's main window: its largest window on the screen."""
+    found = []
+    for window in xdisplay.screen().root.query_tree().children:
+        wm_class = window.get_wm_class()
+        if wm_class and "gmoccapy" in (wm_class[0].lower(), wm_class[1].lower()) \
+                and window.get_attributes().map_state == X.IsViewable:
+            g = window.get_geometry()
+            found.append((g.width * g.height, window))
+    return max(found, key=lambda f: f[0])[1] if found else None
+
+
+def gui_window():
+    """gmoccapy's main window on the screen: [x, y, width, height]."""
+    window = gmoccapy_window()
+    if window is None:
+        return None
+    g = window.get_geometry()
+    return [g.x, g.y, g.width, g.height]
+
+
+def gmoccapy_app():
+    """gmoccapy's application node in AT-SPI (None before it registers)."""
+    registry = Accessible("org.a11y.atspi.Registry", "/org/a11y/atspi/accessible/root")
+    return next((a for a in registry.children() if a.label() == "gmoccapy"), None)
+
+
+def gmoccapy_popups(words):
+    """The texts with `words` that gmoccapy shows in its message popups: its
+    windows other than the main one (searched whole, that one is large)."""
+    window = gui_window()
+    found = []
+    for top in gmoccapy_app().children():
+        x, y, w, h = top.extents()
+        if [x, y, w, h] == window or w <= 0:
+            continue
+        found += [label.label() for label in top.labels() if words in label.label()]
+    return found
+
+
+def gmoccapy_machine_on():
+    """Out of estop and on, in step with gmoccapy: its estop and on buttons
+    follow the machine's state and, toggled so, send that state again. A
+    reset gmoccapy sees only once the machine is on would turn it off; so
+    each step waits until gmoccapy's button shows it (over AT-SPI)."""
+    wait_for(lambda: gmoccapy_app() is not None, 120, "gmoccapy over AT-SPI")
+    app = gmoccapy_app()
+    estop = app.find_described("toggle button", "Estop the machine")
+    on = app.find_described("toggle button", "Turn the machine on")
+    if estop is None or on is None:
+        raise RuntimeError("gmoccapy's estop or on button not found over AT-SPI")
+    # gmoccapy sets its estop button from the machine once its window is up.
+    wait_for(lambda: gui_window() is not None and estop.checked(), 120, "gmoccapy showing estop")
+    driver.command.state(linuxcnc.STATE_ESTOP_RESET)
+    wait_for(lambda: stat.task_state == linuxcnc.STATE_ESTOP_RESET and not estop.checked(), 60,
+             "gmoccapy showing the estop reset")
+    driver.command.state(linuxcnc.STATE_ON)
+    wait_for(lambda: stat.task_state == linuxcnc.STATE_ON and on.checked(), 60, "gmoccapy showing the machine on")
+    note("machine on in gmoccapy")
+
+
 def run():
     Accessible.connect()
     wait_for(panel_ready, 120, "the panel's buttons over AT-SPI")
+    if gui() == "gmoccapy":
+        # gmoccapy shows each message in a popup: left to it, as to an operator's GUI.
+        driver.read_messages = False
+        gmoccapy_machine_on()
     driver.bring_up()
     # Task settles a moment after homing; the panel follows `accepting`.
     wait_for(pin("fatc-panel.accepting", True), 60, "the changer accepting requests")
@@ -293,12 +415,15 @@ def run():
     note("idle, tool number 0")
     result["idle_tool0_sensitive"] = {b: sensitive(b) for b in ("Load / Probe", "Unload", "Continue", "Cancel")}
     result["rack_start"] = rack()
+    if gui() == "gmoccapy":
+        result["gui_window"] = gui_window()
 
-    # The demo program opened in AXIS: the panel checks it with --lint.
-    subprocess.run(["axis-remote", os.path.join(os.environ["FATC_ROOT"], "nc_files", "demo.ngc")],
-                   check=True, timeout=30)
-    wait_for(lambda: "Tools:" in preflight(), 30, "the preflight of demo.ngc")
-    note("program opened")
+    if gui() == "axis":
+        # The demo program opened in AXIS: the panel checks it with --lint.
+        subprocess.run(["axis-remote", os.path.join(os.environ["FATC_ROOT"], "nc_files", "demo.ngc")],
+                       check=True, timeout=30)
+        wait_for(lambda: "Tools:" in preflight(), 30, "the preflight of demo.ngc")
+        note("program opened")
     result["measure_all_sensitive_idle"] = sensitive("Measure all")
 
     # Unload tool 4, then load it back and measure it, all from the panel.
@@ -324,7 +449,11 @@ def run():
     click("Load / Probe")
     wait_for(pin("fatc-panel.continue-enabled", True), 180, "the insert prompt")
     note("insert prompt")
-    screenshot("insert_prompt", ("Continue", True))
+    screenshot("insert_prompt", ("Continue", True), "Insert tool 4")
+    result["insert_prompt_shown"] = panel_says("Insert tool 4")
+    if gui() == "gmoccapy":
+        wait_for(lambda: gmoccapy_popups("Insert tool 4"), 10, "gmoccapy's popup of the insert prompt")
+        result["gmoccapy_popup"] = gmoccapy_popups("Insert tool 4")
     answer("Continue", next_prompt="Jog it closer")
     wait_for(pin("fatc-panel.continue-enabled", True), 180, "the jog prompt")
     note("jog prompt")
@@ -340,6 +469,14 @@ def run():
     note("loaded")
     result["rack_loaded"] = rack_shows(4, "T4")
     screenshot("after_load", ("Load / Probe", True))
+    if gui() == "axis":
+        program_and_setup()
+    result["tool_table_file"] = open(os.path.join(os.getcwd(), "sim.tbl")).read()
+    result["state_file"] = json.load(open(os.path.join(os.getcwd(), "fixed_atc_state.json")))
+
+
+def program_and_setup():
+    """AXIS only: the program page of the program opened in AXIS, and Teach loading."""
     show_page("Program")
     result["preflight"] = preflight()
     screenshot("program", ("Load / Probe", True))
@@ -358,21 +495,20 @@ def run():
     screenshot("setup", ("Teach loading", True))
     with open(os.path.join(os.getcwd(), "config.json")) as f:
         result["config_after_teach"] = json.load(f)
-    result["tool_table_file"] = open(os.path.join(os.getcwd(), "sim.tbl")).read()
-    result["state_file"] = json.load(open(os.path.join(os.getcwd(), "fixed_atc_state.json")))
 
 
 def main():
     own = hal.component("fatc-gui-driver")  # hal.get_value needs a component of our own
     own.ready()
     try:
+        result["gui"] = gui()
         run()
-    except Exception as e:  # the checker reports it; AXIS must still quit
+    except Exception as e:  # the checker reports it; the GUI must still quit
         result["error"] = "%s: %s\n%s" % (type(e).__name__, e, traceback.format_exc())
     result["messages"] = driver.messages
     with open(os.environ["FATC_RESULTS"], "w") as f:
         json.dump(result, f, indent=1)
-    os.system("axis-remote --quit")
+    quit_gui()
 
 
 if __name__ == "__main__":

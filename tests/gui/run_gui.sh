@@ -1,12 +1,20 @@
 #!/usr/bin/env bash
-# The GUI test: the real AXIS with fixed_atc_probe's panel, on a virtual X
-# server, operated by gui_driver.py through the panel's buttons.
-#   run_gui.sh WORKDIR BINARY
+# The GUI test: the real AXIS (or gmoccapy) with fixed_atc_probe's panel, on a
+# virtual X server, operated by gui_driver.py through the panel's buttons.
+#   run_gui.sh WORKDIR BINARY [axis|gmoccapy]
 # Leaves results.json and the screenshots (artifacts) in WORKDIR, then checks them.
+# gmoccapy: the sim's INI with its [DISPLAY] made gmoccapy's (gmoccapy_ini.py),
+# the panel embedded through EMBED_TAB_COMMAND.
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
 work=$1
+gui=${3:-axis}
+case "$gui" in
+  axis) filter= ;;
+  gmoccapy) filter="$here/gmoccapy_ini.py" ;;
+  *) echo "run_gui.sh: unknown GUI $gui"; exit 2 ;;
+esac
 user=${FATC_SIM_USER:-fatc}
 id "$user" >/dev/null 2>&1 || useradd -m -s /bin/bash "$user"
 # A failed run's artifacts stay beside the next run's, for whoever looks into it.
@@ -28,12 +36,12 @@ trap 'kill $xvfb 2>/dev/null || true' EXIT
 for _ in $(seq 1 300); do [ -e "/tmp/.X11-unix/X$n" ] && break; sleep 0.1; done
 [ -e "/tmp/.X11-unix/X$n" ] || { echo "FAIL: Xvfb did not start"; cat "$work/xvfb.log"; exit 1; }
 
-# AXIS, the panel and the driver share one D-Bus session: the driver finds the
+# The GUI, the panel and the driver share one D-Bus session: the driver finds the
 # panel's buttons through AT-SPI there.
-FATC_APP="$here/gui_driver.py" FATC_WRAP="dbus-run-session --" \
+FATC_APP="$here/gui_driver.py" FATC_WRAP="dbus-run-session --" FATC_INI_FILTER="$filter" \
   FATC_RESULTS="$work/results.json" FATC_ARTIFACTS="$work" FATC_BINARY="$2" \
-  "$root/tests/integration/run_sim.sh" "$work/sim" axis > "$work/linuxcnc.log" 2>&1 || true
+  "$root/tests/integration/run_sim.sh" "$work/sim" "$gui" > "$work/linuxcnc.log" 2>&1 || true
 [ -s "$work/results.json" ] || {
   touch "$work/FAILED"; echo "FAIL: no results; LinuxCNC said:"; tail -40 "$work/linuxcnc.log"; exit 1; }
-echo "ok: AXIS ran with the panel; results and screenshots in $work"
+echo "ok: $gui ran with the panel; results and screenshots in $work"
 python3 "$here/check_gui.py" "$work/results.json" || { touch "$work/FAILED"; exit 1; }
