@@ -158,6 +158,7 @@ Status Changer::status() const {
   status.probe_cancellable = active<machine::flag::ProbeCancellable>(fsm);
   status.accepting = status.phase == Phase::idle && status.awaiting == Awaiting::nothing &&
                      !c.task_busy && !c.chuck_open;
+  status.chuck_held = c.chuck_open && (status.phase == Phase::idle || status.phase == Phase::chuck);
   status.last_length = c.last_length;
   status.step_number = status.busy() ? c.sequence_step : 0;
   status.pocket = status.busy() && c.tools.in_progress ? c.tools.in_progress->pocket : 0;

@@ -24,8 +24,17 @@ std::vector<LinkEvent> ExecutorLink::read(const LinkInputs& in, Time now) {
     } else if (!attached_) {
       attached_ = true;
       const auto call = static_cast<ExecutorCall>(in.call);
-      if (call == ExecutorCall::tool_change || call == ExecutorCall::chuck_release ||
-          call == ExecutorCall::chuck_clamp) {
+      const bool atom = call == ExecutorCall::chuck_release || call == ExecutorCall::chuck_clamp;
+      std::optional<std::string> refused;
+      const bool flow_step_waits =
+          pending_ && pending_->kind != StepKind::fail && pending_->kind != StepKind::done;
+      if (atom && flow_step_waits) {
+        // An operator flow's step waits for its own run: it must not be lost.
+        refused =
+            std::string(call == ExecutorCall::chuck_release ? "chuck release" : "chuck clamp") +
+            " refused: the changer waits to run an operator flow's next step; try once "
+            "the flow is done";
+      } else if (call == ExecutorCall::tool_change || atom) {
         // A request from G-code: whatever waited was for no run of it (a
         // fault's fail step, say).
         pending_.reset();
@@ -36,16 +45,18 @@ std::vector<LinkEvent> ExecutorLink::read(const LinkInputs& in, Time now) {
         request.tool = in.number;
         events.push_back(request);
       } else if (call != ExecutorCall::operator_flow) {
+        refused = "the step executor was called with executor-call " + std::to_string(in.call) +
+                  "; expected 1 (M6), 2 (operator flow), 3 (chuck release) or 4 (chuck clamp): "
+                  "check [FIXED_ATC_PROBE]EXECUTOR_CALL_OUT and the calls of "
+                  "o<fixed_atc_probe_execute>";
+      }
+      if (refused) {
         // Its own slot: a step the changer waits to have performed stays.
-        LinkEvent wrong;
-        wrong.kind = LinkEvent::Kind::wrong_call;
-        wrong.reason = "the step executor was called with executor-call " +
-                       std::to_string(in.call) +
-                       "; expected 1 (M6), 2 (operator flow), 3 (chuck release) or 4 (chuck "
-                       "clamp): check [FIXED_ATC_PROBE]EXECUTOR_CALL_OUT and the calls of "
-                       "o<fixed_atc_probe_execute>";
-        refusal_ = failure_step(wrong.reason);
-        events.push_back(wrong);
+        refusal_ = failure_step(*refused);
+        LinkEvent told;
+        told.kind = LinkEvent::Kind::refused_call;
+        told.reason = *refused;
+        events.push_back(told);
       }
     }
   }

@@ -44,7 +44,7 @@ struct LinkEvent {
     command_done,   ///< the executor finished a command (M61, G10)
     probe_result,   ///< the executor finished a probe move: touched, z, tripped_before
     executor_lost,  ///< the executor is gone (program aborted): `reason`
-    wrong_call,     ///< the executor was called with an unknown code: `reason`, failed
+    refused_call,   ///< the link failed the run (an unknown code, a busy link): `reason`
   };
   Kind kind = Kind::in_position;
   int tool = 0;

@@ -38,6 +38,9 @@ struct Status {
   bool holds_program = false;      ///< an operator wait inside M6: the executor holds the program
   bool probe_cancellable = false;  ///< a load-flow probe runs over MDI: Cancel stops it
   bool accepting = false;          ///< idle, and task is free for a load or unload
+  /// A chuck atom released the chuck and it stays open: motion and the
+  /// spindle must wait for the clamp (the `chuck-held` pin).
+  bool chuck_held = false;
   std::optional<double> last_length;  ///< the last tool length measured
   int step_number = 0;  ///< the step of the sequence under way, as --plan numbers it; 0 none
   int pocket = 0;       ///< the pocket being served, 0 none

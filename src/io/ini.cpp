@@ -4,6 +4,7 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <cmath>
@@ -317,8 +318,11 @@ std::vector<std::string> executor_problems(const IniFile& ini, const Config* con
       }
     }
   }
-  if (const auto back = ini.get(section, "RETURN_TO_XY"); back && *back != "0" && *back != "1") {
-    problems.push_back(where("RETURN_TO_XY") + ": expected 0 or 1, got " + quote(*back));
+  if (const auto back = ini.get(section, "RETURN_TO_XY"); back && *back != "0" && *back != "1" &&
+                                                          strcasecmp(back->c_str(), "true") != 0 &&
+                                                          strcasecmp(back->c_str(), "false") != 0) {
+    problems.push_back(where("RETURN_TO_XY") + ": expected 0 or 1 (halcmd setp of a bit), got " +
+                       quote(*back));
   }
   const auto timeout_text = ini.get(section, "STEP_TIMEOUT");
   if (!timeout_text) return problems;
@@ -329,24 +333,31 @@ std::vector<std::string> executor_problems(const IniFile& ini, const Config* con
     return problems;
   }
   if (!config) return problems;
-  // The waits the executor sits through without a step: each must end well within it.
-  std::vector<std::pair<std::string, double>> waits = {
-      {"spindle_stop_timeout_seconds", config->spindle_stop_timeout_seconds},
-      {"sensor_timeout_seconds", config->sensor_timeout_seconds},
-      {"chuck_seconds", config->chuck_seconds},
-      {"the flush (flush.pulses x (pulse_seconds + pause_seconds))",
-       config->flush.pulses * (config->flush.pulse_seconds + config->flush.pause_seconds)}};
+  // The longest stretch the executor may wait without a step, counted
+  // generously: the spindle stopping, then one opening of the chuck with its
+  // checks, the flush and the closing (or the rack cover opening).
+  const SensorConfig& wired = config->sensors;
+  const double sensor = config->sensor_timeout_seconds;
+  const FlushConfig& flush = config->flush;
+  double chuck = config->chuck_seconds + (wired.air_pressure ? sensor : 0.0) +
+                 (wired.drawbar() ? sensor : 0.0) +
+                 flush.pulses * (flush.pulse_seconds + flush.pause_seconds +
+                                 (wired.drawbar() ? 2.0 * sensor : 0.0)) +
+                 config->chuck_seconds + (wired.drawbar() || wired.tool_present ? sensor : 0.0);
   if (config->rack_cover) {
-    waits.push_back({"rack_cover.seconds", config->rack_cover->seconds});
-    waits.push_back({"rack_cover.timeout_seconds", config->rack_cover->timeout_seconds});
+    chuck =
+        std::max(chuck, std::max(config->rack_cover->seconds, config->rack_cover->timeout_seconds));
   }
-  for (const auto& [name, seconds] : waits) {
-    if (seconds < *timeout) continue;
-    char buffer[160];
-    std::snprintf(buffer, sizeof buffer, ": %g s is not longer than config.json's %s (%g s)",
-                  *timeout, name.c_str(), seconds);
-    problems.push_back(where("STEP_TIMEOUT") + buffer +
-                       ": the executor would stop the program while the changer waits; raise it");
+  const double stretch = config->spindle_stop_timeout_seconds + chuck;
+  if (stretch >= *timeout) {
+    char buffer[512];
+    std::snprintf(buffer, sizeof buffer,
+                  ": %g s is not longer than %g s, the longest the changer may keep the executor "
+                  "waiting for a step (spindle_stop_timeout_seconds %g s, then the chuck's "
+                  "opening, flush and closing with their sensor checks, or the rack cover): the "
+                  "executor would stop the program while the changer waits; raise it",
+                  *timeout, stretch, config->spindle_stop_timeout_seconds);
+    problems.push_back(where("STEP_TIMEOUT") + buffer);
   }
   return problems;
 }

@@ -118,7 +118,7 @@ void Component::read_executor(std::optional<bool> interpreter_idle) {
       case LinkEvent::Kind::executor_lost:
         abort(e.reason);
         break;
-      case LinkEvent::Kind::wrong_call:
+      case LinkEvent::Kind::refused_call:
         tell(MessageKind::error, e.reason);
         break;
     }
@@ -178,7 +178,12 @@ void Component::teach(const TeachTarget& target) {
     tell(MessageKind::error, what + error);
     return;
   }
-  const TeachResult taught = fatc::teach(*text, target, *machine_position(), limits_);
+  const auto at = machine_position();
+  if (!at) {
+    tell(MessageKind::error, what + "LinuxCNC's status says nothing of the machine position now");
+    return;
+  }
+  const TeachResult taught = fatc::teach(*text, target, *at, limits_);
   if (!taught.text) {
     tell(MessageKind::error, taught.error);
     return;
@@ -197,10 +202,10 @@ void Component::teach(const TeachTarget& target) {
 }
 
 std::optional<Point> Component::machine_position() const {
-  if (!nml_) return std::nullopt;
-  const Point mm = nml_->machine_position_mm();
+  const auto mm = nml_ ? nml_->machine_position_mm() : std::nullopt;
+  if (!mm) return std::nullopt;
   const double scale = config_.units == Units::inch ? 1.0 / 25.4 : 1.0;
-  return Point{mm.x * scale, mm.y * scale, mm.z * scale};
+  return Point{mm->x * scale, mm->y * scale, mm->z * scale};
 }
 
 void Component::measure_all() {
@@ -290,7 +295,8 @@ void Component::write_pins() {
   *pins_->changed = out.changed;
 
   *pins_->state = static_cast<int>(status.phase);
-  *pins_->ready = status.phase == Phase::idle;
+  *pins_->ready = status.phase == Phase::idle && !status.chuck_held;
+  *pins_->chuck_held = status.chuck_held;
   *pins_->fault = status.phase == Phase::fault;
   *pins_->busy = status.busy();
   *pins_->tool_in_spindle = changer_->tools().spindle;

@@ -65,6 +65,7 @@ HalPins* create_pins(const std::string& name, int& id, const std::vector<int>& p
   make(id, HAL_IN, &p->confirm_pocket, n, "confirm-pocket");
   make(id, HAL_OUT, &p->cut_off_pocket, n, "cut-off-pocket");
   make(id, HAL_OUT, &p->heartbeat, n, "heartbeat");
+  make(id, HAL_OUT, &p->chuck_held, n, "chuck-held");
   // Until a GUI says otherwise: the spindle holds LinuxCNC's tool, the pocket is not asked.
   *p->confirm_tool = -1;
   *p->confirm_pocket = -1;

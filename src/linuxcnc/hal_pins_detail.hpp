@@ -7,13 +7,15 @@
 namespace fatc::linuxcnc {
 
 struct HalPins {
-  hal_s32_t* number;             ///< in: tool being prepared (iocontrol.0.tool-prep-number)
-  hal_bit_t* tool_prepare;       ///< in: iocontrol.0.tool-prepare
-  hal_bit_t* prepared;           ///< out: iocontrol.0.tool-prepared
-  hal_bit_t* tool_change;        ///< in: iocontrol.0.tool-change
-  hal_bit_t* changed;            ///< out: iocontrol.0.tool-changed; high until tool-change drops
-  hal_bit_t* chuck;              ///< out: true opens the chuck
-  hal_bit_t* probe;              ///< in: the touch-off sensor
+  hal_s32_t* number;        ///< in: tool being prepared (iocontrol.0.tool-prep-number)
+  hal_bit_t* tool_prepare;  ///< in: iocontrol.0.tool-prepare
+  hal_bit_t* prepared;      ///< out: iocontrol.0.tool-prepared
+  hal_bit_t* tool_change;   ///< in: iocontrol.0.tool-change
+  hal_bit_t* changed;       ///< out: iocontrol.0.tool-changed; high until tool-change drops
+  hal_bit_t* chuck;         ///< out: true opens the chuck
+  hal_bit_t*
+      chuck_held;    ///< out: a G-code release holds the chuck open: inhibit motion and spindle
+  hal_bit_t* probe;  ///< in: the touch-off sensor
   hal_bit_t* spindle_stopped;    ///< in: the spindle stands still, as LinuxCNC commands it
   hal_bit_t* zero_speed;         ///< in: the spindle's zero-speed feedback (sensors.zero_speed)
   hal_bit_t* tool_present;       ///< in: a tool is clamped in the spindle (sensors.tool_present)

@@ -38,14 +38,17 @@ NmlLink::NmlLink(std::unique_ptr<Channels> channels) : channels_(std::move(chann
 NmlLink::~NmlLink() = default;
 
 bool NmlLink::poll() {
-  if (!channels_->status->valid()) return false;
+  if (!channels_->status->valid()) {
+    position_mm_.reset();
+    return false;
+  }
   if (channels_->status->peek() == EMC_STAT_TYPE) {
     const auto* stat = static_cast<EMC_STAT*>(channels_->status->get_address());
     interpreter_idle_ = stat->task.interpState == EMC_TASK_INTERP_IDLE;
     // linearUnits: machine units per mm.
     const double per_mm = stat->motion.traj.linearUnits > 0 ? stat->motion.traj.linearUnits : 1.0;
     const EmcPose& at = stat->motion.traj.actualPosition;
-    position_mm_ = {at.tran.x / per_mm, at.tran.y / per_mm, at.tran.z / per_mm};
+    position_mm_ = Point{at.tran.x / per_mm, at.tran.y / per_mm, at.tran.z / per_mm};
     program_.assign(stat->task.file, strnlen(stat->task.file, sizeof stat->task.file));
     serial_ = std::max(serial_, stat->echo_serial_number);
   }

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "core/ports.hpp"
@@ -22,8 +23,9 @@ class NmlLink {
   /// Reads the newest status; false when the channel fails.
   bool poll();
   bool interpreter_idle() const { return interpreter_idle_; }
-  /// Where the machine is (G53, actual position), in mm; what teaching writes.
-  Point machine_position_mm() const { return position_mm_; }
+  /// Where the machine is (G53, actual position), in mm, as the newest status
+  /// said; nothing before one was read or once the channel failed.
+  std::optional<Point> machine_position_mm() const { return position_mm_; }
   /// The program loaded in LinuxCNC (task's file), empty if none.
   const std::string& loaded_program() const { return program_; }
   /// An operator message: errors as EMC_OPERATOR_ERROR, the rest as EMC_OPERATOR_DISPLAY.
@@ -45,7 +47,7 @@ class NmlLink {
   static constexpr std::size_t kMessagePart = 240;
   std::unique_ptr<Channels> channels_;
   bool interpreter_idle_ = true;
-  Point position_mm_;
+  std::optional<Point> position_mm_;
   std::string program_;
   int serial_ = 0;
 };

@@ -652,6 +652,22 @@ def check_chuck_atoms(r, rack):
 
 def check_chuck_held(r, rack):
     no_fault(r)
+    held = [s for s in r["samples"] if s["fixed_atc_probe.chuck-held"]]
+    if not held or any(not (s["motion.feed-inhibit"] and s["spindle.0.inhibit"]) for s in held):
+        fail("chuck-held did not hold motion and the spindle in every sample it was on")
+    # Each time the chuck was held, the machine stood where it was.
+    moved, first = [], None
+    for s in r["samples"]:
+        if not s["fixed_atc_probe.chuck-held"]:
+            first = None
+            continue
+        first = first or s
+        if not near(s["pos"], first["pos"]):
+            moved.append(s)
+    if "held_at" not in r or moved:
+        fail("the machine moved while the chuck was held open: %s" % [s["pos"] for s in moved[:3]])
+    ok("while the release held the chuck open (%d samples) motion and the spindle were inhibited; "
+       "a G0 asked for meanwhile waited at %s until aborted" % (len(held), r["held_at"]))
     said(r, "M6 T1 refused: the chuck is open (released from G-code); clamp it first")
     said(r, "chuck release refused: tool 1 is in the spindle and would drop")
     said(r, "chuck released at loading (G-code); tool 1 stays recorded in the spindle")

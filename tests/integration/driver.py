@@ -24,7 +24,8 @@ PINS = ["fixed_atc_probe.chuck", "fixed_atc_probe.waiting-for-operator", "fixed_
         "fixed_atc_probe.batch-done", "fixed_atc_probe.batch-total", "fixed_atc_probe.step-number",
         "fixed_atc_probe.can-cancel", "fixed_atc_probe.rack-cover-open",
         "fixed_atc_probe.rack-cover-opened", "fixed_atc_probe.rack-cover-closed",
-        "fixed_atc_probe.air-blast",
+        "fixed_atc_probe.air-blast", "fixed_atc_probe.chuck-held", "motion.feed-inhibit",
+        "spindle.0.inhibit",
         "motion.digital-out-02"]  # the benchmark programs' mark between two changes
 COMPONENT = "fixed_atc_probe"
 
@@ -545,6 +546,22 @@ def run_operator(scenario):
         elif step.get("machine") == "on":
             command.state(linuxcnc.STATE_ON)  # homing survives machine off
             sampled_wait(lambda: hal.get_value("fixed_atc_probe.state") == 1, 30, "the changer idle")
+        elif "wait_move_held" in step:
+            # A move was asked for and the interpreter runs it, yet the machine
+            # stands: for this many samples in a row (what LinuxCNC reports).
+            stat.poll()
+            held_at, held = list(stat.actual_position[:3]), [0]
+
+            def still():
+                moving = stat.interp_state == linuxcnc.INTERP_IDLE or \
+                    list(stat.actual_position[:3]) != held_at
+                held[0] = 0 if moving else held[0] + 1
+                return held[0] >= step["wait_move_held"]
+            sampled_wait(still, 60, "a move held still for %d samples" % step["wait_move_held"])
+            result["held_at"] = held_at
+        elif "abort" in step:
+            command.abort()
+            sampled_wait(lambda: stat.interp_state == linuxcnc.INTERP_IDLE, 30, "the abort")
         elif "wait_z_below" in step:
             sampled_wait(lambda: stat.actual_position[2] < step["wait_z_below"], 60,
                          "Z below %s" % step["wait_z_below"])

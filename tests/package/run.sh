@@ -36,11 +36,15 @@ files=$(dpkg -L fixed-atc-probe)
 for want in /usr/bin/fixed_atc_probe /usr/lib/linuxcnc/modules/fatc_chuck_guard.so \
             /usr/share/fixed_atc_probe/nc_files/fixed_atc_probe_m6.ngc \
             /usr/share/fixed_atc_probe/nc_files/fixed_atc_probe_execute.ngc \
+            /usr/share/fixed_atc_probe/nc_files/fixed_atc_probe_chuck_release.ngc \
+            /usr/share/fixed_atc_probe/nc_files/fixed_atc_probe_chuck_clamp.ngc \
+            /usr/share/fixed_atc_probe/nc_files/fixed_atc_probe_chuck_eject.ngc \
             /usr/share/fixed_atc_probe/hal/fixed_atc_probe.hal \
             /usr/share/fixed_atc_probe/hal/fixed_atc_probe_panel.ui \
             /usr/share/fixed_atc_probe/config/config.json \
             /usr/share/fixed_atc_probe/config/sim/fixed_atc_sim.ini \
-            /usr/share/doc/fixed-atc-probe/README.md; do
+            /usr/share/doc/fixed-atc-probe/README.md \
+            /usr/share/doc/fixed-atc-probe/gmoccapy.md; do
   grep -qx "$want" <<< "$files" || { echo "FAIL: the package has no $want"; exit 1; }
 done
 man -w fixed_atc_probe >/dev/null || { echo "FAIL: man fixed_atc_probe finds no page"; exit 1; }

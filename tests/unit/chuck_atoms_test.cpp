@@ -2,6 +2,7 @@
 // INI, nc_files/fixed_atc_probe_chuck_*.ngc), with the interlocks of the legs.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <memory>
 
 #include "core/changer.hpp"
@@ -153,6 +154,10 @@ TEST(ChuckAtoms, shouldWaitForZeroSpeedBeforeOpening) {
   EXPECT_EQ(rig.changer->status().activity,
             "waiting for the spindle to stop before the chuck opens for the release from G-code");
   EXPECT_FALSE(rig.sim.chuck_open);
+  rig.sim.rack.spindle_still = true;
+  rig.sim.report_sensors(*rig.changer);
+  // The wait armed its timer (spindle_stop_timeout_seconds); zero speed came first.
+  EXPECT_EQ(rig.run(), (Lines{"dwell 10.00", "chuck open", "dwell 0.50", "done T0"}));
 }
 
 TEST(ChuckAtoms, shouldFaultWhenTheDrawbarDoesNotOpen) {
@@ -182,16 +187,65 @@ TEST(ChuckAtoms, shouldFaultWhenTheDrawbarDoesNotClose) {
   EXPECT_EQ(rig.changer->status().phase, Phase::fault);
 }
 
-TEST(ChuckAtoms, shouldCloseAHeldChuckWhenTheMachineGoesOff) {
+TEST(ChuckAtoms, shouldCloseAHeldChuckWhenTheMachineGoesOffAndAskWhatTheSpindleHolds) {
   ChuckRig rig;
   rig.changer->chuck(Action::release, kOverTheWork);
   rig.run();
   rig.changer->not_ready();
   EXPECT_EQ(rig.run(), (Lines{"chuck close"}));
-  EXPECT_EQ(rig.last_message(), "the chuck, left released by G-code, closed: the machine went off");
+  EXPECT_TRUE(has(rig.last_message(),
+                  "the chuck, left released by G-code, closed: the machine "
+                  "went off; say what the spindle holds"))
+      << rig.last_message();
+  EXPECT_TRUE(rig.changer->tools().uncertain) << "a hand may have been at the spindle";
   rig.changer->ready();
   rig.run();
+  EXPECT_EQ(rig.changer->status().phase, Phase::fault);
+  rig.changer->clear_fault(0);
+  rig.run();
   EXPECT_TRUE(rig.changer->status().accepting);
+}
+
+TEST(ChuckAtoms, shouldRecordTheHeldChuckSoThatARestartAsksWhatTheSpindleHolds) {
+  ChuckRig rig;
+  rig.changer->chuck(Action::release, kOverTheWork);
+  rig.run();
+  ASSERT_TRUE(rig.changer->tools().in_progress.has_value());
+  EXPECT_EQ(rig.changer->tools().in_progress->step, "the chuck held open (released from G-code)");
+  EXPECT_TRUE(rig.changer->status().chuck_held);
+  rig.changer->chuck(Action::clamp, kOverTheWork);
+  rig.run();
+  EXPECT_FALSE(rig.changer->tools().in_progress.has_value());
+  EXPECT_FALSE(rig.changer->status().chuck_held);
+}
+
+TEST(ChuckAtoms, shouldHoldTheChuckOpenThroughAnAbort) {
+  ChuckRig rig;
+  rig.changer->chuck(Action::release, kOverTheWork);
+  rig.run();
+  rig.changer->abort("LinuxCNC aborted the program during the sequence");
+  EXPECT_TRUE(rig.run().empty()) << "nothing moves on an abort";
+  EXPECT_TRUE(rig.sim.chuck_open);
+  EXPECT_EQ(rig.changer->status().phase, Phase::idle);
+  EXPECT_TRUE(rig.changer->status().chuck_held);
+}
+
+TEST(ChuckAtoms, shouldLetTheOperatorTakeARecordedToolOutThenAskAfterTheClamp) {
+  ChuckRig rig(3, test::valid_config(R"("sensors": {"tool_present": true})"));
+  rig.changer->chuck(Action::release, kLoading);
+  EXPECT_EQ(rig.run(), (Lines{"chuck open", "dwell 0.50", "done T3"}));
+  rig.sim.report_sensors(*rig.changer);  // the tool is out: tool-present off
+  rig.run();
+  EXPECT_EQ(rig.changer->status().phase, Phase::idle) << "no fault with the hand at the spindle";
+  EXPECT_TRUE(rig.sim.chuck_open);
+  rig.changer->chuck(Action::clamp, kLoading);
+  rig.run();
+  const Status after = rig.changer->status();
+  EXPECT_EQ(after.phase, Phase::fault);
+  EXPECT_TRUE(has(after.activity,
+                  "tool 3 is recorded in the spindle, but tool-present reads it "
+                  "empty (off)"))
+      << after.activity;
 }
 
 TEST(ChuckAtoms, shouldRefuseWithAFailStepWhenTheMachineIsNotReadyOrFaulted) {
@@ -201,6 +255,32 @@ TEST(ChuckAtoms, shouldRefuseWithAFailStepWhenTheMachineIsNotReadyOrFaulted) {
   rig.changer->chuck(Action::clamp, kOverTheWork);
   EXPECT_EQ(rig.run(), (Lines{"fail chuck clamp refused: the machine is not on and homed, or is "
                               "in estop"}));
+
+  ChuckRig faulted(0, test::valid_config(R"("sensors": {"drawbar_open": true})"));
+  faulted.sim.rack.drawbar_jammed = true;
+  faulted.changer->chuck(Action::release, kOverTheWork);
+  faulted.run();
+  ASSERT_EQ(faulted.changer->status().phase, Phase::fault);
+  faulted.changer->chuck(Action::clamp, kOverTheWork);
+  const Lines lines = faulted.run();
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_TRUE(has(lines[0],
+                  "fail chuck clamp refused: the changer is in fault (the drawbar did "
+                  "not open"))
+      << lines[0];
+}
+
+TEST(ChuckAtoms, shouldRefuseASecondAtomWhileTheFirstWaits) {
+  ChuckRig rig(0, test::valid_config(R"("sensors": {"zero_speed": true})"));
+  rig.sim.rack.spindle_still = false;
+  rig.sim.report_sensors(*rig.changer);
+  rig.changer->chuck(Action::release, kOverTheWork);
+  rig.changer->chuck(Action::clamp, kOverTheWork);
+  const Lines lines = rig.run();
+  EXPECT_NE(std::find(lines.begin(), lines.end(),
+                      "fail chuck clamp refused: the changer is busy with the chuck"),
+            lines.end())
+      << testing::PrintToString(lines);
 }
 
 TEST(ChuckAtoms, shouldReachTheChangerFromTheExecutorCalls) {
@@ -220,11 +300,38 @@ TEST(ChuckAtoms, shouldReachTheChangerFromTheExecutorCalls) {
   ASSERT_EQ(events.size(), 1u);
   EXPECT_EQ(events[0].kind, LinkEvent::Kind::chuck_clamp);
 
+  ExecutorLink busy;  // an operator flow's step waits for its MDI run
+  busy.publish(failure_step("a fault's step, stale"));
+  in.call = static_cast<int>(ExecutorCall::chuck_release);
+  events = busy.read(in, t0);
+  ASSERT_EQ(events.size(), 1u) << "a stale fail step is no flow's: the release goes on";
+  EXPECT_EQ(events[0].kind, LinkEvent::Kind::chuck_release);
+  ExecutorLink flowing;
+  Step next;
+  next.kind = StepKind::rapid;
+  next.label = "safe Z";
+  flowing.publish(next);
+  events = flowing.read(in, t0);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].kind, LinkEvent::Kind::refused_call);
+  EXPECT_EQ(events[0].reason,
+            "chuck release refused: the changer waits to run an operator flow's next step; try "
+            "once the flow is done");
+  EXPECT_EQ(flowing.write(false).step.kind, StepKind::fail);
+  in.step_request = false;
+  flowing.read(in, t0);
+  flowing.write(false);
+  in.interpreter_idle = true;  // the executor aborted its program with the fail
+  flowing.read(in, t0 + std::chrono::seconds(1));
+  EXPECT_TRUE(flowing.needs_run(t0 + std::chrono::seconds(1))) << "the flow's step is kept";
+  in.interpreter_idle = false;
+  in.step_request = true;
+
   ExecutorLink wrong;
   in.call = 5;
   events = wrong.read(in, t0);
   ASSERT_EQ(events.size(), 1u);
-  EXPECT_EQ(events[0].kind, LinkEvent::Kind::wrong_call) << "the component says it";
+  EXPECT_EQ(events[0].kind, LinkEvent::Kind::refused_call) << "the component says it";
   const LinkOutputs out = wrong.write(true);
   ASSERT_TRUE(out.step_ready);
   EXPECT_EQ(out.step.kind, StepKind::fail);

@@ -68,8 +68,8 @@ std::string show(const LinkEvent& e) {
       return "chuck_release";
     case Kind::chuck_clamp:
       return "chuck_clamp";
-    case Kind::wrong_call:
-      return "wrong_call: " + e.reason;
+    case Kind::refused_call:
+      return "refused_call: " + e.reason;
   }
   return "?";
 }
@@ -767,7 +767,10 @@ TEST_P(UnknownCall, shouldFailTheExecutorNamingTheValueWhenCalledWithIt) {
   Timeline t;
   t.start_executor(call, 5);
   ASSERT_EQ(t.events.size(), 1u) << "no tool change for a call that is not 1";
-  EXPECT_EQ(t.events[0].kind, Kind::wrong_call) << "the component tells the operator";
+  EXPECT_EQ(t.events[0].kind, Kind::refused_call) << "the component tells the operator";
+  EXPECT_NE(t.events[0].reason.find("executor-call " + std::to_string(call) + "; expected 1 (M6)"),
+            std::string::npos)
+      << t.events[0].reason;
   ASSERT_TRUE(t.out.step_ready);
   EXPECT_EQ(t.out.step.kind, StepKind::fail);
   const std::string named = "executor-call " + std::to_string(call);

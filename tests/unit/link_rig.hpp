@@ -104,8 +104,8 @@ inline std::string show(const LinkEvent& e) {
       return "chuck_release";
     case LinkEvent::Kind::chuck_clamp:
       return "chuck_clamp";
-    case LinkEvent::Kind::wrong_call:
-      return "wrong_call: " + e.reason;
+    case LinkEvent::Kind::refused_call:
+      return "refused_call: " + e.reason;
   }
   return "?";
 }
@@ -158,7 +158,7 @@ struct LinkRig {
         case LinkEvent::Kind::chuck_clamp:
           changer.chuck(ChuckRequest::Action::clamp, std::nullopt);
           break;
-        case LinkEvent::Kind::wrong_call:
+        case LinkEvent::Kind::refused_call:
           break;  // the component tells the operator; the link fails the run
       }
     }

@@ -183,7 +183,11 @@ bool Context::pocket_reads(int pocket, bool occupied) const {
 }
 
 std::vector<std::string> Context::disagreements() const {
-  auto found = sensor_disagreements(config.sensors, sensors, tools);
+  // A released chuck holds nothing for certain: the operator may be taking
+  // the tool out. tool-present is compared again once it is clamped.
+  SensorConfig compared = config.sensors;
+  if (chuck_open) compared.tool_present = false;
+  auto found = sensor_disagreements(compared, sensors, tools);
   if (config.rack_cover && config.rack_cover->closed_sensor && !cover_open &&
       !sensors.rack_cover_closed) {
     found.push_back("the rack cover is not closed (rack-cover-closed off)");

@@ -700,15 +700,34 @@ struct Operating_ : Flow<Operating_> {
       fsm.ctx->begin_sequence(request_name(e));
     }
   };
+  /// The executor's last step: done, with the tool in the spindle.
+  static void publish_done(Context& c) {
+    Step done;
+    done.kind = StepKind::done;
+    done.tool = c.tools.spindle;
+    done.label = "done";
+    c.publish(done);
+  }
   struct AnswerDone {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       fsm.ctx->end_sequence();
-      Step done;
-      done.kind = StepKind::done;
-      done.tool = fsm.ctx->tools.spindle;
-      done.label = "done";
-      fsm.ctx->publish(done);
+      publish_done(*fsm.ctx);
+    }
+  };
+  /// A chuck atom is done. A release leaves its sequence recorded until the
+  /// clamp: a restart or the machine going off meanwhile leaves what the
+  /// spindle holds for the operator to confirm.
+  struct AnswerChuckDone {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      Context& c = *fsm.ctx;
+      if (c.chuck_open) {
+        c.record_progress("the chuck held open (released from G-code)", 0);
+      } else {
+        c.end_sequence();
+      }
+      publish_done(c);
     }
   };
   /// The operator cancelled an M6: the executor stops the program, saying where
@@ -763,7 +782,7 @@ struct Operating_ : Flow<Operating_> {
   Row < VerifyFlow::exit_pt<Finished>    , LegDone      , ComparingSensors, AnswerDone        , none               >,
   Row < VerifyFlow::exit_pt<Cancelled>   , LegDone      , ComparingSensors, AnswerDone        , none               >,
   Row < VerifyFlow                       , Abort        , ComparingSensors, StopDryRun        , none               >,
-  Row < ChuckFlow::exit_pt<Finished>     , LegDone      , ComparingSensors, AnswerDone        , none               >
+  Row < ChuckFlow::exit_pt<Finished>     , LegDone      , ComparingSensors, AnswerChuckDone   , none               >
   >;
   using transition_table = boost::mpl::joint_view<requests, around_the_flows>;
   // clang-format on
@@ -779,13 +798,18 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
     using flag_list = boost::mpl::vector1<flag::NotReady>;
     using internal_transition_table = RefusesRequests<BecauseNotReady>;
     /// A chuck a release left open closes with the machine, as a spring
-    /// drawbar does when its air goes.
+    /// drawbar does when its air goes; whatever a hand did at the spindle
+    /// meanwhile, the operator confirms once the machine is back.
     template <class Event, class Fsm>
     void on_entry(const Event&, Fsm& fsm) {
       Context& c = *fsm.ctx;
       if (!c.chuck_open) return;
       c.close_chuck();
-      c.tell(MessageKind::info, "the chuck, left released by G-code, closed: the machine went off");
+      c.tools.uncertain = true;
+      c.ports.save(c.tools);
+      c.tell(MessageKind::error,
+             "the chuck, left released by G-code, closed: the machine went off; say what the "
+             "spindle holds once it is back on");
     }
   };
   struct Faulted : msmf::state<> {
