@@ -577,7 +577,8 @@ def run_operator(scenario):
             command.mode(linuxcnc.MODE_MDI)
             command.wait_complete()
             command.mdi(step["mdi"])
-            command.wait_complete(60)
+            if step.get("complete", True):  # a move held back would keep it waiting
+                command.wait_complete(60)
     finish(result, start, first_message)
     return result
 
