@@ -275,7 +275,7 @@ class Handler:
         halcomp.newpin("confirm-pocket", hal.HAL_S32, hal.HAL_OUT)
         halcomp["confirm-tool"] = -1
         halcomp["confirm-pocket"] = -1
-        for name in ("waiting-for-operator", "accepting", "can-cancel", "units-inch"):
+        for name in ("waiting-for-operator", "accepting", "can-cancel", "units-inch", "chuck-held"):
             halcomp.newpin(name, hal.HAL_BIT, hal.HAL_IN)
         for name in ("last-length", "step-x", "step-y", "step-z"):
             halcomp.newpin(name, hal.HAL_FLOAT, hal.HAL_IN)
@@ -357,7 +357,10 @@ class Handler:
         c = self.comp
         get = self.builder.get_object
         state = c["state"]
-        get("state_words").set_text(PHASES.get(state, "state %d" % state))
+        words = PHASES.get(state, "state %d" % state)
+        if state == PHASE_IDLE and c["chuck-held"]:
+            words = "Chuck held open by G-code: no motion, no spindle until it is clamped"
+        get("state_words").set_text(words)
         status = self.read_status()
         if status is not None:
             # The words themselves: the prompt, the fault, what moves where.

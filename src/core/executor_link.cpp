@@ -28,12 +28,15 @@ std::vector<LinkEvent> ExecutorLink::read(const LinkInputs& in, Time now) {
       std::optional<std::string> refused;
       const bool flow_step_waits =
           pending_ && pending_->kind != StepKind::fail && pending_->kind != StepKind::done;
-      if (atom && flow_step_waits) {
+      if ((atom || call == ExecutorCall::tool_change) && flow_step_waits) {
         // An operator flow's step waits for its own run: it must not be lost.
-        refused =
-            std::string(call == ExecutorCall::chuck_release ? "chuck release" : "chuck clamp") +
-            " refused: the changer waits to run an operator flow's next step; try once "
-            "the flow is done";
+        const std::string what = call == ExecutorCall::tool_change
+                                     ? "M6 T" + std::to_string(in.number)
+                                 : call == ExecutorCall::chuck_release ? "chuck release"
+                                                                       : "chuck clamp";
+        refused = what +
+                  " refused: the changer waits to run an operator flow's next step; try once "
+                  "the flow is done";
       } else if (call == ExecutorCall::tool_change || atom) {
         // A request from G-code: whatever waited was for no run of it (a
         // fault's fail step, say).

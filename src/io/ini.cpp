@@ -344,6 +344,11 @@ std::vector<std::string> executor_problems(const IniFile& ini, const Config* con
                  flush.pulses * (flush.pulse_seconds + flush.pause_seconds +
                                  (wired.drawbar() ? 2.0 * sensor : 0.0)) +
                  config->chuck_seconds + (wired.drawbar() || wired.tool_present ? sensor : 0.0);
+  // Or a fetch whose first grip failed: settle, grip, check, open, check, grip, check.
+  const double second_grip =
+      4.0 * config->chuck_seconds + (wired.tool_present ? 2.0 * sensor : 0.0) +
+      (wired.drawbar() ? 3.0 * sensor : 0.0) + (wired.air_pressure ? sensor : 0.0);
+  chuck = std::max(chuck, second_grip);
   if (config->rack_cover) {
     chuck =
         std::max(chuck, std::max(config->rack_cover->seconds, config->rack_cover->timeout_seconds));
@@ -354,7 +359,8 @@ std::vector<std::string> executor_problems(const IniFile& ini, const Config* con
     std::snprintf(buffer, sizeof buffer,
                   ": %g s is not longer than %g s, the longest the changer may keep the executor "
                   "waiting for a step (spindle_stop_timeout_seconds %g s, then the chuck's "
-                  "opening, flush and closing with their sensor checks, or the rack cover): the "
+                  "opening, flush and closing with their sensor checks, a second grip, or the rack "
+                  "cover): the "
                   "executor would stop the program while the changer waits; raise it",
                   *timeout, stretch, config->spindle_stop_timeout_seconds);
     problems.push_back(where("STEP_TIMEOUT") + buffer);

@@ -239,13 +239,24 @@ TEST(ChuckAtoms, shouldLetTheOperatorTakeARecordedToolOutThenAskAfterTheClamp) {
   EXPECT_EQ(rig.changer->status().phase, Phase::idle) << "no fault with the hand at the spindle";
   EXPECT_TRUE(rig.sim.chuck_open);
   rig.changer->chuck(Action::clamp, kLoading);
-  rig.run();
+  const Lines clamp = rig.run();
   const Status after = rig.changer->status();
   EXPECT_EQ(after.phase, Phase::fault);
   EXPECT_TRUE(has(after.activity,
-                  "tool 3 is recorded in the spindle, but tool-present reads it "
-                  "empty (off)"))
+                  "after the clamp from G-code tool-present reads the spindle "
+                  "empty (off), but tool 3 is recorded in it"))
       << after.activity;
+  ASSERT_FALSE(clamp.empty());
+  EXPECT_EQ(clamp.back().rfind("fail ", 0), 0u)
+      << "the clamp's executor fails its program before it goes on: " << clamp.back();
+  EXPECT_TRUE(rig.changer->tools().uncertain);
+}
+
+TEST(ChuckAtoms, shouldCheckToolPresentAfterEveryClampBeforeTheProgramGoesOn) {
+  ChuckRig rig(0, test::valid_config(R"("sensors": {"tool_present": true})"));
+  rig.changer->chuck(Action::clamp, kOverTheWork);
+  EXPECT_EQ(rig.run(), (Lines{"chuck close", "dwell 0.50", "done T0"}))
+      << "an empty spindle that reads empty";
 }
 
 TEST(ChuckAtoms, shouldRefuseWithAFailStepWhenTheMachineIsNotReadyOrFaulted) {
@@ -326,6 +337,17 @@ TEST(ChuckAtoms, shouldReachTheChangerFromTheExecutorCalls) {
   EXPECT_TRUE(flowing.needs_run(t0 + std::chrono::seconds(1))) << "the flow's step is kept";
   in.interpreter_idle = false;
   in.step_request = true;
+
+  ExecutorLink m6;  // an M6 while the flow's step waits: refused the same way
+  m6.publish(next);
+  in.call = static_cast<int>(ExecutorCall::tool_change);
+  in.number = 3;
+  events = m6.read(in, t0);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0].kind, LinkEvent::Kind::refused_call);
+  EXPECT_EQ(events[0].reason.rfind("M6 T3 refused: the changer waits to run an operator flow's", 0),
+            0u)
+      << events[0].reason;
 
   ExecutorLink wrong;
   in.call = 5;

@@ -438,6 +438,9 @@ struct VerifyFlow_ : Flow<VerifyFlow_> {
 using VerifyFlow = Machine_of<VerifyFlow_>;
 
 // ================================================================ chuck atoms
+/// What the state file says is under way while a release holds the chuck open.
+inline constexpr const char* kChuckHeldOpen = "the chuck held open (released from G-code)";
+
 /// A chuck atom from G-code (nc_files/fixed_atc_probe_chuck_*.ngc), with
 /// the interlocks of the legs: a release waits until the chuck may open
 /// (air, the spindle at a standstill), gives the chuck `chuck_seconds`, and
@@ -471,6 +474,36 @@ struct ChuckFlow_ : Flow<ChuckFlow_> {
       fsm.ctx->wait(fsm.ctx->config.chuck_seconds, "clamping the chuck (G-code)");
     }
   };
+  /// After a clamp, `tool-present` (where wired) must agree with the record:
+  /// what a hand did at the spindle meanwhile is checked before the program
+  /// goes on.
+  struct SpindleAsRecorded : SensorGuard<SpindleAsRecorded> {
+    template <class Leg>
+    static bool holds(const Context& c, const Leg&) {
+      return c.spindle_reads(c.tools.spindle != 0);
+    }
+    static std::string awaited(const Context& c) {
+      return c.tools.spindle != 0 ? "waiting for tool-present to see tool " +
+                                        std::to_string(c.tools.spindle) + " after the clamp"
+                                  : std::string(
+                                        "waiting for tool-present to see the spindle "
+                                        "empty after the clamp");
+    }
+  };
+  struct CheckingSpindle : AwaitingSensor<SpindleAsRecorded> {};
+  struct SpindleNotAsRecorded {
+    template <class Leg>
+    static std::string text(const Context& c, const Leg&) {
+      const int held = c.tools.spindle;
+      return held != 0 ? "after the clamp from G-code tool-present reads the spindle empty (off), "
+                         "but tool " +
+                             std::to_string(held) + " is recorded in it"
+                       : std::string(
+                             "after the clamp from G-code tool-present reads a tool (on), "
+                             "but the spindle is recorded empty");
+    }
+  };
+  using FaultSpindleNotAsRecorded = FaultSaying<SpindleNotAsRecorded, true>;
   struct SayReleased {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
@@ -496,8 +529,10 @@ struct ChuckFlow_ : Flow<ChuckFlow_> {
   Row < CheckingDrawbarOpen  , SensorReport , Finished             , SayReleased                         , DrawbarOpen   >,
   Row < CheckingDrawbarOpen  , TimerElapsed , Halted               , FaultDrawbarStayedClosed<ForRelease>, none          >,
   Row < Closing              , TimerElapsed , CheckingDrawbarClosed, none                                , none          >,
-  Row < CheckingDrawbarClosed, SensorReport , Finished             , none                                , DrawbarClosed >,
-  Row < CheckingDrawbarClosed, TimerElapsed , Halted               , FaultDrawbarStayedOpen<ForClamp>    , none          >
+  Row < CheckingDrawbarClosed, SensorReport , CheckingSpindle      , none                                , DrawbarClosed >,
+  Row < CheckingDrawbarClosed, TimerElapsed , Halted               , FaultDrawbarStayedOpen<ForClamp>    , none          >,
+  Row < CheckingSpindle      , SensorReport , Finished             , none                                , SpindleAsRecorded >,
+  Row < CheckingSpindle      , TimerElapsed , Halted               , FaultSpindleNotAsRecorded           , none          >
   >;
   // clang-format on
 };
@@ -723,7 +758,7 @@ struct Operating_ : Flow<Operating_> {
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       Context& c = *fsm.ctx;
       if (c.chuck_open) {
-        c.record_progress("the chuck held open (released from G-code)", 0);
+        c.record_progress(kChuckHeldOpen, 0);
       } else {
         c.end_sequence();
       }
@@ -888,7 +923,12 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
   struct SayUncertain {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      fsm.ctx->fault_reason = "the last sequence was cut off (the saved tool state is uncertain)";
+      const auto& cut_off = fsm.ctx->tools.in_progress;
+      fsm.ctx->fault_reason =
+          cut_off && cut_off->step == kChuckHeldOpen
+              ? "the chuck was held open by G-code when the machine went off or the component "
+                "stopped (the saved tool state is uncertain)"
+              : "the last sequence was cut off (the saved tool state is uncertain)";
       // What the wired sensors read helps the operator answer.
       for (const auto& disagreement : fsm.ctx->disagreements()) {
         fsm.ctx->fault_reason += "; " + disagreement;
