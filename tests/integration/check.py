@@ -652,6 +652,11 @@ def check_chuck_atoms(r, rack):
 
 def check_chuck_held(r, rack):
     no_fault(r)
+    # chuck_atoms ended in an aborted program: its overrides must have been
+    # restored in motion, or this first release is refused ("… M48 first").
+    if any("override is off" in m for m in r["messages"]):
+        fail("the overrides stayed off after the aborted program before: %s" % r["messages"])
+    ok("the overrides were back on after the aborted program before (the release was taken)")
     held = [s for s in r["samples"] if s["fixed_atc_probe.chuck-held"]]
     if not held or any(not (s["motion.feed-inhibit"] and s["spindle.0.inhibit"]) for s in held):
         fail("chuck-held did not hold motion and the spindle in every sample it was on")
