@@ -241,6 +241,30 @@ def check_sensors_start_disagree(r, rack, log):
         fail("the simulated rack never had tool 1 taken out")
 
 
+ATOM_FAULT = ("after the clamp from G-code tool-present reads the spindle empty (off), but tool 3 "
+              "is recorded in it")
+
+
+def check_sensors_atoms(r, rack, log):
+    held = [s for s in r["samples"] if s["fixed_atc_probe.chuck-held"]]
+    if not held or any(s["fixed_atc_probe.fault"] for s in held):
+        fail("no fault was to come while the release held the chuck open (%d samples)" % len(held))
+    ok("released at loading with tool 3, held open %d samples without a fault (tool-present off "
+       "once the tool dropped)" % len(held))
+    said(r, "chuck released at loading (G-code); tool 3 stays recorded in the spindle")
+    if not any(e["what"] == "dropped" and e["tool"] == 3 for e in log):
+        fail("the simulated spindle never let go of tool 3")
+    faulted_with(r, ATOM_FAULT)
+    last = at_end(r)
+    if not near(last["pos"], [20.0, 150.0, -10.0]) or last["fixed_atc_probe.chuck"]:
+        fail("the program went on past the clamp, or the chuck is open: %s" % last)
+    ok("the program stopped at loading with the chuck closed")
+    confirmed = r["snapshots"]["confirmed"]
+    if confirmed["pins"]["fixed_atc_probe.fault"] or confirmed["state_file"]["spindle"] != 0:
+        fail("the operator's answer (spindle empty) did not clear the fault: %s" % confirmed["state_file"])
+    ok("confirmed empty: the changer is out of fault, the spindle recorded empty")
+
+
 def main():
     results_path, config_path, name = sys.argv[1:4]
     results = load_results(results_path, name)
