@@ -198,13 +198,18 @@ def stops(samples):
     return found
 
 
-def rising(samples, pin):
-    count, last = 0, False
+def rising_samples(samples, pin):
+    """The sample at each rising edge of `pin`, in order."""
+    found, last = [], False
     for s in samples:
         if s[pin] and not last:
-            count += 1
+            found.append(s)
         last = s[pin]
-    return count
+    return found
+
+
+def rising(samples, pin):
+    return len(rising_samples(samples, pin))
 
 
 def distinct(samples, key):
@@ -597,16 +602,6 @@ def check_refuse_when_off(r, rack):
     ok("idle again once the machine is back on and homed")
 
 
-def chuck_openings(r):
-    """The sample at each rising edge of the chuck request, in order."""
-    found, last = [], False
-    for s in r["samples"]:
-        if s["fixed_atc_probe.chuck"] and not last:
-            found.append(s)
-        last = s["fixed_atc_probe.chuck"]
-    return found
-
-
 def over_a_pocket(rack, pos):
     return any(abs(pos[0] - rack.pocket(t)[0]) < TOLERANCE and abs(pos[1] - rack.pocket(t)[1]) < TOLERANCE
                for t in rack.pockets)
@@ -614,7 +609,8 @@ def over_a_pocket(rack, pos):
 
 def check_chuck_atoms(r, rack):
     no_fault(r)
-    away = [s for s in chuck_openings(r) if not over_a_pocket(rack, s["pos"])]
+    openings = rising_samples(r["samples"], "fixed_atc_probe.chuck")
+    away = [s for s in openings if not over_a_pocket(rack, s["pos"])]
     zs = [round(s["pos"][2], 3) for s in away]
     if len(away) != 4 or any(not near(s["pos"][:2] + [0], [150.0, 200.0, 0]) for s in away):
         fail("expected 4 openings at X150 Y200 (M312 P2, then the lifting macro's 2), got %s" %
@@ -676,7 +672,8 @@ def check_chuck_held(r, rack):
     said(r, "M6 T1 refused: the chuck is open (released from G-code); clamp it first")
     said(r, "chuck release refused: tool 1 is in the spindle and would drop")
     said(r, "chuck released at loading (G-code); tool 1 stays recorded in the spindle")
-    openings = [s for s in chuck_openings(r) if not over_a_pocket(rack, s["pos"])]
+    openings = [s for s in rising_samples(r["samples"], "fixed_atc_probe.chuck")
+                if not over_a_pocket(rack, s["pos"])]
     at_loading = [s for s in openings if near(s["pos"], loading(rack))]
     elsewhere = [s for s in openings if not near(s["pos"], loading(rack))]
     if len(at_loading) != 1 or at_loading[0]["tool_in_spindle"] != 1:

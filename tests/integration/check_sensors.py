@@ -8,7 +8,7 @@ import json
 import os
 import sys
 
-from check import Rack, distinct, fail, in_pockets, load_results, near, ok, said
+from check import Rack, distinct, fail, in_pockets, load_results, near, ok, rising_samples, said
 
 GRIP_FAULT = "tool 2 not in the spindle after the chuck closed at pocket 2 (tool-present off, retried once)"
 AIR_FAULT = "air pressure low (air-pressure-ok off) before the chuck opened to flush it; it stayed closed"
@@ -29,12 +29,7 @@ def rack_log(results_path):
 
 def rises(samples, pin):
     """The times `pin` went high."""
-    times, last = [], False
-    for s in samples:
-        if s[pin] and not last:
-            times.append(s["t"])
-        last = s[pin]
-    return times
+    return [s["t"] for s in rising_samples(samples, pin)]
 
 
 def intervals(samples, pin):

@@ -70,10 +70,11 @@ def split_arguments(text):
     return parts
 
 
-def call_arguments(text, open_paren):
-    """The argument text of the call whose '(' is at open_paren, and its end."""
+def closing(text, start, opener, closer):
+    """Where the `closer` matching the `opener` at `start` is, skipping string
+    literals; None when it never comes."""
     depth, quoted = 0, False
-    for i in range(open_paren, len(text)):
+    for i in range(start, len(text)):
         c = text[i]
         if quoted:
             if c == '"' and text[i - 1] != "\\":
@@ -81,13 +82,21 @@ def call_arguments(text, open_paren):
             continue
         if c == '"':
             quoted = True
-        elif c == "(":
+        elif c == opener:
             depth += 1
-        elif c == ")":
+        elif c == closer:
             depth -= 1
             if depth == 0:
-                return text[open_paren + 1:i], i
-    raise ValueError("unbalanced parentheses")
+                return i
+    return None
+
+
+def call_arguments(text, open_paren):
+    """The argument text of the call whose '(' is at open_paren, and its end."""
+    end = closing(text, open_paren, "(", ")")
+    if end is None:
+        raise ValueError("unbalanced parentheses")
+    return text[open_paren + 1:end], end
 
 
 class CppFile:
@@ -108,22 +117,8 @@ class CppFile:
                                    "end": end})
 
     def matching_brace(self, start):
-        depth, quoted = 0, False
-        for i in range(start, len(self.text)):
-            c = self.text[i]
-            if quoted:
-                if c == '"' and self.text[i - 1] != "\\":
-                    quoted = False
-                continue
-            if c == '"':
-                quoted = True
-            elif c == "{":
-                depth += 1
-            elif c == "}":
-                depth -= 1
-                if depth == 0:
-                    return i
-        return len(self.text)
+        end = closing(self.text, start, "{", "}")
+        return len(self.text) if end is None else end
 
     def function_at(self, offset):
         """The innermost definition holding offset."""

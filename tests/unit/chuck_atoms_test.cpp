@@ -3,12 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <memory>
 
 #include "core/changer.hpp"
 #include "core/executor_link.hpp"
 #include "core/simulator.hpp"
-#include "sim_lines.hpp"
+#include "sim_rig.hpp"
 #include "test_config.hpp"
 
 namespace fatc {
@@ -24,34 +23,10 @@ bool has(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
 }
 
-struct ChuckRig {
-  explicit ChuckRig(int spindle = 0, Config c = test::valid_config()) : config(std::move(c)) {
-    tools = ToolState::fresh(config);
-    tools.spindle = spindle;
-    test::take_out(tools, spindle);
-    sim.model_rack(config, tools);
-    changer = std::make_unique<Changer>(config, sim, tools);
-    sim.report_sensors(*changer);
-    changer->ready();
-    sim.run(*changer);
-    seen = sim.records.size();
-  }
-  ~ChuckRig() {
-    EXPECT_TRUE(sim.unexpected_events.empty())
-        << (sim.unexpected_events.empty() ? "" : sim.unexpected_events.front());
-  }
-  Lines run() {
-    sim.run(*changer);
-    const std::size_t from = seen;
-    seen = sim.records.size();
-    return test::record_lines(sim, from);
-  }
-  std::string last_message() const { return test::last_message(sim); }
-  Config config;
-  ToolState tools;
-  Simulator sim;
-  std::unique_ptr<Changer> changer;
-  std::size_t seen = 0;
+/// Tool `spindle` in the spindle (0: empty), the rest of the rack as at first start.
+struct ChuckRig : test::SimRig {
+  explicit ChuckRig(int spindle = 0, const Config& c = test::valid_config())
+      : SimRig(c, with_in_spindle(c, spindle)) {}
 };
 
 TEST(ChuckAtoms, shouldReleaseAnEmptySpindleAnywhereAndHoldItOpen) {

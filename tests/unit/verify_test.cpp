@@ -8,7 +8,7 @@
 #include "core/config.hpp"
 #include "core/simulator.hpp"
 #include "core/tool_state.hpp"
-#include "sim_lines.hpp"
+#include "sim_rig.hpp"
 #include "test_config.hpp"
 
 namespace fatc {
@@ -17,28 +17,17 @@ namespace {
 using test::Lines;
 using test::valid_config;
 
-struct VerifyRig {
-  /// Tool `spindle` in the spindle, its pocket 3 empty (0: the spindle
-  /// empty and pocket 3 free).
-  explicit VerifyRig(Config c = valid_config(), int spindle = 3)
-      : config(std::move(c)), tools(with_in_spindle(config, spindle)) {
-    if (spindle == 0) tools.pockets[3] = {};
-    sim.model_rack(config, tools);
-    changer = std::make_unique<Changer>(config, sim, tools);
-    sim.report_sensors(*changer);
-    changer->ready();
-    sim.run(*changer);
-    seen = sim.records.size();
-  }
-  ~VerifyRig() { EXPECT_TRUE(sim.unexpected_events.empty()) << sim.unexpected_events.front(); }
-  /// What the changer did since the last look, once the simulated executor
-  /// has done what it asked.
-  Lines run() {
-    sim.run(*changer);
-    const std::size_t from = seen;
-    seen = sim.records.size();
-    return test::record_lines(sim, from);
-  }
+/// Tool `spindle` in the spindle, its pocket 3 empty (0: the spindle empty
+/// and pocket 3 free).
+ToolState verify_tools(const Config& config, int spindle) {
+  ToolState tools = with_in_spindle(config, spindle);
+  if (spindle == 0) tools.pockets[3] = {};
+  return tools;
+}
+
+struct VerifyRig : test::SimRig {
+  explicit VerifyRig(const Config& c = valid_config(), int spindle = 3)
+      : SimRig(c, verify_tools(c, spindle)) {}
   /// Continue at every stop; the moves of the whole run, in order.
   Lines run_to_the_end() {
     Lines all = run();
@@ -48,12 +37,6 @@ struct VerifyRig {
     }
     return all;
   }
-  std::string last_message() const { return test::last_message(sim); }
-  Config config;
-  ToolState tools;
-  Simulator sim;
-  std::unique_ptr<Changer> changer;
-  std::size_t seen = 0;  ///< records run() has returned
 };
 
 /// The valid config with every pocket approached from above.
