@@ -66,7 +66,11 @@ void Changer::verify(int pocket) { engine_->fsm.process_event(VerifyRequest{pock
 void Changer::chuck(ChuckRequest::Action action, std::optional<Point> at) {
   engine_->fsm.process_event(ChuckRequest{action, at});
 }
-void Changer::in_position() { engine_->fsm.process_event(InPosition{}); }
+void Changer::in_position() {
+  // Within a phase the next waypoint follows; the tables see a phase's end.
+  if (engine_->context.next_waypoint()) return;
+  engine_->fsm.process_event(InPosition{});
+}
 void Changer::command_done() { engine_->fsm.process_event(CommandDone{}); }
 
 void Changer::probe_result(bool touched, double machine_z, bool tripped_before) {

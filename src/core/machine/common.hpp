@@ -124,22 +124,51 @@ struct Flow : msmf::state_machine_def<Derived> {
 
 // ---------------------------------------------------------------- kinds of state
 
-/// Publishes the move `Target` computes on entry, then waits for InPosition.
-template <class Target>
-struct Moving : msmf::state<> {
+/// A phase: a run of moves with no decision between them. On entry it walks
+/// the route `Derived::route(ctx, leg)` makes, one waypoint after the other
+/// (Context::walk); its table sees one InPosition, at the route's end.
+/// Leaving it early (a fault, an abort) drops the rest of the route.
+template <class Derived>
+struct Walking : msmf::state<> {
   using flag_list = boost::mpl::vector1<flag::AwaitsMotion>;
   template <class Event, class Fsm>
   void on_entry(const Event&, Fsm& fsm) {
-    fsm.ctx->publish(Target{}(*fsm.ctx, fsm));
+    fsm.ctx->walk(Derived::route(*fsm.ctx, fsm));
+  }
+  template <class Event, class Fsm>
+  void on_exit(const Event&, Fsm& fsm) {
+    fsm.ctx->stop_walking();
+  }
+};
+/// A phase whose route comes from the config alone.
+template <plan::Route (*Plan)(const Config&)>
+struct Going : Walking<Going<Plan>> {
+  template <class Leg>
+  static plan::Route route(const Context& c, const Leg&) {
+    return Plan(c.config);
+  }
+};
+/// A phase whose route comes from the config and the pocket the leg serves.
+template <plan::Route (*Plan)(const Config&, int)>
+struct GoingAtPocket : Walking<GoingAtPocket<Plan>> {
+  template <class Leg>
+  static plan::Route route(const Context& c, const Leg& leg) {
+    return Plan(c.config, leg.pocket);
   }
 };
 
-/// Publishes the command (M61, G10) `Target` computes on entry, then waits
+/// Publishes the command (M61, G10) `Command` makes on entry, then waits
 /// for CommandDone.
-template <class Target>
-struct Commanding : Moving<Target> {};
+template <class Command>
+struct Commanding : msmf::state<> {
+  using flag_list = boost::mpl::vector1<flag::AwaitsMotion>;
+  template <class Event, class Fsm>
+  void on_entry(const Event&, Fsm& fsm) {
+    fsm.ctx->publish(Command{}(*fsm.ctx, fsm));
+  }
+};
 
-/// Publishes the probe move `Target` computes on entry, then waits for
+/// Publishes the probe move `Target` makes on entry, then waits for
 /// ProbeResult. `Cancellable`: the operator may stop it (it runs over MDI).
 template <class Target, bool Cancellable>
 struct Probing : msmf::state<> {
@@ -235,217 +264,21 @@ struct ChuckSeconds {
   double operator()(const Config& c) const { return c.chuck_seconds; }
 };
 
-// ---------------------------------------------------------------- targets
+// ---------------------------------------------------------------- phases and commands
 
-namespace to {
+/// To `loading`, Z first: where the operator reaches the spindle.
+struct ToLoading : Going<plan::to_loading> {};
+/// To `loading` Z, then over the touch-off sensor.
+struct ToSensor : Going<plan::to_sensor> {};
+struct UpToSafeZ : Going<plan::to_safe_z> {};
 
-inline Step move(StepKind kind, unsigned axes, const Point& target, std::string label,
-                 int pocket = 0, bool approach = false, double feed = 0.0) {
-  Step step;
-  step.kind = kind;
-  step.axes = axes;
-  step.target = target;
-  step.label = std::move(label);
-  step.pocket = pocket;
-  step.approach = approach;
-  step.feed = feed;
-  return step;
-}
-
-inline std::string of_pocket(const char* what, int pocket) {
-  return std::string(what) + " of pocket " + std::to_string(pocket);
-}
-
-struct SafeZ {
-  template <class Leg>
-  Step operator()(const Context& c, const Leg&) const {
-    return move(StepKind::rapid, axis_z, c.config.safe, "safe Z");
-  }
-};
-struct SafeXY {
-  template <class Leg>
-  Step operator()(const Context& c, const Leg&) const {
-    return move(StepKind::rapid, axis_xy, c.config.safe, "safe XY");
-  }
-};
-/// Straight up from the pocket or its side, still within its approach.
-struct SafeZOverPocket {
-  template <class Leg>
-  Step operator()(const Context& c, const Leg& leg) const {
-    return move(StepKind::rapid, axis_z, c.config.safe, "safe Z", leg.pocket, true);
-  }
-};
-struct SideAtSafeZ {
-  template <class Leg>
-  Step operator()(const Context& c, const Leg& leg) const {
-    const Point side = pocket_waypoints(c.config, leg.pocket).side;
-    return move(StepKind::rapid, axis_xy, side, of_pocket("over the side", leg.pocket), leg.pocket);
-  }
-};
-struct Side {
-  template <class Leg>
-  Step operator()(const Context& c, const Leg& leg) const {
-    return move(StepKind::rapid, axis_z, pocket_waypoints(c.config, leg.pocket).side,
-                of_pocket("side", leg.pocket), leg.pocket, true);
-  }
-};
-struct SlowlyToSide {
-  template <class Leg>
-  Step operator()(const Context& c, const Leg& leg) const {
-    return move(StepKind::feed, axis_xy, pocket_waypoints(c.config, leg.pocket).side,
-                of_pocket("side", leg.pocket), leg.pocket, true, c.config.pocket_feed);
-  }
-};
-/// On the direct path, the side approach crosses to the pocket's column at
-/// rapid; only inside the column (the holder engaged) is it slow.
-struct ColumnEdge {
-  template <class Leg>
-  Step operator()(const Context& c, const Leg& leg) const {
-    return move(StepKind::rapid, axis_xy, pocket_waypoints(c.config, leg.pocket).column_edge,
-                of_pocket("column edge", leg.pocket), leg.pocket, true);
-  }
-};
-struct SlowlyToColumnEdge {
-  template <class Leg>
-  Step operator()(const Context& c, const Leg& leg) const {
-    return move(StepKind::feed, axis_xy, pocket_waypoints(c.config, leg.pocket).column_edge,
-                of_pocket("column edge", leg.pocket), leg.pocket, true, c.config.pocket_feed);
-  }
-};
-/// Out of the column, the rest of the way to the side at rapid.
-struct OutToSide {
-  template <class Leg>
-  Step operator()(const Context& c, const Leg& leg) const {
-    return move(StepKind::rapid, axis_xy, pocket_waypoints(c.config, leg.pocket).side,
-                of_pocket("side", leg.pocket), leg.pocket, true);
-  }
-};
-struct SlowlyIntoPocket {
-  template <class Leg>
-  Step operator()(const Context& c, const Leg& leg) const {
-    return move(StepKind::feed, axis_xy, pocket_waypoints(c.config, leg.pocket).pocket,
-                "pocket " + std::to_string(leg.pocket), leg.pocket, true, c.config.pocket_feed);
-  }
-};
-struct SlowlyDownToPocket {
-  template <class Leg>
-  Step operator()(const Context& c, const Leg& leg) const {
-    return move(StepKind::feed, axis_z, pocket_waypoints(c.config, leg.pocket).pocket,
-                "pocket " + std::to_string(leg.pocket), leg.pocket, true, c.config.pocket_feed);
-  }
-};
-/// A top-approach pocket: the tool leaves its holder straight up, slowly.
-struct SlowlyUpToClearance {
-  template <class Leg>
-  Step operator()(const Context& c, const Leg& leg) const {
-    return move(StepKind::feed, axis_z, pocket_waypoints(c.config, leg.pocket).above_clearance,
-                of_pocket("above-clearance", leg.pocket), leg.pocket, true, c.config.pocket_feed);
-  }
-};
-/// The direct path's top approach: slowly only while the holder is engaged.
-struct SlowlyUpToAboveChuck {
-  template <class Leg>
-  Step operator()(const Context& c, const Leg& leg) const {
-    return move(StepKind::feed, axis_z, pocket_waypoints(c.config, leg.pocket).above_chuck,
-                of_pocket("above-chuck", leg.pocket), leg.pocket, true, c.config.pocket_feed);
-  }
-};
-struct PocketAtSafeZ {
-  template <class Leg>
-  Step operator()(const Context& c, const Leg& leg) const {
-    return move(StepKind::rapid, axis_xy, pocket_waypoints(c.config, leg.pocket).pocket,
-                "over pocket " + std::to_string(leg.pocket), leg.pocket);
-  }
-};
-struct AboveChuck {
-  template <class Leg>
-  Step operator()(const Context& c, const Leg& leg) const {
-    return move(StepKind::rapid, axis_z, pocket_waypoints(c.config, leg.pocket).above_chuck,
-                of_pocket("above-chuck", leg.pocket), leg.pocket, true);
-  }
-};
-struct AboveClearance {
-  template <class Leg>
-  Step operator()(const Context& c, const Leg& leg) const {
-    return move(StepKind::rapid, axis_z, pocket_waypoints(c.config, leg.pocket).above_clearance,
-                of_pocket("above-clearance", leg.pocket), leg.pocket, true);
-  }
-};
-struct LoadingZ {
-  template <class Leg>
-  Step operator()(const Context& c, const Leg&) const {
-    return move(StepKind::rapid, axis_z, c.config.loading, "loading Z");
-  }
-};
-struct LoadingXY {
-  template <class Leg>
-  Step operator()(const Context& c, const Leg&) const {
-    return move(StepKind::rapid, axis_xy, c.config.loading, "loading XY");
-  }
-};
-/// Over the touch-off sensor, at the current Z.
-struct SensorXY {
-  template <class Leg>
-  Step operator()(const Context& c, const Leg&) const {
-    return move(StepKind::rapid, axis_xy, c.config.probe_limit, "over the touch-off sensor");
-  }
-};
-struct ProbeSeek {
-  template <class Leg>
-  Step operator()(const Context& c, const Leg&) const {
-    return move(StepKind::probe, axis_z, c.config.probe_limit, "touch-off sensor (seek)", 0, false,
-                c.config.probe_seek_feed);
-  }
-};
-struct ProbeBackOff {
-  template <class Leg>
-  Step operator()(const Context& c, const Leg& leg) const {
-    Point above = c.config.probe_limit;
-    above.z = leg.first_touch_z + c.config.probe_backoff;
-    return move(StepKind::feed, axis_z, above, "back off the sensor", 0, false,
-                c.config.probe_seek_feed);
-  }
-};
-struct ProbeLatch {
-  template <class Leg>
-  Step operator()(const Context& c, const Leg&) const {
-    return move(StepKind::probe, axis_z, c.config.probe_limit, "touch-off sensor (latch)", 0, false,
-                c.config.probe_latch_feed);
-  }
-};
-struct RetractFromSensor {
-  template <class Leg>
-  Step operator()(const Context& c, const Leg& leg) const {
-    Point up = c.config.probe_limit;
-    up.z = leg.latched_z + c.config.probe_retract_offset_z;
-    return move(StepKind::rapid, axis_z, up, "retract from the sensor");
-  }
-};
 /// Tells LinuxCNC (M61) what the spindle holds now.
-struct SpindleTool {
+struct SpindleToolCommand {
   template <class Leg>
   Step operator()(const Context& c, const Leg&) const {
-    Step step;
-    step.kind = StepKind::set_spindle_tool;
-    step.tool = c.tools.spindle;
-    step.label = "tool in spindle";
-    return step;
+    return plan::spindle_tool(c.tools.spindle);
   }
 };
-struct ToolLength {
-  template <class Leg>
-  Step operator()(const Context& c, const Leg& leg) const {
-    const int tool = leg.tool;
-    Step step;
-    step.kind = StepKind::set_tool_length;
-    step.tool = tool;
-    step.value = c.tools.lengths.at(tool);
-    step.label = "tool table";
-    return step;
-  }
-};
-
-}  // namespace to
 
 // ---------------------------------------------------------------- guards
 
@@ -507,13 +340,6 @@ struct RequestedManualTool {
   template <class Event, class Fsm, class Source, class Target>
   bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
     return fsm.ctx->requested_tool != 0 && !fsm.ctx->tools.home_of(fsm.ctx->requested_tool);
-  }
-};
-/// The pocket the leg serves is approached from above (`"approach": "top"`).
-struct FromAbove {
-  template <class Event, class Fsm, class Source, class Target>
-  bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-    return fsm.ctx->config.pockets.at(fsm.pocket).approach == Approach::top;
   }
 };
 struct ToolRequested {

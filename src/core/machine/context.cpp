@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <stdexcept>
 
 namespace fatc {
 
@@ -32,6 +33,26 @@ void Context::publish(const Step& next) {
   step = next;
   ++sequence_step;
   ports.publish(next);
+}
+
+void Context::walk(plan::Route route) {
+  if (route.empty()) throw std::logic_error("a phase with no waypoints");
+  route_ = std::move(route);
+  route_next_ = 1;
+  publish(route_.front());
+}
+
+bool Context::next_waypoint() {
+  if (route_next_ >= route_.size()) return false;
+  // A copy: a refusal faults the machine at once, which drops the route.
+  const Step next = route_[route_next_++];
+  publish(next);
+  return true;
+}
+
+void Context::stop_walking() {
+  route_.clear();
+  route_next_ = 0;
 }
 
 void Context::open_chuck() {

@@ -8,6 +8,7 @@
 #include "../config.hpp"
 #include "../events.hpp"
 #include "../geometry.hpp"
+#include "../plan/routes.hpp"
 #include "../ports.hpp"
 #include "../sensors.hpp"
 #include "../step.hpp"
@@ -77,6 +78,14 @@ class Context {
   int sequence_step = 0;
 
   void publish(const Step& step);
+  /// A phase walks `route`: its first waypoint is published now, each
+  /// following one when the one before is reached (next_waypoint).
+  void walk(plan::Route route);
+  /// The waypoint under way was reached: publishes the next one of the route
+  /// walked and says true; false when the route is done, or none is walked.
+  bool next_waypoint();
+  /// The phase ended early (a fault, an abort): the rest of its route is dropped.
+  void stop_walking();
   /// The chuck; with `air_blast`, the blast follows: on while the chuck is
   /// open at a pocket with the spindle empty.
   void open_chuck();
@@ -142,6 +151,8 @@ class Context {
 
  private:
   void blow_if_due();
+  plan::Route route_;          ///< the waypoints the phase under way walks
+  std::size_t route_next_ = 0;  ///< the index of the waypoint to publish next
   bool blowing = false;
 };
 

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <boost/core/demangle.hpp>
-#include <boost/mpl/for_each.hpp>
 #include <cstdio>
 #include <type_traits>
 
@@ -75,7 +74,7 @@ using ChangeFlow = Machine_of<ChangeFlow_>;
 
 /// Tells LinuxCNC (M61) what the spindle holds; `Which` tells uses apart.
 template <class Which>
-struct ReportingSpindleTool : Commanding<to::SpindleTool> {};
+struct ReportingSpindleTool : Commanding<SpindleToolCommand> {};
 struct AfterInsertion {};
 struct AtTheEnd {};
 struct AfterFetch {};
@@ -118,11 +117,10 @@ struct LoadFlow_ : Flow<LoadFlow_> {
   //    Start                              Event             Next                Action        Guard
   // +----------------------------------+-----------------+-------------------+-------------+-----------------------------+
   Row < DecidingToReturn                 , none            , Returning         , none        , SpindleHoldsOtherTool       >,
-  Row < DecidingToReturn                 , none            , ToLoadingZ        , none        , Not<SpindleHoldsOtherTool>  >,
-  Row < Returning::exit_pt<Finished>     , LegDone         , ToLoadingZ        , none        , none                        >,
-  Row < ToLoadingZ                       , InPosition      , ToLoadingXY       , none        , none                        >,
-  Row < ToLoadingXY                      , InPosition      , Inserting         , none        , Not<RequestedToolInSpindle> >,
-  Row < ToLoadingXY                      , InPosition      , AwaitingProbe     , none        , RequestedToolInSpindle      >,
+  Row < DecidingToReturn                 , none            , ToLoading         , none        , Not<SpindleHoldsOtherTool>  >,
+  Row < Returning::exit_pt<Finished>     , LegDone         , ToLoading         , none        , none                        >,
+  Row < ToLoading                        , InPosition      , Inserting         , none        , Not<RequestedToolInSpindle> >,
+  Row < ToLoading                        , InPosition      , AwaitingProbe     , none        , RequestedToolInSpindle      >,
   Row < Inserting::exit_pt<Finished>     , LegDone         , ReportingTool     , none        , none                        >,
   Row < Inserting::exit_pt<Cancelled>    , LegDone         , ReportingFinalTool, SayCancelled, none                        >,
   Row < ReportingTool                    , CommandDone     , AwaitingProbe     , none        , none                        >,
@@ -167,13 +165,12 @@ struct UnloadFlow_ : Flow<UnloadFlow_> {
   using transition_table = boost::mpl::vector<
   //    Start                            Event         Next                Action        Guard
   // +--------------------------------+-------------+-------------------+-------------+------------------------+
-  Row < DecidingWhereToStart           , none        , ToLoadingZ        , none        , RequestedToolInSpindle >,
+  Row < DecidingWhereToStart           , none        , ToLoading         , none        , RequestedToolInSpindle >,
   Row < DecidingWhereToStart           , none        , Returning         , none        , SpindleHoldsOtherTool  >,
   Row < DecidingWhereToStart           , none        , RetrieveLeg       , none        , SpindleEmpty           >,
   Row < Returning::exit_pt<Finished>   , LegDone     , RetrieveLeg       , none        , none                   >,
-  Row < RetrieveLeg::exit_pt<Finished> , LegDone     , ToLoadingZ        , none        , none                   >,
-  Row < ToLoadingZ                     , InPosition  , ToLoadingXY       , none        , none                   >,
-  Row < ToLoadingXY                    , InPosition  , ReportingTool     , none        , none                   >,
+  Row < RetrieveLeg::exit_pt<Finished> , LegDone     , ToLoading         , none        , none                   >,
+  Row < ToLoading                      , InPosition  , ReportingTool     , none        , none                   >,
   Row < ReportingTool                  , CommandDone , Removing          , none        , none                   >,
   Row < Removing::exit_pt<Finished>    , LegDone     , FlushLeg          , none        , none                   >,
   Row < Removing::exit_pt<Cancelled>   , LegDone     , ReportingFinalTool, SayCancelled, none                   >,
@@ -198,7 +195,6 @@ struct MeasureAllFlow_ : Flow<MeasureAllFlow_> {
   using Probe = ProbingLeg<OverMdi>;
   /// The spindle's tool goes back first; then the next tool, if any is left.
   struct DecidingNextTool : Decision {};
-  struct OverSensor : Moving<to::SensorXY> {};
   /// LinuxCNC is told (M61) what the spindle holds after each fetch and return.
   using ReportingFetched = ReportingSpindleTool<AfterFetch>;
   using ReportingReturned = ReportingSpindleTool<AfterReturn>;
@@ -288,9 +284,8 @@ struct MeasureAllFlow_ : Flow<MeasureAllFlow_> {
   Row < Returning::exit_pt<Finished>      , LegDone       , ReportingReturned, none            , none                              >,
   Row < ReportingReturned                 , CommandDone   , DecidingNextTool, none             , none                              >,
   Row < RetrieveLeg::exit_pt<Finished>    , LegDone       , ReportingFetched, none             , none                              >,
-  Row < ReportingFetched                  , CommandDone   , ToLoadingZ      , none             , none                              >,
-  Row < ToLoadingZ                        , InPosition    , OverSensor      , none             , none                              >,
-  Row < OverSensor                        , InPosition    , Probe           , none             , none                              >,
+  Row < ReportingFetched                  , CommandDone   , ToSensor        , none             , none                              >,
+  Row < ToSensor                          , InPosition    , Probe           , none             , none                              >,
   Row < Probe::exit_pt<Finished>          , LegDone       , DecidingNextTool, RecordMeasured   , none                              >,
   Row < Probe::exit_pt<Probe::NotMeasured>, LegDone       , DecidingNextTool, RecordNotMeasured, none                              >,
   Row < ListeningForCancel                , OperatorCancel, none            , AskToStop        , none                              >
@@ -311,46 +306,24 @@ struct VerifyFlow_ : Flow<VerifyFlow_> {
   static int served_tool(const Context& ctx) { return ctx.tools.spindle; }
   static int served_pocket(const Context& ctx, int) { return ctx.verify_pocket; }
 
-  /// The waypoints, in order: in from the side (a return's way in), out to
-  /// the side (a fetch's way out), or down from above and back up.
-  using from_the_side =
-      boost::mpl::vector<to::SafeZ, to::SafeXY, to::SideAtSafeZ, to::Side, to::SlowlyIntoPocket,
-                         to::SlowlyToSide, to::SafeZOverPocket, to::SafeXY>;
-  using from_above = boost::mpl::vector<to::SafeZ, to::SafeXY, to::PocketAtSafeZ,
-                                        to::AboveClearance, to::SlowlyDownToPocket,
-                                        to::SlowlyUpToClearance, to::SafeZOverPocket, to::SafeXY>;
-  std::vector<Step> route;
+  /// The waypoints, in order (plan::verify_pocket).
+  plan::Route route;
   std::size_t reached = 0;  ///< the index of the waypoint moved to last
 
   template <class Event, class Parent>
   void on_entry(const Event& e, Parent& parent) {
     Flow::on_entry(e, parent);
-    route.clear();
+    route = plan::verify_pocket(ctx->config, pocket);
     reached = 0;
-    if (ctx->config.pockets.at(pocket).approach == Approach::top) {
-      boost::mpl::for_each<from_above>([this](auto target) { add(target); });
-    } else {
-      boost::mpl::for_each<from_the_side>([this](auto target) { add(target); });
-    }
     ctx->record_progress("verifying pocket " + std::to_string(pocket), pocket);
   }
-  /// Every move at the dry run's feed, or slower where the leg itself is.
-  template <class Target>
-  void add(Target target) {
-    Step step = target(*ctx, *this);
-    const double feed = ctx->config.dry_run_feed();
-    step.feed = step.kind == StepKind::feed ? std::min(step.feed, feed) : feed;
-    step.kind = StepKind::feed;
-    route.push_back(step);
-  }
-
-  struct NextWaypoint {
+  /// One waypoint at a time: the run holds at each.
+  struct ToWaypoint : Walking<ToWaypoint> {
     template <class Leg>
-    Step operator()(const Context&, const Leg& leg) const {
-      return leg.route.at(leg.reached);
+    static plan::Route route(const Context&, const Leg& leg) {
+      return {leg.route.at(leg.reached)};
     }
   };
-  struct ToWaypoint : Moving<NextWaypoint> {};
   struct StopPrompt {
     template <class Leg>
     std::string operator()(const Context& c, const Leg& leg) const {

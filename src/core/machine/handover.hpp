@@ -107,13 +107,12 @@ struct HandOutLeg_ : Flow<HandOutLeg_> {
                          0);
   }
   using Removing = RemoveLeg<HoldingTheProgram>;
-  using initial_state = ToLoadingZ;
+  using initial_state = ToLoading;
   // clang-format off
   using transition_table = boost::mpl::vector<
   //    Start                         Event       Next         Action  Guard
   // +-----------------------------+-----------+------------+-------+------+
-  Row < ToLoadingZ                  , InPosition, ToLoadingXY, none  , none >,
-  Row < ToLoadingXY                 , InPosition, Removing   , none  , none >,
+  Row < ToLoading                   , InPosition, Removing   , none  , none >,
   Row < Removing::exit_pt<Finished> , LegDone   , Finished   , none  , none >,
   Row < Removing::exit_pt<Cancelled>, LegDone   , Cancelled  , none  , none >
   >;
@@ -131,17 +130,15 @@ struct HandInLeg_ : Flow<HandInLeg_> {
     ctx->record_progress("handing tool " + std::to_string(tool) + " in at loading", 0);
   }
   using Inserting = InsertLeg<HoldingTheProgram>;
-  struct UpToSafeZ : Moving<to::SafeZ> {};
   /// LinuxCNC still has the tool the program started the M6 with.
-  struct ReportingEmptySpindle : Commanding<to::SpindleTool> {};
+  struct ReportingEmptySpindle : Commanding<SpindleToolCommand> {};
 
-  using initial_state = ToLoadingZ;
+  using initial_state = ToLoading;
   // clang-format off
   using transition_table = boost::mpl::vector<
   //    Start                          Event        Next                   Action  Guard
   // +------------------------------+------------+----------------------+-------+------+
-  Row < ToLoadingZ                   , InPosition , ToLoadingXY          , none  , none >,
-  Row < ToLoadingXY                  , InPosition , Inserting            , none  , none >,
+  Row < ToLoading                    , InPosition , Inserting            , none  , none >,
   Row < Inserting::exit_pt<Finished> , LegDone    , UpToSafeZ            , none  , none >,
   Row < Inserting::exit_pt<Cancelled>, LegDone    , ReportingEmptySpindle, none  , none >,
   Row < UpToSafeZ                    , InPosition , Finished             , none  , none >,

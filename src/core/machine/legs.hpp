@@ -4,16 +4,11 @@
 // pocket, retrieve a tool from its pocket, measure a tool on the sensor.
 // docs/sequences.md is the contract these tables follow.
 
-#include <boost/mpl/joint_view.hpp>
 #include <cmath>
 
 #include "chuck.hpp"
 
 namespace fatc::machine {
-
-/// To the loading position, Z first: where the operator reaches the spindle.
-struct ToLoadingZ : Moving<to::LoadingZ> {};
-struct ToLoadingXY : Moving<to::LoadingXY> {};
 
 // ================================================================ the rack cover
 /// `rack_cover`: the cover opens before a leg's first move into the rack (at
@@ -77,24 +72,6 @@ struct CoverHasOpenedSensor {
   template <class Event, class Fsm, class Source, class Target>
   bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
     return fsm.ctx->config.rack_cover && fsm.ctx->config.rack_cover->opened_sensor;
-  }
-};
-
-// ================================================================ the way to the rack
-/// `path: "direct"`: between the rack and the program, safe Z is the lane;
-/// safe XY is where a leg ends only when the program or the operator comes next.
-struct DirectPath {
-  template <class Event, class Fsm, class Source, class Target>
-  bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-    return fsm.ctx->config.path == Path::direct;
-  }
-};
-/// A fetch comes next (M6 to a tool in the rack, unload): a direct return
-/// ends at safe Z over its pocket, where the fetch starts.
-struct FetchFollows {
-  template <class Event, class Fsm, class Source, class Target>
-  bool operator()(const Event& e, Fsm& fsm, Source& s, Target& t) const {
-    return DirectPath{}(e, fsm, s, t) && fsm.ctx->fetch_follows_return;
   }
 };
 
@@ -180,16 +157,9 @@ struct ReturnLeg_ : Flow<ReturnLeg_<Which>> {
                                this->pocket);
   }
 
-  struct ToSafeZ : Moving<to::SafeZ> {};
-  struct ToSafeXY : Moving<to::SafeXY> {};
-  struct OverSide : Moving<to::SideAtSafeZ> {};
-  struct DownToSide : Moving<to::Side> {};
-  struct ToColumnEdge : Moving<to::ColumnEdge> {};
-  struct IntoPocket : Moving<to::SlowlyIntoPocket> {};
-  struct OverPocket : Moving<to::PocketAtSafeZ> {};
-  struct DownToClearance : Moving<to::AboveClearance> {};
-  struct DownToAboveChuck : Moving<to::AboveChuck> {};
-  struct DownIntoPocket : Moving<to::SlowlyDownToPocket> {};
+  // The phases; plan/routes.hpp says where each goes.
+  struct ToApproach : GoingAtPocket<plan::return_to_approach> {};
+  struct IntoPocket : GoingAtPocket<plan::return_into_pocket> {};
   struct WaitingToOpen : WaitingToOpenChuck<AtPocket> {};
   struct ReleasingTool : Timed {
     template <class Event, class Fsm>
@@ -200,12 +170,16 @@ struct ReturnLeg_ : Flow<ReturnLeg_<Which>> {
                                                        std::to_string(fsm.pocket));
     }
   };
-  struct UpToAboveChuck : Moving<to::AboveChuck> {};
+  struct UpFromTool : GoingAtPocket<plan::return_up_from_tool> {};
   /// The spindle lifted with the chuck open: the tool must have stayed behind.
   struct CheckingToolLeft : AwaitingSensor<SpindleReadsEmpty> {};
-  struct UpToClearance : Moving<to::AboveClearance> {};
-  struct UpToSafeZ : Moving<to::SafeZOverPocket> {};
-  struct BackToSafeXY : Moving<to::SafeXY> {};
+  /// Up and away; a fetch that follows on the direct path starts over this pocket.
+  struct Away : Walking<Away> {
+    template <class Leg>
+    static plan::Route route(const Context& c, const Leg& leg) {
+      return plan::return_away(c.config, leg.pocket, c.fetch_follows_return);
+    }
+  };
 
   struct RecordToolInPocket {
     template <class Event, class Fsm, class Source, class Target>
@@ -236,53 +210,27 @@ struct ReturnLeg_ : Flow<ReturnLeg_<Which>> {
 
   using initial_state = OpeningCover;
   // clang-format off
-  /// Into the pocket: in from its side, or straight down from above (`approach`).
-  using into_the_pocket = boost::mpl::vector<
-  //    Start                  Event          Next                  Action                                Guard
-  // +----------------------+--------------+---------------------+-------------------------------------+-----------------------+
-  Row < OpeningCover         , SensorReport , ToSafeZ             , none                                , CoverOpen             >,
-  Row < OpeningCover         , TimerElapsed , Halted              , FaultCoverDidNotOpen                , CoverHasOpenedSensor  >,
-  Row < ToSafeZ              , InPosition   , ToSafeXY            , none                                , Not<DirectPath>       >,
-  Row < ToSafeZ              , InPosition   , OverSide            , none                                , And<DirectPath, Not<FromAbove>> >,
-  Row < ToSafeZ              , InPosition   , OverPocket          , none                                , And<DirectPath, FromAbove> >,
-  Row < ToSafeXY             , InPosition   , OverSide            , none                                , Not<FromAbove>        >,
-  Row < OverSide             , InPosition   , DownToSide          , none                                , none                  >,
-  Row < DownToSide           , InPosition   , IntoPocket          , none                                , And<PocketReadsEmpty, Not<DirectPath>> >,
-  Row < DownToSide           , InPosition   , ToColumnEdge        , none                                , And<PocketReadsEmpty, DirectPath> >,
-  Row < DownToSide           , InPosition   , Halted              , FaultPocketFull                     , Not<PocketReadsEmpty> >,
-  Row < ToColumnEdge         , InPosition   , IntoPocket          , none                                , none                  >,
-  Row < IntoPocket           , InPosition   , WaitingToOpen       , none                                , none                  >,
-  Row < ToSafeXY             , InPosition   , OverPocket          , none                                , FromAbove             >,
-  Row < OverPocket           , InPosition   , DownToClearance     , none                                , Not<DirectPath>       >,
-  Row < OverPocket           , InPosition   , DownToAboveChuck    , none                                , DirectPath            >,
-  Row < DownToClearance      , InPosition   , DownIntoPocket      , none                                , PocketReadsEmpty      >,
-  Row < DownToClearance      , InPosition   , Halted              , FaultPocketFull                     , Not<PocketReadsEmpty> >,
-  Row < DownToAboveChuck     , InPosition   , DownIntoPocket      , none                                , PocketReadsEmpty      >,
-  Row < DownToAboveChuck     , InPosition   , Halted              , FaultPocketFull                     , Not<PocketReadsEmpty> >,
-  Row < DownIntoPocket       , InPosition   , WaitingToOpen       , none                                , none                  >
-  >;
-  /// The tool let go in the pocket, and the spindle away.
-  using release_and_away = boost::mpl::vector<
-  //    Start                  Event          Next                  Action                                Guard
-  // +----------------------+--------------+---------------------+-------------------------------------+-----------------------+
-  Row < WaitingToOpen        , SensorReport , ReleasingTool       , none                                , ChuckMayOpen          >,
-  Row < WaitingToOpen        , TimerElapsed , Halted              , FaultChuckMayNotOpen<AtPocket>      , none                  >,
-  Row < ReleasingTool        , TimerElapsed , CheckingDrawbarOpen , none                                , none                  >,
-  Row < CheckingDrawbarOpen  , SensorReport , UpToAboveChuck      , RecordToolInPocket                  , DrawbarOpen           >,
-  Row < CheckingDrawbarOpen  , TimerElapsed , Halted              , FaultDrawbarStayedClosed<AtPocket>  , none                  >,
-  Row < UpToAboveChuck       , InPosition   , CheckingToolLeft    , none                                , none                  >,
+  using transition_table = boost::mpl::vector<
+  //    Start                  Event          Next                   Action                               Guard
+  // +----------------------+--------------+----------------------+------------------------------------+-----------------------+
+  Row < OpeningCover         , SensorReport , ToApproach           , none                               , CoverOpen             >,
+  Row < OpeningCover         , TimerElapsed , Halted               , FaultCoverDidNotOpen               , CoverHasOpenedSensor  >,
+  Row < ToApproach           , InPosition   , IntoPocket           , none                               , PocketReadsEmpty      >,
+  Row < ToApproach           , InPosition   , Halted               , FaultPocketFull                    , Not<PocketReadsEmpty> >,
+  Row < IntoPocket           , InPosition   , WaitingToOpen        , none                               , none                  >,
+  Row < WaitingToOpen        , SensorReport , ReleasingTool        , none                               , ChuckMayOpen          >,
+  Row < WaitingToOpen        , TimerElapsed , Halted               , FaultChuckMayNotOpen<AtPocket>     , none                  >,
+  Row < ReleasingTool        , TimerElapsed , CheckingDrawbarOpen  , none                               , none                  >,
+  Row < CheckingDrawbarOpen  , SensorReport , UpFromTool           , RecordToolInPocket                 , DrawbarOpen           >,
+  Row < CheckingDrawbarOpen  , TimerElapsed , Halted               , FaultDrawbarStayedClosed<AtPocket> , none                  >,
+  Row < UpFromTool           , InPosition   , CheckingToolLeft     , none                               , none                  >,
   Row < CheckingToolLeft     , SensorReport , CheckingDrawbarClosed, CloseChuck                         , SpindleReadsEmpty     >,
-  Row < CheckingToolLeft     , TimerElapsed , Halted              , FaultToolStillInSpindle             , none                  >,
-  Row < CheckingDrawbarClosed, SensorReport , UpToClearance       , none                                , And<DrawbarClosed, Not<DirectPath>> >,
-  Row < CheckingDrawbarClosed, SensorReport , UpToSafeZ           , none                                , And<DrawbarClosed, DirectPath> >,
-  Row < CheckingDrawbarClosed, TimerElapsed , Halted              , FaultDrawbarStayedOpen<AbovePocket> , none                  >,
-  Row < UpToClearance        , InPosition   , UpToSafeZ           , none                                , none                  >,
-  Row < UpToSafeZ            , InPosition   , BackToSafeXY        , none                                , Not<FetchFollows>     >,
-  Row < UpToSafeZ            , InPosition   , Finished            , none                                , FetchFollows          >,
-  Row < BackToSafeXY         , InPosition   , Finished            , none                                , none                  >
+  Row < CheckingToolLeft     , TimerElapsed , Halted               , FaultToolStillInSpindle            , none                  >,
+  Row < CheckingDrawbarClosed, SensorReport , Away                 , none                               , DrawbarClosed         >,
+  Row < CheckingDrawbarClosed, TimerElapsed , Halted               , FaultDrawbarStayedOpen<AbovePocket>, none                  >,
+  Row < Away                 , InPosition   , Finished             , none                               , none                  >
   >;
   // clang-format on
-  using transition_table = boost::mpl::joint_view<into_the_pocket, release_and_away>;
 };
 template <class Which>
 using ReturnLeg = Machine_of<ReturnLeg_<Which>>;
@@ -301,11 +249,17 @@ struct RetrieveLeg_ : Flow<RetrieveLeg_> {
     ctx->record_progress(
         "fetching tool " + std::to_string(tool) + " from pocket " + std::to_string(pocket), pocket);
   }
-  struct ToSafeZ : Moving<to::SafeZ> {};
-  struct ToSafeXY : Moving<to::SafeXY> {};
-  struct OverPocket : Moving<to::PocketAtSafeZ> {};
-  struct DownToClearance : Moving<to::AboveClearance> {};
-  struct DownToAboveChuck : Moving<to::AboveChuck> {};
+  // The phases; plan/routes.hpp says where each goes.
+  /// Over the pocket to above-chuck; straight over it from safe, or, on the
+  /// direct path, from anywhere at safe Z (where a direct return ends).
+  struct ToAboveChuck : Walking<ToAboveChuck> {
+    template <class Leg>
+    static plan::Route route(const Context& c, const Leg& leg) {
+      const bool at_safe_z = (c.known_axes & axis_z) && c.position.z == c.config.safe.z;
+      const bool at_safe = c.at_safe() || (c.config.path == Path::direct && at_safe_z);
+      return plan::fetch_to_above_chuck(c.config, leg.pocket, at_safe);
+    }
+  };
   struct WaitingToOpen : WaitingToOpenChuck<AbovePocket> {};
   struct OpeningChuck : Timed {
     template <class Event, class Fsm>
@@ -318,7 +272,7 @@ struct RetrieveLeg_ : Flow<RetrieveLeg_> {
                                            std::to_string(fsm.tool) + " once more");
     }
   };
-  struct SlowlyDownToPocket : Moving<to::SlowlyDownToPocket> {};
+  struct DownAroundTool : GoingAtPocket<plan::fetch_down_to_tool> {};
   struct Settling : Waiting<ChuckSeconds> {};
   struct GrippingTool : Timed {
     template <class Event, class Fsm>
@@ -338,23 +292,8 @@ struct RetrieveLeg_ : Flow<RetrieveLeg_> {
     }
   };
   struct CheckingGrip : AwaitingSensor<Gripped> {};
-  struct SlowlyOutToSide : Moving<to::SlowlyToSide> {};
-  struct SlowlyOutOfColumn : Moving<to::SlowlyToColumnEdge> {};
-  struct OutToSide : Moving<to::OutToSide> {};
-  struct SlowlyUpOut : Moving<to::SlowlyUpToClearance> {};
-  struct SlowlyUpToAboveChuck : Moving<to::SlowlyUpToAboveChuck> {};
-  struct UpToSafeZ : Moving<to::SafeZOverPocket> {};
-  struct BackToSafeXY : Moving<to::SafeXY> {};
+  struct OutAndAway : GoingAtPocket<plan::fetch_out_and_away> {};
 
-  /// At safe, or, on the direct path, anywhere at safe Z (where a direct return ends).
-  struct AlreadyAtSafe {
-    template <class Event, class Fsm, class Source, class Target>
-    bool operator()(const Event& e, Fsm& fsm, Source& s, Target& t) const {
-      const Context& c = *fsm.ctx;
-      const bool at_safe_z = (c.known_axes & axis_z) && c.position.z == c.config.safe.z;
-      return c.at_safe() || (DirectPath{}(e, fsm, s, t) && at_safe_z);
-    }
-  };
   /// The grip was tried once more already.
   struct Retried {
     template <class Event, class Fsm, class Source, class Target>
@@ -404,54 +343,31 @@ struct RetrieveLeg_ : Flow<RetrieveLeg_> {
   struct Starting : Decision {};
   using initial_state = Starting;
   // clang-format off
-  /// To the pocket: the chuck opens above it, the spindle goes down around the tool.
-  using to_the_tool = boost::mpl::vector<
-  //    Start                        Event          Next                 Action                                 Guard
-  // +----------------------------+--------------+--------------------+--------------------------------------+---------------------------------------+
-  Row < Starting                   , none         , Halted             , FaultCannotFetch                     , Not<ReadyToFetch>                     >,
-  Row < Starting                   , none         , OpeningCover       , none                                 , ReadyToFetch                          >,
-  Row < OpeningCover               , SensorReport , ToSafeZ            , none                                 , And<CoverOpen, Not<AlreadyAtSafe>>    >,
-  Row < OpeningCover               , SensorReport , OverPocket         , none                                 , And<CoverOpen, AlreadyAtSafe>         >,
-  Row < OpeningCover               , TimerElapsed , Halted             , FaultCoverDidNotOpen                 , CoverHasOpenedSensor                  >,
-  Row < ToSafeZ                    , InPosition   , ToSafeXY           , none                                 , Not<DirectPath>                       >,
-  Row < ToSafeZ                    , InPosition   , OverPocket         , none                                 , DirectPath                            >,
-  Row < ToSafeXY                   , InPosition   , OverPocket         , none                                 , none                                  >,
-  Row < OverPocket                 , InPosition   , DownToClearance    , none                                 , Not<DirectPath>                       >,
-  Row < OverPocket                 , InPosition   , DownToAboveChuck   , none                                 , DirectPath                            >,
-  Row < DownToClearance            , InPosition   , DownToAboveChuck   , none                                 , none                                  >,
-  Row < DownToAboveChuck           , InPosition   , FlushLeg           , none                                 , none                                  >,
-  Row < FlushLeg::exit_pt<Finished>, LegDone      , WaitingToOpen      , none                                 , none                                  >,
-  Row < WaitingToOpen              , SensorReport , OpeningChuck       , none                                 , ChuckMayOpen                          >,
-  Row < WaitingToOpen              , TimerElapsed , Halted             , FaultChuckMayNotOpen<WhereItOpens>   , none                                  >,
-  Row < OpeningChuck               , TimerElapsed , CheckingDrawbarOpen, none                                 , none                                  >,
-  Row < CheckingDrawbarOpen        , SensorReport , SlowlyDownToPocket , none                                 , And<DrawbarOpen, Not<Retried>>        >,
-  Row < CheckingDrawbarOpen        , SensorReport , GrippingTool       , none                                 , And<DrawbarOpen, Retried>             >,
-  Row < CheckingDrawbarOpen        , TimerElapsed , Halted             , FaultDrawbarStayedClosed<WhereItOpens>, none                                 >,
-  Row < SlowlyDownToPocket         , InPosition   , Settling           , none                                 , none                                  >
-  >;
-  /// The grip, once more if the tool does not show, and away.
-  using grip_and_away = boost::mpl::vector<
-  //    Start                        Event          Next                 Action                                 Guard
-  // +----------------------------+--------------+--------------------+--------------------------------------+---------------------------------------+
-  Row < Settling                   , TimerElapsed , GrippingTool       , none                                 , none                                  >,
-  Row < GrippingTool               , TimerElapsed , CheckingGrip       , none                                 , none                                  >,
-  Row < CheckingGrip               , SensorReport , SlowlyOutToSide    , RecordToolInSpindle                  , And<Gripped, And<Not<FromAbove>, Not<DirectPath>>> >,
-  Row < CheckingGrip               , SensorReport , SlowlyOutOfColumn  , RecordToolInSpindle                  , And<Gripped, And<Not<FromAbove>, DirectPath>> >,
-  Row < CheckingGrip               , SensorReport , SlowlyUpOut        , RecordToolInSpindle                  , And<Gripped, And<FromAbove, Not<DirectPath>>> >,
-  Row < CheckingGrip               , SensorReport , SlowlyUpToAboveChuck, RecordToolInSpindle                 , And<Gripped, And<FromAbove, DirectPath>> >,
-  Row < CheckingGrip               , TimerElapsed , Halted             , FaultDrawbarStayedOpen<AtPocket>     , Not<DrawbarClosed>                    >,
-  Row < CheckingGrip               , TimerElapsed , WaitingToOpen      , SayGrippingAgain                     , And<DrawbarClosed, Not<Retried>>      >,
-  Row < CheckingGrip               , TimerElapsed , Halted             , FaultToolNotGripped                  , And<DrawbarClosed, Retried>           >,
-  Row < SlowlyOutToSide            , InPosition   , UpToSafeZ          , none                                 , none                                  >,
-  Row < SlowlyOutOfColumn          , InPosition   , OutToSide          , none                                 , none                                  >,
-  Row < OutToSide                  , InPosition   , UpToSafeZ          , none                                 , none                                  >,
-  Row < SlowlyUpOut                , InPosition   , UpToSafeZ          , none                                 , none                                  >,
-  Row < SlowlyUpToAboveChuck       , InPosition   , UpToSafeZ          , none                                 , none                                  >,
-  Row < UpToSafeZ                  , InPosition   , BackToSafeXY       , none                                 , none                                  >,
-  Row < BackToSafeXY               , InPosition   , Finished           , none                                 , none                                  >
+  using transition_table = boost::mpl::vector<
+  //    Start                        Event          Next                 Action                                  Guard
+  // +----------------------------+--------------+--------------------+---------------------------------------+----------------------------------+
+  Row < Starting                   , none         , Halted             , FaultCannotFetch                      , Not<ReadyToFetch>                >,
+  Row < Starting                   , none         , OpeningCover       , none                                  , ReadyToFetch                     >,
+  Row < OpeningCover               , SensorReport , ToAboveChuck       , none                                  , CoverOpen                        >,
+  Row < OpeningCover               , TimerElapsed , Halted             , FaultCoverDidNotOpen                  , CoverHasOpenedSensor             >,
+  Row < ToAboveChuck               , InPosition   , FlushLeg           , none                                  , none                             >,
+  Row < FlushLeg::exit_pt<Finished>, LegDone      , WaitingToOpen      , none                                  , none                             >,
+  Row < WaitingToOpen              , SensorReport , OpeningChuck       , none                                  , ChuckMayOpen                     >,
+  Row < WaitingToOpen              , TimerElapsed , Halted             , FaultChuckMayNotOpen<WhereItOpens>    , none                             >,
+  Row < OpeningChuck               , TimerElapsed , CheckingDrawbarOpen, none                                  , none                             >,
+  Row < CheckingDrawbarOpen        , SensorReport , DownAroundTool     , none                                  , And<DrawbarOpen, Not<Retried>>   >,
+  Row < CheckingDrawbarOpen        , SensorReport , GrippingTool       , none                                  , And<DrawbarOpen, Retried>        >,
+  Row < CheckingDrawbarOpen        , TimerElapsed , Halted             , FaultDrawbarStayedClosed<WhereItOpens>, none                             >,
+  Row < DownAroundTool             , InPosition   , Settling           , none                                  , none                             >,
+  Row < Settling                   , TimerElapsed , GrippingTool       , none                                  , none                             >,
+  Row < GrippingTool               , TimerElapsed , CheckingGrip       , none                                  , none                             >,
+  Row < CheckingGrip               , SensorReport , OutAndAway         , RecordToolInSpindle                   , Gripped                          >,
+  Row < CheckingGrip               , TimerElapsed , Halted             , FaultDrawbarStayedOpen<AtPocket>      , Not<DrawbarClosed>               >,
+  Row < CheckingGrip               , TimerElapsed , WaitingToOpen      , SayGrippingAgain                      , And<DrawbarClosed, Not<Retried>> >,
+  Row < CheckingGrip               , TimerElapsed , Halted             , FaultToolNotGripped                   , And<DrawbarClosed, Retried>      >,
+  Row < OutAndAway                 , InPosition   , Finished           , none                                  , none                             >
   >;
   // clang-format on
-  using transition_table = boost::mpl::joint_view<to_the_tool, grip_and_away>;
 };
 using RetrieveLeg = Machine_of<RetrieveLeg_>;
 
@@ -494,12 +410,45 @@ struct ProbingLeg_ : Flow<ProbingLeg_<Run>> {
 
   struct NotMeasured : msmf::exit_pseudo_state<LegDone> {};
 
-  struct Seeking : Probing<to::ProbeSeek, Run::cancellable> {};
-  struct BackingOff : Moving<to::ProbeBackOff> {};
-  struct Latching : Probing<to::ProbeLatch, Run::cancellable> {};
-  struct WritingLength : Commanding<to::ToolLength> {};
-  struct Retracting : Moving<to::RetractFromSensor> {};
-  struct RetractingUnmeasured : Moving<to::LoadingZ> {};
+  struct Seek {
+    template <class Leg>
+    Step operator()(const Context& c, const Leg&) const {
+      return plan::probe_seek(c.config);
+    }
+  };
+  struct Latch {
+    template <class Leg>
+    Step operator()(const Context& c, const Leg&) const {
+      return plan::probe_latch(c.config);
+    }
+  };
+  struct Length {
+    template <class Leg>
+    Step operator()(const Context& c, const Leg& leg) const {
+      return plan::tool_length(leg.tool, c.tools.lengths.at(leg.tool));
+    }
+  };
+  struct Seeking : Probing<Seek, Run::cancellable> {};
+  struct BackingOff : Walking<BackingOff> {
+    template <class Leg>
+    static plan::Route route(const Context& c, const Leg& leg) {
+      return {plan::probe_back_off(c.config, leg.first_touch_z)};
+    }
+  };
+  struct Latching : Probing<Latch, Run::cancellable> {};
+  struct WritingLength : Commanding<Length> {};
+  struct Retracting : Walking<Retracting> {
+    template <class Leg>
+    static plan::Route route(const Context& c, const Leg& leg) {
+      return {plan::retract_from_sensor(c.config, leg.latched_z)};
+    }
+  };
+  struct RetractingUnmeasured : Walking<RetractingUnmeasured> {
+    template <class Leg>
+    static plan::Route route(const Context& c, const Leg&) {
+      return {plan::loading_z(c.config)};
+    }
+  };
 
   struct Touched {
     template <class Fsm, class Source, class Target>
@@ -619,8 +568,6 @@ using ProbingLeg = Machine_of<ProbingLeg_<Run>>;
 /// and measures it, or checks it against its stored length; ends at safe Z.
 struct MeasureLeg_ : Flow<MeasureLeg_> {
   using Probe = ProbingLeg<InsideProgram>;
-  struct OverSensor : Moving<to::SensorXY> {};
-  struct UpToSafeZ : Moving<to::SafeZ> {};
 
   struct LengthDiffers {
     template <class Event, class Fsm, class Source, class Target>
@@ -658,13 +605,12 @@ struct MeasureLeg_ : Flow<MeasureLeg_> {
     }
   };
 
-  using initial_state = ToLoadingZ;
+  using initial_state = ToSensor;
   // clang-format off
   using transition_table = boost::mpl::vector<
   //    Start                                 Event       Next        Action                Guard
   // +-------------------------------------+-----------+-----------+---------------------+--------------------+
-  Row < ToLoadingZ                          , InPosition, OverSensor, none                , none               >,
-  Row < OverSensor                          , InPosition, Probe     , none                , none               >,
+  Row < ToSensor                            , InPosition, Probe     , none                , none               >,
   Row < Probe::exit_pt<Finished>            , LegDone   , UpToSafeZ , SayMeasured         , Not<LengthDiffers> >,
   Row < Probe::exit_pt<Finished>            , LegDone   , Failed    , SayBrokenOrPulledOut, LengthDiffers      >,
   Row < Probe::exit_pt<Probe::NotMeasured>  , LegDone   , Failed    , SayNotMeasured      , none               >,

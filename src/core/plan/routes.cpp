@@ -1,0 +1,220 @@
+#include "routes.hpp"
+
+#include <algorithm>
+
+#include "../geometry.hpp"
+
+namespace fatc::plan {
+
+namespace {
+
+Step move(StepKind kind, unsigned axes, const Point& target, std::string label, int pocket = 0,
+          bool approach = false, double feed = 0.0) {
+  Step step;
+  step.kind = kind;
+  step.axes = axes;
+  step.target = target;
+  step.label = std::move(label);
+  step.pocket = pocket;
+  step.approach = approach;
+  step.feed = feed;
+  return step;
+}
+
+std::string of_pocket(const char* what, int pocket) {
+  return std::string(what) + " of pocket " + std::to_string(pocket);
+}
+
+bool direct(const Config& c) { return c.path == Path::direct; }
+bool from_above(const Config& c, int pocket) {
+  return c.pockets.at(pocket).approach == Approach::top;
+}
+
+// The waypoints of a pocket's approach, each named as --plan prints it.
+struct Pocket {
+  const Config& c;
+  int number;
+  PocketWaypoints at = pocket_waypoints(c, number);
+
+  /// Straight up from the pocket or its side, still within its approach.
+  Step safe_z() const { return move(StepKind::rapid, axis_z, c.safe, "safe Z", number, true); }
+  Step over_side() const {
+    return move(StepKind::rapid, axis_xy, at.side, of_pocket("over the side", number), number);
+  }
+  Step down_to_side() const {
+    return move(StepKind::rapid, axis_z, at.side, of_pocket("side", number), number, true);
+  }
+  Step over_pocket() const {
+    return move(StepKind::rapid, axis_xy, at.pocket, "over pocket " + std::to_string(number),
+                number);
+  }
+  Step above_chuck() const {
+    return move(StepKind::rapid, axis_z, at.above_chuck, of_pocket("above-chuck", number), number,
+                true);
+  }
+  Step above_clearance() const {
+    return move(StepKind::rapid, axis_z, at.above_clearance, of_pocket("above-clearance", number),
+                number, true);
+  }
+  /// On the direct path the side approach crosses to the pocket's column at
+  /// rapid; only inside the column (the holder engaged) is it slow.
+  Step column_edge() const {
+    return move(StepKind::rapid, axis_xy, at.column_edge, of_pocket("column edge", number), number,
+                true);
+  }
+  Step out_to_side() const {
+    return move(StepKind::rapid, axis_xy, at.side, of_pocket("side", number), number, true);
+  }
+  Step slowly(unsigned axes, const Point& target, std::string label) const {
+    return move(StepKind::feed, axes, target, std::move(label), number, true, c.pocket_feed);
+  }
+  Step slowly_into() const {
+    return slowly(axis_xy, at.pocket, "pocket " + std::to_string(number));
+  }
+  Step slowly_down() const { return slowly(axis_z, at.pocket, "pocket " + std::to_string(number)); }
+  Step slowly_to_side() const { return slowly(axis_xy, at.side, of_pocket("side", number)); }
+  Step slowly_to_column_edge() const {
+    return slowly(axis_xy, at.column_edge, of_pocket("column edge", number));
+  }
+  Step slowly_up_to_clearance() const {
+    return slowly(axis_z, at.above_clearance, of_pocket("above-clearance", number));
+  }
+  Step slowly_up_to_above_chuck() const {
+    return slowly(axis_z, at.above_chuck, of_pocket("above-chuck", number));
+  }
+};
+
+}  // namespace
+
+Step safe_z(const Config& c) { return move(StepKind::rapid, axis_z, c.safe, "safe Z"); }
+Step safe_xy(const Config& c) { return move(StepKind::rapid, axis_xy, c.safe, "safe XY"); }
+Step loading_z(const Config& c) { return move(StepKind::rapid, axis_z, c.loading, "loading Z"); }
+Step loading_xy(const Config& c) {
+  return move(StepKind::rapid, axis_xy, c.loading, "loading XY");
+}
+Step sensor_xy(const Config& c) {
+  return move(StepKind::rapid, axis_xy, c.probe_limit, "over the touch-off sensor");
+}
+Step probe_seek(const Config& c) {
+  return move(StepKind::probe, axis_z, c.probe_limit, "touch-off sensor (seek)", 0, false,
+              c.probe_seek_feed);
+}
+Step probe_back_off(const Config& c, double first_touch_z) {
+  Point above = c.probe_limit;
+  above.z = first_touch_z + c.probe_backoff;
+  return move(StepKind::feed, axis_z, above, "back off the sensor", 0, false, c.probe_seek_feed);
+}
+Step probe_latch(const Config& c) {
+  return move(StepKind::probe, axis_z, c.probe_limit, "touch-off sensor (latch)", 0, false,
+              c.probe_latch_feed);
+}
+Step retract_from_sensor(const Config& c, double latched_z) {
+  Point up = c.probe_limit;
+  up.z = latched_z + c.probe_retract_offset_z;
+  return move(StepKind::rapid, axis_z, up, "retract from the sensor");
+}
+Step spindle_tool(int tool) {
+  Step step;
+  step.kind = StepKind::set_spindle_tool;
+  step.tool = tool;
+  step.label = "tool in spindle";
+  return step;
+}
+Step tool_length(int tool, double length) {
+  Step step;
+  step.kind = StepKind::set_tool_length;
+  step.tool = tool;
+  step.value = length;
+  step.label = "tool table";
+  return step;
+}
+
+Route return_to_approach(const Config& c, int pocket) {
+  const Pocket p{c, pocket};
+  Route route{safe_z(c)};
+  if (!direct(c)) route.push_back(safe_xy(c));
+  if (!from_above(c, pocket)) {
+    route.push_back(p.over_side());
+    route.push_back(p.down_to_side());
+  } else {
+    route.push_back(p.over_pocket());
+    route.push_back(direct(c) ? p.above_chuck() : p.above_clearance());
+  }
+  return route;
+}
+
+Route return_into_pocket(const Config& c, int pocket) {
+  const Pocket p{c, pocket};
+  if (from_above(c, pocket)) return {p.slowly_down()};
+  if (direct(c)) return {p.column_edge(), p.slowly_into()};
+  return {p.slowly_into()};
+}
+
+Route return_up_from_tool(const Config& c, int pocket) { return {Pocket{c, pocket}.above_chuck()}; }
+
+Route return_away(const Config& c, int pocket, bool fetch_follows) {
+  const Pocket p{c, pocket};
+  Route route;
+  if (!direct(c)) route.push_back(p.above_clearance());
+  route.push_back(p.safe_z());
+  if (!(direct(c) && fetch_follows)) route.push_back(safe_xy(c));
+  return route;
+}
+
+Route fetch_to_above_chuck(const Config& c, int pocket, bool at_safe) {
+  const Pocket p{c, pocket};
+  Route route;
+  if (!at_safe) {
+    route.push_back(safe_z(c));
+    if (!direct(c)) route.push_back(safe_xy(c));
+  }
+  route.push_back(p.over_pocket());
+  if (!direct(c)) route.push_back(p.above_clearance());
+  route.push_back(p.above_chuck());
+  return route;
+}
+
+Route fetch_down_to_tool(const Config& c, int pocket) { return {Pocket{c, pocket}.slowly_down()}; }
+
+Route fetch_out_and_away(const Config& c, int pocket) {
+  const Pocket p{c, pocket};
+  Route route;
+  if (!from_above(c, pocket)) {
+    if (direct(c)) {
+      route = {p.slowly_to_column_edge(), p.out_to_side()};
+    } else {
+      route = {p.slowly_to_side()};
+    }
+  } else {
+    route = {direct(c) ? p.slowly_up_to_above_chuck() : p.slowly_up_to_clearance()};
+  }
+  route.push_back(p.safe_z());
+  route.push_back(safe_xy(c));
+  return route;
+}
+
+Route to_safe_z(const Config& c) { return {safe_z(c)}; }
+Route to_loading(const Config& c) { return {loading_z(c), loading_xy(c)}; }
+Route to_sensor(const Config& c) { return {loading_z(c), sensor_xy(c)}; }
+
+Route verify_pocket(const Config& c, int pocket) {
+  const Pocket p{c, pocket};
+  Route route{safe_z(c), safe_xy(c)};
+  if (from_above(c, pocket)) {
+    route.insert(route.end(), {p.over_pocket(), p.above_clearance(), p.slowly_down(),
+                               p.slowly_up_to_clearance()});
+  } else {
+    route.insert(route.end(), {p.over_side(), p.down_to_side(), p.slowly_into(),
+                               p.slowly_to_side()});
+  }
+  route.push_back(p.safe_z());
+  route.push_back(safe_xy(c));
+  const double feed = c.dry_run_feed();
+  for (Step& step : route) {
+    step.feed = step.kind == StepKind::feed ? std::min(step.feed, feed) : feed;
+    step.kind = StepKind::feed;
+  }
+  return route;
+}
+
+}  // namespace fatc::plan

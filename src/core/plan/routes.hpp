@@ -1,0 +1,75 @@
+#pragma once
+
+// Where the changer goes: the waypoints of every leg, from the config alone.
+// The tables decide what happens next; these functions say where, so the
+// path (`path`) and the approach of a pocket (`approach`) are plain code in
+// one place. A route is a run of moves with no decision between them.
+// docs/sequences.md is the contract they follow.
+
+#include <vector>
+
+#include "../config.hpp"
+#include "../step.hpp"
+
+namespace fatc::plan {
+
+using Route = std::vector<Step>;
+
+// ---------------------------------------------------------------- single waypoints
+Step safe_z(const Config& c);
+Step safe_xy(const Config& c);
+Step loading_z(const Config& c);
+Step loading_xy(const Config& c);
+/// Over the touch-off sensor, at the current Z.
+Step sensor_xy(const Config& c);
+Step probe_seek(const Config& c);
+/// Up from where the seek touched, to latch slowly from there.
+Step probe_back_off(const Config& c, double first_touch_z);
+Step probe_latch(const Config& c);
+Step retract_from_sensor(const Config& c, double latched_z);
+/// Tells LinuxCNC (M61) what the spindle holds.
+Step spindle_tool(int tool);
+/// Writes a measured length to LinuxCNC's tool table (G10 L1).
+Step tool_length(int tool, double length);
+
+// ---------------------------------------------------------------- return a tool
+/// To the pocket's approach, where its sensor is read before anything goes
+/// in: up to safe Z, (safe XY on the prototype path), over the side and down
+/// to it, or over the pocket and down to above-clearance (prototype) or
+/// above-chuck (direct).
+Route return_to_approach(const Config& c, int pocket);
+/// Into the holder: slowly in from the side (on the direct path at rapid to
+/// the column's edge first), or slowly down from above.
+Route return_into_pocket(const Config& c, int pocket);
+/// Up to above-chuck with the chuck open: the tool stays behind.
+Route return_up_from_tool(const Config& c, int pocket);
+/// Away from the pocket once the chuck closed: up to safe Z (through
+/// above-clearance on the prototype path) and back to safe XY, unless a fetch
+/// follows on the direct path, which starts over this pocket.
+Route return_away(const Config& c, int pocket, bool fetch_follows);
+
+// ---------------------------------------------------------------- fetch a tool
+/// To above-chuck over the pocket, where the chuck flushes and opens: from
+/// safe Z (through safe XY and above-clearance on the prototype path), or
+/// straight over the pocket when the spindle is at safe already (`at_safe`).
+Route fetch_to_above_chuck(const Config& c, int pocket, bool at_safe);
+/// Slowly down around the tool, the chuck open.
+Route fetch_down_to_tool(const Config& c, int pocket);
+/// Out of the holder with the tool (slowly while engaged) and back to safe.
+Route fetch_out_and_away(const Config& c, int pocket);
+
+// ---------------------------------------------------------------- the operator and the sensor
+/// Up to safe Z where the spindle stands.
+Route to_safe_z(const Config& c);
+/// To `loading`, Z first: where the operator reaches the spindle.
+Route to_loading(const Config& c);
+/// To `loading` Z, then over the touch-off sensor.
+Route to_sensor(const Config& c);
+
+// ---------------------------------------------------------------- verify
+/// A dry run through a pocket's approach: in the way a return goes in and out
+/// the way a fetch comes out, or down from above and back up; every move at
+/// the dry run's feed, or slower where the leg itself is.
+Route verify_pocket(const Config& c, int pocket);
+
+}  // namespace fatc::plan
