@@ -27,6 +27,7 @@ namespace fatc::io {
 namespace {
 
 namespace fs = std::filesystem;
+using program::finding;
 
 std::string folder_of(const std::string& path) {
   const auto slash = path.rfind('/');
@@ -38,6 +39,29 @@ std::string folder_of(const std::string& path) {
 /// `path` as seen from `base` (the INI's folder, where LinuxCNC runs).
 std::string from_folder(const std::string& path, const std::string& base) {
   return path.empty() || path[0] == '/' ? path : base + "/" + path;
+}
+
+/// `path` from where rs274 starts (the INI's folder) as from here.
+std::string absolute(const std::string& path) {
+  if (path.empty() || path[0] == '/') return path;
+  std::error_code failed;
+  const fs::path here = fs::current_path(failed);
+  return failed ? path : (here / path).lexically_normal().string();
+}
+
+/// A list of folders (':' between), each absolute.
+std::string absolute_folders(const std::string& folders) {
+  std::string result;
+  std::size_t start = 0;
+  while (start <= folders.size()) {
+    auto colon = folders.find(':', start);
+    if (colon == std::string::npos) colon = folders.size();
+    const std::string folder = folders.substr(start, colon - start);
+    start = colon + 1;
+    if (folder.empty()) continue;
+    result += (result.empty() ? "" : ":") + (folder[0] == '~' ? folder : absolute(folder));
+  }
+  return result;
 }
 
 /// A folder of its own for the interpreter's inputs, removed with it.
@@ -190,12 +214,13 @@ std::optional<Ending> run_child(const std::vector<std::string>& argv, const std:
         err_lines.add(buffer.data(), static_cast<std::size_t>(got));
       }
     }
+    if (output.past_the_end()) break;
     if (read_bytes > input.max_output_bytes) {
       ending.too_much_output = true;
       break;
     }
   }
-  if (ending.timed_out || ending.too_much_output) ::kill(-child, SIGKILL);
+  if (ending.timed_out || ending.too_much_output || output.past_the_end()) ::kill(-child, SIGKILL);
   for (const pollfd& fd : fds) {
     if (fd.fd >= 0) ::close(fd.fd);
   }
@@ -206,7 +231,10 @@ std::optional<Ending> run_child(const std::vector<std::string>& argv, const std:
   return ending;
 }
 
-std::string megabytes(std::size_t bytes) { return std::to_string(bytes / (1024 * 1024)) + " MiB"; }
+std::string amount(std::size_t bytes) {
+  if (bytes % (1024 * 1024) == 0) return std::to_string(bytes / (1024 * 1024)) + " MiB";
+  return std::to_string(bytes) + " bytes";
+}
 
 }  // namespace
 
@@ -243,7 +271,7 @@ std::optional<program::InterpreterRun> run_interpreter(const InterpreterInput& i
                                                        std::string& error) {
   const std::string name = shown_path(input.program_path);
   std::uint64_t file_bytes = 0;
-  auto text = read_file_start(input.program_path, kMaxProgramBytes, file_bytes, error);
+  auto text = read_file_start(input.program_path, input.max_program_bytes, file_bytes, error);
   if (!text) return std::nullopt;
   const bool cut = text->size() < file_bytes;
   // A cut file ends at its last whole line: half a line could read as another word.
@@ -251,16 +279,16 @@ std::optional<program::InterpreterRun> run_interpreter(const InterpreterInput& i
   program::NumberedProgram numbered = program::number_lines(*text);
   program::InterpreterRun run;
   if (cut) {
-    run.problems.push_back(
-        {{name, 0},
+    run.problems.push_back(finding(
+        name, 0,
          "only the first " + std::to_string(text->size()) + " of its " +
              std::to_string(file_bytes) + " bytes read (the lint reads at most " +
-             megabytes(kMaxProgramBytes) + " of G-code): tool changes after line " +
-             std::to_string(std::count(text->begin(), text->end(), '\n')) + " are not known"});
+             amount(input.max_program_bytes) + " of G-code): tool changes after line " +
+             std::to_string(std::count(text->begin(), text->end(), '\n')) + " are not known"));
   }
   text.reset();
   if (!numbered.problems.empty()) {
-    for (const LineNote& note : numbered.problems) run.problems.push_back({{name, note.line}, note.text});
+    for (const LineNote& note : numbered.problems) run.problems.push_back(finding(name, note.line, note.text));
     return run;
   }
 
@@ -298,11 +326,11 @@ std::optional<program::InterpreterRun> run_interpreter(const InterpreterInput& i
 
   std::vector<std::string> argv = {input.rs274};
   if (input.ini_path) {
-    std::string ini_for_run = *input.ini_path;
+    std::string ini_for_run = absolute(*input.ini_path);
     if (input.subroutine_path) {
       const auto ini_text = read_small_file(*input.ini_path, error);
       if (!ini_text) return std::nullopt;
-      std::string folders = *input.subroutine_path;
+      std::string folders = absolute_folders(*input.subroutine_path);
       if (const auto own = ini->get("RS274NGC", "SUBROUTINE_PATH")) folders += ":" + *own;
       const auto written = scratch.write(
           "machine.ini", program::ini_with_subroutine_folders(*ini_text, folders), error);
@@ -312,7 +340,8 @@ std::optional<program::InterpreterRun> run_interpreter(const InterpreterInput& i
     argv.insert(argv.end(), {"-i", ini_for_run});
   } else if (input.subroutine_path) {
     const auto written = scratch.write(
-        "machine.ini", program::ini_with_subroutine_folders("", *input.subroutine_path), error);
+        "machine.ini", program::ini_with_subroutine_folders("", absolute_folders(*input.subroutine_path)),
+        error);
     if (!written) return std::nullopt;
     argv.insert(argv.end(), {"-i", *written});
   }
@@ -331,18 +360,18 @@ std::optional<program::InterpreterRun> run_interpreter(const InterpreterInput& i
   if (ending->timed_out) {
     char seconds[32];
     std::snprintf(seconds, sizeof seconds, "%g", input.seconds);
-    ran.problems.push_back({{name, 0}, std::string("LinuxCNC's interpreter (rs274) still ran after ") +
+    ran.problems.push_back(finding(name, 0, std::string("LinuxCNC's interpreter (rs274) still ran after ") +
                                            seconds +
                                            " s (a loop without end?): stopped; tool changes "
-                                           "after that are not known"});
+                                           "after that are not known"));
   } else if (ending->too_much_output) {
-    ran.problems.push_back({{name, 0}, "LinuxCNC's interpreter (rs274) printed over " +
-                                           megabytes(input.max_output_bytes) +
-                                           ": stopped; tool changes after that are not known"});
-  } else if (!WIFEXITED(ending->status)) {
-    ran.problems.push_back({{name, 0}, "LinuxCNC's interpreter (rs274) ended on signal " +
+    ran.problems.push_back(finding(name, 0, "LinuxCNC's interpreter (rs274) printed over " +
+                                           amount(input.max_output_bytes) +
+                                           ": stopped; tool changes after that are not known"));
+  } else if (!WIFEXITED(ending->status) && !output.past_the_end()) {
+    ran.problems.push_back(finding(name, 0, "LinuxCNC's interpreter (rs274) ended on signal " +
                                            std::to_string(WTERMSIG(ending->status)) +
-                                           ": tool changes after that are not known"});
+                                           ": tool changes after that are not known"));
   }
   return ran;
 }

@@ -23,6 +23,7 @@ struct InterpreterInput {
   std::optional<std::string> tool_table_path;  ///< none: tools 1-1000 are taken as listed
   std::optional<std::string> subroutine_path;  ///< folders searched before the INI's, ':' between
   bool inch_machine = false;  ///< the tool table's units without an INI to say them
+  std::size_t max_program_bytes = kMaxProgramBytes;
   double seconds = kInterpreterSeconds;
   std::size_t max_output_bytes = kMaxInterpreterOutput;
 };

@@ -25,11 +25,6 @@ namespace {
 constexpr std::size_t kMaxRows = 200;
 constexpr std::size_t kMaxFindings = 50;
 
-std::string base_name(const std::string& path) {
-  const auto slash = path.rfind('/');
-  return slash == std::string::npos ? path : path.substr(slash + 1);
-}
-
 std::string folder_of(const std::string& path) {
   const auto slash = path.rfind('/');
   if (slash == std::string::npos) return ".";
@@ -290,13 +285,13 @@ int lint(const Options& options, std::ostream& out, std::ostream& err) {
   sort_by_line(problems);
   std::vector<program::Finding>& unknowns = run->unknowns;
   if (run->uses_not_kept > 0) {
-    unknowns.push_back({{name, 0}, "more than " + std::to_string(program::kMaxToolUses) +
+    unknowns.push_back(program::finding(name, 0, "more than " + std::to_string(program::kMaxToolUses) +
                                        " tool changes and M61: the other " +
-                                       std::to_string(run->uses_not_kept) + " are not counted"});
+                                       std::to_string(run->uses_not_kept) + " are not counted"));
   }
   sort_by_line(unknowns);
   if (table) {
-    for (const auto& note : table->problems) problems.push_back({{table_name, note.line}, note.text});
+    for (const auto& note : table->problems) problems.push_back(program::finding(table_name, note.line, note.text));
   }
 
   struct stat st;

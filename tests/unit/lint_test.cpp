@@ -335,7 +335,8 @@ TEST_F(Lint, shouldFindNoSubroutineBesideTheProgramAsLinuxCnc) {
 
 TEST_F(Lint, shouldRunLoopsAndTakeOnlyTheBranchTheProgramTakes) {
   // while: 3 times; if/else: the if; do-while: no change; repeat 2: a subroutine's.
-  const LintRun r = lint(program("flow.ngc"), {"--subroutine-path", kPrograms});
+  const LintRun r = lint(program("flow.ngc"),
+                         {"--subroutine-path", kPrograms, "--state", state_with_lengths({1, 2, 3})});
   EXPECT_EQ(r.code, 0) << r.out;
   EXPECT_LINE(r, "tools in the order of the changes: T1 T1 T1 T2 T3 T3\n");
   EXPECT_LINE(r, "  2  4         M6 T1         in the spindle already ");
@@ -343,7 +344,7 @@ TEST_F(Lint, shouldRunLoopsAndTakeOnlyTheBranchTheProgramTakes) {
 }
 
 TEST_F(Lint, shouldFollowARecursiveSubroutineAsItRuns) {
-  const LintRun r = lint(program("recursive.ngc"));
+  const LintRun r = lint(program("recursive.ngc"), {"--state", state_with_lengths({1})});
   EXPECT_LINE(r, "tools in the order of the changes: T1 T1 T1 T1\n");
   EXPECT_LINE(r, "recursive.ngc: 4 tool changes (M6), 0 M61, 0 problems, 0 not known\n");
 }
@@ -400,7 +401,7 @@ TEST_F(Lint, shouldReadLinuxCncsSampleWithCutterCompensation) {
   EXPECT_LINE(r, "tools in the order of the changes: T3 T1\n");
   EXPECT_LINE(r, "  1  17        M6 T3         pocket 3 ");
   EXPECT_LINE(r, "  2  53        M6 T1         pocket 1 ");
-  EXPECT_NO_LINE(r, "compensation");
+  EXPECT_NO_LINE(r, "cutter compensation entry");
 }
 
 TEST_F(Lint, shouldReadLinuxCncsSkeletonProgram) {
@@ -687,8 +688,21 @@ TEST_F(Lint, shouldKeepAThousandErrorsAndCountTheRest) {
   for (int i = 0; i < 3000; ++i) text += "G0 X1 {\n";
   const LintRun r = lint(write("garbage.ngc", text));
   EXPECT_EQ(r.code, 1);
-  EXPECT_LINE(r, "garbage.ngc: 2000 more errors of the interpreter, not listed\n");
+  // 2000 more, and the end of the file without M2.
+  EXPECT_LINE(r, "garbage.ngc: 2001 more errors of the interpreter, not listed\n");
   EXPECT_LINE(r, "garbage.ngc: 0 tool changes (M6), 0 M61, 1001 problems, 0 not known\n");
+  EXPECT_WITHIN_A_SECOND(r);
+}
+
+TEST_F(Lint, shouldStopAtTheEndOfAProgramWithoutM2) {
+  // rs274 -n 0 would repeat the error for ever.
+  const LintRun r = lint(write("no_end.ngc", "T1 M6\nG0 X1\n"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r,
+              "no_end.ngc: line 2: LinuxCNC stops the program here: File ended with no percent "
+              "sign or program end\n");
+  EXPECT_LINE(r, "no_end.ngc: 1 tool change (M6), 0 M61, 2 problems, 0 not known\n");
+  EXPECT_WITHIN_A_SECOND(r);
 }
 
 TEST_F(Lint, shouldStopCallsNestedDeeperThanLinuxCncAllows) {

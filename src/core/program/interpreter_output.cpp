@@ -75,7 +75,7 @@ bool InterpreterOutput::reads_input(int line) const {
 }
 
 void InterpreterOutput::unknown(int line, const std::string& text) {
-  if (run_.unknowns.size() < kMaxErrors) run_.unknowns.push_back({{program_, line}, text});
+  if (run_.unknowns.size() < kMaxErrors) run_.unknowns.push_back(finding(program_, line, text));
 }
 
 void InterpreterOutput::canonical_call(std::string_view line) {
@@ -111,7 +111,7 @@ void InterpreterOutput::canonical_call(std::string_view line) {
     if (!any_selected_ && !said_no_t_) {
       said_no_t_ = true;
       if (run_.problems.size() < kMaxErrors) {
-        run_.problems.push_back({{program_, line_}, "M6 without a T word since the start"});
+        run_.problems.push_back(finding(program_, line_, "M6 without a T word since the start"));
       }
     }
     use(ToolUse::Kind::change, any_selected_ ? selected_ : std::nullopt,
@@ -152,6 +152,8 @@ void InterpreterOutput::error_line(std::string_view line) {
 }
 
 void InterpreterOutput::error(int line, const std::string& message, std::string_view text) {
+  if (past_the_end_) return;
+  past_the_end_ = starts_with(message, "File ended with no percent sign or program end");
   if (message.find("#<_hal[") != std::string::npos) {
     unknown(line, message + ": a HAL pin, read only when the program runs on the machine: " +
                       "what the line does is not known");
@@ -167,22 +169,23 @@ void InterpreterOutput::error(int line, const std::string& message, std::string_
     return;
   }
   std::string said = "LinuxCNC stops the program here: " + message;
-  if (line == 0) {
+  if (line == 0 && !text.empty()) {
     // No number of ours on the line: one of a subroutine file, or too long to number.
     std::string shown(text.substr(0, 60));
     while (!shown.empty() && (shown.back() == '\r' || shown.back() == ' ')) shown.pop_back();
     said += " (at \"" + shown + (text.size() > 60 ? "...\")" : "\")");
   }
-  run_.problems.push_back({{program_, line}, said});
+  run_.problems.push_back(finding(program_, line, said));
 }
 
 InterpreterRun InterpreterOutput::finish() {
   if (pending_message_) error(0, *pending_message_, "");
   pending_message_.reset();
   if (errors_not_kept_ > 0) {
-    run_.problems.push_back({{program_, 0},
-                             std::to_string(errors_not_kept_) +
-                                 " more errors of the interpreter, not listed"});
+    Finding more;
+    more.where.file = program_;
+    more.text = std::to_string(errors_not_kept_) + " more errors of the interpreter, not listed";
+    run_.problems.push_back(std::move(more));
   }
   // The interpreter never ran these lines: each goes before the first use
   // from a later line, where a program without loops would have it.

@@ -30,6 +30,9 @@ class InterpreterOutput {
   void error_line(std::string_view line);
   /// What was read, once both streams have ended.
   InterpreterRun finish();
+  /// Whether rs274 met the end of a program without M2, M30 or %: with -n 0
+  /// it then repeats that error for ever, and is stopped.
+  bool past_the_end() const { return past_the_end_; }
 
  private:
   void use(ToolUse::Kind kind, std::optional<int> tool, int line);
@@ -51,6 +54,7 @@ class InterpreterOutput {
   std::optional<std::string> pending_message_;
   std::vector<ToolUse> unknown_changes_;  ///< M6 on lines the interpreter could not run
   std::size_t errors_not_kept_ = 0;
+  bool past_the_end_ = false;
 };
 
 /// Whether a line's text holds an M6 word (M6, m06, outside comments and
