@@ -136,19 +136,15 @@ struct Ending {
   int status = 0;
 };
 
-/// Runs `argv` in `folder` and feeds its two streams to `output`.
+/// Runs `argv` in `folder`, which writes its canonical calls to `calls_path`
+/// (a file: rs274 buffers it, where on a pipe it writes every few
+/// characters, four times slower), and feeds its standard error to `output`.
 std::optional<Ending> run_child(const std::vector<std::string>& argv, const std::string& folder,
-                                const InterpreterInput& input, program::InterpreterOutput& output,
-                                std::string& error) {
-  int out_pipe[2], err_pipe[2];
-  if (::pipe2(out_pipe, O_CLOEXEC) != 0) {
-    error = std::string("cannot start rs274: ") + std::strerror(errno);
-    return std::nullopt;
-  }
+                                const std::string& calls_path, const InterpreterInput& input,
+                                program::InterpreterOutput& output, std::string& error) {
+  int err_pipe[2];
   if (::pipe2(err_pipe, O_CLOEXEC) != 0) {
     error = std::string("cannot start rs274: ") + std::strerror(errno);
-    ::close(out_pipe[0]);
-    ::close(out_pipe[1]);
     return std::nullopt;
   }
   // Everything the child needs is made before fork: only exec-safe calls after.
@@ -159,74 +155,75 @@ std::optional<Ending> run_child(const std::vector<std::string>& argv, const std:
   if (child == 0) {
     // A group of its own: a remap's own children go with it when it is stopped.
     ::setpgid(0, 0);
-    const int nothing = ::open("/dev/null", O_RDONLY);
-    if (nothing >= 0) ::dup2(nothing, STDIN_FILENO);
-    ::dup2(out_pipe[1], STDOUT_FILENO);
+    const int nothing = ::open("/dev/null", O_RDWR);
+    if (nothing >= 0) {
+      ::dup2(nothing, STDIN_FILENO);
+      ::dup2(nothing, STDOUT_FILENO);
+    }
     ::dup2(err_pipe[1], STDERR_FILENO);
     if (::chdir(folder.c_str()) != 0) ::_exit(126);
     ::execv(args[0], args.data());
     ::_exit(127);
   }
-  ::close(out_pipe[1]);
   ::close(err_pipe[1]);
   if (child < 0) {
     error = std::string("cannot start rs274: ") + std::strerror(errno);
-    ::close(out_pipe[0]);
     ::close(err_pipe[0]);
     return std::nullopt;
   }
   ::setpgid(child, child);  // also here: whichever of the two runs first
 
-  auto calls = [&](std::string_view line) { output.canonical_call(line); };
   auto errors = [&](std::string_view line) { output.error_line(line); };
-  LineSplitter<decltype(calls)> out_lines(calls);
   LineSplitter<decltype(errors)> err_lines(errors);
   Ending ending;
-  std::size_t read_bytes = 0;
+  std::size_t error_bytes = 0;
   const auto deadline = std::chrono::steady_clock::now() +
                         std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                             std::chrono::duration<double>(input.seconds));
-  pollfd fds[2] = {{out_pipe[0], POLLIN, 0}, {err_pipe[0], POLLIN, 0}};
+  pollfd err_fd = {err_pipe[0], POLLIN, 0};
   std::vector<char> buffer(64 * 1024);
-  while (fds[0].fd >= 0 || fds[1].fd >= 0) {
+  // The standard error closes when rs274 ends; meanwhile the file's size is
+  // watched every tenth of a second.
+  while (err_fd.fd >= 0) {
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
         deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0) {
       ending.timed_out = true;
       break;
     }
-    const int ready = ::poll(fds, 2, static_cast<int>(left.count()) + 1);
-    if (ready < 0 && errno == EINTR) continue;
-    if (ready < 0) break;
-    for (int i = 0; i < 2; ++i) {
-      if (fds[i].fd < 0 || fds[i].revents == 0) continue;
-      const ssize_t got = ::read(fds[i].fd, buffer.data(), buffer.size());
-      if (got < 0 && errno == EINTR) continue;
-      if (got <= 0) {
-        ::close(fds[i].fd);
-        fds[i].fd = -1;
-        continue;
-      }
-      read_bytes += static_cast<std::size_t>(got);
-      if (i == 0) {
-        out_lines.add(buffer.data(), static_cast<std::size_t>(got));
-      } else {
+    const int ready = ::poll(&err_fd, 1, static_cast<int>(std::min<long long>(left.count() + 1, 100)));
+    if (ready < 0 && errno != EINTR) break;
+    if (ready > 0) {
+      const ssize_t got = ::read(err_fd.fd, buffer.data(), buffer.size());
+      if (got < 0 && errno != EINTR) break;
+      if (got == 0) {
+        ::close(err_fd.fd);
+        err_fd.fd = -1;
+      } else if (got > 0) {
+        error_bytes += static_cast<std::size_t>(got);
         err_lines.add(buffer.data(), static_cast<std::size_t>(got));
       }
     }
     if (output.past_the_end()) break;
-    if (read_bytes > input.max_output_bytes) {
+    struct stat st;
+    if (error_bytes > input.max_output_bytes ||
+        (::stat(calls_path.c_str(), &st) == 0 &&
+         static_cast<std::uint64_t>(st.st_size) > input.max_output_bytes)) {
       ending.too_much_output = true;
       break;
     }
   }
   if (ending.timed_out || ending.too_much_output || output.past_the_end()) ::kill(-child, SIGKILL);
-  for (const pollfd& fd : fds) {
-    if (fd.fd >= 0) ::close(fd.fd);
-  }
-  out_lines.end();
+  if (err_fd.fd >= 0) ::close(err_fd.fd);
   err_lines.end();
   while (::waitpid(child, &ending.status, 0) < 0 && errno == EINTR) {
+  }
+  // The calls, up to the limit: what was written before rs274 was stopped counts.
+  std::ifstream calls(calls_path, std::ios::binary);
+  std::size_t read_bytes = 0;
+  for (std::string line; read_bytes <= input.max_output_bytes && std::getline(calls, line);) {
+    read_bytes += line.size() + 1;
+    output.canonical_call(line);
   }
   return ending;
 }
@@ -345,10 +342,13 @@ std::optional<program::InterpreterRun> run_interpreter(const InterpreterInput& i
     if (!written) return std::nullopt;
     argv.insert(argv.end(), {"-i", *written});
   }
-  argv.insert(argv.end(), {"-t", *table_copy, "-v", *parameter_copy, "-g", "-n", "0", *program_copy});
+  const std::string calls_path = *program_copy + ".calls";
+  argv.insert(argv.end(),
+              {"-t", *table_copy, "-v", *parameter_copy, "-g", "-n", "0", *program_copy, calls_path});
 
-  program::InterpreterOutput output(name, *program_copy, table.tool_of_row, numbered.input_lines);
-  const auto ending = run_child(argv, machine_folder, input, output, error);
+  program::InterpreterOutput output(name, *program_copy, table.tool_of_row, numbered.input_lines,
+                                    numbered.lines);
+  const auto ending = run_child(argv, machine_folder, calls_path, input, output, error);
   if (!ending) return std::nullopt;
   if (WIFEXITED(ending->status) && WEXITSTATUS(ending->status) >= 126) {
     error = shown_path(input.rs274) + ": cannot run it" +

@@ -62,11 +62,13 @@ bool holds_m6(std::string_view line) {
 }
 
 InterpreterOutput::InterpreterOutput(std::string program, std::string numbered_path,
-                                     std::vector<int> tool_of_row, std::vector<int> input_lines)
+                                     std::vector<int> tool_of_row, std::vector<int> input_lines,
+                                     int lines)
     : program_(std::move(program)),
       numbered_path_(std::move(numbered_path)),
       tool_of_row_(std::move(tool_of_row)),
-      input_lines_(std::move(input_lines)) {
+      input_lines_(std::move(input_lines)),
+      lines_(lines) {
   std::sort(input_lines_.begin(), input_lines_.end());
 }
 
@@ -84,6 +86,14 @@ void InterpreterOutput::canonical_call(std::string_view line) {
   if (at == std::string_view::npos) return;
   const std::string_view from_n = line.substr(at);
   const int number = line_of(from_n);
+  if (number > lines_ && lines_ > 0) {
+    // The M2 number_lines put after the last line: the program has no end of its own.
+    if (!said_no_end_) {
+      said_no_end_ = true;
+      error(lines_, "File ended with no percent sign or program end", "");
+    }
+    return;
+  }
   const bool numbered = number > 0;
   if (numbered) line_ = number;
   ++at;
@@ -153,6 +163,8 @@ void InterpreterOutput::error_line(std::string_view line) {
 
 void InterpreterOutput::error(int line, const std::string& message, std::string_view text) {
   if (past_the_end_) return;
+  // The M2 number_lines added is no line of the program.
+  if (lines_ > 0 && line > lines_) line = lines_;
   past_the_end_ = starts_with(message, "File ended with no percent sign or program end");
   if (message.find("#<_hal[") != std::string::npos) {
     unknown(line, message + ": a HAL pin, read only when the program runs on the machine: " +

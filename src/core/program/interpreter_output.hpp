@@ -20,9 +20,9 @@ class InterpreterOutput {
  public:
   /// `program`: the name messages give the program; `numbered_path`: the
   /// file rs274 read, shown as `program` where a message names it;
-  /// `tool_of_row`: InterpreterTable's; `input_lines`: NumberedProgram's.
+  /// `tool_of_row`: InterpreterTable's; `input_lines` and `lines`: NumberedProgram's.
   InterpreterOutput(std::string program, std::string numbered_path, std::vector<int> tool_of_row,
-                    std::vector<int> input_lines);
+                    std::vector<int> input_lines, int lines);
 
   /// One line of the standard output, without its line end.
   void canonical_call(std::string_view line);
@@ -55,6 +55,8 @@ class InterpreterOutput {
   std::vector<ToolUse> unknown_changes_;  ///< M6 on lines the interpreter could not run
   std::size_t errors_not_kept_ = 0;
   bool past_the_end_ = false;
+  int lines_ = 0;
+  bool said_no_end_ = false;
 };
 
 /// Whether a line's text holds an M6 word (M6, m06, outside comments and

@@ -84,6 +84,9 @@ NumberedProgram number_lines(std::string_view text) {
     }
     if (!last) numbered.text.push_back('\n');
   }
+  numbered.lines = number;
+  if (!numbered.text.empty() && numbered.text.back() != '\n') numbered.text.push_back('\n');
+  numbered.text += "N" + std::to_string(kFirstLineNumber + number + 1) + " M2\n";
   return numbered;
 }
 

@@ -22,13 +22,16 @@ constexpr int kMaxLines = 1000000000;
 /// starts with the N word kFirstLineNumber + its line number, so that the
 /// canonical calls and the errors rs274 prints name their line (it prints the
 /// N word of the line, not its number). An N word the line had is replaced;
-/// N words change nothing else in LinuxCNC.
+/// N words change nothing else in LinuxCNC. An M2 on a line after the last
+/// ends a program that has no end of its own (rs274 -n 0 would repeat its
+/// error for ever, and a stopped rs274 loses what it had not yet written).
 struct NumberedProgram {
   std::string text;
   /// Lines that read #5399, where M66 puts the input it waited for: known
   /// only on the running machine (rs274 reads 0).
   std::vector<int> input_lines;
   std::vector<LineNote> problems;  ///< a NUL byte: nothing is numbered (not a text file)
+  int lines = 0;                   ///< lines of the program
 };
 NumberedProgram number_lines(std::string_view text);
 

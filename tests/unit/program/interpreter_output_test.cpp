@@ -18,7 +18,8 @@ std::vector<int> sim_rows() { return {0, 1, 2, 3, 4, 5, 6, 7}; }
 
 InterpreterRun read(const std::string& out, const std::string& err,
                     std::vector<int> input_lines = {}, std::vector<int> rows = sim_rows()) {
-  InterpreterOutput output("p.ngc", "/tmp/x/program.ngc", std::move(rows), std::move(input_lines));
+  InterpreterOutput output("p.ngc", "/tmp/x/program.ngc", std::move(rows), std::move(input_lines),
+                           1000000);
   std::istringstream calls(out), errors(err);
   for (std::string line; std::getline(calls, line);) output.canonical_call(line);
   for (std::string line; std::getline(errors, line);) output.error_line(line);
@@ -101,6 +102,15 @@ TEST(InterpreterOutput, shouldQuoteTheLineOfAnErrorInASubroutineFile) {
             "LinuxCNC stops the program here: Unknown m code used (at \"M123\")");
 }
 
+TEST(InterpreterOutput, shouldReportAProgramWithoutAnEndOnItsLastLine) {
+  // p.ngc has 1000000 lines: line 1000001 is the M2 number_lines added.
+  const auto run = read("  7 N1000000003 SELECT_TOOL(1)\n  8 N1001000001 PROGRAM_END()\n", "");
+  ASSERT_EQ(run.problems.size(), 1u);
+  EXPECT_EQ(run.problems[0].where.line, 1000000);
+  EXPECT_EQ(run.problems[0].text,
+            "LinuxCNC stops the program here: File ended with no percent sign or program end");
+}
+
 TEST(InterpreterOutput, shouldReportAnM6WithoutAnyT) {
   const auto run = read("  9 N1000000003 CHANGE_TOOL(0)\n", "");
   EXPECT_EQ(uses_of(run), "M6 T?@3 ");
@@ -133,7 +143,7 @@ TEST(InterpreterOutput, shouldSayAToolReadFromAnM66InputIsNotKnown) {
 }
 
 TEST(InterpreterOutput, shouldKeepAtMostTheFirstTenThousandUses) {
-  InterpreterOutput output("p.ngc", "", sim_rows(), {});
+  InterpreterOutput output("p.ngc", "", sim_rows(), {}, 1000);
   for (int i = 0; i < 10005; ++i) output.canonical_call("  1 N1000000001 CHANGE_TOOL_NUMBER(1)");
   const auto run = output.finish();
   EXPECT_EQ(run.uses.size(), kMaxToolUses);
@@ -141,7 +151,7 @@ TEST(InterpreterOutput, shouldKeepAtMostTheFirstTenThousandUses) {
 }
 
 TEST(InterpreterOutput, shouldCountErrorsBeyondAThousand) {
-  InterpreterOutput output("p.ngc", "", sim_rows(), {});
+  InterpreterOutput output("p.ngc", "", sim_rows(), {}, 1000);
   for (int i = 0; i < 1500; ++i) {
     output.error_line("Bad character '{' used");
     output.error_line("N1000000001 {");
@@ -166,7 +176,8 @@ TEST(NumberLines, shouldStartEachLineOfCodeWithItsNumber) {
       "%\n(comment)\n\n  N10 T1 M6\r\n/T2 M6\n n 2 0 . 5 M61 Q4\nT#5399 M6\n#<t> = # 5399.5\n%\n");
   EXPECT_EQ(numbered.text,
             "%\nN1000000002 (comment)\n\n  N1000000004 T1 M6\r\n/N1000000005 T2 M6\n"
-            " N1000000006 M61 Q4\nN1000000007 T#5399 M6\nN1000000008 #<t> = # 5399.5\n%\n");
+            " N1000000006 M61 Q4\nN1000000007 T#5399 M6\nN1000000008 #<t> = # 5399.5\n%\n"
+            "N1000000010 M2\n");
   EXPECT_EQ(numbered.input_lines, std::vector<int>{7});
   EXPECT_TRUE(numbered.problems.empty());
   EXPECT_EQ(line_of("/N1000000005 T2 M6"), 5);
@@ -177,8 +188,8 @@ TEST(NumberLines, shouldStartEachLineOfCodeWithItsNumber) {
 TEST(NumberLines, shouldLeaveALineTooLongToNumberAsItWas) {
   const std::string longest(kMaxLineLength - 12, 'X');
   const std::string too_long(kMaxLineLength - 11, 'X');
-  EXPECT_EQ(number_lines(longest).text, "N1000000001 " + longest);
-  EXPECT_EQ(number_lines(too_long).text, too_long);
+  EXPECT_EQ(number_lines(longest).text, "N1000000001 " + longest + "\nN1000000002 M2\n");
+  EXPECT_EQ(number_lines(too_long).text, too_long + "\nN1000000002 M2\n");
 }
 
 TEST(NumberLines, shouldRefuseATextWithANulByte) {
