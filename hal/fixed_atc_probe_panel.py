@@ -70,7 +70,7 @@ MEASURE_PROGRAM = 2
 LINT_CLEAN = 0
 LINT_PROBLEMS = 1
 LINT_UNREADABLE = 2
-# A lint of a hostile program ends well within this; longer is a hang.
+# --lint stops LinuxCNC's interpreter after 15 s (src/io/interpreter.hpp); longer is a hang.
 LINT_TIMEOUT_S = 20
 # How often the panel asks LinuxCNC which program the GUI has loaded.
 PROGRAM_POLL_MS = 500

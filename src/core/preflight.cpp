@@ -164,11 +164,12 @@ class Checker {
     tools_ = input.tools;
   }
 
-  Preflight run(const gcode::Walk& walk) {
-    for (const auto& use : walk.uses) {
+  Preflight run(const std::vector<program::ToolUse>& uses) {
+    for (const auto& use : uses) {
       PreflightRow row;
       row.use = use;
-      if (use.kind == gcode::ToolUse::Kind::change) {
+      if (use.kind == program::ToolUse::Kind::change) {
+        result_.order.push_back(use.tool);
         change(row);
       } else {
         set_tool(row);
@@ -179,13 +180,13 @@ class Checker {
   }
 
  private:
-  void problem(const gcode::Site& where, const std::string& text) {
+  void problem(const program::Site& where, const std::string& text) {
     result_.problems.push_back({where, text});
   }
 
   void change(PreflightRow& row) {
-    const gcode::ToolUse& use = row.use;
-    row.code = use.written.empty() ? "M6" : "M6 " + use.written;
+    const program::ToolUse& use = row.use;
+    row.code = use.tool ? "M6 " + tool_word(*use.tool) : "M6";
     if (!use.tool) {
       row.where = "not known";
       row.length = "-";
@@ -201,7 +202,6 @@ class Checker {
                              " records a sequence that was cut off: the changer refuses M6 "
                              "until the fault is cleared (panel, or --confirm)");
     }
-    check_tool_table(use, tool);
     row.length = length(use, tool);
     if (spindle_known_ && tool == tools_.spindle) {
       row.where = tool == 0 ? "the spindle is empty already" : "in the spindle already";
@@ -254,8 +254,8 @@ class Checker {
   }
 
   void set_tool(PreflightRow& row) {
-    const gcode::ToolUse& use = row.use;
-    row.code = "M61 " + use.written;
+    const program::ToolUse& use = row.use;
+    row.code = use.tool ? "M61 Q" + std::to_string(*use.tool) : "M61";
     row.seconds = 0.0;
     if (!use.tool) {
       row.where = "LinuxCNC is told a tool not known; nothing moves";
@@ -263,7 +263,6 @@ class Checker {
       return;
     }
     const int tool = *use.tool;
-    check_tool_table(use, tool);
     row.length = length(use, tool);
     row.where = "LinuxCNC is told " + (tool == 0 ? std::string("nothing") : tool_word(tool)) +
                 " is in the spindle; nothing moves";
@@ -277,20 +276,12 @@ class Checker {
     }
   }
 
-  /// LinuxCNC refuses a T word for a tool its table does not list.
-  void check_tool_table(const gcode::ToolUse& use, int tool) {
-    if (in_.table == nullptr || tool == 0 || in_.table->tools.count(tool) != 0) return;
-    if (!not_in_table_.insert(tool).second) return;
-    problem(use.where, tool_word(tool) + " is not in the tool table " + in_.table_name +
-                           ": LinuxCNC refuses it (requested tool not found in the tool table)");
-  }
-
   /// The Length column; a problem, once per tool, when the tool has no length
   /// and the change does not measure it.
-  std::string length(const gcode::ToolUse& use, int tool) {
+  std::string length(const program::ToolUse& use, int tool) {
     if (tool == 0) return "-";
     const bool measures = config_.probe_after_change != ProbeAfterChange::off &&
-                          use.kind == gcode::ToolUse::Kind::change;
+                          use.kind == program::ToolUse::Kind::change;
     std::optional<std::string> stored;  // the length as the column shows it
     std::string missing;                // why there is none
     if (in_.table != nullptr) {
@@ -370,15 +361,14 @@ class Checker {
   bool spindle_known_ = true;
   bool said_uncertain_ = false;
   std::set<int> never_measured_;
-  std::set<int> not_in_table_;
   std::map<std::tuple<int, int, double, int, int>, PlannedChange> plans_;
   Preflight result_;
 };
 
 }  // namespace
 
-Preflight preflight(const gcode::Walk& walk, const PreflightInput& input) {
-  return Checker(input).run(walk);
+Preflight preflight(const std::vector<program::ToolUse>& uses, const PreflightInput& input) {
+  return Checker(input).run(uses);
 }
 
 }  // namespace fatc

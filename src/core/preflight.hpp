@@ -6,7 +6,7 @@
 
 #include "config.hpp"
 #include "point.hpp"
-#include "program_walk.hpp"
+#include "program/tool_use.hpp"
 #include "simulator.hpp"
 #include "tool_state.hpp"
 #include "tool_table.hpp"
@@ -60,7 +60,7 @@ struct PreflightInput {
 
 /// One M6 or M61 of the program, as the changer would meet it.
 struct PreflightRow {
-  gcode::ToolUse use;
+  program::ToolUse use;
   std::string code;               ///< "M6 T3", "M6", "M61 Q3"
   std::string where;              ///< "pocket 3", "manual: handed over at loading", ...
   std::string length;             ///< "30.0000 mm (state file)", "never measured", ...
@@ -69,8 +69,11 @@ struct PreflightRow {
 
 struct Preflight {
   std::vector<PreflightRow> rows;
-  std::vector<gcode::Finding> problems;
+  std::vector<program::Finding> problems;
   std::vector<int> tools;  ///< every tool the program puts in the spindle, in order of first use
+  /// The tool of every M6 in the order LinuxCNC runs them, repeats and T0
+  /// included; nullopt where it is not known.
+  std::vector<std::optional<int>> order;
   int changes = 0;         ///< M6 that change the tool (not to the tool already in the spindle)
   int manual = 0;          ///< of them, to a manual tool
   int not_estimated = 0;   ///< of them, with a tool or spindle not known
@@ -78,9 +81,10 @@ struct Preflight {
   double seconds = 0.0;    ///< estimated time of all estimated changes
 };
 
-/// Follows the program's tool uses through the rack (ToolState), the
-/// lengths (state file, or the tool table when given) and the planned steps
-/// of each change (plan_change, the --plan path).
-Preflight preflight(const gcode::Walk& walk, const PreflightInput& input);
+/// Follows the program's tool uses, as LinuxCNC's interpreter ran them,
+/// through the rack (ToolState), the lengths (state file, or the tool table
+/// when given) and the planned steps of each change (plan_change, the --plan
+/// path).
+Preflight preflight(const std::vector<program::ToolUse>& uses, const PreflightInput& input);
 
 }  // namespace fatc

@@ -87,7 +87,9 @@ ToolTable parse_tool_table(std::string_view text) {
       const std::string field =
           fields.substr(at, space == std::string::npos ? std::string::npos : space - at);
       at = space == std::string::npos ? fields.size() : space + 1;
-      if (!field.empty()) why = field_problem(field, entry, has_tool);
+      if (field.empty()) continue;
+      why = field_problem(field, entry, has_tool);
+      entry.fields.push_back(field);
     }
     if (!why.empty()) {
       table.problems.push_back({line_number, "LinuxCNC skips this line: " + why});

@@ -6,21 +6,26 @@
 #include <string_view>
 #include <vector>
 
-#include "gcode_scan.hpp"
-
 namespace fatc {
+
+/// Something said of one line of a file (0: the file as a whole).
+struct LineNote {
+  int line = 0;
+  std::string text;
+};
 
 /// One tool of LinuxCNC's tool table file (`T3 P3 Z40.0 D10.0 ;comment`).
 struct ToolTableEntry {
   int tool = 0;
   std::optional<double> z;  ///< the length offset (Z); nullopt when the line has none
   int line = 0;
+  std::vector<std::string> fields;  ///< as the line writes them ("T3", "Z40.0")
 };
 
 struct ToolTable {
   std::map<int, ToolTableEntry> tools;  ///< by tool number; the first line of a tool listed twice
   /// Lines LinuxCNC skips ("Unrecognized line skipped"), tools listed twice.
-  std::vector<gcode::LineNote> problems;
+  std::vector<LineNote> problems;
 };
 
 /// Reads a tool table as LinuxCNC's tooldata_read_entry does: `;` starts a

@@ -3,6 +3,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -11,12 +12,11 @@
 #include <memory>
 #include <ostream>
 
-#include "core/gcode_scan.hpp"
 #include "core/preflight.hpp"
-#include "core/program_walk.hpp"
 #include "core/tool_table.hpp"
 #include "files.hpp"
 #include "ini.hpp"
+#include "interpreter.hpp"
 
 namespace fatc::io {
 namespace {
@@ -32,112 +32,22 @@ std::string folder_of(const std::string& path) {
   return path.substr(0, slash);
 }
 
-std::string base_name(const std::string& path) {
-  const auto slash = path.rfind('/');
-  return slash == std::string::npos ? path : path.substr(slash + 1);
-}
-
-/// LinuxCNC's path lists: ':' between folders, `~/` for the home folder,
-/// relative to `base` (the INI's folder, where LinuxCNC runs).
-std::vector<std::string> folders_of(const std::string& list, const std::string& base) {
-  std::vector<std::string> folders;
-  std::size_t start = 0;
-  while (start <= list.size()) {
-    const auto colon = list.find(':', start);
-    std::string folder =
-        list.substr(start, colon == std::string::npos ? std::string::npos : colon - start);
-    start = colon == std::string::npos ? list.size() + 1 : colon + 1;
-    if (folder.empty()) continue;
-    if (folder.rfind("~/", 0) == 0 && std::getenv("HOME") != nullptr) {
-      folder = std::getenv("HOME") + folder.substr(1);
-    } else if (folder[0] != '/' && !base.empty()) {
-      folder = base + "/" + folder;
-    }
-    folders.push_back(folder);
-  }
-  return folders;
-}
-
-/// Reads one G-code file within what is left of the budget of bytes.
-std::unique_ptr<gcode::SourceFile> read_source(const std::string& path, std::size_t& budget,
-                                               std::string& error) {
-  if (budget == 0) {
-    error = shown_path(path) + ": not read: the lint reads at most " +
-            std::to_string(kMaxProgramBytes / (1024 * 1024)) + " MiB of G-code in all";
-    return nullptr;
-  }
-  std::uint64_t file_bytes = 0;
-  auto text = read_file_start(path, budget, file_bytes, error);
-  if (!text) return nullptr;
-  budget -= text->size();
-  auto file = std::make_unique<gcode::SourceFile>();
-  file->name = shown_path(path);
-  const bool cut = text->size() < file_bytes;
-  // A cut file ends at its last whole line: half a line could read as another word.
-  if (cut) text->resize(text->rfind('\n') == std::string::npos ? 0 : text->rfind('\n') + 1);
-  file->scanned = gcode::scan(*text);
-  if (cut) {
-    file->scanned.problems.insert(
-        file->scanned.problems.begin(),
-        {0, "only the first " + std::to_string(text->size()) + " of its " +
-                std::to_string(file_bytes) + " bytes read (the lint reads at most " +
-                std::to_string(kMaxProgramBytes / (1024 * 1024)) +
-                " MiB of G-code): tool changes after line " + std::to_string(file->scanned.lines) +
-                " are not known"});
-  }
-  return file;
-}
-
-/// Subroutine files, `name`.ngc, looked for in a list of folders, each read once.
-class FolderFinder : public gcode::SubroutineFinder {
- public:
-  FolderFinder(std::vector<std::string> folders, std::size_t& budget)
-      : folders_(std::move(folders)), budget_(budget) {}
-
-  const gcode::SourceFile* find(const std::string& name, std::string& why_not) override {
-    auto known = found_.find(name);
-    if (known == found_.end()) known = found_.emplace(name, look_for(name)).first;
-    why_not = known->second.why_not;
-    return known->second.file.get();
-  }
-
- private:
-  struct Found {
-    std::unique_ptr<gcode::SourceFile> file;
-    std::string why_not;
-  };
-
-  Found look_for(const std::string& name) {
-    Found found;
-    for (const std::string& folder : folders_) {
-      const std::string path = folder + "/" + name + ".ngc";
-      struct stat st;
-      if (::stat(path.c_str(), &st) != 0) continue;
-      found.file = read_source(path, budget_, found.why_not);
-      return found;
-    }
-    found.why_not = shown_path(name + ".ngc") + " not found in ";
-    for (std::size_t i = 0; i < folders_.size() && i < 3; ++i) {
-      found.why_not += (i == 0 ? "" : ", ") + shown_path(folders_[i]);
-    }
-    if (folders_.size() > 3) {
-      found.why_not += " or " + std::to_string(folders_.size() - 3) + " more folders";
-    }
-    return found;
-  }
-
-  std::vector<std::string> folders_;
-  std::size_t& budget_;
-  std::map<std::string, Found> found_;
-};
-
-/// What the INI adds: rapid speed, remaps, where subroutines are.
+/// What the INI adds: rapid speed, and whether M6 runs this changer's remap.
 struct MachineIni {
   double rapid_per_minute = 0.0;
   std::string rapid_source;  ///< how the rapid speed was found, for the estimate's line
-  gcode::WalkOptions walk;
-  std::vector<std::string> folders;
+  bool remaps_m6 = true;     ///< false: the INI has no REMAP=M6 ... ngc=fixed_atc_probe_m6
+  std::optional<std::string> tool_table;  ///< [EMCIO]TOOL_TABLE, from the INI's folder
 };
+
+/// Whether a REMAP line (`M6 modalgroup=6 ngc=fixed_atc_probe_m6`) is this changer's M6.
+bool is_own_m6_remap(const std::string& remap) {
+  std::string upper;
+  for (const char c : remap) upper.push_back(static_cast<char>(std::toupper(static_cast<unsigned char>(c))));
+  const auto code_end = upper.find_first_of(" \t");
+  return upper.substr(0, code_end) == "M6" &&
+         upper.find("NGC=FIXED_ATC_PROBE_M6") != std::string::npos;
+}
 
 }  // namespace
 
@@ -182,15 +92,10 @@ bool read_ini(const Options& options, const Config& config, MachineIni& machine,
   if (!options.ini_path) return true;
   const auto ini = IniFile::read(*options.ini_path, error);
   if (!ini) return false;
-  const std::string base = folder_of(*options.ini_path);
-  machine.walk.remaps_known = true;
-  for (const std::string& line : ini->get_all("RS274NGC", "REMAP")) {
-    if (const auto remap = gcode::parse_remap(line)) machine.walk.remaps[remap->code] = *remap;
-  }
-  for (const char* key : {"PROGRAM_PREFIX", "SUBROUTINE_PATH"}) {
-    const auto value = ini->get(key[0] == 'P' ? "DISPLAY" : "RS274NGC", key);
-    if (!value) continue;
-    for (const auto& folder : folders_of(*value, base)) machine.folders.push_back(folder);
+  const auto remaps = ini->get_all("RS274NGC", "REMAP");
+  machine.remaps_m6 = std::any_of(remaps.begin(), remaps.end(), is_own_m6_remap);
+  if (const auto table = ini->get("EMCIO", "TOOL_TABLE")) {
+    machine.tool_table = (*table)[0] == '/' ? *table : folder_of(*options.ini_path) + "/" + *table;
   }
   return true;
 }
@@ -216,11 +121,11 @@ std::string padded(const std::string& text, std::size_t width) {
   return text.size() >= width ? text + " " : text + std::string(width - text.size(), ' ');
 }
 
-std::string site_text(const gcode::Site& where) {
+std::string site_text(const program::Site& where) {
   return where.line > 0 ? where.file + ": line " + std::to_string(where.line) : where.file;
 }
 
-void print_findings(const std::string& title, const std::vector<gcode::Finding>& findings,
+void print_findings(const std::string& title, const std::vector<program::Finding>& findings,
                     std::ostream& out) {
   if (findings.empty()) return;
   out << "\n" << title << ":\n";
@@ -236,21 +141,18 @@ std::string plural(std::size_t n, const std::string& one, const std::string& man
   return std::to_string(n) + " " + (n == 1 ? one : many);
 }
 
-void print_rows(const std::string& program, const Preflight& checked, std::ostream& out) {
+void print_rows(const Preflight& checked, std::ostream& out) {
   if (checked.rows.empty()) return;
   out << "\n  #  line      code          where                                 length"
          "                          time\n";
   for (std::size_t i = 0; i < checked.rows.size() && i < kMaxRows; ++i) {
     const PreflightRow& row = checked.rows[i];
-    const gcode::Site& at = row.use.where;
-    const std::string line = at.file == program
-                                 ? std::to_string(at.line)
-                                 : base_name(at.file) + ":" + std::to_string(at.line);
+    const int line = row.use.where.line;
     char number[16];
     std::snprintf(number, sizeof number, "%3zu  ", i + 1);
-    out << number << padded(line, 10) << padded(row.code, 14)
-        << padded(row.where + (row.use.in_flow ? " (in a loop/conditional)" : ""), 38)
-        << padded(row.length, 32) << (row.seconds ? seconds_text(*row.seconds) : "-") << "\n";
+    out << number << padded(line > 0 ? std::to_string(line) : "-", 10) << padded(row.code, 14)
+        << padded(row.where, 38) << padded(row.length, 32)
+        << (row.seconds ? seconds_text(*row.seconds) : "-") << "\n";
   }
   if (checked.rows.size() > kMaxRows) {
     out << "  ... and " << checked.rows.size() - kMaxRows << " more\n";
@@ -279,36 +181,29 @@ void print_estimate(const Preflight& checked, const MachineIni& machine, std::os
   out << "\n";
 }
 
-/// Problems in the order of the program: by file as the walk met them, then line.
-void sort_by_place(std::vector<gcode::Finding>& findings, const std::vector<std::string>& files) {
-  const auto rank = [&](const gcode::Finding& f) {
-    const auto at = std::find(files.begin(), files.end(), f.where.file);
-    return std::make_pair(static_cast<std::size_t>(at - files.begin()), f.where.line);
-  };
-  std::stable_sort(
-      findings.begin(), findings.end(),
-      [&](const gcode::Finding& a, const gcode::Finding& b) { return rank(a) < rank(b); });
+/// Findings in the order of the program's lines.
+void sort_by_line(std::vector<program::Finding>& findings) {
+  std::stable_sort(findings.begin(), findings.end(),
+                   [](const program::Finding& a, const program::Finding& b) {
+                     return a.where.line < b.where.line;
+                   });
 }
 
-}  // namespace
-
-namespace {
-
-/// The program walked as LinuxCNC would run it: its own folder, the extra
-/// subroutine folders and the INI's searched for what it calls.
-std::optional<gcode::Walk> walk_program(const Options& options, const MachineIni& machine,
-                                        std::string& error, std::string* name = nullptr) {
-  std::size_t budget = kMaxProgramBytes;
-  const auto program = read_source(options.program_path, budget, error);
-  if (!program) return std::nullopt;
-  if (name) *name = program->name;
-  std::vector<std::string> folders = {folder_of(options.program_path)};
-  if (options.subroutine_path) {
-    for (const auto& folder : folders_of(*options.subroutine_path, "")) folders.push_back(folder);
-  }
-  folders.insert(folders.end(), machine.folders.begin(), machine.folders.end());
-  FolderFinder finder(folders, budget);
-  return gcode::walk(*program, finder, machine.walk);
+/// The program run through LinuxCNC's interpreter with the machine's INI
+/// and tool table (`tool_table`, else the INI's).
+std::optional<program::InterpreterRun> interpret(const Options& options, const Config& config,
+                                                 const std::optional<std::string>& tool_table,
+                                                 std::string& error) {
+  const auto rs274 = find_rs274(error);
+  if (!rs274) return std::nullopt;
+  InterpreterInput input;
+  input.rs274 = *rs274;
+  input.program_path = options.program_path;
+  input.ini_path = options.ini_path;
+  input.tool_table_path = tool_table;
+  input.subroutine_path = options.subroutine_path;
+  input.inch_machine = config.units == Units::inch;
+  return run_interpreter(input, error);
 }
 
 }  // namespace
@@ -321,10 +216,10 @@ std::optional<std::vector<int>> program_tools(const std::string& program_path,
   if (!ini_path.empty()) options.ini_path = ini_path;
   MachineIni machine;
   if (!read_ini(options, config, machine, error)) return std::nullopt;
-  const auto walked = walk_program(options, machine, error);
-  if (!walked) return std::nullopt;
+  const auto run = interpret(options, config, machine.tool_table, error);
+  if (!run) return std::nullopt;
   std::vector<int> tools;
-  for (const auto& use : walked->uses) {
+  for (const auto& use : run->uses) {
     if (!use.tool || *use.tool == 0) continue;
     if (std::find(tools.begin(), tools.end(), *use.tool) == tools.end()) tools.push_back(*use.tool);
   }
@@ -360,13 +255,13 @@ int lint(const Options& options, std::ostream& out, std::ostream& err) {
     err << error << "\n";
     return 2;
   }
-  std::string name;
-  auto walk = walk_program(options, machine, error, &name);
-  if (!walk) {
+  auto run = interpret(options, config,
+                       options.tool_table_path ? options.tool_table_path : machine.tool_table, error);
+  if (!run) {
     err << error << "\n";
     return 2;
   }
-  gcode::Walk& walked = *walk;
+  const std::string name = shown_path(options.program_path);
 
   PreflightInput input;
   input.config = &config;
@@ -375,15 +270,28 @@ int lint(const Options& options, std::ostream& out, std::ostream& err) {
   input.table = table ? &*table : nullptr;
   input.table_name = table_name;
   input.rapid_per_minute = machine.rapid_per_minute;
-  const Preflight checked = preflight(walked, input);
+  const Preflight checked = preflight(run->uses, input);
 
-  std::vector<gcode::Finding> problems = walked.problems;
+  std::vector<program::Finding> problems = run->problems;
   problems.insert(problems.end(), checked.problems.begin(), checked.problems.end());
-  sort_by_place(problems, walked.files);
-  sort_by_place(walked.unknowns, walked.files);
+  const auto first_change = std::find_if(run->uses.begin(), run->uses.end(), [](const auto& use) {
+    return use.kind == program::ToolUse::Kind::change;
+  });
+  if (!machine.remaps_m6 && first_change != run->uses.end()) {
+    problems.push_back({first_change->where,
+                        "the INI remaps no M6: LinuxCNC's own M6 would run here, not "
+                        "fixed_atc_probe_m6"});
+  }
+  sort_by_line(problems);
+  std::vector<program::Finding>& unknowns = run->unknowns;
+  if (run->uses_not_kept > 0) {
+    unknowns.push_back(program::finding(name, 0, "more than " + std::to_string(program::kMaxToolUses) +
+                                       " tool changes and M61: the other " +
+                                       std::to_string(run->uses_not_kept) + " are not counted"));
+  }
+  sort_by_line(unknowns);
   if (table) {
-    for (const auto& note : table->problems)
-      problems.push_back({{table_name, note.line}, note.text});
+    for (const auto& note : table->problems) problems.push_back(program::finding(table_name, note.line, note.text));
   }
 
   struct stat st;
@@ -395,24 +303,24 @@ int lint(const Options& options, std::ostream& out, std::ostream& err) {
                             ": each pocket holds its first-start tool)"
                       : " (state file " + input.state_name + ")")
       << "\n";
-  if (!checked.tools.empty()) {
+  if (!checked.order.empty()) {
     out << "tools in the order of the changes:";
-    for (const int tool : checked.tools) out << " T" << tool;
+    for (const auto& tool : checked.order) out << " T" << (tool ? std::to_string(*tool) : "?");
     out << "\n";
   }
-  print_rows(name, checked, out);
-  print_findings("not known without running the program", walked.unknowns, out);
+  print_rows(checked, out);
+  print_findings("not known without running the program", unknowns, out);
   print_findings("problems", problems, out);
   if (checked.changes > 0) print_estimate(checked, machine, out);
 
   const auto changes = std::count_if(checked.rows.begin(), checked.rows.end(), [](const auto& r) {
-    return r.use.kind == gcode::ToolUse::Kind::change;
+    return r.use.kind == program::ToolUse::Kind::change;
   });
   out << "\n"
       << name << ": "
       << plural(static_cast<std::size_t>(changes), "tool change (M6)", "tool changes (M6)") << ", "
       << checked.rows.size() - static_cast<std::size_t>(changes) << " M61, "
-      << plural(problems.size(), "problem", "problems") << ", " << walked.unknowns.size()
+      << plural(problems.size(), "problem", "problems") << ", " << unknowns.size()
       << " not known\n";
   return problems.empty() ? 0 : 1;
 }

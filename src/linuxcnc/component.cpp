@@ -7,7 +7,6 @@
 
 #include "hal_pins_detail.hpp"
 #include "io/files.hpp"
-#include "io/lint.hpp"
 #include "nml_link.hpp"
 
 namespace fatc::linuxcnc {
@@ -35,6 +34,7 @@ void Component::poll(Clock::time_point now, std::optional<bool> interpreter_idle
     deadline_.reset();
     changer_->timer_elapsed();
   }
+  measure_program_tools();
   start_executor_if_needed();
   sync_linuxcnc_tool();
   write_pins();
@@ -222,14 +222,11 @@ void Component::measure_all() {
       tell(MessageKind::error, "measure all refused: no program is loaded in LinuxCNC");
       return;
     }
-    std::string error;
     const char* ini = std::getenv("INI_FILE_NAME");
-    const auto used = io::program_tools(program, ini ? ini : "", config_, error);
-    if (!used) {
-      tell(MessageKind::error, "measure all refused: " + error);
-      return;
+    if (!program_tools_.start(program, ini ? ini : "", config_)) {
+      tell(MessageKind::error, "measure all refused: the program's tools are being worked out");
     }
-    asked = *used;
+    return;  // measure_program_tools() goes on once the interpreter has them
   } else if (which != 0) {
     tell(MessageKind::error,
          "measure all refused: measure-which must be 0 (every tool in the "
@@ -238,6 +235,16 @@ void Component::measure_all() {
     return;
   }
   changer_->measure_all(asked);
+}
+
+void Component::measure_program_tools() {
+  auto done = program_tools_.take();
+  if (!done) return;
+  if (!done->tools) {
+    tell(MessageKind::error, "measure all refused: " + done->error);
+    return;
+  }
+  changer_->measure_all(*done->tools);
 }
 
 void Component::sync_linuxcnc_tool() {

@@ -9,6 +9,7 @@
 #include "core/ports.hpp"
 #include "core/teach.hpp"
 #include "io/status_file.hpp"
+#include "program_tools_job.hpp"
 
 namespace fatc::linuxcnc {
 
@@ -63,8 +64,10 @@ class Component : public Ports {
   void teach(const TeachTarget& target);
   /// Where the machine stands, in machine coordinates and config units; nothing without NML.
   std::optional<Point> machine_position() const;
-  /// Measure all, of the tools `measure-which` names.
+  /// Measure all, of the tools `measure-which` names (the program's: once
+  /// program_tools_ has them).
   void measure_all();
+  void measure_program_tools();
   void abort(const std::string& reason);
   void start_executor_if_needed();
   void sync_linuxcnc_tool();
@@ -88,6 +91,7 @@ class Component : public Ports {
   bool sync_wanted_ = true;  ///< LinuxCNC's tool in spindle must be brought in line
   std::optional<Clock::time_point> sync_sent_;
   io::StatusFile status_file_;
+  ProgramToolsJob program_tools_;
   Edge abort_, clear_, load_, unload_, continue_, cancel_;
   Edge teach_pocket_, teach_loading_, teach_safe_, teach_sensor_, measure_all_, verify_;
 };

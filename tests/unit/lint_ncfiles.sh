@@ -1,6 +1,7 @@
 #!/bin/bash
 # --lint on every G-code program LinuxCNC installs as samples (linuxcnc-uspace:
-# /usr/share/linuxcnc/ncfiles): no crash, exit 0 or 1 only, each within 10 s,
+# /usr/share/linuxcnc/ncfiles): no crash, exit 0 or 1 only, each within 30 s
+# (the lint stops LinuxCNC's interpreter after 15 s),
 # and a table of programs, tool changes found and problems. Skips (exit 77)
 # when the folder is not there.
 # usage: lint_ncfiles.sh BINARY CONFIG [NCFILES]
@@ -27,7 +28,7 @@ start=$(date +%s%N)
 printf '%-58s %5s %8s %8s %9s\n' program exit changes problems "not known"
 while IFS= read -r -d '' program; do
   programs=$((programs + 1))
-  timeout 10 "$binary" --lint "$program" --config "$config" --state "$work/none.state" \
+  timeout 30 "$binary" --lint "$program" --config "$config" --state "$work/none.state" \
     --subroutine-path "$subs" >"$work/out" 2>"$work/err"
   code=$?
   summary=$(tail -n 1 "$work/out")

@@ -1,0 +1,36 @@
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "core/tool_table.hpp"
+
+namespace fatc::program {
+
+/// The tool table as rs274 is given it, and how to read its canonical calls:
+/// CHANGE_TOOL and CHANGE_TOOL_NUMBER name a tool by its row in the table
+/// (from 1, 0 for no tool), not by its number.
+struct InterpreterTable {
+  std::string text;
+  std::vector<int> tool_of_row;  ///< [row] -> tool number; [0] is 0
+};
+
+/// The machine's tools, each on one row in order of tool number, LinuxCNC's
+/// own lines otherwise (what it skips left out); diameters times
+/// `diameter_scale` (rs274 reads them as inches whatever the machine's units).
+InterpreterTable interpreter_table(const ToolTable& table, double diameter_scale);
+
+/// Without a tool table (--lint without --tool-table and --ini): rs274
+/// refuses a tool its table lacks, so it is given tools 1 to this (a table
+/// holds at most 1000 tools: its CANON_POCKETS_MAX).
+constexpr int kToolsWithoutTable = 1000;
+InterpreterTable any_tool_table();
+
+/// The machine's INI text with `folders` (':' between) as its
+/// [RS274NGC]SUBROUTINE_PATH: LinuxCNC takes the first of a key, so the line
+/// goes first in the section (a new section when there is none). `folders`
+/// ends with the INI's own.
+std::string ini_with_subroutine_folders(std::string_view ini_text, const std::string& folders);
+
+}  // namespace fatc::program

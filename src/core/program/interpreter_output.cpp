@@ -1,0 +1,214 @@
+#include "interpreter_output.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdlib>
+#include <utility>
+
+#include "numbered_program.hpp"
+
+namespace fatc::program {
+namespace {
+
+bool starts_with(std::string_view text, std::string_view start) {
+  return text.substr(0, start.size()) == start;
+}
+
+/// The whole number in `CALL(n)`; nullopt when there is none.
+std::optional<long> argument_of(std::string_view call, std::string_view name) {
+  if (!starts_with(call, name) || call.size() <= name.size() + 1 || call[name.size()] != '(') {
+    return std::nullopt;
+  }
+  const std::string digits(call.substr(name.size() + 1));
+  char* end = nullptr;
+  const long value = std::strtol(digits.c_str(), &end, 10);
+  if (end == digits.c_str() || *end != ')') return std::nullopt;
+  return value;
+}
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  if (from.empty()) return text;
+  for (auto at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size())) {
+    text.replace(at, from.size(), to);
+  }
+  return text;
+}
+
+}  // namespace
+
+bool holds_m6(std::string_view line) {
+  std::string packed;
+  int depth = 0;  // inside a comment, or a parameter's name
+  for (const char c : line) {
+    if (c == ';' && depth == 0) break;
+    if (c == '(' || c == '<') ++depth;
+    if (depth == 0 && c != ' ' && c != '\t') {
+      packed.push_back(static_cast<char>(std::tolower(static_cast<unsigned char>(c))));
+    }
+    if ((c == ')' || c == '>') && depth > 0) --depth;
+  }
+  for (std::size_t at = packed.find('m'); at != std::string::npos; at = packed.find('m', at + 1)) {
+    if (at > 0 && std::isalpha(static_cast<unsigned char>(packed[at - 1]))) continue;
+    std::size_t digit = at + 1;
+    while (digit < packed.size() && packed[digit] == '0') ++digit;
+    if (digit < packed.size() && packed[digit] == '6' &&
+        (digit + 1 == packed.size() ||
+         (!std::isdigit(static_cast<unsigned char>(packed[digit + 1])) &&
+          packed[digit + 1] != '.'))) {
+      return true;
+    }
+  }
+  return false;
+}
+
+InterpreterOutput::InterpreterOutput(std::string program, std::string numbered_path,
+                                     std::vector<int> tool_of_row, std::vector<int> input_lines,
+                                     int lines)
+    : program_(std::move(program)),
+      numbered_path_(std::move(numbered_path)),
+      tool_of_row_(std::move(tool_of_row)),
+      input_lines_(std::move(input_lines)),
+      lines_(lines) {
+  std::sort(input_lines_.begin(), input_lines_.end());
+}
+
+bool InterpreterOutput::reads_input(int line) const {
+  return line > 0 && std::binary_search(input_lines_.begin(), input_lines_.end(), line);
+}
+
+void InterpreterOutput::unknown(int line, const std::string& text) {
+  if (run_.unknowns.size() < kMaxErrors) run_.unknowns.push_back(finding(program_, line, text));
+}
+
+void InterpreterOutput::canonical_call(std::string_view line) {
+  // "   12 N1000000004 SELECT_TOOL(3)", or "N....." for a line with no N word.
+  std::size_t at = line.find('N');
+  if (at == std::string_view::npos) return;
+  const std::string_view from_n = line.substr(at);
+  const int number = line_of(from_n);
+  if (number > lines_ && lines_ > 0) {
+    // The M2 number_lines put after the last line: the program has no end of its own.
+    if (!said_no_end_) {
+      said_no_end_ = true;
+      error(lines_, "File ended with no percent sign or program end", "");
+    }
+    return;
+  }
+  const bool numbered = number > 0;
+  if (numbered) line_ = number;
+  ++at;
+  while (at < line.size() && (line[at] == '.' || std::isdigit(static_cast<unsigned char>(line[at])))) {
+    ++at;
+  }
+  while (at < line.size() && line[at] == ' ') ++at;
+  const std::string_view call = line.substr(at);
+  if (const auto tool = argument_of(call, "SELECT_TOOL")) {
+    any_selected_ = true;
+    selected_ = static_cast<int>(*tool);
+    // A remapped M6 runs in its subroutine, on lines without a number: the
+    // change is shown on its T word's line.
+    selected_line_ = numbered ? line_ : 0;
+    if (reads_input(line_)) {
+      selected_.reset();
+      if (std::find(inputs_said_.begin(), inputs_said_.end(), line_) == inputs_said_.end()) {
+        inputs_said_.push_back(line_);
+        unknown(line_,
+                "the tool number reads #5399, the input M66 waited for: known only when the "
+                "program runs on the machine (rs274 reads 0)");
+      }
+    }
+  } else if (argument_of(call, "CHANGE_TOOL")) {
+    if (!any_selected_ && !said_no_t_) {
+      said_no_t_ = true;
+      if (run_.problems.size() < kMaxErrors) {
+        run_.problems.push_back(finding(program_, line_, "M6 without a T word since the start"));
+      }
+    }
+    use(ToolUse::Kind::change, any_selected_ ? selected_ : std::nullopt,
+        any_selected_ ? selected_line_ : line_);
+  } else if (const auto row = argument_of(call, "CHANGE_TOOL_NUMBER")) {
+    std::optional<int> tool;
+    if (*row >= 0 && static_cast<std::size_t>(*row) < tool_of_row_.size() && !reads_input(line_)) {
+      tool = tool_of_row_[static_cast<std::size_t>(*row)];
+    }
+    use(ToolUse::Kind::set, tool, numbered ? line_ : 0);
+  }
+}
+
+void InterpreterOutput::use(ToolUse::Kind kind, std::optional<int> tool, int line) {
+  if (run_.uses.size() >= kMaxToolUses) {
+    ++run_.uses_not_kept;
+    return;
+  }
+  ToolUse use;
+  use.kind = kind;
+  use.tool = tool;
+  use.where = {program_, line};
+  run_.uses.push_back(use);
+}
+
+void InterpreterOutput::error_line(std::string_view line) {
+  if (line == "executing") return;
+  // Each error is its message, then the text of the line it stopped on.
+  if (const int number = line_of(line); number > 0) {
+    error(number, pending_message_.value_or(""), line);
+    pending_message_.reset();
+  } else if (pending_message_) {
+    error(0, *pending_message_, line);
+    pending_message_.reset();
+  } else {
+    pending_message_ = replaced(std::string(line), numbered_path_, program_);
+  }
+}
+
+void InterpreterOutput::error(int line, const std::string& message, std::string_view text) {
+  if (past_the_end_) return;
+  // The M2 number_lines added is no line of the program.
+  if (lines_ > 0 && line > lines_) line = lines_;
+  past_the_end_ = starts_with(message, "File ended with no percent sign or program end");
+  if (message.find("#<_hal[") != std::string::npos) {
+    unknown(line, message + ": a HAL pin, read only when the program runs on the machine: " +
+                      "what the line does is not known");
+    if (holds_m6(text)) {
+      ToolUse change;
+      change.where = {program_, line};
+      unknown_changes_.push_back(change);
+    }
+    return;
+  }
+  if (run_.problems.size() >= kMaxErrors) {
+    ++errors_not_kept_;
+    return;
+  }
+  std::string said = "LinuxCNC stops the program here: " + message;
+  if (line == 0 && !text.empty()) {
+    // No number of ours on the line: one of a subroutine file, or too long to number.
+    std::string shown(text.substr(0, 60));
+    while (!shown.empty() && (shown.back() == '\r' || shown.back() == ' ')) shown.pop_back();
+    said += " (at \"" + shown + (text.size() > 60 ? "...\")" : "\")");
+  }
+  run_.problems.push_back(finding(program_, line, said));
+}
+
+InterpreterRun InterpreterOutput::finish() {
+  if (pending_message_) error(0, *pending_message_, "");
+  pending_message_.reset();
+  if (errors_not_kept_ > 0) {
+    Finding more;
+    more.where.file = program_;
+    more.text = std::to_string(errors_not_kept_) + " more errors of the interpreter, not listed";
+    run_.problems.push_back(std::move(more));
+  }
+  // The interpreter never ran these lines: each goes before the first use
+  // from a later line, where a program without loops would have it.
+  for (const ToolUse& change : unknown_changes_) {
+    const auto later = std::find_if(run_.uses.begin(), run_.uses.end(), [&](const ToolUse& u) {
+      return u.where.line > change.where.line;
+    });
+    run_.uses.insert(later, change);
+  }
+  unknown_changes_.clear();
+  return std::move(run_);
+}
+
+}  // namespace fatc::program
