@@ -1,7 +1,6 @@
 #include "changer.hpp"
 
-#include "machine/dot.hpp"
-#include "machine/flows.hpp"
+#include "machine/machine.hpp"
 
 namespace fatc {
 namespace machine {
@@ -158,8 +157,11 @@ Status Changer::status() const {
   Status status;
   status.phase = phase_of(fsm);
   status.awaiting = awaiting_of(fsm);
-  status.holds_program = active<machine::flag::HoldsProgram>(fsm);
-  status.probe_cancellable = active<machine::flag::ProbeCancellable>(fsm);
+  // Inside M6 an operator's answer holds the program, and only Stop ends a probe.
+  const bool in_program = c.in_program;
+  status.holds_program = active<machine::flag::HoldsProgram>(fsm) ||
+                         (active<machine::flag::AwaitsOperator>(fsm) && in_program);
+  status.probe_cancellable = active<machine::flag::AwaitsProbe>(fsm) && !in_program;
   status.accepting = status.phase == Phase::idle && status.awaiting == Awaiting::nothing &&
                      !c.task_busy && !c.chuck_open;
   status.chuck_held = c.chuck_open && (status.phase == Phase::idle || status.phase == Phase::chuck);
@@ -179,6 +181,5 @@ const std::optional<InProgress>& Changer::cut_off() const {
   return engine_->context.tools.in_progress;
 }
 
-std::string Changer::dot() { return machine::dot_of<machine::Machine_>("fixed_atc_probe"); }
 
 }  // namespace fatc

@@ -12,7 +12,9 @@
 #include <boost/msm/back/state_machine.hpp>
 #include <boost/msm/front/functor_row.hpp>
 #include <boost/msm/front/state_machine_def.hpp>
+#include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <type_traits>
 
 #include "../events.hpp"
@@ -54,7 +56,6 @@ struct AwaitsSpindle {};
 struct AwaitsSensor {};      ///< a wired sensor must confirm a change (drawbar, tool, air)
 struct AwaitsOperator {};    ///< Continue or Cancel
 struct HoldsProgram {};      ///< an operator wait inside M6: the program holds
-struct ProbeCancellable {};  ///< a probe over MDI that Cancel stops
 }  // namespace flag
 
 /// A submachine finished; raised by its exit point `Finished`.
@@ -169,13 +170,11 @@ struct Commanding : msmf::state<> {
 };
 
 /// Publishes the probe move `Target` makes on entry, then waits for
-/// ProbeResult. `Cancellable`: the operator may stop it (it runs over MDI).
-template <class Target, bool Cancellable>
+/// ProbeResult. Over MDI the operator may stop it; inside a program only
+/// LinuxCNC's Stop does.
+template <class Target>
 struct Probing : msmf::state<> {
-  using flag_list =
-      std::conditional_t<Cancellable,
-                         boost::mpl::vector2<flag::AwaitsProbe, flag::ProbeCancellable>,
-                         boost::mpl::vector1<flag::AwaitsProbe>>;
+  using flag_list = boost::mpl::vector1<flag::AwaitsProbe>;
   template <class Event, class Fsm>
   void on_entry(const Event&, Fsm& fsm) {
     fsm.ctx->publish(Target{}(*fsm.ctx, fsm));
@@ -201,23 +200,28 @@ struct Waiting : Timed {
   }
 };
 
-/// Ends the executor run and asks the operator; Continue or Cancel follow.
+/// Asks the operator; Continue or Cancel follow. An operator flow ends the
+/// executor run first, so the GUI and jogging are free while the operator
+/// works; inside a program (M6) nothing is published, and the program holds
+/// at `loading` until the operator answers.
 template <class Prompt>
 struct AskingOperator : msmf::state<> {
   using flag_list = boost::mpl::vector1<flag::AwaitsOperator>;
   template <class Event, class Fsm>
   void on_entry(const Event&, Fsm& fsm) {
-    Step pause;
-    pause.kind = StepKind::wait_operator;
-    pause.label = "operator";
-    fsm.ctx->publish(pause);
+    if (!fsm.ctx->in_program) {
+      Step pause;
+      pause.kind = StepKind::wait_operator;
+      pause.label = "operator";
+      fsm.ctx->publish(pause);
+    }
     fsm.ctx->ask_operator(Prompt{}(*fsm.ctx, fsm));
   }
 };
 
-/// Asks the operator while the executor runs (inside M6, or a dry run over
-/// MDI): nothing is published, so the executor keeps waiting for its next
-/// step and nothing can be jogged meanwhile; Continue or Cancel follow.
+/// Asks the operator while the executor runs (a dry run over MDI): nothing is
+/// published, so the executor keeps waiting for its next step and nothing can
+/// be jogged meanwhile; Continue or Cancel follow.
 template <class Prompt>
 struct HoldingForOperator : msmf::state<> {
   using flag_list = boost::mpl::vector2<flag::AwaitsOperator, flag::HoldsProgram>;
@@ -227,29 +231,15 @@ struct HoldingForOperator : msmf::state<> {
   }
 };
 
-/// How an operator flow asks: it ends the executor run, so the GUI and
-/// jogging are free while the operator works.
-struct EndingTheRun {
-  template <class Prompt>
-  using Asking = AskingOperator<Prompt>;
-  static std::string lead(const Context&) { return ""; }
-  static constexpr const char* on_cancel = "Cancel to stop";
-};
-/// How M6 asks: the program holds at `loading` until the operator answers.
-struct HoldingTheProgram {
-  template <class Prompt>
-  using Asking = HoldingForOperator<Prompt>;
-  static std::string lead(const Context& c) {
-    return "M6 T" + std::to_string(c.requested_tool) + ": ";
+/// One question to the operator: "<what>, then press Continue (Cancel to
+/// stop)", inside M6 "M6 T<n>: <what>, then press Continue (Cancel stops the program)".
+inline std::string question(const Context& c, const std::string& what) {
+  if (c.in_program) {
+    return "M6 T" + std::to_string(c.requested_tool) + ": " + what +
+           ", then press Continue (Cancel stops the program)";
   }
-  static constexpr const char* on_cancel = "Cancel stops the program";
-};
-
-/// One question to the operator: "<lead><what>, then press Continue (<on cancel>)".
-template <class How>
-std::string question(const Context& c, const std::string& what) {
-  std::string text = How::lead(c) + what + ", then press Continue (" + How::on_cancel + ")";
-  if (How::lead(c).empty() && !text.empty()) text[0] = static_cast<char>(std::toupper(text[0]));
+  std::string text = what + ", then press Continue (Cancel to stop)";
+  if (!text.empty()) text[0] = static_cast<char>(std::toupper(text[0]));
   return text;
 }
 
@@ -279,6 +269,14 @@ struct SpindleToolCommand {
     return plan::spindle_tool(c.tools.spindle);
   }
 };
+
+/// Tells LinuxCNC (M61) what the spindle holds; `Which` tells uses apart.
+template <class Which>
+struct ReportingSpindleTool : Commanding<SpindleToolCommand> {};
+struct AfterInsertion {};
+struct AtTheEnd {};
+struct AfterFetch {};
+struct AfterReturn {};
 
 // ---------------------------------------------------------------- guards
 

@@ -28,6 +28,9 @@ class Context {
   ToolState tools;
 
   int requested_tool = 0;  ///< the tool the current request is about
+  /// The flow under way runs inside a G-code program (M6, a chuck atom): the
+  /// operator's answers hold the program, and only LinuxCNC's Stop ends a probe.
+  bool in_program = false;
   int load_pocket = 0;     ///< the pocket the load flow puts its tool in
   int verify_pocket = 0;   ///< the pocket a dry run goes through
   /// What the chuck atom under way does.

@@ -1,33 +1,32 @@
 #pragma once
 
 // The operator hands a tool over at `loading`: into the spindle, or out of
-// it. The load and unload flows ask with the executor run ended
-// (EndingTheRun); M6 with a manual tool (`manual_tools`, a tool with no
-// pocket) asks while the program holds (HoldingTheProgram).
+// it. The load and unload flows ask with the executor run ended; M6 with a
+// manual tool (`manual_tools`, a tool with no pocket) asks while the program
+// holds (AskingOperator).
 // docs/sequences.md#manual-tools.
 
-#include "legs.hpp"
+#include "flush_leg.hpp"
 
 namespace fatc::machine {
 
 // ================================================================ insert
 /// Flushes the chuck, then the operator inserts the requested tool.
-template <class How>
-struct InsertLeg_ : Flow<InsertLeg_<How>> {
+struct InsertLeg_ : Flow<InsertLeg_> {
   template <class Event, class Parent>
   void on_entry(const Event& e, Parent& parent) {
-    Flow<InsertLeg_<How>>::on_entry(e, parent);
-    this->ctx->record_progress(
-        "inserting tool " + std::to_string(this->tool) + " at loading", 0);
+    Flow::on_entry(e, parent);
+    ctx->record_progress(
+        "inserting tool " + std::to_string(tool) + " at loading", 0);
   }
   struct InsertPrompt {
     template <class Leg>
     std::string operator()(const Context& c, const Leg& leg) const {
-      return question<How>(c,
+      return question(c,
                            "insert tool " + std::to_string(leg.tool) + " into the spindle");
     }
   };
-  struct AwaitingTool : How::template Asking<InsertPrompt> {};
+  struct AwaitingTool : AskingOperator<InsertPrompt> {};
   /// Continue, yet `tool-present` sees no tool: the question stands.
   struct SayToolNotSeen {
     template <class Event, class Fsm, class Source, class Target>
@@ -50,29 +49,27 @@ struct InsertLeg_ : Flow<InsertLeg_<How>> {
   >;
   // clang-format on
 };
-template <class How>
-using InsertLeg = Machine_of<InsertLeg_<How>>;
+using InsertLeg = Machine_of<InsertLeg_>;
 
 // ================================================================ remove
 /// The operator takes the tool in the spindle out.
-template <class How>
-struct RemoveLeg_ : Flow<RemoveLeg_<How>> {
+struct RemoveLeg_ : Flow<RemoveLeg_> {
   static int served_tool(const Context& ctx) { return ctx.tools.spindle; }
   template <class Event, class Parent>
   void on_entry(const Event& e, Parent& parent) {
-    Flow<RemoveLeg_<How>>::on_entry(e, parent);
-    this->ctx->record_progress("removing tool " + std::to_string(this->tool) + " at loading",
+    Flow::on_entry(e, parent);
+    ctx->record_progress("removing tool " + std::to_string(tool) + " at loading",
                                0);
   }
 
   struct RemovePrompt {
     template <class Leg>
     std::string operator()(const Context& c, const Leg& leg) const {
-      return question<How>(c,
+      return question(c,
                            "remove tool " + std::to_string(leg.tool) + " from the spindle");
     }
   };
-  struct AwaitingRemoval : How::template Asking<RemovePrompt> {};
+  struct AwaitingRemoval : AskingOperator<RemovePrompt> {};
   /// Continue, yet `tool-present` still sees a tool: the question stands.
   struct SayToolStillThere {
     template <class Event, class Fsm, class Source, class Target>
@@ -94,8 +91,7 @@ struct RemoveLeg_ : Flow<RemoveLeg_<How>> {
   >;
   // clang-format on
 };
-template <class How>
-using RemoveLeg = Machine_of<RemoveLeg_<How>>;
+using RemoveLeg = Machine_of<RemoveLeg_>;
 
 // ================================================================ hand out (M6)
 /// Takes the manual tool in the spindle out of the machine at `loading`.
@@ -106,7 +102,7 @@ struct HandOutLeg_ : Flow<HandOutLeg_> {
     ctx->record_progress("handing tool " + std::to_string(ctx->tools.spindle) + " out at loading",
                          0);
   }
-  using Removing = RemoveLeg<HoldingTheProgram>;
+  using Removing = RemoveLeg;
   using initial_state = ToLoading;
   // clang-format off
   using transition_table = boost::mpl::vector<
@@ -129,7 +125,7 @@ struct HandInLeg_ : Flow<HandInLeg_> {
     Flow::on_entry(e, parent);
     ctx->record_progress("handing tool " + std::to_string(tool) + " in at loading", 0);
   }
-  using Inserting = InsertLeg<HoldingTheProgram>;
+  using Inserting = InsertLeg;
   /// LinuxCNC still has the tool the program started the M6 with.
   struct ReportingEmptySpindle : Commanding<SpindleToolCommand> {};
 

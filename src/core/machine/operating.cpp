@@ -1,7 +1,7 @@
-// The event dispatch of some submachines, generated here and nowhere else
-// (favor_compile_time, see Machine_of in common.hpp): one compiler run per
-// group keeps the memory and time of a build within a small machine.
+// The event dispatch of this submachine, generated here and nowhere else
+// (favor_compile_time, see Machine_of in common.hpp): a compiler run reads
+// only the tables it dispatches.
 
-#include "flows.hpp"
+#include "operating.hpp"
 
 BOOST_MSM_BACK_GENERATE_PROCESS_EVENT(fatc::machine::Operating)

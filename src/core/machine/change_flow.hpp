@@ -1,0 +1,72 @@
+#pragma once
+
+// M6: the change flow.
+
+#include "handover.hpp"
+#include "probing_leg.hpp"
+#include "retrieve_leg.hpp"
+#include "return_leg.hpp"
+
+namespace fatc::machine {
+
+// ================================================================ change (M6)
+/// M6: empty the spindle (its tool back to its pocket, or handed out), then
+/// fetch the requested tool (from its pocket, or handed in), then measure it
+/// if `probe_after_change` asks. docs/sequences.md#m6.
+struct ChangeFlow_ : Flow<ChangeFlow_> {
+  using flag_list = boost::mpl::vector2<flag::Busy, flag::Changing>;
+
+  /// LinuxCNC's spindle off and, where wired, zero speed.
+  struct WaitingForSpindle
+      : AwaitingSensor<SpindleIsStopped, SpindleStopTimeout, flag::AwaitsSpindle> {};
+  struct SaySpindleDidNotStop {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      const Context& c = *fsm.ctx;
+      fsm.ctx->fault_reason = "the spindle did not stop within spindle_stop_timeout_seconds";
+      if (c.config.sensors.zero_speed && !c.sensors.zero_speed) {
+        fsm.ctx->fault_reason += " (zero-speed off)";
+      }
+    }
+  };
+  struct ProbesAfterChange {
+    template <class Event, class Fsm, class Source, class Target>
+    bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      return fsm.ctx->config.probe_after_change != ProbeAfterChange::off;
+    }
+  };
+
+  using Returning = ReturnLeg<Before>;
+  struct DecidingHowToEmpty : Decision {};
+  /// The spindle is empty: how does the requested tool get into it?
+  struct DecidingHowToFetch : Decision {};
+  struct DecidingToMeasure : Decision {};
+  using initial_state = WaitingForSpindle;
+  // clang-format off
+  using transition_table = boost::mpl::vector<
+  //    Start                            Event           Next                Action                Guard
+  // +--------------------------------+---------------+-------------------+---------------------+-------------------------+
+  Row < WaitingForSpindle              , SensorReport  , DecidingHowToEmpty, none                , SpindleIsStopped     >,
+  Row < WaitingForSpindle              , TimerElapsed  , Failed            , SaySpindleDidNotStop, none                    >,
+  Row < DecidingHowToEmpty             , none          , Returning         , none                , SpindleHoldsRackTool    >,
+  Row < DecidingHowToEmpty             , none          , HandOutLeg        , none                , SpindleHoldsManualTool  >,
+  Row < DecidingHowToEmpty             , none          , DecidingHowToFetch, none                , Not<SpindleHoldsTool>   >,
+  Row < Returning::exit_pt<Finished>   , LegDone       , DecidingHowToFetch, none                , none                    >,
+  Row < HandOutLeg::exit_pt<Finished>  , LegDone       , DecidingHowToFetch, none                , none                    >,
+  Row < HandOutLeg::exit_pt<Cancelled> , LegDone       , Cancelled         , none                , none                    >,
+  Row < DecidingHowToFetch             , none          , RetrieveLeg       , none                , RequestedRackTool       >,
+  Row < DecidingHowToFetch             , none          , HandInLeg         , none                , RequestedManualTool     >,
+  Row < DecidingHowToFetch             , none          , Finished          , none                , Not<ToolRequested>      >,
+  Row < RetrieveLeg::exit_pt<Finished> , LegDone       , DecidingToMeasure , none                , none                    >,
+  Row < HandInLeg::exit_pt<Finished>   , LegDone       , DecidingToMeasure , none                , none                    >,
+  Row < HandInLeg::exit_pt<Cancelled>  , LegDone       , Cancelled         , none                , none                    >,
+  Row < DecidingToMeasure              , none          , MeasureLeg        , none                , ProbesAfterChange       >,
+  Row < DecidingToMeasure              , none          , Finished          , none                , Not<ProbesAfterChange>  >,
+  Row < MeasureLeg::exit_pt<Finished>  , LegDone       , Finished          , none                , none                    >,
+  Row < MeasureLeg::exit_pt<Failed>    , FlowFailed    , Failed            , none                , none                    >
+  >;
+  // clang-format on
+};
+using ChangeFlow = Machine_of<ChangeFlow_>;
+
+}  // namespace fatc::machine

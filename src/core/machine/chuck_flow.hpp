@@ -1,0 +1,110 @@
+#pragma once
+
+// The chuck atoms from G-code: release and clamp.
+
+#include "chuck.hpp"
+
+namespace fatc::machine {
+
+// ================================================================ chuck atoms
+/// What the state file says is under way while a release holds the chuck open.
+inline constexpr const char* kChuckHeldOpen = "the chuck held open (released from G-code)";
+
+/// A chuck atom from G-code (nc_files/fixed_atc_probe_chuck_*.ngc), with
+/// the interlocks of the legs: a release waits until the chuck may open
+/// (air, the spindle at a standstill), gives the chuck `chuck_seconds`, and
+/// the drawbar must then read open; the chuck stays open until a clamp, which
+/// gives it `chuck_seconds` again and must read closed. What the spindle
+/// holds stays as recorded (docs/sequences.md#chuck-atoms).
+struct ChuckFlow_ : Flow<ChuckFlow_> {
+  using flag_list = boost::mpl::vector2<flag::Busy, flag::Chucking>;
+  static int served_tool(const Context& ctx) { return ctx.tools.spindle; }
+  static int served_pocket(const Context&, int) { return 0; }
+
+  struct Releases {
+    template <class Event, class Fsm, class Source, class Target>
+    bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      return fsm.ctx->chuck_action == ChuckRequest::Action::release;
+    }
+  };
+  struct DecidingWhich : Decision {};
+  struct WaitingToOpen : WaitingToOpenChuck<ForRelease> {};
+  struct Opening : Timed {
+    template <class Event, class Fsm>
+    void on_entry(const Event&, Fsm& fsm) {
+      fsm.ctx->open_chuck();
+      fsm.ctx->wait(fsm.ctx->config.chuck_seconds, "releasing the chuck (G-code)");
+    }
+  };
+  struct Closing : Timed {
+    template <class Event, class Fsm>
+    void on_entry(const Event&, Fsm& fsm) {
+      fsm.ctx->close_chuck();
+      fsm.ctx->wait(fsm.ctx->config.chuck_seconds, "clamping the chuck (G-code)");
+    }
+  };
+  /// After a clamp, `tool-present` (where wired) must agree with the record:
+  /// what a hand did at the spindle meanwhile is checked before the program
+  /// goes on.
+  struct SpindleAsRecorded : SensorGuard<SpindleAsRecorded> {
+    template <class Leg>
+    static bool holds(const Context& c, const Leg&) {
+      return c.spindle_reads(c.tools.spindle != 0);
+    }
+    static std::string awaited(const Context& c) {
+      return c.tools.spindle != 0 ? "waiting for tool-present to see tool " +
+                                        std::to_string(c.tools.spindle) + " after the clamp"
+                                  : std::string(
+                                        "waiting for tool-present to see the spindle "
+                                        "empty after the clamp");
+    }
+  };
+  struct CheckingSpindle : AwaitingSensor<SpindleAsRecorded> {};
+  struct SpindleNotAsRecorded {
+    template <class Leg>
+    static std::string text(const Context& c, const Leg&) {
+      const int held = c.tools.spindle;
+      return held != 0 ? "after the clamp from G-code tool-present reads the spindle empty (off), "
+                         "but tool " +
+                             std::to_string(held) + " is recorded in it"
+                       : std::string(
+                             "after the clamp from G-code tool-present reads a tool (on), "
+                             "but the spindle is recorded empty");
+    }
+  };
+  using FaultSpindleNotAsRecorded = FaultSaying<SpindleNotAsRecorded, true>;
+  struct SayReleased {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      const int held = fsm.ctx->tools.spindle;
+      fsm.ctx->tell(MessageKind::info,
+                    held == 0 ? std::string("chuck released (G-code); clamp it before other work")
+                              : "chuck released at loading (G-code); tool " + std::to_string(held) +
+                                    " stays recorded in the spindle: clamp it, then unload it "
+                                    "with the panel if you took it out");
+    }
+  };
+
+  using initial_state = DecidingWhich;
+  // clang-format off
+  using transition_table = boost::mpl::vector<
+  //    Start                  Event          Next                   Action                                Guard
+  // +----------------------+--------------+----------------------+-------------------------------------+---------------+
+  Row < DecidingWhich        , none         , WaitingToOpen        , none                                , Releases      >,
+  Row < DecidingWhich        , none         , Closing              , none                                , Not<Releases> >,
+  Row < WaitingToOpen        , SensorReport , Opening              , none                                , ChuckMayOpen  >,
+  Row < WaitingToOpen        , TimerElapsed , Halted               , FaultChuckMayNotOpen<ForRelease>    , none          >,
+  Row < Opening              , TimerElapsed , CheckingDrawbarOpen  , none                                , none          >,
+  Row < CheckingDrawbarOpen  , SensorReport , Finished             , SayReleased                         , DrawbarOpen   >,
+  Row < CheckingDrawbarOpen  , TimerElapsed , Halted               , FaultDrawbarStayedClosed<ForRelease>, none          >,
+  Row < Closing              , TimerElapsed , CheckingDrawbarClosed, none                                , none          >,
+  Row < CheckingDrawbarClosed, SensorReport , CheckingSpindle      , none                                , DrawbarClosed >,
+  Row < CheckingDrawbarClosed, TimerElapsed , Halted               , FaultDrawbarStayedOpen<ForClamp>    , none          >,
+  Row < CheckingSpindle      , SensorReport , Finished             , none                                , SpindleAsRecorded >,
+  Row < CheckingSpindle      , TimerElapsed , Halted               , FaultSpindleNotAsRecorded           , none          >
+  >;
+  // clang-format on
+};
+using ChuckFlow = Machine_of<ChuckFlow_>;
+
+}  // namespace fatc::machine

@@ -1,0 +1,66 @@
+#pragma once
+
+// Loading a tool by hand, measuring it and putting it away.
+
+#include "handover.hpp"
+#include "probing_leg.hpp"
+#include "return_leg.hpp"
+
+namespace fatc::machine {
+
+// ================================================================ load and probe
+/// The operator loads a tool by hand at `loading`; it is measured on the
+/// sensor and put away in its pocket. docs/sequences.md#load-and-probe.
+struct LoadFlow_ : Flow<LoadFlow_> {
+  using flag_list = boost::mpl::vector2<flag::Busy, flag::Loading>;
+
+  struct JogPrompt {
+    template <class Leg>
+    std::string operator()(const Context& c, const Leg&) const {
+      return "Tool " + std::to_string(c.requested_tool) +
+             " is in the spindle. Jog it closer to the touch-off sensor if you like, then press "
+             "Continue to probe (Cancel to stop)";
+    }
+  };
+  struct AwaitingProbe : AskingOperator<JogPrompt> {};
+  struct SayCancelled {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      fsm.ctx->tell(MessageKind::info, "load of tool " + std::to_string(fsm.ctx->requested_tool) +
+                                           " cancelled, nothing measured; " +
+                                           fsm.ctx->whereabouts());
+    }
+  };
+
+  using Returning = ReturnLeg<Before>;
+  using Inserting = InsertLeg;
+  using Probe = ProbingLeg;
+  using PuttingAway = ReturnLeg<PutAway>;
+  using ReportingTool = ReportingSpindleTool<AfterInsertion>;
+  using ReportingFinalTool = ReportingSpindleTool<AtTheEnd>;
+  struct DecidingToReturn : Decision {};
+  using initial_state = DecidingToReturn;
+  // clang-format off
+  using transition_table = boost::mpl::vector<
+  //    Start                              Event             Next                Action        Guard
+  // +----------------------------------+-----------------+-------------------+-------------+-----------------------------+
+  Row < DecidingToReturn                 , none            , Returning         , none        , SpindleHoldsOtherTool       >,
+  Row < DecidingToReturn                 , none            , ToLoading         , none        , Not<SpindleHoldsOtherTool>  >,
+  Row < Returning::exit_pt<Finished>     , LegDone         , ToLoading         , none        , none                        >,
+  Row < ToLoading                        , InPosition      , Inserting         , none        , Not<RequestedToolInSpindle> >,
+  Row < ToLoading                        , InPosition      , AwaitingProbe     , none        , RequestedToolInSpindle      >,
+  Row < Inserting::exit_pt<Finished>     , LegDone         , ReportingTool     , none        , none                        >,
+  Row < Inserting::exit_pt<Cancelled>    , LegDone         , ReportingFinalTool, SayCancelled, none                        >,
+  Row < ReportingTool                    , CommandDone     , AwaitingProbe     , none        , none                        >,
+  Row < AwaitingProbe                    , OperatorContinue, Probe             , none        , none                        >,
+  Row < AwaitingProbe                    , OperatorCancel  , ReportingFinalTool, SayCancelled, none                        >,
+  Row < Probe::exit_pt<Finished>         , LegDone         , PuttingAway       , none        , none                        >,
+  Row < Probe::exit_pt<Probe::NotMeasured>, LegDone        , ReportingFinalTool, none        , none                        >,
+  Row < PuttingAway::exit_pt<Finished>   , LegDone         , ReportingFinalTool, none        , none                        >,
+  Row < ReportingFinalTool               , CommandDone     , Finished          , none        , none                        >
+  >;
+  // clang-format on
+};
+using LoadFlow = Machine_of<LoadFlow_>;
+
+}  // namespace fatc::machine

@@ -1,0 +1,228 @@
+#pragma once
+
+// The top of the machine: off, operating, faulted.
+
+#include <boost/core/demangle.hpp>
+
+#include "operating.hpp"
+
+namespace fatc::machine {
+
+// ================================================================ top
+struct Machine_ : msmf::state_machine_def<Machine_> {
+  explicit Machine_(Context* context) : ctx(context) {}
+  Context* ctx;
+
+  struct MachineNotReady : msmf::state<> {
+    using flag_list = boost::mpl::vector1<flag::NotReady>;
+    using internal_transition_table = RefusesRequests<BecauseNotReady>;
+    /// A chuck a release left open closes with the machine, as a spring
+    /// drawbar does when its air goes; whatever a hand did at the spindle
+    /// meanwhile, the operator confirms once the machine is back.
+    template <class Event, class Fsm>
+    void on_entry(const Event&, Fsm& fsm) {
+      Context& c = *fsm.ctx;
+      if (!c.chuck_open) return;
+      c.close_chuck();
+      c.tools.uncertain = true;
+      c.ports.save(c.tools);
+      c.tell(MessageKind::error,
+             "the chuck, left released by G-code, closed: the machine went off; say what the "
+             "spindle holds once it is back on");
+    }
+  };
+  struct Faulted : msmf::state<> {
+    using flag_list = boost::mpl::vector1<flag::Faulted>;
+    using internal_transition_table = RefusesRequests<BecauseFaulted>;
+    template <class Event, class Fsm>
+    void on_entry(const Event&, Fsm& fsm) {
+      Context& c = *fsm.ctx;
+      c.close_chuck();
+      // An executor still waiting for its next step aborts the program on this.
+      c.publish(failure_step(c.fault_reason));
+      c.tell(MessageKind::error, "fault: " + c.fault_reason + "; " + c.whereabouts() +
+                                     ". Check the spindle and the rack, then clear the fault.");
+    }
+  };
+
+  struct IsBusy {
+    template <class Event, class Fsm, class Source, class Target>
+    bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      return fsm.template is_flag_active<flag::Busy>();
+    }
+  };
+  /// A dry run (verify): the chuck stays closed, so the tools are where they were.
+  struct DryRun {
+    template <class Event, class Fsm, class Source, class Target>
+    bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      return fsm.template is_flag_active<flag::Verifying>();
+    }
+  };
+  struct SpindleUncertain {
+    template <class Event, class Fsm, class Source, class Target>
+    bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      return fsm.ctx->tools.uncertain;
+    }
+  };
+  struct MachineIsReady {
+    template <class Event, class Fsm, class Source, class Target>
+    bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      return fsm.ctx->machine_ready;
+    }
+  };
+  /// A flow was cut off: what the spindle holds is no longer a fact.
+  struct MarkInterrupted {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event& e, Fsm& fsm, Source&, Target&) const {
+      Context& c = *fsm.ctx;
+      if constexpr (std::is_same_v<Event, Abort> || std::is_same_v<Event, InternalError>) {
+        c.fault_reason = e.reason;
+      }
+      if constexpr (std::is_same_v<Event, NotReady>) {
+        c.fault_reason = "the machine went off, lost homing or entered estop during a sequence";
+      }
+      c.tools.uncertain = true;
+      c.ports.save(c.tools);
+    }
+  };
+  /// A sensor check failed in a leg; after a chuck action, what the
+  /// spindle holds is no longer a fact.
+  struct RecordFailedCheck {
+    template <class Fsm, class Source, class Target>
+    void operator()(const CheckFailed& e, Fsm& fsm, Source&, Target&) const {
+      Context& c = *fsm.ctx;
+      c.fault_reason = e.reason;
+      if (e.uncertain) {
+        c.tools.uncertain = true;
+        c.ports.save(c.tools);
+      }
+    }
+  };
+  struct RecordUnsafeStep {
+    template <class Fsm, class Source, class Target>
+    void operator()(const UnsafeStep& e, Fsm& fsm, Source&, Target&) const {
+      fsm.ctx->fault_reason = e.reason;
+    }
+  };
+  struct SayUncertain {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      const auto& cut_off = fsm.ctx->tools.in_progress;
+      fsm.ctx->fault_reason =
+          cut_off && cut_off->step == kChuckHeldOpen
+              ? "the chuck was held open by G-code when the machine went off or the component "
+                "stopped (the saved tool state is uncertain)"
+              : "the last sequence was cut off (the saved tool state is uncertain)";
+      // What the wired sensors read helps the operator answer.
+      for (const auto& disagreement : fsm.ctx->disagreements()) {
+        fsm.ctx->fault_reason += "; " + disagreement;
+      }
+    }
+  };
+  /// The operator says what the spindle holds and, for a sequence that was
+  /// cut off at a pocket, whether that pocket holds its tool. Nothing moves.
+  struct ClearTheFault {
+    template <class Fsm, class Source, class Target>
+    void operator()(const ClearFault& e, Fsm& fsm, Source&, Target&) const {
+      Context& c = *fsm.ctx;
+      const int answered =
+          c.tools.in_progress && e.pocket_holds_tool ? c.tools.in_progress->pocket : 0;
+      c.tools.confirm(e.spindle_tool, e.pocket_holds_tool);
+      // The operator has looked at the rack: every pocket sensor not
+      // contradicted by an answer is taken at its word (only while the
+      // machine is on: its sensors may have no power otherwise).
+      std::string adopted;
+      if (c.machine_ready) {
+        for (const auto& change :
+             adopt_pocket_sensors(c.config.sensors, c.sensors, answered, c.tools)) {
+          adopted += change + "; ";
+        }
+      }
+      c.fault_reason.clear();
+      c.ports.save(c.tools);
+      c.tell(MessageKind::info, "fault cleared; " + adopted + c.whereabouts());
+    }
+  };
+  template <class Words>
+  struct Say {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      fsm.ctx->tell(MessageKind::info, Words::text);
+    }
+  };
+  struct NothingWaitsToContinue {
+    static constexpr const char* text = "Continue: nothing is waiting for the operator";
+  };
+  struct NothingWaitsToCancel {
+    static constexpr const char* text = "Cancel: nothing is waiting for the operator";
+  };
+  struct ThereIsNoFault {
+    static constexpr const char* text = "clear fault: there is no fault";
+  };
+
+  using initial_state = MachineNotReady;
+  // clang-format off
+  /// Off, on and working, and what makes the changer fault.
+  using until_a_fault = boost::mpl::vector<
+  //    Start                        Event           Next              Action            Guard
+  // +----------------------------+---------------+-----------------+-----------------+-----------------------+
+  Row < MachineNotReady            , Ready         , Operating       , none            , Not<SpindleUncertain> >,
+  Row < MachineNotReady            , Ready         , Faulted         , SayUncertain    , SpindleUncertain      >,
+  Row < MachineNotReady            , NotReady      , none            , none            , none                  >,
+  Row < MachineNotReady            , Abort         , none            , none            , none                  >,
+  Row < MachineNotReady            , InternalError , Faulted         , MarkInterrupted , none                  >,
+  Row < Operating                  , Ready         , none            , none            , none                  >,
+  Row < Operating                  , NotReady      , MachineNotReady , none            , Not<IsBusy>           >,
+  Row < Operating                  , NotReady      , MachineNotReady , StopDryRun      , DryRun                >,
+  Row < Operating                  , NotReady      , Faulted         , MarkInterrupted , And<IsBusy, Not<DryRun>> >,
+  Row < Operating                  , Abort         , none            , none            , Not<IsBusy>           >,
+  Row < Operating                  , Abort         , Faulted         , MarkInterrupted , IsBusy                >,
+  Row < Operating                  , InternalError , Faulted         , MarkInterrupted , none                  >,
+  Row < Operating                  , UnsafeStep    , Faulted         , RecordUnsafeStep, none                  >,
+  Row < Operating                  , CheckFailed   , Faulted         , RecordFailedCheck, none                 >,
+  Row < Operating::exit_pt<Failed> , FlowFailed    , Faulted         , none            , none                  >
+  >;
+  /// A fault holds until the operator says what the spindle holds.
+  using after_a_fault = boost::mpl::vector<
+  //    Start                        Event           Next              Action            Guard
+  // +----------------------------+---------------+-----------------+-----------------+-----------------------+
+  Row < Faulted                    , ClearFault    , Operating       , ClearTheFault   , MachineIsReady        >,
+  Row < Faulted                    , ClearFault    , MachineNotReady , ClearTheFault   , Not<MachineIsReady>   >,
+  Row < Faulted                    , Ready         , none            , none            , none                  >,
+  Row < Faulted                    , NotReady      , none            , none            , none                  >,
+  Row < Faulted                    , Abort         , none            , none            , none                  >,
+  Row < Faulted                    , InternalError , none            , none            , none                  >
+  >;
+  using transition_table = boost::mpl::joint_view<until_a_fault, after_a_fault>;
+  /// What no state above answers: a request while a flow runs (Idle and the
+  /// other states answer every request themselves), the operator pressed a
+  /// button that has nothing to act on, or the spindle or a sensor changed
+  /// (facts the guards read). Kept here, not in Operating: an internal table
+  /// of a submachine breaks its anonymous rows under favor_compile_time.
+  using nothing_else_answers = boost::mpl::vector<
+  Internal < OperatorContinue, Say<NothingWaitsToContinue>, none >,
+  Internal < OperatorCancel  , Say<NothingWaitsToCancel>  , none >,
+  Internal < ClearFault      , Say<ThereIsNoFault>        , none >,
+  Internal < SensorReport    , none                       , none >
+  >;
+  using internal_transition_table =
+      boost::mpl::joint_view<RefusesRequests<BecauseBusy>, nothing_else_answers>;
+  // clang-format on
+
+  template <class Fsm, class Event>
+  void no_transition(const Event& e, Fsm& fsm, int state) {
+    ctx->ports.unexpected("state #" + std::to_string(state),
+                          boost::core::demangle(typeid(e).name()));
+    fsm.process_event(
+        InternalError{"internal error: unexpected " + boost::core::demangle(typeid(e).name())});
+  }
+  template <class Fsm, class Event>
+  void exception_caught(const Event& e, Fsm& fsm, std::exception& error) {
+    ctx->ports.unexpected(std::string("exception: ") + error.what(),
+                          boost::core::demangle(typeid(e).name()));
+    fsm.process_event(InternalError{std::string("internal error: ") + error.what()});
+  }
+};
+using Machine = Machine_of<Machine_>;
+
+}  // namespace fatc::machine

@@ -1,0 +1,124 @@
+#pragma once
+
+// Measuring every tool of the rack, one after another.
+
+#include "probing_leg.hpp"
+#include "retrieve_leg.hpp"
+#include "return_leg.hpp"
+
+namespace fatc::machine {
+
+// ================================================================ measure all
+/// Measure all: each tool fetched from its pocket, measured on the sensor and
+/// put back, one after another, with a report of each length and its change.
+/// Cancel stops the batch once the tool under way is back in its pocket (a
+/// probe under way stops too). The legs are the load's and M6's own types, so
+/// the machine grows by one table, not by new copies of the legs.
+/// docs/sequences.md#measure-all.
+struct MeasureAllFlow_ : Flow<MeasureAllFlow_> {
+  using flag_list = boost::mpl::vector2<flag::Busy, flag::Measuring>;
+
+  using Returning = ReturnLeg<Before>;
+  using Probe = ProbingLeg;
+  /// The spindle's tool goes back first; then the next tool, if any is left.
+  struct DecidingNextTool : Decision {};
+  /// LinuxCNC is told (M61) what the spindle holds after each fetch and return.
+  using ReportingFetched = ReportingSpindleTool<AfterFetch>;
+  using ReportingReturned = ReportingSpindleTool<AfterReturn>;
+
+  struct ToolsLeft {
+    template <class Event, class Fsm, class Source, class Target>
+    bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      const Context::Batch& b = fsm.ctx->batch;
+      return !b.cancel && b.done < b.tools.size();
+    }
+  };
+  struct TakeNextTool {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      Context& c = *fsm.ctx;
+      const int tool = c.batch.tools[c.batch.done];
+      c.requested_tool = tool;
+      const auto stored = c.tools.lengths.find(tool);
+      c.batch.stored =
+          stored == c.tools.lengths.end() ? std::nullopt : std::optional<double>(stored->second);
+      c.tell(MessageKind::info, "measure all: tool " + std::to_string(tool) + " (" +
+                                    std::to_string(c.batch.done + 1) + " of " +
+                                    std::to_string(c.batch.tools.size()) + ")");
+    }
+  };
+  struct RecordMeasured {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      Context& c = *fsm.ctx;
+      const double now = *c.last_length;
+      std::string line =
+          "T" + std::to_string(c.requested_tool) + " " + format_length(c.config, now);
+      if (c.batch.stored) {
+        char change[32];
+        std::snprintf(change, sizeof change, "%+.4f", now - *c.batch.stored);
+        line += " (was " + format_length(c.config, *c.batch.stored) + ", " + change + ")";
+      } else {
+        line += " (first measurement)";
+      }
+      c.batch.report.push_back(line);
+      ++c.batch.done;
+    }
+  };
+  struct RecordNotMeasured {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      Context& c = *fsm.ctx;
+      c.batch.report.push_back("T" + std::to_string(c.requested_tool) +
+                               " not measured: " + c.probe_problem);
+      ++c.batch.done;
+    }
+  };
+  struct SayReport {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      Context& c = *fsm.ctx;
+      std::string text =
+          "measure all " + std::string(c.batch.cancel ? "cancelled after " : "done: ") +
+          std::to_string(c.batch.done) + " of " + std::to_string(c.batch.tools.size()) + " tools";
+      for (const auto& line : c.batch.report) text += "; " + line;
+      c.tell(MessageKind::info, text);
+    }
+  };
+
+  /// Cancel asks the batch to stop after the tool under way is put back; a
+  /// probe under way stops too (its own row), and this still stops the batch.
+  struct AskToStop {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      fsm.ctx->batch.cancel = true;
+      fsm.ctx->tell(MessageKind::info, "measure all stops once tool " +
+                                           std::to_string(fsm.ctx->requested_tool) +
+                                           " is back in its pocket");
+    }
+  };
+  /// A second region: it hears Cancel whatever the batch is doing.
+  struct ListeningForCancel : msmf::state<> {};
+
+  using initial_state = boost::mpl::vector<DecidingNextTool, ListeningForCancel>;
+  // clang-format off
+  using transition_table = boost::mpl::vector<
+  //    Start                               Event         Next              Action             Guard
+  // +-----------------------------------+--------------+-----------------+------------------+-----------------------------------+
+  Row < DecidingNextTool                  , none          , Returning       , none             , SpindleHoldsTool                  >,
+  Row < DecidingNextTool                  , none          , RetrieveLeg     , TakeNextTool     , And<Not<SpindleHoldsTool>, ToolsLeft> >,
+  Row < DecidingNextTool                  , none          , Finished        , SayReport        , And<Not<SpindleHoldsTool>, Not<ToolsLeft>> >,
+  Row < Returning::exit_pt<Finished>      , LegDone       , ReportingReturned, none            , none                              >,
+  Row < ReportingReturned                 , CommandDone   , DecidingNextTool, none             , none                              >,
+  Row < RetrieveLeg::exit_pt<Finished>    , LegDone       , ReportingFetched, none             , none                              >,
+  Row < ReportingFetched                  , CommandDone   , ToSensor        , none             , none                              >,
+  Row < ToSensor                          , InPosition    , Probe           , none             , none                              >,
+  Row < Probe::exit_pt<Finished>          , LegDone       , DecidingNextTool, RecordMeasured   , none                              >,
+  Row < Probe::exit_pt<Probe::NotMeasured>, LegDone       , DecidingNextTool, RecordNotMeasured, none                              >,
+  Row < ListeningForCancel                , OperatorCancel, none            , AskToStop        , none                              >
+  >;
+  // clang-format on
+};
+using MeasureAllFlow = Machine_of<MeasureAllFlow_>;
+
+}  // namespace fatc::machine

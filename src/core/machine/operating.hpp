@@ -1,0 +1,302 @@
+#pragma once
+
+// The machine on and homed: idle, or running one flow; the requests and
+// their refusals.
+
+#include "change_flow.hpp"
+#include "chuck_flow.hpp"
+#include "load_flow.hpp"
+#include "measure_all_flow.hpp"
+#include "unload_flow.hpp"
+#include "verify_flow.hpp"
+
+namespace fatc::machine {
+
+// ================================================================ requests and refusals
+inline std::string request_name(const ToolChange& e) { return "M6 T" + std::to_string(e.tool); }
+inline std::string request_name(const LoadRequest& e) {
+  return "load of tool " + std::to_string(e.tool) +
+         (e.pocket != 0 ? " into pocket " + std::to_string(e.pocket) : std::string());
+}
+inline std::string request_name(const MeasureRequest& e) {
+  return "measure all (" + std::to_string(e.tools.size()) + " tools)";
+}
+inline std::string request_name(const UnloadRequest& e) {
+  return "unload of tool " + std::to_string(e.tool);
+}
+inline std::string request_name(const VerifyRequest& e) {
+  return "verify of pocket " + std::to_string(e.pocket);
+}
+inline std::string request_name(const ChuckRequest& e) {
+  return e.action == ChuckRequest::Action::release ? "chuck release" : "chuck clamp";
+}
+
+inline std::optional<std::string> why_not(const Context& c, const ToolChange& e) {
+  return why_not_change(c, e.tool);
+}
+inline std::optional<std::string> why_not(const Context& c, const LoadRequest& e) {
+  return why_not_load(c, e.tool, e.pocket);
+}
+inline std::optional<std::string> why_not(const Context& c, const MeasureRequest& e) {
+  return why_not_measure(c, e.tools);
+}
+inline std::optional<std::string> why_not(const Context& c, const UnloadRequest& e) {
+  return why_not_unload(c, e.tool);
+}
+inline std::optional<std::string> why_not(const Context& c, const VerifyRequest& e) {
+  return why_not_verify(c, e.pocket);
+}
+inline std::optional<std::string> why_not(const Context& c, const ChuckRequest& e) {
+  return why_not_chuck(c, e);
+}
+
+/// Refuses a request, saying why `Because` gives. The executor of an M6 or a
+/// chuck atom waits for a step: it gets one that fails its program with the
+/// same words.
+template <class Because>
+struct Refuse {
+  template <class Request, class Fsm, class Source, class Target>
+  void operator()(const Request& e, Fsm& fsm, Source&, Target&) const {
+    const std::string text = request_name(e) + " refused: " + Because{}(fsm, e);
+    if constexpr (std::is_same_v<Request, ToolChange> || std::is_same_v<Request, ChuckRequest>) {
+      Step fail = failure_step(text);
+      if constexpr (std::is_same_v<Request, ToolChange>) fail.tool = e.tool;
+      // Straight to the executor: the flow running (if any) goes on as it was.
+      fsm.ctx->ports.publish(fail);
+    }
+    fsm.ctx->tell(MessageKind::error, text);
+  }
+};
+struct BecauseNotPossible {
+  template <class Fsm, class Request>
+  std::string operator()(Fsm& fsm, const Request& e) const {
+    return *why_not(*fsm.ctx, e);
+  }
+};
+struct BecauseNotReady {
+  template <class Fsm, class Request>
+  std::string operator()(Fsm&, const Request&) const {
+    return "the machine is not on and homed, or is in estop";
+  }
+};
+struct BecauseFaulted {
+  template <class Fsm, class Request>
+  std::string operator()(Fsm& fsm, const Request&) const {
+    return "the changer is in fault (" + fsm.ctx->fault_reason + "); clear it first";
+  }
+};
+struct BecauseBusy {
+  template <class Fsm, class Request>
+  std::string operator()(Fsm& fsm, const Request&) const {
+    const std::string tool = std::to_string(fsm.ctx->requested_tool);
+    if (fsm.template is_flag_active<flag::Loading>())
+      return "the changer is busy loading tool " + tool;
+    if (fsm.template is_flag_active<flag::Unloading>())
+      return "the changer is busy unloading tool " + tool;
+    if (fsm.template is_flag_active<flag::Verifying>())
+      return "the changer is busy verifying pocket " + std::to_string(fsm.ctx->verify_pocket);
+    if (fsm.template is_flag_active<flag::Chucking>()) return "the changer is busy with the chuck";
+    return "the changer is busy changing to tool " + tool;
+  }
+};
+/// The requests, refused for one reason: a state's internal rows.
+template <class Because>
+using RefusesRequests = boost::mpl::vector<msmf::Internal<ToolChange, Refuse<Because>, none>,
+                                           msmf::Internal<LoadRequest, Refuse<Because>, none>,
+                                           msmf::Internal<UnloadRequest, Refuse<Because>, none>,
+                                           msmf::Internal<MeasureRequest, Refuse<Because>, none>,
+                                           msmf::Internal<VerifyRequest, Refuse<Because>, none>,
+                                           msmf::Internal<ChuckRequest, Refuse<Because>, none>>;
+
+// ================================================================ operating
+/// The machine on and homed: idle, or running one flow.
+struct BecauseSensorsDisagree {
+  template <class Fsm, class Request>
+  std::string operator()(Fsm& fsm, const Request&) const {
+    std::string words = "the sensors disagree with the saved tool state";
+    for (const auto& disagreement : fsm.ctx->disagreements()) words += "; " + disagreement;
+    return words;
+  }
+};
+
+/// A dry run cut off by an abort or the machine going off: nothing to
+/// record, no fault; but the spindle stopped somewhere along the approach.
+struct StopDryRun {
+  template <class Event, class Fsm, class Source, class Target>
+  void operator()(const Event& e, Fsm& fsm, Source&, Target&) const {
+    Context& c = *fsm.ctx;
+    std::string why = "the machine went off, lost homing or entered estop";
+    if constexpr (std::is_same_v<Event, Abort>) why = e.reason;
+    c.end_sequence();
+    c.tell(MessageKind::info, "verify of pocket " + std::to_string(c.verify_pocket) + " stopped (" +
+                                  why +
+                                  "); nothing was recorded. The spindle may be in the rack: jog "
+                                  "it out the way it came in before the next change");
+  }
+};
+struct Operating_ : Flow<Operating_> {
+  struct Idle : msmf::state<> {
+    using flag_list = boost::mpl::vector1<flag::Idle>;
+  };
+  /// The changer is done with the rack: its cover (if any) closes, and
+  /// `rack-cover-closed` (if wired) has its own timeout to say so.
+  struct SensorOrCoverTimeout {
+    double operator()(const Config& c) const {
+      return c.rack_cover && c.rack_cover->closed_sensor
+                 ? std::max(c.sensor_timeout_seconds, c.rack_cover->timeout_seconds)
+                 : c.sensor_timeout_seconds;
+    }
+  };
+  /// Before the changer takes work (at start, after a fault, after every
+  /// flow, and whenever a sensor changes while idle) the wired sensors must
+  /// agree with the tool state, or come to within sensor_timeout_seconds.
+  struct ComparingSensors : AwaitingSensor<SensorsAgree, SensorOrCoverTimeout> {
+    using flag_list = boost::mpl::vector2<flag::Idle, flag::AwaitsSensor>;
+    using internal_transition_table = RefusesRequests<BecauseSensorsDisagree>;
+    template <class Event, class Fsm>
+    void on_entry(const Event& e, Fsm& fsm) {
+      fsm.ctx->close_cover();
+      AwaitingSensor::on_entry(e, fsm);
+    }
+  };
+  struct SaySensorsDisagree {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event& e, Fsm& fsm, Source&, Target&) const {
+      fsm.ctx->fault_reason = BecauseSensorsDisagree{}(fsm, e);
+    }
+  };
+
+  struct Refused {
+    template <class Request, class Fsm, class Source, class Target>
+    bool operator()(const Request& e, Fsm& fsm, Source&, Target&) const {
+      return why_not(*fsm.ctx, e).has_value();
+    }
+  };
+  struct AlreadyInSpindle {
+    template <class Fsm, class Source, class Target>
+    bool operator()(const ToolChange& e, Fsm& fsm, Source&, Target&) const {
+      return e.tool == fsm.ctx->tools.spindle;
+    }
+  };
+  struct TakeRequest {
+    template <class Request, class Fsm, class Source, class Target>
+    void operator()(const Request& e, Fsm& fsm, Source&, Target&) const {
+      Context& c = *fsm.ctx;
+      c.in_program = std::is_same_v<Request, ToolChange> || std::is_same_v<Request, ChuckRequest>;
+      if constexpr (std::is_same_v<Request, ToolChange>) {
+        c.fetch_follows_return = c.tools.pocket_holding(e.tool).has_value();
+      } else {
+        c.fetch_follows_return = std::is_same_v<Request, UnloadRequest>;
+      }
+      if constexpr (std::is_same_v<Request, VerifyRequest>) {
+        fsm.ctx->requested_tool = fsm.ctx->tools.spindle;
+        fsm.ctx->verify_pocket = e.pocket;
+      } else if constexpr (std::is_same_v<Request, ChuckRequest>) {
+        fsm.ctx->requested_tool = fsm.ctx->tools.spindle;
+        fsm.ctx->chuck_action = e.action;
+      } else if constexpr (!std::is_same_v<Request, MeasureRequest>) {
+        fsm.ctx->requested_tool = e.tool;
+      }
+      if constexpr (std::is_same_v<Request, LoadRequest>) {
+        fsm.ctx->load_pocket = choose_load_pocket(*fsm.ctx, e.tool, e.pocket).pocket;
+      }
+      if constexpr (std::is_same_v<Request, MeasureRequest>) {
+        std::string skipped;
+        fsm.ctx->batch = {measurable_tools(*fsm.ctx, e.tools, skipped), 0, false, {}, {}};
+        if (!skipped.empty()) {
+          fsm.ctx->tell(MessageKind::info, "measure all skips what is not in the rack: " + skipped);
+        }
+      }
+      fsm.ctx->begin_sequence(request_name(e));
+    }
+  };
+  /// The executor's last step: done, with the tool in the spindle.
+  static void publish_done(Context& c) {
+    Step done;
+    done.kind = StepKind::done;
+    done.tool = c.tools.spindle;
+    done.label = "done";
+    c.publish(done);
+  }
+  struct AnswerDone {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      fsm.ctx->end_sequence();
+      publish_done(*fsm.ctx);
+    }
+  };
+  /// A chuck atom is done. A release leaves its sequence recorded until the
+  /// clamp: a restart or the machine going off meanwhile leaves what the
+  /// spindle holds for the operator to confirm.
+  struct AnswerChuckDone {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      Context& c = *fsm.ctx;
+      if (c.chuck_open) {
+        c.record_progress(kChuckHeldOpen, 0);
+      } else {
+        c.end_sequence();
+      }
+      publish_done(c);
+    }
+  };
+  /// The operator cancelled an M6: the executor stops the program, saying where
+  /// the tools are; nothing is uncertain.
+  struct StopProgram {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      Context& c = *fsm.ctx;
+      c.end_sequence();
+      const std::string why = "M6 T" + std::to_string(c.requested_tool) +
+                              " cancelled by the operator; " + c.whereabouts();
+      Step fail = failure_step(why);
+      fail.tool = c.tools.spindle;
+      c.publish(fail);
+      c.tell(MessageKind::error, why);
+    }
+  };
+
+  using initial_state = ComparingSensors;
+  // clang-format off
+  /// Requests taken while idle: refused with a reason, or their flow started.
+  using requests = boost::mpl::vector<
+  //    Start                            Event           Next        Action                      Guard
+  // +--------------------------------+---------------+-----------+---------------------------+-----------------------------------+
+  Row < Idle                           , ToolChange    , none      , Refuse<BecauseNotPossible>, Refused                           >,
+  Row < Idle                           , ToolChange    , none      , AnswerDone                , And<Not<Refused>, AlreadyInSpindle> >,
+  Row < Idle                           , ToolChange    , ChangeFlow, TakeRequest               , And<Not<Refused>, Not<AlreadyInSpindle>> >,
+  Row < Idle                           , LoadRequest   , none      , Refuse<BecauseNotPossible>, Refused                           >,
+  Row < Idle                           , LoadRequest   , LoadFlow  , TakeRequest               , Not<Refused>                      >,
+  Row < Idle                           , UnloadRequest , none      , Refuse<BecauseNotPossible>, Refused                           >,
+  Row < Idle                           , UnloadRequest , UnloadFlow, TakeRequest               , Not<Refused>                      >,
+  Row < Idle                           , MeasureRequest, none      , Refuse<BecauseNotPossible>, Refused                           >,
+  Row < Idle                           , MeasureRequest, MeasureAllFlow, TakeRequest           , Not<Refused>                      >,
+  Row < Idle                           , VerifyRequest , none      , Refuse<BecauseNotPossible>, Refused                           >,
+  Row < Idle                           , VerifyRequest , VerifyFlow, TakeRequest               , Not<Refused>                      >,
+  Row < Idle                           , ChuckRequest  , none      , Refuse<BecauseNotPossible>, Refused                           >,
+  Row < Idle                           , ChuckRequest  , ChuckFlow , TakeRequest               , Not<Refused>                      >
+  >;
+  /// Comparing the sensors before work, and where each flow ends.
+  using around_the_flows = boost::mpl::vector<
+  //    Start                              Event          Next              Action              Guard
+  // +----------------------------------+--------------+-----------------+-------------------+--------------------+
+  Row < ComparingSensors                 , SensorReport , Idle            , none              , SensorsAgree       >,
+  Row < ComparingSensors                 , TimerElapsed , Failed          , SaySensorsDisagree, none               >,
+  Row < Idle                             , SensorReport , ComparingSensors, none              , Not<SensorsAgree>  >,
+  Row < ChangeFlow::exit_pt<Finished>    , LegDone      , ComparingSensors, AnswerDone        , none               >,
+  Row < ChangeFlow::exit_pt<Failed>      , FlowFailed   , Failed          , none              , none               >,
+  Row < ChangeFlow::exit_pt<Cancelled>   , LegDone      , ComparingSensors, StopProgram       , none               >,
+  Row < LoadFlow::exit_pt<Finished>      , LegDone      , ComparingSensors, AnswerDone        , none               >,
+  Row < UnloadFlow::exit_pt<Finished>    , LegDone      , ComparingSensors, AnswerDone        , none               >,
+  Row < MeasureAllFlow::exit_pt<Finished>, LegDone      , ComparingSensors, AnswerDone        , none               >,
+  Row < VerifyFlow::exit_pt<Finished>    , LegDone      , ComparingSensors, AnswerDone        , none               >,
+  Row < VerifyFlow::exit_pt<Cancelled>   , LegDone      , ComparingSensors, AnswerDone        , none               >,
+  Row < VerifyFlow                       , Abort        , ComparingSensors, StopDryRun        , none               >,
+  Row < ChuckFlow::exit_pt<Finished>     , LegDone      , ComparingSensors, AnswerChuckDone   , none               >
+  >;
+  using transition_table = boost::mpl::joint_view<requests, around_the_flows>;
+  // clang-format on
+};
+using Operating = Machine_of<Operating_>;
+
+}  // namespace fatc::machine

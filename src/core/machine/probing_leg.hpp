@@ -1,0 +1,243 @@
+#pragma once
+
+// Measuring the tool in the spindle on the touch-off sensor, and the
+// measurement after M6. docs/sequences.md#probing.
+
+#include <cmath>
+
+#include "chuck.hpp"
+
+namespace fatc::machine {
+
+// ================================================================ probing
+/// Measures the tool in the spindle on the touch-off sensor
+/// (docs/sequences.md#probing): a fast seek, a back-off, a slow latch;
+/// length = latched machine Z minus probe_length_compensation_offset, written
+/// to the tool table. Over MDI (load, measure all) the operator may cancel
+/// it; inside M6 (`probe_after_change`) the changer fetched the tool itself,
+/// so a stored length says where it must touch, and `check` writes nothing
+/// over a stored length.
+struct ProbingLeg_ : Flow<ProbingLeg_> {
+  double first_touch_z = 0.0;  ///< where the seek touched
+  double latched_z = 0.0;      ///< where the latch touched
+
+  template <class Event, class Parent>
+  void on_entry(const Event& e, Parent& parent) {
+    Flow::on_entry(e, parent);
+    ctx->record_progress("measuring tool " + std::to_string(tool), 0);
+  }
+
+  struct NotMeasured : msmf::exit_pseudo_state<LegDone> {};
+
+  struct Seek {
+    template <class Leg>
+    Step operator()(const Context& c, const Leg&) const {
+      return plan::probe_seek(c.config);
+    }
+  };
+  struct Latch {
+    template <class Leg>
+    Step operator()(const Context& c, const Leg&) const {
+      return plan::probe_latch(c.config);
+    }
+  };
+  struct Length {
+    template <class Leg>
+    Step operator()(const Context& c, const Leg& leg) const {
+      return plan::tool_length(leg.tool, c.tools.lengths.at(leg.tool));
+    }
+  };
+  struct Seeking : Probing<Seek> {};
+  struct BackingOff : Walking<BackingOff> {
+    template <class Leg>
+    static plan::Route route(const Context& c, const Leg& leg) {
+      return {plan::probe_back_off(c.config, leg.first_touch_z)};
+    }
+  };
+  struct Latching : Probing<Latch> {};
+  struct WritingLength : Commanding<Length> {};
+  struct Retracting : Walking<Retracting> {
+    template <class Leg>
+    static plan::Route route(const Context& c, const Leg& leg) {
+      return {plan::retract_from_sensor(c.config, leg.latched_z)};
+    }
+  };
+  struct RetractingUnmeasured : Walking<RetractingUnmeasured> {
+    template <class Leg>
+    static plan::Route route(const Context& c, const Leg&) {
+      return {plan::loading_z(c.config)};
+    }
+  };
+
+  struct Touched {
+    template <class Fsm, class Source, class Target>
+    bool operator()(const ProbeResult& e, Fsm&, Source&, Target&) const {
+      return e.touched;
+    }
+  };
+  /// The seek touched more than probe_window away from where the tool's
+  /// stored length puts the touch: a shorted sensor, a wrong or pulled-out tool.
+  struct OutsideWindow {
+    template <class Fsm, class Source, class Target>
+    bool operator()(const ProbeResult& e, Fsm& fsm, Source&, Target&) const {
+      const Context& c = *fsm.ctx;
+      const auto stored = c.tools.lengths.find(fsm.tool);
+      if (!c.in_program || stored == c.tools.lengths.end()) return false;
+      const double expected = stored->second + c.config.probe_length_compensation_offset;
+      return std::abs(e.z - expected) > c.config.window();
+    }
+  };
+  struct WritesLength {
+    template <class Event, class Fsm, class Source, class Target>
+    bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      const Context& c = *fsm.ctx;
+      return !c.in_program || c.config.probe_after_change != ProbeAfterChange::check ||
+             c.tools.lengths.count(fsm.tool) == 0;
+    }
+  };
+  struct RememberFirstTouch {
+    template <class Fsm, class Source, class Target>
+    void operator()(const ProbeResult& e, Fsm& fsm, Source&, Target&) const {
+      fsm.first_touch_z = e.z;
+    }
+  };
+  struct RememberLatch {
+    template <class Fsm, class Source, class Target>
+    void operator()(const ProbeResult& e, Fsm& fsm, Source&, Target&) const {
+      fsm.latched_z = e.z;
+      fsm.ctx->last_length = e.z - fsm.ctx->config.probe_length_compensation_offset;
+    }
+  };
+  struct RecordLength {
+    template <class Fsm, class Source, class Target>
+    void operator()(const ProbeResult& e, Fsm& fsm, Source&, Target&) const {
+      fsm.latched_z = e.z;
+      fsm.ctx->record_length(fsm.tool, e.z - fsm.ctx->config.probe_length_compensation_offset);
+    }
+  };
+  struct SayNoTouch {
+    template <class Fsm, class Source, class Target>
+    void operator()(const ProbeResult& e, Fsm& fsm, Source&, Target&) const {
+      const std::string tool = "tool " + std::to_string(fsm.tool);
+      fsm.ctx->probe_problem = e.tripped_before
+                                   ? "the touch-off sensor was already tripped"
+                                   : tool + " did not touch the sensor before probe_limit";
+      fsm.ctx->tell(MessageKind::error,
+                    e.tripped_before
+                        ? "probe: " + tool + ": " + fsm.ctx->probe_problem + "; nothing written"
+                        : "probe: " + fsm.ctx->probe_problem + "; nothing written");
+    }
+  };
+  struct SayOutsideWindow {
+    template <class Fsm, class Source, class Target>
+    void operator()(const ProbeResult& e, Fsm& fsm, Source&, Target&) const {
+      Context& c = *fsm.ctx;
+      const double stored = c.tools.lengths.at(fsm.tool);
+      const double expected = stored + c.config.probe_length_compensation_offset;
+      const bool early = e.z > expected;
+      c.probe_problem =
+          "tool " + std::to_string(fsm.tool) + " touched the sensor at Z " +
+          format_length(c.config, e.z) + ", " + format_length(c.config, std::abs(e.z - expected)) +
+          (early ? " too early" : " too late") + ": its stored length " +
+          format_length(c.config, stored) + " puts the touch at Z " +
+          format_length(c.config, expected) + " (probe_window " +
+          format_length(c.config, c.config.window()) + "); " +
+          (early ? "a shorted sensor, a wrong or pulled-out tool?" : "a broken or wrong tool?");
+      c.tell(MessageKind::error, "probe: " + c.probe_problem + " Nothing written");
+    }
+  };
+  struct SayCancelled {
+    template <class Fsm, class Source, class Target>
+    void operator()(const OperatorCancel&, Fsm& fsm, Source&, Target&) const {
+      fsm.ctx->probe_problem = "the probe was cancelled by the operator";
+      fsm.ctx->tell(MessageKind::info, "probe of tool " + std::to_string(fsm.tool) +
+                                           " cancelled by the operator; nothing written");
+    }
+  };
+  struct CancelStopsProbe {
+    template <class Event, class Fsm, class Source, class Target>
+    bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      return !fsm.ctx->in_program;
+    }
+  };
+
+  using initial_state = Seeking;
+  // clang-format off
+  using transition_table = boost::mpl::vector<
+  //    Start                  Event           Next                   Action              Guard
+  // +----------------------+---------------+----------------------+-------------------+-----------------------------+
+  Row < Seeking              , ProbeResult   , BackingOff           , RememberFirstTouch, And<Touched, Not<OutsideWindow>> >,
+  Row < Seeking              , ProbeResult   , RetractingUnmeasured , SayOutsideWindow  , And<Touched, OutsideWindow>  >,
+  Row < Seeking              , ProbeResult   , RetractingUnmeasured , SayNoTouch        , Not<Touched>                >,
+  Row < Seeking              , OperatorCancel, RetractingUnmeasured , SayCancelled      , CancelStopsProbe            >,
+  Row < BackingOff           , InPosition    , Latching             , none              , none                        >,
+  Row < Latching             , ProbeResult   , WritingLength        , RecordLength      , And<Touched, WritesLength>  >,
+  Row < Latching             , ProbeResult   , Retracting           , RememberLatch     , And<Touched, Not<WritesLength>> >,
+  Row < Latching             , ProbeResult   , RetractingUnmeasured , SayNoTouch        , Not<Touched>                >,
+  Row < Latching             , OperatorCancel, RetractingUnmeasured , SayCancelled      , CancelStopsProbe            >,
+  Row < WritingLength        , CommandDone   , Retracting           , none              , none                        >,
+  Row < Retracting           , InPosition    , Finished             , none              , none                        >,
+  Row < RetractingUnmeasured , InPosition    , NotMeasured          , none              , none                        >
+  >;
+  // clang-format on
+};
+using ProbingLeg = Machine_of<ProbingLeg_>;
+
+// ================================================================ measure after M6
+/// `probe_after_change`: takes the tool just put in the spindle to the sensor
+/// and measures it, or checks it against its stored length; ends at safe Z.
+struct MeasureLeg_ : Flow<MeasureLeg_> {
+  using Probe = ProbingLeg;
+
+  struct LengthDiffers {
+    template <class Event, class Fsm, class Source, class Target>
+    bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      const Context& c = *fsm.ctx;
+      return std::abs(*c.last_length - c.tools.lengths.at(fsm.tool)) > c.config.check_tolerance();
+    }
+  };
+  struct SayMeasured {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      const Context& c = *fsm.ctx;
+      fsm.ctx->tell(MessageKind::info, "tool " + std::to_string(fsm.tool) + " measures " +
+                                           format_length(c.config, *c.last_length) + ", stored " +
+                                           format_length(c.config, c.tools.lengths.at(fsm.tool)));
+    }
+  };
+  struct SayBrokenOrPulledOut {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      Context& c = *fsm.ctx;
+      c.fault_reason =
+          "tool " + std::to_string(fsm.tool) + " measures " +
+          format_length(c.config, *c.last_length) + " but its stored length is " +
+          format_length(c.config, c.tools.lengths.at(fsm.tool)) + " (probe_check_tolerance " +
+          format_length(c.config, c.config.check_tolerance()) + "): tool broken or pulled out?";
+    }
+  };
+  struct SayNotMeasured {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      fsm.ctx->fault_reason =
+          "tool " + std::to_string(fsm.tool) +
+          " could not be measured after the change (probe_after_change): " + fsm.ctx->probe_problem;
+    }
+  };
+
+  using initial_state = ToSensor;
+  // clang-format off
+  using transition_table = boost::mpl::vector<
+  //    Start                                 Event       Next        Action                Guard
+  // +-------------------------------------+-----------+-----------+---------------------+--------------------+
+  Row < ToSensor                            , InPosition, Probe     , none                , none               >,
+  Row < Probe::exit_pt<Finished>            , LegDone   , UpToSafeZ , SayMeasured         , Not<LengthDiffers> >,
+  Row < Probe::exit_pt<Finished>            , LegDone   , Failed    , SayBrokenOrPulledOut, LengthDiffers      >,
+  Row < Probe::exit_pt<Probe::NotMeasured>  , LegDone   , Failed    , SayNotMeasured      , none               >,
+  Row < UpToSafeZ                           , InPosition, Finished  , none                , none               >
+  >;
+  // clang-format on
+};
+using MeasureLeg = Machine_of<MeasureLeg_>;
+
+}  // namespace fatc::machine

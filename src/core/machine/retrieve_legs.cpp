@@ -1,8 +1,0 @@
-// The event dispatch of some submachines, generated here and nowhere else
-// (favor_compile_time, see Machine_of in common.hpp): one compiler run per
-// group keeps the memory and time of a build within a small machine.
-
-#include "flows.hpp"
-
-BOOST_MSM_BACK_GENERATE_PROCESS_EVENT(fatc::machine::RetrieveLeg)
-BOOST_MSM_BACK_GENERATE_PROCESS_EVENT(fatc::machine::FlushLeg)
