@@ -13,7 +13,7 @@
 #include <thread>
 #include <vector>
 
-#include "core/changer.hpp"
+#include "core/machine/changer.hpp"
 #include "io/cli.hpp"
 #include "io/files.hpp"
 #include "io/ini.hpp"

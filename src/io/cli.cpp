@@ -13,12 +13,12 @@
 #include <set>
 #include <sstream>
 
-#include "core/changer.hpp"
-#include "core/geometry.hpp"
-#include "core/preflight.hpp"
-#include "core/quote.hpp"
-#include "core/sequence_check.hpp"
-#include "core/simulator.hpp"
+#include "core/machine/changer.hpp"
+#include "core/rack/geometry.hpp"
+#include "core/program/preflight.hpp"
+#include "core/config/quote.hpp"
+#include "core/plan/sequence_check.hpp"
+#include "core/plan/simulator.hpp"
 #include "files.hpp"
 #include "ini.hpp"
 #include "lint.hpp"

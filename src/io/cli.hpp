@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "core/point.hpp"
-#include "core/teach.hpp"
+#include "core/rack/point.hpp"
+#include "core/config/teach.hpp"
 
 namespace fatc::io {
 

@@ -10,7 +10,7 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "core/quote.hpp"
+#include "core/config/quote.hpp"
 
 namespace fatc::io {
 namespace {

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "core/config.hpp"
-#include "core/tool_state.hpp"
+#include "core/config/config.hpp"
+#include "core/rack/tool_state.hpp"
 
 namespace fatc::io {
 

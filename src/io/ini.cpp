@@ -14,7 +14,7 @@
 #include <inifile.hh>
 #include <limits>
 
-#include "core/quote.hpp"
+#include "core/config/quote.hpp"
 #include "files.hpp"
 
 namespace fatc::io {

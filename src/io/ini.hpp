@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "core/config.hpp"
-#include "core/geometry.hpp"
-#include "core/preflight.hpp"
+#include "core/config/config.hpp"
+#include "core/rack/geometry.hpp"
+#include "core/program/preflight.hpp"
 
 namespace fatc::io {
 

@@ -85,6 +85,7 @@ class ScratchFolder {
   ScratchFolder& operator=(const ScratchFolder&) = delete;
 
   bool made() const { return !path_.empty(); }
+  const std::string& path() const { return path_; }
   /// Writes `name` in the folder; its path, or nullopt and `error`.
   std::optional<std::string> write(const std::string& name, const std::string& text,
                                    std::string& error) const {
@@ -140,8 +141,9 @@ struct Ending {
 /// (a file: rs274 buffers it, where on a pipe it writes every few
 /// characters, four times slower), and feeds its standard error to `output`.
 std::optional<Ending> run_child(const std::vector<std::string>& argv, const std::string& folder,
-                                const std::string& calls_path, const InterpreterInput& input,
-                                program::InterpreterOutput& output, std::string& error) {
+                                const std::string& home, const std::string& calls_path,
+                                const InterpreterInput& input, program::InterpreterOutput& output,
+                                std::string& error) {
   int err_pipe[2];
   if (::pipe2(err_pipe, O_CLOEXEC) != 0) {
     error = std::string("cannot start rs274: ") + std::strerror(errno);
@@ -151,6 +153,16 @@ std::optional<Ending> run_child(const std::vector<std::string>& argv, const std:
   std::vector<char*> args;
   for (const std::string& arg : argv) args.push_back(const_cast<char*>(arg.c_str()));
   args.push_back(nullptr);
+  // LinuxCNC's tool data lives in $HOME/.tool.mmap, which rs274 makes anew:
+  // in the machine's own HOME it would pull the table from under a running
+  // LinuxCNC (and two rs274 at once end on SIGBUS). Its HOME is the scratch folder.
+  std::vector<std::string> environment{"HOME=" + home};
+  for (char** variable = environ; *variable != nullptr; ++variable) {
+    if (std::strncmp(*variable, "HOME=", 5) != 0) environment.emplace_back(*variable);
+  }
+  std::vector<char*> env;
+  for (std::string& variable : environment) env.push_back(variable.data());
+  env.push_back(nullptr);
   const pid_t child = ::fork();
   if (child == 0) {
     // A group of its own: a remap's own children go with it when it is stopped.
@@ -162,7 +174,7 @@ std::optional<Ending> run_child(const std::vector<std::string>& argv, const std:
     }
     ::dup2(err_pipe[1], STDERR_FILENO);
     if (::chdir(folder.c_str()) != 0) ::_exit(126);
-    ::execv(args[0], args.data());
+    ::execve(args[0], args.data(), env.data());
     ::_exit(127);
   }
   ::close(err_pipe[1]);
@@ -348,7 +360,8 @@ std::optional<program::InterpreterRun> run_interpreter(const InterpreterInput& i
 
   program::InterpreterOutput output(name, *program_copy, table.tool_of_row, numbered.input_lines,
                                     numbered.lines);
-  const auto ending = run_child(argv, machine_folder, calls_path, input, output, error);
+  const auto ending =
+      run_child(argv, machine_folder, scratch.path(), calls_path, input, output, error);
   if (!ending) return std::nullopt;
   if (WIFEXITED(ending->status) && WEXITSTATUS(ending->status) >= 126) {
     error = shown_path(input.rs274) + ": cannot run it" +

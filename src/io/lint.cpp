@@ -12,8 +12,8 @@
 #include <memory>
 #include <ostream>
 
-#include "core/preflight.hpp"
-#include "core/tool_table.hpp"
+#include "core/program/preflight.hpp"
+#include "core/program/tool_table.hpp"
 #include "files.hpp"
 #include "ini.hpp"
 #include "interpreter.hpp"

@@ -6,7 +6,7 @@
 #include <sstream>
 #include <vector>
 
-#include "core/geometry.hpp"
+#include "core/rack/geometry.hpp"
 
 namespace fatc::io {
 

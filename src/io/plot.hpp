@@ -2,9 +2,9 @@
 
 #include <string>
 
-#include "core/config.hpp"
-#include "core/simulator.hpp"
-#include "core/tool_state.hpp"
+#include "core/config/config.hpp"
+#include "core/plan/simulator.hpp"
+#include "core/rack/tool_state.hpp"
 
 namespace fatc::io {
 

@@ -4,9 +4,9 @@
 #include <optional>
 #include <string>
 
-#include "core/ports.hpp"
-#include "core/status.hpp"
-#include "core/tool_state.hpp"
+#include "core/machine/ports.hpp"
+#include "core/machine/status.hpp"
+#include "core/rack/tool_state.hpp"
 
 namespace fatc::io {
 

@@ -4,10 +4,10 @@
 #include <optional>
 #include <string>
 
-#include "core/changer.hpp"
-#include "core/executor_link.hpp"
-#include "core/ports.hpp"
-#include "core/teach.hpp"
+#include "core/machine/changer.hpp"
+#include "core/protocol/executor_link.hpp"
+#include "core/machine/ports.hpp"
+#include "core/config/teach.hpp"
 #include "io/status_file.hpp"
 #include "program_tools_job.hpp"
 

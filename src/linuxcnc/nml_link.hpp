@@ -5,7 +5,7 @@
 #include <optional>
 #include <string>
 
-#include "core/ports.hpp"
+#include "core/machine/ports.hpp"
 
 class RCS_CMD_MSG;
 

@@ -7,7 +7,7 @@
 #include <thread>
 #include <vector>
 
-#include "core/config.hpp"
+#include "core/config/config.hpp"
 
 namespace fatc::linuxcnc {
 

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <string>
 
-#include "core/tool_state.hpp"
+#include "core/rack/tool_state.hpp"
 #include "invariants.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """README.md's reference tables against the sources they describe.
 
-Every config.json key that src/core/config.cpp accepts must have a row in
+Every config.json key that src/core/config/config.cpp accepts must have a row in
 the table of "## config.json reference" (a key with keys below it, such as
 `loading`, counts as there when one of its own keys is), and every row there
 must name a key the reader accepts. Every pin src/linuxcnc/hal_pins.cpp
@@ -173,7 +173,7 @@ class CppFile:
 
 
 def accepted_config_keys(root):
-    cpp = CppFile(root / "src/core/config.cpp")
+    cpp = CppFile(root / "src/core/config/config.cpp")
     keys = set()
     calls = list(re.finditer(r"reject_unknown_keys\(", cpp.text))
     for call in calls:
@@ -195,7 +195,7 @@ def accepted_config_keys(root):
             for key in listed:
                 keys.add(parent + "." + key if parent else key)
     if not keys:
-        problem("src/core/config.cpp: no reject_unknown_keys lists found")
+        problem("src/core/config/config.cpp: no reject_unknown_keys lists found")
     return keys
 
 
@@ -356,12 +356,12 @@ def main():
     for key in sorted(keys):
         children = [k for k in rows if k.startswith(key + ".")]
         if key not in rows and not children:
-            problem("README.md: config key %s (accepted by src/core/config.cpp) is missing from "
+            problem("README.md: config key %s (accepted by src/core/config/config.cpp) is missing from "
                     'the table of "## config.json reference"' % key)
     for row in sorted(rows):
         if row not in keys and not any(k.startswith(row + ".") for k in keys):
             problem("README.md: config key %s in the table of \"## config.json reference\" is "
-                    "not accepted by src/core/config.cpp" % row)
+                    "not accepted by src/core/config/config.cpp" % row)
 
     # pins
     pin_tables = tables(section(readme, "HAL pins"))

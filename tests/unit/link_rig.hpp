@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "core/changer.hpp"
-#include "core/executor_link.hpp"
-#include "core/simulator.hpp"
+#include "core/machine/changer.hpp"
+#include "core/protocol/executor_link.hpp"
+#include "core/plan/simulator.hpp"
 
 namespace fatc::test {
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "core/simulator.hpp"
+#include "core/plan/simulator.hpp"
 
 namespace fatc::test {
 

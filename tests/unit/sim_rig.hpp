@@ -4,8 +4,8 @@
 
 #include <memory>
 
-#include "core/changer.hpp"
-#include "core/simulator.hpp"
+#include "core/machine/changer.hpp"
+#include "core/plan/simulator.hpp"
 #include "sim_lines.hpp"
 
 namespace fatc::test {

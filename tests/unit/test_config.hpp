@@ -3,8 +3,8 @@
 #include <set>
 #include <string>
 
-#include "core/config.hpp"
-#include "core/tool_state.hpp"
+#include "core/config/config.hpp"
+#include "core/rack/tool_state.hpp"
 
 namespace fatc::test {
 

@@ -17,8 +17,8 @@
 #include <cstdio>
 #include <type_traits>
 
-#include "../events.hpp"
-#include "../geometry.hpp"
+#include "events.hpp"
+#include "../rack/geometry.hpp"
 #include "context.hpp"
 
 namespace fatc::machine {

@@ -5,14 +5,14 @@
 #include <string>
 #include <vector>
 
-#include "../config.hpp"
-#include "../events.hpp"
-#include "../geometry.hpp"
+#include "../config/config.hpp"
+#include "events.hpp"
+#include "../rack/geometry.hpp"
 #include "../plan/routes.hpp"
-#include "../ports.hpp"
-#include "../sensors.hpp"
-#include "../step.hpp"
-#include "../tool_state.hpp"
+#include "ports.hpp"
+#include "../rack/sensors.hpp"
+#include "../protocol/step.hpp"
+#include "../rack/tool_state.hpp"
 
 namespace fatc {
 

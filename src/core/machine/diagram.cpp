@@ -1,7 +1,7 @@
 // The state diagram, read from the transition tables (its own compiler run:
 // walking every table is as heavy as dispatching them).
 
-#include "../changer.hpp"
+#include "changer.hpp"
 #include "dot.hpp"
 #include "machine.hpp"
 

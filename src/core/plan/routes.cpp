@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "../geometry.hpp"
+#include "../rack/geometry.hpp"
 
 namespace fatc::plan {
 

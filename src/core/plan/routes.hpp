@@ -8,8 +8,8 @@
 
 #include <vector>
 
-#include "../config.hpp"
-#include "../step.hpp"
+#include "../config/config.hpp"
+#include "../protocol/step.hpp"
 
 namespace fatc::plan {
 

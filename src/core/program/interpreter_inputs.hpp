@@ -4,7 +4,7 @@
 #include <string_view>
 #include <vector>
 
-#include "core/tool_table.hpp"
+#include "tool_table.hpp"
 
 namespace fatc::program {
 

@@ -1,0 +1,140 @@
+#pragma once
+
+#include <map>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "../rack/point.hpp"
+
+namespace fatc {
+
+enum class Units { mm, inch };
+
+/// What M6 does with the tool it just put in the spindle.
+enum class ProbeAfterChange {
+  off,      ///< nothing
+  measure,  ///< measure it and write its length
+  check,    ///< measure it and fault if it differs from the stored length
+};
+
+/// Which way the sequences go between the rack and `safe` (`path`).
+enum class Path {
+  prototype,  ///< the prototype's literal sequences: through safe XY before and after each leg
+  direct,     ///< over the rack at safe Z, no trip to safe XY between a return and a fetch
+};
+
+/// How the spindle drops whatever it may hold before it receives a tool.
+struct FlushConfig {
+  int pulses = 1;              ///< chuck openings; 0 disables the flush
+  double pulse_seconds = 0.2;  ///< how long the chuck stays open each pulse
+  double pause_seconds = 0.2;  ///< how long it stays closed between pulses
+};
+
+/// `rack_cover`: a dust cover over the rack, opened before the first move into
+/// the rack and closed once the changer is done with it.
+struct RackCoverConfig {
+  bool opened_sensor = false;    ///< `rack-cover-opened` is wired
+  bool closed_sensor = false;    ///< `rack-cover-closed` is wired
+  double seconds = 1.0;          ///< how long it takes to open, where no sensor says
+  double timeout_seconds = 5.0;  ///< how long a wired sensor may take to confirm
+};
+
+/// How the spindle enters and leaves a pocket (docs/sequences.md).
+enum class Approach {
+  side,  ///< in from the side to return, out the side after fetching (the prototype's)
+  top,   ///< straight down into the pocket and straight up out of it, both ways
+};
+
+/// A place in the rack. Which tool sits in it is tool state (ToolState), not config.
+struct Pocket {
+  Point at;            ///< where the tool holder sits
+  int first_tool = 0;  ///< the tool it holds at first start (`tool`), 0: starts empty
+  Approach approach = Approach::side;
+  PlanarOffset
+      side_offset;  ///< from the pocket to its side (`side_offset`, else pocket_side_offset)
+};
+
+/// Which optional sensors are wired (config.json `sensors`); each is read
+/// from its HAL input only when it is, and checked where the sequence needs it.
+struct SensorConfig {
+  bool tool_present = false;       ///< `tool-present`: a tool is clamped in the spindle
+  bool drawbar_open = false;       ///< `drawbar-open`: the drawbar is released
+  bool drawbar_closed = false;     ///< `drawbar-closed`: the drawbar is clamped
+  bool air_pressure = false;       ///< `air-pressure-ok`: the drawbar has air
+  bool zero_speed = false;         ///< `zero-speed`: the spindle's zero-speed feedback
+  std::set<int> pocket_occupancy;  ///< pockets with a `pocket-occupied-N` sensor
+
+  bool any() const {
+    return tool_present || drawbar_open || drawbar_closed || air_pressure || zero_speed ||
+           !pocket_occupancy.empty();
+  }
+  bool drawbar() const { return drawbar_open || drawbar_closed; }
+  bool pocket(int number) const { return pocket_occupancy.count(number) != 0; }
+};
+
+/// The validated contents of config.json. Lengths are in `units`, feeds in
+/// `units` per minute, positions are machine coordinates (G53).
+struct Config {
+  Units units = Units::mm;
+
+  // Keys of the Python prototype, same meaning.
+  double probe_length_compensation_offset = 0.0;
+  double probe_retract_offset_z = 0.0;
+  PlanarOffset pocket_side_offset;
+  double pocket_above_chuck_offset_z = 0.0;
+  double pocket_above_clearance_offset_z = 0.0;
+  double chuck_seconds = 0.5;
+  Point loading;
+  Point probe_limit;
+  Point safe;
+  std::map<int, Pocket> pockets;  ///< pocket number -> pocket, pocket_default merged
+
+  // Keys new in the C++ version, all optional.
+  double pocket_feed = 500.0;      ///< slow moves into and out of a pocket
+  double probe_seek_feed = 300.0;  ///< first, fast probing stage
+  double probe_latch_feed = 25.0;  ///< second, slow probing stage
+  double probe_backoff = 2.0;      ///< lift between the two stages
+  FlushConfig flush;
+  double spindle_stop_timeout_seconds = 10.0;
+  std::optional<double> rack_keepout_margin;  ///< unset: half the side offset
+  ProbeAfterChange probe_after_change = ProbeAfterChange::off;
+  std::optional<double> probe_check_tolerance;  ///< unset: 0.1 mm or 0.004 inch
+  bool manual_tools = true;             ///< M6 to a tool without pocket hands it over at `loading`
+  SensorConfig sensors;                 ///< all off unless config.json says they are wired
+  double sensor_timeout_seconds = 1.0;  ///< how long a wired sensor may take to confirm a change
+  std::optional<double> probe_window;   ///< unset: 10 mm or 0.4 inch
+  std::optional<RackCoverConfig> rack_cover;  ///< unset: no cover
+  bool air_blast = false;  ///< `air-blast` cleans the taper while the chuck is open at a pocket
+  std::optional<double> verify_feed;  ///< unset: pocket_feed
+  Path path = Path::prototype;
+
+  bool has_pocket(int number) const { return pockets.count(number) != 0; }
+  /// The pocket that holds `tool` at first start, if any.
+  std::optional<int> first_pocket_of(int tool) const;
+  double keepout_margin() const;
+  double check_tolerance() const;
+  /// How far from its stored length a tool may first touch the sensor in a
+  /// probe after M6: a touch outside stops the probe.
+  double window() const;
+  /// The feed of every move of a dry run through a pocket (verify).
+  double dry_run_feed() const { return verify_feed.value_or(pocket_feed); }
+};
+
+/// Either a Config or every problem found, one line each, each naming the
+/// JSON path it is about.
+struct ConfigResult {
+  std::optional<Config> config;
+  std::vector<std::string> errors;
+};
+
+/// Parses and validates the text of a config.json.
+ConfigResult parse_config(const std::string& json_text);
+
+const char* units_name(Units units);
+const char* approach_name(Approach approach);
+/// A length for a message, with the config's unit: "25.0012 mm".
+std::string format_length(const Config& config, double length);
+
+}  // namespace fatc

@@ -1,0 +1,185 @@
+#include "changer.hpp"
+
+#include "machine.hpp"
+
+namespace fatc {
+namespace machine {
+
+class Engine {
+ public:
+  Engine(const Config& config, Ports& ports, ToolState tools)
+      : context(config, ports, std::move(tools)), fsm(&context) {
+    context.refuse_step = [this](const std::string& why) { fsm.process_event(UnsafeStep{why}); };
+    context.raise_check_failed = [this](const CheckFailed& e) { fsm.process_event(e); };
+    context.recheck_sensors = [this] { fsm.process_event(SensorReport{}); };
+    fsm.start();
+  }
+  Context context;
+  Machine fsm;
+};
+
+}  // namespace machine
+
+Changer::Changer(const Config& config, Ports& ports, ToolState tools)
+    : engine_(std::make_unique<machine::Engine>(config, ports, std::move(tools))) {}
+
+Changer::~Changer() = default;
+
+void Changer::ready() {
+  engine_->context.machine_ready = true;
+  engine_->fsm.process_event(Ready{});
+}
+
+void Changer::not_ready() {
+  engine_->context.machine_ready = false;
+  engine_->fsm.process_event(NotReady{});
+}
+
+void Changer::soft_limits(std::optional<SoftLimits> limits) {
+  engine_->context.limits = std::move(limits);
+}
+
+void Changer::plan_only() { engine_->context.check_moves = false; }
+
+void Changer::task_availability(std::optional<std::string> why_busy) {
+  engine_->context.task_busy = std::move(why_busy);
+}
+
+void Changer::spindle_stopped(bool stopped) {
+  engine_->context.spindle_stopped = stopped;
+  engine_->fsm.process_event(SensorReport{});
+}
+
+void Changer::sensors(const SensorReadings& readings) {
+  engine_->context.sensors = readings;
+  engine_->fsm.process_event(SensorReport{});
+}
+
+void Changer::tool_change(int tool) { engine_->fsm.process_event(ToolChange{tool}); }
+void Changer::load(int tool, int pocket) { engine_->fsm.process_event(LoadRequest{tool, pocket}); }
+void Changer::unload(int tool) { engine_->fsm.process_event(UnloadRequest{tool}); }
+void Changer::measure_all(std::vector<int> tools) {
+  engine_->fsm.process_event(MeasureRequest{std::move(tools)});
+}
+void Changer::verify(int pocket) { engine_->fsm.process_event(VerifyRequest{pocket}); }
+void Changer::chuck(ChuckRequest::Action action, std::optional<Point> at) {
+  engine_->fsm.process_event(ChuckRequest{action, at});
+}
+void Changer::in_position() {
+  // Within a phase the next waypoint follows; the tables see a phase's end.
+  if (engine_->context.next_waypoint()) return;
+  engine_->fsm.process_event(InPosition{});
+}
+void Changer::command_done() { engine_->fsm.process_event(CommandDone{}); }
+
+void Changer::probe_result(bool touched, double machine_z, bool tripped_before) {
+  engine_->fsm.process_event(ProbeResult{touched, machine_z, tripped_before});
+}
+
+void Changer::timer_elapsed() { engine_->fsm.process_event(TimerElapsed{}); }
+void Changer::operator_continue() { engine_->fsm.process_event(OperatorContinue{}); }
+void Changer::operator_cancel() { engine_->fsm.process_event(OperatorCancel{}); }
+void Changer::abort(const std::string& reason) { engine_->fsm.process_event(Abort{reason}); }
+void Changer::clear_fault(int spindle_tool, std::optional<bool> pocket_holds_tool) {
+  engine_->fsm.process_event(ClearFault{spindle_tool, pocket_holds_tool});
+}
+
+namespace {
+
+template <class Flag>
+bool active(const machine::Machine& fsm) {
+  return fsm.is_flag_active<Flag>();
+}
+
+Phase phase_of(const machine::Machine& fsm) {
+  namespace flag = machine::flag;
+  if (active<flag::Faulted>(fsm)) return Phase::fault;
+  if (active<flag::Changing>(fsm)) return Phase::changing;
+  if (active<flag::Loading>(fsm)) return Phase::loading;
+  if (active<flag::Unloading>(fsm)) return Phase::unloading;
+  if (active<flag::Measuring>(fsm)) return Phase::measuring;
+  if (active<flag::Verifying>(fsm)) return Phase::verifying;
+  if (active<flag::Chucking>(fsm)) return Phase::chuck;
+  if (active<flag::Idle>(fsm)) return Phase::idle;
+  return Phase::not_ready;
+}
+
+Awaiting awaiting_of(const machine::Machine& fsm) {
+  namespace flag = machine::flag;
+  if (active<flag::AwaitsOperator>(fsm)) return Awaiting::operator_choice;
+  if (active<flag::AwaitsProbe>(fsm)) return Awaiting::probe;
+  if (active<flag::AwaitsMotion>(fsm)) return Awaiting::motion;
+  if (active<flag::AwaitsTimer>(fsm)) return Awaiting::timer;
+  if (active<flag::AwaitsSpindle>(fsm)) return Awaiting::spindle;
+  if (active<flag::AwaitsSensor>(fsm)) return Awaiting::sensor;
+  return Awaiting::nothing;
+}
+
+std::string activity_of(const Status& status, const Context& c) {
+  switch (status.phase) {
+    case Phase::not_ready:
+      return "machine off, not homed or in estop";
+    case Phase::idle:
+      if (status.awaiting == Awaiting::sensor) return c.dwell;
+      return why_chuck_held_open(c).value_or("idle");
+    case Phase::fault:
+      return "fault: " + c.fault_reason;
+    default:
+      break;
+  }
+  switch (status.awaiting) {
+    case Awaiting::motion:
+    case Awaiting::probe:
+      if (c.step.kind == StepKind::set_spindle_tool) {
+        return "telling LinuxCNC the spindle holds tool " + std::to_string(c.step.tool);
+      }
+      if (c.step.kind == StepKind::set_tool_length) {
+        return "writing the length of tool " + std::to_string(c.step.tool) + " to the tool table";
+      }
+      return std::string(step_kind_name(c.step.kind)) + " to " + c.step.label;
+    case Awaiting::timer:
+    case Awaiting::spindle:
+    case Awaiting::sensor:
+      return c.dwell;
+    case Awaiting::operator_choice:
+      return c.prompt;
+    case Awaiting::nothing:
+      break;
+  }
+  return "";
+}
+
+}  // namespace
+
+Status Changer::status() const {
+  const machine::Machine& fsm = engine_->fsm;
+  const Context& c = engine_->context;
+  Status status;
+  status.phase = phase_of(fsm);
+  status.awaiting = awaiting_of(fsm);
+  // Inside M6 an operator's answer holds the program, and only Stop ends a probe.
+  const bool in_program = c.in_program;
+  status.holds_program = active<machine::flag::HoldsProgram>(fsm) ||
+                         (active<machine::flag::AwaitsOperator>(fsm) && in_program);
+  status.probe_cancellable = active<machine::flag::AwaitsProbe>(fsm) && !in_program;
+  status.accepting = status.phase == Phase::idle && status.awaiting == Awaiting::nothing &&
+                     !c.task_busy && !c.chuck_open;
+  status.chuck_held = c.chuck_open && (status.phase == Phase::idle || status.phase == Phase::chuck);
+  status.last_length = c.last_length;
+  status.step_number = status.busy() ? c.sequence_step : 0;
+  status.pocket = status.busy() && c.tools.in_progress ? c.tools.in_progress->pocket : 0;
+  if (status.phase == Phase::measuring) {
+    status.batch_done = static_cast<int>(c.batch.done);
+    status.batch_total = static_cast<int>(c.batch.tools.size());
+  }
+  status.activity = activity_of(status, c);
+  return status;
+}
+
+const ToolState& Changer::tools() const { return engine_->context.tools; }
+const std::optional<InProgress>& Changer::cut_off() const {
+  return engine_->context.tools.in_progress;
+}
+
+
+}  // namespace fatc

@@ -1,0 +1,78 @@
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "../config/config.hpp"
+#include "events.hpp"
+#include "../rack/geometry.hpp"
+#include "ports.hpp"
+#include "../rack/sensors.hpp"
+#include "status.hpp"
+#include "../rack/tool_state.hpp"
+
+namespace fatc {
+
+namespace machine {
+class Engine;
+}
+
+/// The tool changer: a Boost.MSM state machine behind plain calls, one per
+/// event; every decision is a row of its tables. It never touches the world
+/// except through Ports.
+class Changer {
+ public:
+  Changer(const Config& config, Ports& ports, ToolState tools);
+  ~Changer();
+  Changer(const Changer&) = delete;
+  Changer& operator=(const Changer&) = delete;
+
+  void ready();
+  void not_ready();
+  /// The running machine's soft limits: every move is checked against them
+  /// and the rack keep-out before it is published.
+  void soft_limits(std::optional<SoftLimits> limits);
+  /// Planning only: publish every move, safe or not, so that a plan shows all.
+  void plan_only();
+  /// Whether task could run the executor over MDI now; `why_busy` says why not.
+  void task_availability(std::optional<std::string> why_busy);
+  /// The spindle started (false) or stopped (true) turning.
+  void spindle_stopped(bool stopped);
+  /// What the optional sensors read now; only the wired ones are looked at.
+  void sensors(const SensorReadings& readings);
+  void tool_change(int tool);
+  /// Load `tool` by hand into `pocket` (0: its own, else the nearest free one).
+  void load(int tool, int pocket = 0);
+  void unload(int tool);
+  /// Measure all: fetch, measure and put back each of `tools` in the rack, in order.
+  void measure_all(std::vector<int> tools);
+  /// A dry run through pocket `pocket`'s approach, held at each waypoint.
+  void verify(int pocket);
+  /// A chuck atom from G-code; `at`: where the machine stands, if known.
+  void chuck(ChuckRequest::Action action, std::optional<Point> at);
+  void in_position();
+  void command_done();
+  void probe_result(bool touched, double machine_z, bool tripped_before = false);
+  void timer_elapsed();
+  void operator_continue();
+  void operator_cancel();
+  void abort(const std::string& reason);
+  /// The operator's confirmation after a fault: what the spindle holds and,
+  /// if a sequence was cut off at a pocket, whether that pocket holds its tool.
+  void clear_fault(int spindle_tool, std::optional<bool> pocket_holds_tool = std::nullopt);
+  /// What was under way when the changer last stopped or faulted, if anything.
+  const std::optional<InProgress>& cut_off() const;
+
+  /// Computed from the machine's flags on each call.
+  Status status() const;
+  const ToolState& tools() const;
+
+  /// The state machine as Graphviz, generated from the transition tables.
+  static std::string dot();
+
+ private:
+  std::unique_ptr<machine::Engine> engine_;
+};
+
+}  // namespace fatc

@@ -1,0 +1,316 @@
+#include "simulator.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <regex>
+
+#include "../rack/geometry.hpp"
+
+namespace fatc {
+
+std::string describe(const Record& record) {
+  char buffer[96];
+  switch (record.kind) {
+    case Record::Kind::step:
+      return describe(record.step);
+    case Record::Kind::chuck:
+      return record.chuck_open ? "chuck      open" : "chuck      close";
+    case Record::Kind::cover:
+      return record.on ? "rack cover open" : "rack cover close";
+    case Record::Kind::blast:
+      return record.on ? "air blast  on" : "air blast  off";
+    case Record::Kind::dwell:
+      std::snprintf(buffer, sizeof buffer, "dwell      %.2f s", record.seconds);
+      return buffer;
+    case Record::Kind::message:
+      return "message    " + record.text;
+    case Record::Kind::save:
+      return "save       tool state";
+  }
+  return "";
+}
+
+void Simulator::publish(const Step& step) {
+  Record record;
+  record.step = step;
+  records.push_back(record);
+  // done, fail and wait_operator end an executor run: nothing to finish. A
+  // refused M6's fail goes to that M6's executor, not to the one running.
+  if (is_motion(step.kind) || step.kind == StepKind::set_tool_length ||
+      step.kind == StepKind::set_spindle_tool) {
+    pending = step;
+  }
+}
+
+void Simulator::record_output(Record::Kind kind, bool on) {
+  Record record;
+  record.kind = kind;
+  record.chuck_open = kind == Record::Kind::chuck && on;
+  record.on = on;
+  records.push_back(record);
+}
+
+void Simulator::set_chuck_open(bool open) {
+  record_output(Record::Kind::chuck, open);
+  chuck_open = open;
+  if (!rack.modelled || rack.drawbar_jammed || rack.drawbar_open == open) return;
+  rack.drawbar_open = open;
+  // The sensors follow the valve at once: the changer hears of it right after this event.
+  struct ReportAfter {
+    Simulator& sim;
+    ~ReportAfter() {
+      if (sim.changer_) sim.report_sensors(*sim.changer_);
+    }
+  } report{*this};
+  const int pocket = rack.pocket_at(*config_);
+  if (open && rack.spindle != 0 && !rack.tool_sticks) {
+    // Into the pocket it is at, or out of the machine (it drops).
+    if (pocket != 0 && rack.pockets[pocket] == 0) rack.pockets[pocket] = rack.spindle;
+    rack.spindle = 0;
+  } else if (!open && rack.spindle == 0 && pocket != 0 && rack.pockets[pocket] != 0) {
+    if (rack.grips_failing > 0) {
+      --rack.grips_failing;
+    } else {
+      rack.spindle = rack.pockets[pocket];
+      rack.pockets[pocket] = 0;
+    }
+  }
+}
+
+void Simulator::set_rack_cover_open(bool open) {
+  record_output(Record::Kind::cover, open);
+  cover_open = open;
+  if (!rack.modelled || rack.cover_jammed || rack.cover_open == open) return;
+  rack.cover_open = open;
+  if (changer_) report_sensors(*changer_);
+}
+
+void Simulator::set_air_blast(bool on) {
+  record_output(Record::Kind::blast, on);
+  blowing = on;
+}
+
+int Rack::pocket_at(const Config& config) const {
+  if (known_axes != axis_xyz) return 0;
+  for (const auto& entry : config.pockets) {
+    const Point p = pocket_waypoints(config, entry.first).pocket;
+    if (std::abs(p.x - at.x) < 1e-6 && std::abs(p.y - at.y) < 1e-6 && std::abs(p.z - at.z) < 1e-6) {
+      return entry.first;
+    }
+  }
+  return 0;
+}
+
+void Simulator::model_rack(const Config& config, const ToolState& tools) {
+  config_ = &config;
+  rack = Rack{};
+  rack.modelled =
+      config.sensors.any() ||
+      (config.rack_cover && (config.rack_cover->opened_sensor || config.rack_cover->closed_sensor));
+  rack.spindle = tools.spindle;
+  for (const auto& entry : config.pockets) {
+    rack.pockets[entry.first] = tools.holds(entry.first) ? tools.tool_of(entry.first) : 0;
+  }
+  reported_.reset();
+}
+
+SensorReadings Simulator::readings() const {
+  SensorReadings r;
+  r.tool_present = rack.spindle != 0;
+  r.drawbar_open = rack.drawbar_open;
+  r.drawbar_closed = !rack.drawbar_open;
+  r.air_pressure_ok = rack.air;
+  r.zero_speed = rack.spindle_still;
+  for (const auto& [pocket, tool] : rack.pockets) r.pocket_occupied[pocket] = tool != 0;
+  r.rack_cover_opened = rack.cover_open;
+  r.rack_cover_closed = !rack.cover_open;
+  return r;
+}
+
+bool Simulator::report_sensors(Changer& changer) {
+  if (!rack.modelled) return false;
+  changer_ = &changer;
+  const SensorReadings now = readings();
+  if (reported_ && *reported_ == now) return false;
+  reported_ = now;
+  changer.sensors(now);
+  return true;
+}
+
+void Simulator::operator_obeys(const Changer& changer) {
+  if (!rack.modelled) return;
+  static const std::regex insert("insert tool (\\d+)", std::regex::icase);
+  static const std::regex remove("remove tool (\\d+)", std::regex::icase);
+  const std::string asked = changer.status().activity;
+  std::smatch match;
+  if (std::regex_search(asked, match, insert)) rack.spindle = std::stoi(match[1]);
+  if (std::regex_search(asked, match, remove)) rack.spindle = 0;
+}
+
+void Simulator::start_timer(double seconds) {
+  Record record;
+  record.kind = Record::Kind::dwell;
+  record.seconds = seconds;
+  records.push_back(record);
+  timer_armed = true;
+}
+
+void Simulator::cancel_timer() { timer_armed = false; }
+
+void Simulator::tell(MessageKind kind, const std::string& text) {
+  Record record;
+  record.kind = Record::Kind::message;
+  record.message_kind = kind;
+  record.text = text;
+  records.push_back(record);
+}
+
+void Simulator::save(const ToolState& state) {
+  Record record;
+  record.kind = Record::Kind::save;
+  record.saved = state;
+  records.push_back(record);
+  ++saves;
+}
+
+void Simulator::unexpected(const std::string& state, const std::string& event) {
+  unexpected_events.push_back(event + " in " + state);
+}
+
+int Simulator::run(Changer& changer, int limit) {
+  int fed = 0;
+  for (; fed < limit; ++fed) {
+    if (report_sensors(changer)) continue;
+    const Awaiting awaiting = changer.status().awaiting;
+    if ((awaiting == Awaiting::timer || awaiting == Awaiting::sensor) && timer_armed) {
+      // A sensor that has not come by now never will: its time runs out.
+      timer_armed = false;
+      changer.timer_elapsed();
+    } else if (awaiting == Awaiting::probe && pending && pending->kind == StepKind::probe) {
+      const Step probe = *pending;
+      pending.reset();
+      const bool touched = sensor_z && *sensor_z >= probe.target.z;
+      changer.probe_result(touched, touched ? *sensor_z : probe.target.z);
+    } else if (awaiting == Awaiting::motion && pending) {
+      const bool moved = is_motion(pending->kind);
+      if (moved) {
+        if (pending->axes & axis_x) rack.at.x = pending->target.x;
+        if (pending->axes & axis_y) rack.at.y = pending->target.y;
+        if (pending->axes & axis_z) rack.at.z = pending->target.z;
+        rack.known_axes |= pending->axes;
+      }
+      pending.reset();
+      moved ? changer.in_position() : changer.command_done();
+    } else {
+      break;
+    }
+  }
+  return fed;
+}
+
+std::vector<Step> Simulator::steps() const {
+  std::vector<Step> result;
+  for (const auto& record : records) {
+    if (record.kind == Record::Kind::step) result.push_back(record.step);
+  }
+  return result;
+}
+
+std::vector<Step> Simulator::motion_steps() const {
+  std::vector<Step> result;
+  for (const auto& step : steps()) {
+    if (is_motion(step.kind)) result.push_back(step);
+  }
+  return result;
+}
+
+std::vector<std::string> Simulator::messages(MessageKind kind) const {
+  std::vector<std::string> result;
+  for (const auto& record : records) {
+    if (record.kind == Record::Kind::message && record.message_kind == kind) {
+      result.push_back(record.text);
+    }
+  }
+  return result;
+}
+
+}  // namespace fatc
+
+namespace fatc {
+
+ToolState with_in_spindle(const Config& config, int tool) {
+  ToolState tools = ToolState::fresh(config);
+  tools.put_in_spindle(tool);
+  return tools;
+}
+
+namespace {
+
+/// Runs an operator flow, pressing Continue at every wait.
+void run_with_operator(Simulator& sim, Changer& changer) {
+  for (int presses = 0; presses < 10; ++presses) {
+    sim.run(changer);
+    if (changer.status().awaiting != Awaiting::operator_choice) return;
+    sim.operator_obeys(changer);
+    sim.report_sensors(changer);
+    changer.operator_continue();
+  }
+}
+
+}  // namespace
+
+Simulator plan_change(const Config& config, int from, int to, double sensor_z) {
+  return plan_change(config, with_in_spindle(config, from), to, sensor_z);
+}
+
+Simulator plan_change(const Config& config, const ToolState& tools, int to, double sensor_z) {
+  Simulator sim;
+  sim.sensor_z = sensor_z;
+  sim.model_rack(config, tools);
+  Changer changer(config, sim, tools);
+  changer.plan_only();
+  sim.report_sensors(changer);
+  changer.ready();
+  changer.tool_change(to);
+  run_with_operator(sim, changer);
+  return sim;
+}
+
+Simulator plan_load(const Config& config, int tool, int from, double sensor_z) {
+  ToolState tools = with_in_spindle(config, from);
+  // The tool to load is out of the machine: its pocket is free.
+  if (const auto home = tools.home_of(tool); home && from != tool) tools.pockets[*home] = {};
+  return plan_load(config, tools, tool, 0, sensor_z);
+}
+
+Simulator plan_load(const Config& config, const ToolState& tools, int tool, int pocket,
+                    double sensor_z) {
+  Simulator sim;
+  sim.sensor_z = sensor_z;
+  sim.model_rack(config, tools);
+  Changer changer(config, sim, tools);
+  changer.plan_only();
+  sim.report_sensors(changer);
+  changer.ready();
+  changer.load(tool, pocket);
+  run_with_operator(sim, changer);
+  return sim;
+}
+
+Simulator plan_unload(const Config& config, int tool, int from) {
+  return plan_unload(config, with_in_spindle(config, from), tool);
+}
+
+Simulator plan_unload(const Config& config, const ToolState& tools, int tool) {
+  Simulator sim;
+  sim.model_rack(config, tools);
+  Changer changer(config, sim, tools);
+  changer.plan_only();
+  sim.report_sensors(changer);
+  changer.ready();
+  changer.unload(tool);
+  run_with_operator(sim, changer);
+  return sim;
+}
+
+}  // namespace fatc

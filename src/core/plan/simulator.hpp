@@ -1,0 +1,129 @@
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "../machine/changer.hpp"
+
+namespace fatc {
+
+/// One thing the changer did, in order: a step, a chuck, rack cover or air
+/// blast change, a dwell, a message.
+struct Record {
+  enum class Kind { step, chuck, cover, blast, dwell, message, save } kind = Kind::step;
+  Step step;
+  bool chuck_open = false;
+  bool on = false;  ///< the cover opened, the blast on
+  double seconds = 0.0;
+  MessageKind message_kind = MessageKind::info;
+  std::string text;
+  ToolState saved;  ///< for a save
+};
+
+std::string describe(const Record& record);
+
+/// The rack the Simulator models when sensors are wired: the tool follows
+/// the chuck (a closing chuck at a full pocket takes its tool, an opening one
+/// lets go of it, into the pocket it is at or out of the machine), and the
+/// sensors read what is there. Tests inject faults through its fields.
+struct Rack {
+  bool modelled = false;
+  int spindle = 0;              ///< the tool the spindle clamps, 0 none
+  std::map<int, int> pockets;   ///< pocket number -> the tool in it, 0 empty
+  bool air = true;              ///< air-pressure-ok
+  bool spindle_still = true;    ///< the zero-speed feedback
+  int grips_failing = 0;        ///< this many closings at a pocket do not take its tool
+  bool tool_sticks = false;     ///< a released tool stays in the spindle
+  bool drawbar_jammed = false;  ///< the drawbar does not move (its feedback stays)
+  bool drawbar_open = false;    ///< where the drawbar is
+  bool cover_open = false;      ///< where the rack cover is
+  bool cover_jammed = false;    ///< the rack cover does not move (its feedback stays)
+  Point at;                     ///< where the spindle is (known_axes of it)
+  unsigned known_axes = 0;
+
+  /// The pocket the spindle is in (its nose at the pocket's XYZ), 0 none.
+  int pocket_at(const Config& config) const;
+};
+
+/// Ports that record everything and an executor that finishes every step at
+/// once: what `--plan` prints and what the unit tests read. Probe moves touch
+/// at `sensor_z` (or miss when it is unset); operator waits are answered by
+/// the caller.
+class Simulator : public Ports {
+ public:
+  /// With sensors in `config`, models the rack as `tools` says it is, so the
+  /// sensors read true; run() then reports every change of them.
+  void model_rack(const Config& config, const ToolState& tools);
+  Rack rack;
+  /// What the sensors read in the modelled rack.
+  SensorReadings readings() const;
+  /// Reports the readings to the changer if they changed since the last
+  /// report; from then on chuck changes are reported as they happen.
+  bool report_sensors(Changer& changer);
+  /// The operator does what the prompt asks: inserts or removes the tool.
+  void operator_obeys(const Changer& changer);
+
+  std::vector<Record> records;
+  std::optional<double> sensor_z;
+  bool chuck_open = false;
+  bool timer_armed = false;
+  std::optional<Step> pending;  ///< last published step not yet finished
+  std::vector<std::string> unexpected_events;
+
+  void publish(const Step& step) override;
+  void set_chuck_open(bool open) override;
+  void set_rack_cover_open(bool open) override;
+  void set_air_blast(bool on) override;
+  bool cover_open = false;
+  bool blowing = false;
+  void start_timer(double seconds) override;
+  void cancel_timer() override;
+  void tell(MessageKind kind, const std::string& text) override;
+  void save(const ToolState& state) override;
+  void unexpected(const std::string& state, const std::string& event) override;
+
+  /// Finishes steps and runs out timers until the changer waits for something
+  /// else (operator, spindle) or a sequence ends. Returns how many events it fed.
+  int run(Changer& changer, int limit = 1000);
+
+  std::vector<Step> steps() const;
+  std::vector<Step> motion_steps() const;
+  std::vector<std::string> messages(MessageKind kind) const;
+  int saves = 0;
+
+ private:
+  /// Records a change of the chuck, the rack cover or the air blast.
+  void record_output(Record::Kind kind, bool on);
+  const Config* config_ = nullptr;
+  Changer* changer_ = nullptr;
+  std::optional<SensorReadings> reported_;
+};
+
+}  // namespace fatc
+
+namespace fatc {
+
+/// The first-start rack (ToolState::fresh) with `tool` taken from its pocket
+/// into the spindle (0: the spindle empty).
+ToolState with_in_spindle(const Config& config, int tool);
+
+/// The records of M6 T`to` with `from` in the spindle, every other pocket full;
+/// the operator continues at every wait (manual tools) and the sensor, when
+/// `probe_after_change` asks for it, touches at `sensor_z`.
+Simulator plan_change(const Config& config, int from, int to, double sensor_z);
+/// The same from the tools as `tools` has them (a saved state).
+Simulator plan_change(const Config& config, const ToolState& tools, int to, double sensor_z);
+/// The records of loading `tool` by hand with `from` in the spindle; the operator
+/// continues at every wait and the sensor touches at `sensor_z`.
+Simulator plan_load(const Config& config, int tool, int from, double sensor_z);
+/// The same into pocket `pocket` (0: the one the changer chooses), from `tools`.
+Simulator plan_load(const Config& config, const ToolState& tools, int tool, int pocket,
+                    double sensor_z);
+/// The records of unloading `tool` with `from` in the spindle; the operator continues.
+Simulator plan_unload(const Config& config, int tool, int from);
+/// The same from `tools`.
+Simulator plan_unload(const Config& config, const ToolState& tools, int tool);
+
+}  // namespace fatc

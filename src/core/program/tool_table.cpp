@@ -1,0 +1,109 @@
+#include "tool_table.hpp"
+
+#include <cctype>
+#include <climits>
+#include <cstdlib>
+#include <cstring>
+
+#include "../config/quote.hpp"
+
+namespace fatc {
+namespace {
+
+/// LinuxCNC reads a table line into 256 bytes (CANON_TOOL_ENTRY_LEN) with fgets.
+constexpr std::size_t kMaxTableLine = 254;
+
+/// sscanf("%d") of a field's number: nullopt when there is none.
+std::optional<long> integer_of(const std::string& number) {
+  char* end = nullptr;
+  const long value = std::strtol(number.c_str(), &end, 10);
+  if (end == number.c_str() || value < INT_MIN || value > INT_MAX) return std::nullopt;
+  return value;
+}
+
+/// sscanf("%lf") of a field's number.
+std::optional<double> real_of(const std::string& number) {
+  char* end = nullptr;
+  const double value = std::strtod(number.c_str(), &end);
+  if (end == number.c_str()) return std::nullopt;
+  return value;
+}
+
+/// Why LinuxCNC skips `field`, or empty when it reads it.
+std::string field_problem(const std::string& field, ToolTableEntry& entry, bool& has_tool) {
+  const char letter = static_cast<char>(std::toupper(static_cast<unsigned char>(field[0])));
+  const std::string number = field.substr(1);
+  if (std::strchr("TPQ", letter) != nullptr) {
+    const auto value = integer_of(number);
+    if (!value) return quote(field) + " is not a whole number after " + std::string(1, letter);
+    if (letter == 'T') {
+      entry.tool = static_cast<int>(*value);
+      has_tool = true;
+    }
+    return "";
+  }
+  if (std::strchr("DXYZABCUVWIJ", letter) != nullptr) {
+    const auto value = real_of(number);
+    if (!value) return quote(field) + " is not a number after " + std::string(1, letter);
+    if (letter == 'Z') entry.z = *value;
+    return "";
+  }
+  return quote(field) + " is no tool table field (T P D X Y Z A B C U V W I J Q)";
+}
+
+}  // namespace
+
+ToolTable parse_tool_table(std::string_view text) {
+  ToolTable table;
+  int line_number = 0;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string_view::npos) end = text.size();
+    std::string line(text.substr(start, end - start));
+    start = end + 1;
+    ++line_number;
+    if (line.find('\0') != std::string::npos) {
+      table.problems.push_back({line_number, "NUL byte: not a tool table; read no further"});
+      break;
+    }
+    if (line.size() > kMaxTableLine) {
+      table.problems.push_back({line_number, std::to_string(line.size()) +
+                                                 " characters: LinuxCNC reads at most " +
+                                                 std::to_string(kMaxTableLine) + " in a line"});
+      continue;
+    }
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+    if (line.empty() || line[0] == ';') continue;
+    const std::string fields = line.substr(0, line.find(';'));
+    if (fields.size() <= 1) continue;  // LinuxCNC's test for a blank line
+    ToolTableEntry entry;
+    entry.line = line_number;
+    bool has_tool = false;
+    std::string why;
+    std::size_t at = 0;
+    while (why.empty() && at < fields.size()) {
+      const std::size_t space = fields.find(' ', at);
+      const std::string field =
+          fields.substr(at, space == std::string::npos ? std::string::npos : space - at);
+      at = space == std::string::npos ? fields.size() : space + 1;
+      if (field.empty()) continue;
+      why = field_problem(field, entry, has_tool);
+      entry.fields.push_back(field);
+    }
+    if (!why.empty()) {
+      table.problems.push_back({line_number, "LinuxCNC skips this line: " + why});
+      continue;
+    }
+    if (!has_tool) continue;
+    const auto [first, inserted] = table.tools.emplace(entry.tool, entry);
+    if (!inserted) {
+      table.problems.push_back({line_number, "tool " + std::to_string(entry.tool) +
+                                                 " again (first on line " +
+                                                 std::to_string(first->second.line) + ")"});
+    }
+  }
+  return table;
+}
+
+}  // namespace fatc

@@ -1,0 +1,50 @@
+#pragma once
+
+#include <string>
+
+#include "../rack/point.hpp"
+
+namespace fatc {
+
+/// What the NGC step executor is asked to do next. The numbers are the
+/// values of the `step-kind` pin that nc_files/fixed_atc_probe_execute.ngc
+/// reads (tests/unit/protocol/codes_test.cpp holds the two together).
+enum class StepKind {
+  resync = 0,           ///< nothing to do, ask again: a dead executor's request was left high
+  rapid = 1,            ///< G53 G0 to `target` on `axes`
+  feed = 2,             ///< G53 G1 at `feed` to `target` on `axes`
+  probe = 3,            ///< G38.3 toward `target.z` at `feed`; the result comes back as ProbeResult
+  set_tool_length = 4,  ///< G10 L1 P`tool` Z`value`
+  set_spindle_tool = 5,  ///< M61 Q`tool`: tell LinuxCNC what the spindle holds
+  wait_operator = 6,     ///< end this executor run; the operator acts, Continue runs the next
+  done = 7,              ///< the sequence is over; `tool` is in the spindle
+  fail = 8,              ///< the sequence cannot go on; `label` says why
+};
+
+/// Axis bits of Step::axes.
+enum Axis : unsigned { axis_x = 1u, axis_y = 2u, axis_z = 4u, axis_xy = 3u, axis_xyz = 7u };
+
+struct Step {
+  StepKind kind = StepKind::done;
+  unsigned axes = 0;      ///< which coordinates of `target` the move commands
+  Point target;           ///< machine coordinates
+  double feed = 0.0;      ///< units per minute, for feed and probe
+  int tool = 0;           ///< for set_tool_length, set_spindle_tool and done
+  double value = 0.0;     ///< tool length, for set_tool_length
+  int pocket = 0;         ///< the pocket this move serves (its number), 0 if none
+  bool approach = false;  ///< part of the way into or out of `pocket`: may enter its column
+  std::string label;      ///< the machinist's name for the target ("side of pocket 3")
+};
+
+/// The step that makes a waiting executor abort its program, saying `why`.
+Step failure_step(std::string why);
+/// Nothing to do: the executor asks again.
+Step resync_step();
+
+bool is_motion(StepKind kind);
+const char* step_kind_name(StepKind kind);
+
+/// One line, e.g. `rapid  Z=50.000            safe Z`.
+std::string describe(const Step& step);
+
+}  // namespace fatc

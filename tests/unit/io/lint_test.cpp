@@ -1,0 +1,746 @@
+// --lint: a G-code program run through LinuxCNC's own interpreter (the
+// installed rs274, standalone: no LinuxCNC runs), not the machine. Each
+// feature and each hostile input asserts its exact line. The programs are in
+// lint_programs/ (linuxcnc/: samples LinuxCNC installs); binary, FIFO and
+// endless cases are made here at run time.
+#include "io/lint.hpp"
+
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "core/program/preflight.hpp"
+#include "core/program/tool_table.hpp"
+#include "io/cli.hpp"
+#include "io/files.hpp"
+#include "io/interpreter.hpp"
+
+namespace fatc {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+const std::string kConfig = FATC_SOURCE_DIR "/config/config.json";
+const std::string kPrograms = FATC_SOURCE_DIR "/tests/unit/lint_programs";
+/// The sample machine: its M6 remap, subroutine folder and tool table.
+const std::string kSimIni = FATC_SOURCE_DIR "/config/sim/fixed_atc_sim.ini";
+const std::string kSimTable = FATC_SOURCE_DIR "/config/sim/sim.tbl";
+
+struct LintRun {
+  int code;
+  std::string out;
+  std::string err;
+  double seconds;      ///< wall time
+  double cpu_seconds;  ///< the lint's own work, whatever else the machine runs
+};
+
+LintRun run(std::vector<std::string> args) {
+  const auto start = Clock::now();
+  const std::clock_t cpu_start = std::clock();
+  std::string error;
+  const auto options = io::parse_options(args, error);
+  if (!options) return {2, "", error, 0.0, 0.0};
+  std::ostringstream out, err;
+  const int code = io::run_tool_mode(*options, out, err);
+  return {code, out.str(), err.str(), std::chrono::duration<double>(Clock::now() - start).count(),
+          static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC};
+}
+
+/// Within a second of the lint's own time; the wall clock, shared with
+/// whatever else the machine runs (ctest -j, builds), only guards against a hang.
+#define EXPECT_WITHIN_A_SECOND(run)    \
+  do {                                 \
+    EXPECT_LT((run).cpu_seconds, 1.0); \
+    EXPECT_LT((run).seconds, 5.0);     \
+  } while (false)
+
+/// A folder of its own for each test, removed after it.
+class Lint : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::path(::testing::TempDir()) /
+           ("fatc_lint_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(path(name), std::ios::binary) << text;
+    return path(name);
+  }
+  /// A state file where the spindle is empty, every pocket full and every
+  /// tool in `measured` has a length.
+  std::string state_with_lengths(std::initializer_list<int> measured) const {
+    Config config = *io::load_config_file(kConfig).config;
+    ToolState tools = ToolState::fresh(config);
+    for (const int tool : measured) tools.lengths[tool] = 20.0 + tool;
+    io::save_state_file(path("tools.state"), tools);
+    return path("tools.state");
+  }
+  /// The sample config with one key changed.
+  std::string config_with(const std::string& key, const nlohmann::json& value) const {
+    nlohmann::json config = nlohmann::json::parse(std::ifstream(kConfig));
+    config[key] = value;
+    return write("config.json", config.dump());
+  }
+  /// The state path of a first start: no file there.
+  std::string no_state() const { return path("none.state"); }
+
+  LintRun lint(const std::string& program, std::vector<std::string> more = {}) const {
+    std::vector<std::string> args = {"--lint", program, "--config", kConfig};
+    if (std::find(more.begin(), more.end(), "--state") == more.end()) {
+      more.insert(more.end(), {"--state", no_state()});
+    }
+    args.insert(args.end(), more.begin(), more.end());
+    return run(args);
+  }
+
+  fs::path dir_;
+};
+
+bool has(const std::string& text, const std::string& line) {
+  return text.find(line) != std::string::npos;
+}
+
+/// The output of a lint must hold `line`; on failure the whole output shows.
+#define EXPECT_LINE(run, line) EXPECT_TRUE(has((run).out, line)) << (run).out << (run).err
+#define EXPECT_NO_LINE(run, line) EXPECT_FALSE(has((run).out, line)) << (run).out
+
+std::string program(const std::string& name) { return kPrograms + "/" + name; }
+
+// ---- the tool changes and where the tools are ----
+
+TEST_F(Lint, shouldListEveryChangeInTheOrderLinuxCncRunsThem) {
+  const LintRun r = lint(program("changes.ngc"), {"--state", state_with_lengths({1, 2, 3, 4, 5})});
+  EXPECT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_LINE(r, "tools in the order of the changes: T1 T3 T2 T4 T5 T0\n");
+  EXPECT_LINE(r, "  1  4         M6 T1         pocket 1 ");
+  EXPECT_LINE(r, "  2  5         M6 T3         pocket 3 ");
+  EXPECT_LINE(r, "  3  6         M6 T2         pocket 2 ");
+  // M6 alone on line 8: the change is shown on its T word's line.
+  EXPECT_LINE(r, "  4  7         M6 T4         pocket 4 ");
+  EXPECT_LINE(r,
+              "  5  9         M61 Q4        LinuxCNC is told T4 is in the spindle; nothing moves");
+  EXPECT_LINE(r, "  6  10        M6 T5         pocket 5 ");
+  EXPECT_LINE(r, "  7  11        M6 T0         empties the spindle ");
+  EXPECT_LINE(r, "changes.ngc: 6 tool changes (M6), 1 M61, 0 problems, 0 not known\n");
+  EXPECT_NO_LINE(r, "T6");  // after the closing %
+}
+
+TEST_F(Lint, shouldSayWhatTheSpindleHoldsAtTheStart) {
+  EXPECT_LINE(lint(program("manual.ngc")),
+              "manual.ngc: at the start the spindle holds nothing (no state file yet at " +
+                  no_state() + ": each pocket holds its first-start tool)\n");
+  const LintRun r = lint(program("manual.ngc"), {"--state", kPrograms + "/measured.state"});
+  EXPECT_LINE(r, "manual.ngc: at the start the spindle holds T2 (state file " + kPrograms +
+                     "/measured.state)\n");
+}
+
+TEST_F(Lint, shouldReportAnM6WithoutAT) {
+  const LintRun r = lint(program("no_t.ngc"), {"--state", state_with_lengths({2})});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r, "no_t.ngc: line 3: M6 without a T word since the start\n");
+  EXPECT_LINE(r, "  1  3         M6            not known ");
+  EXPECT_LINE(r, "tools in the order of the changes: T? T2\n");
+  EXPECT_LINE(r, "no_t.ngc: 2 tool changes (M6), 0 M61, 1 problem, 0 not known\n");
+}
+
+TEST_F(Lint, shouldCallAToolWithoutPocketManual) {
+  const LintRun r = lint(program("manual.ngc"), {"--state", state_with_lengths({1, 42})});
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_LINE(r, "  1  1         M6 T42        manual: handed over at loading ");
+  EXPECT_LINE(r, "and the operator at 2 prompts not counted)");  // insert T42, remove it
+}
+
+TEST_F(Lint, shouldReportAChangeTheChangerRefuses) {
+  const LintRun refused =
+      run({"--lint", program("manual.ngc"), "--config", config_with("manual_tools", false),
+           "--state", state_with_lengths({1, 42})});
+  EXPECT_EQ(refused.code, 1);
+  EXPECT_LINE(refused,
+              "manual.ngc: line 1: M6 T42 refused: tool 42 is in no pocket of the "
+              "rack (and manual_tools is off)\n");
+  EXPECT_LINE(refused, "  1  1         M6 T42        refused: manual: handed over at loading ");
+  // The changer would stop the program; the lint reads on with the spindle as it was.
+  EXPECT_LINE(refused, "  2  2         M6 T1         pocket 1 ");
+}
+
+TEST_F(Lint, shouldFollowTheRackThroughTheStateFile) {
+  // measured.state: T2 in the spindle, pocket 3 empty (tool 3 unloaded).
+  const std::string text = "T1 M6\nT3 M6\nT2 M6\nM2\n";
+  const LintRun r = lint(write("rack.ngc", text), {"--state", kPrograms + "/measured.state"});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r, "  1  1         M6 T1         pocket 1 ");
+  EXPECT_LINE(r, "  2  2         M6 T3         out of the rack (pocket 3 empty) ");
+  // T2 went home at the first change: it is in pocket 2 now.
+  EXPECT_LINE(r, "  3  3         M6 T2         pocket 2 ");
+  EXPECT_LINE(r, "rack.ngc: line 2: M6 T3: the state file " + kPrograms +
+                     "/measured.state has pocket 3 empty (T3 is not in it): the changer "
+                     "refuses the change; load it first\n");
+}
+
+TEST_F(Lint, shouldSayAChangeToTheToolInTheSpindleMovesNothing) {
+  const LintRun r =
+      lint(write("same.ngc", "T1 M6\nT1 M6\nM2\n"), {"--state", state_with_lengths({1})});
+  EXPECT_EQ(r.code, 0);
+  EXPECT_LINE(r, "  2  2         M6 T1         in the spindle already ");
+  EXPECT_LINE(r, "for 1 change,");
+}
+
+TEST_F(Lint, shouldReportAnM61ThatDisagreesWithTheChanger) {
+  const LintRun r =
+      lint(write("m61.ngc", "T1 M6\nM61 Q3\nM2\n"), {"--state", state_with_lengths({1, 3})});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r,
+              "m61.ngc: line 2: M61 Q3: tells LinuxCNC the spindle holds T3 while the changer "
+              "has T1 in it: the next G43 would apply the wrong length\n");
+}
+
+// ---- lengths ----
+
+TEST_F(Lint, shouldReportAToolNeverMeasuredOncePerTool) {
+  const LintRun r = lint(write("unmeasured.ngc", "T1 M6\nT2 M6\nT1 M6\nM2\n"),
+                         {"--state", state_with_lengths({2})});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r, "unmeasured.ngc: line 1: T1 was never measured: no length in the state file " +
+                     path("tools.state") +
+                     ", and M6 measures nothing (probe_after_change is off)\n");
+  EXPECT_NO_LINE(r, "unmeasured.ngc: line 3: T1 was never measured");
+  EXPECT_LINE(r,
+              "  2  2         M6 T2         pocket 2                              22.0000 mm "
+              "(state file)");
+}
+
+TEST_F(Lint, shouldReportAStateFileThatRecordsACutOffSequence) {
+  ToolState tools = ToolState::fresh(*io::load_config_file(kConfig).config);
+  tools.uncertain = true;
+  tools.lengths = {{1, 21.0}, {2, 22.0}};
+  io::save_state_file(path("cut_off.state"), tools);
+  const LintRun r =
+      lint(write("after_fault.ngc", "T1 M6\nT2 M6\nM2\n"), {"--state", path("cut_off.state")});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r, "after_fault.ngc: line 1: the state file " + path("cut_off.state") +
+                     " records a sequence that was cut off: the changer refuses M6 until the "
+                     "fault is cleared (panel, or --confirm)\n");
+  EXPECT_LINE(r, "after_fault.ngc: 2 tool changes (M6), 0 M61, 1 problem, 0 not known\n");
+}
+
+TEST_F(Lint, shouldAcceptAnUnmeasuredToolWhenTheChangeMeasuresIt) {
+  const LintRun r = run({"--lint", write("measure.ngc", "T1 M6\nM2\n"), "--config",
+                         config_with("probe_after_change", "measure"), "--state", no_state()});
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_LINE(r,
+              "  1  1         M6 T1         pocket 1                              measured at "
+              "the change ");
+}
+
+TEST_F(Lint, shouldReadTheLengthsFromTheToolTable) {
+  const std::string table = kPrograms + "/tools.tbl";
+  const LintRun r =
+      lint(write("table.ngc", "T1 M6\nT2 M6\nT3 M6\nT4 M6\nM2\n"), {"--tool-table", table});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r,
+              "  1  1         M6 T1         pocket 1                              Z30.0000 (tool "
+              "table)");
+  EXPECT_LINE(r, "table.ngc: line 2: T2 was never measured: Z0 in the tool table " + table +
+                     " (line 3), and M6 measures nothing (probe_after_change is off)\n");
+  EXPECT_LINE(r, "table.ngc: line 3: T3 was never measured: no Z in the tool table " + table +
+                     " (line 4), and M6 measures nothing (probe_after_change is off)\n");
+  // LinuxCNC skips the line of tool 4: its interpreter refuses T4.
+  EXPECT_LINE(r,
+              "table.ngc: line 4: LinuxCNC stops the program here: Requested tool 4 not found "
+              "in the tool table\n");
+  EXPECT_LINE(r, table + ": line 5: LinuxCNC skips this line: \"Zabc\" is not a number after Z\n");
+  EXPECT_LINE(r, table + ": line 6: tool 1 again (first on line 2)\n");
+  EXPECT_LINE(r, "tools in the order of the changes: T1 T2 T3\n");
+}
+
+TEST(ToolTable, shouldReadTheFieldsAsLinuxCncDoes) {
+  const ToolTable table =
+      parse_tool_table("T1 P1 Z30.0 D6.0 ;end mill\n;comment\n\nt2 p2 z-1.5\nT3 K4\nT5\tZ9\n");
+  ASSERT_EQ(table.tools.size(), 3u);
+  EXPECT_DOUBLE_EQ(*table.tools.at(1).z, 30.0);
+  EXPECT_DOUBLE_EQ(*table.tools.at(2).z, -1.5);
+  // A tab is no separator to LinuxCNC: "T5\tZ9" reads as T5, and the Z is lost.
+  EXPECT_FALSE(table.tools.at(5).z);
+  ASSERT_EQ(table.problems.size(), 1u);
+  EXPECT_EQ(table.problems[0].line, 5);
+  EXPECT_EQ(table.problems[0].text,
+            "LinuxCNC skips this line: \"K4\" is no tool table field (T P D X Y Z A B C U V W I "
+            "J Q)");
+}
+
+// ---- what LinuxCNC's interpreter says of the program ----
+
+TEST_F(Lint, shouldReportEveryLineLinuxCncRefuses) {
+  const LintRun r = lint(program("bad_words.ngc"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r,
+              "bad_words.ngc: line 2: LinuxCNC stops the program here: Non integer value for "
+              "integer\n");
+  EXPECT_LINE(r,
+              "bad_words.ngc: line 3: LinuxCNC stops the program here: Negative tool id (tool "
+              "not found)\n");
+  EXPECT_LINE(r,
+              "bad_words.ngc: line 4: LinuxCNC stops the program here: Multiple t words on one "
+              "line\n");
+  EXPECT_LINE(r,
+              "bad_words.ngc: line 5: LinuxCNC stops the program here: Need non-negative Q-word "
+              "to specify tool number with M61\n");
+  EXPECT_LINE(r, "bad_words.ngc: line 7: LinuxCNC stops the program here: Bad character '\\173' "
+                 "used\n");
+  EXPECT_LINE(r, "bad_words.ngc: 0 tool changes (M6), 0 M61, 6 problems, 0 not known\n");
+}
+
+TEST_F(Lint, shouldReportAnUnterminatedComment) {
+  const LintRun r = lint(program("unterminated.ngc"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r,
+              "unterminated.ngc: line 3: LinuxCNC stops the program here: Unclosed comment "
+              "found\n");
+  EXPECT_LINE(r,
+              "unterminated.ngc: line 5: LinuxCNC stops the program here: Nested comment found\n");
+  EXPECT_LINE(r, "tools in the order of the changes: T1 T2\n");
+}
+
+TEST_F(Lint, shouldFollowSubroutinesDefinedBeforeTheCallAndInTheSubroutinePath) {
+  const LintRun r = lint(program("calls.ngc"), {"--subroutine-path", "/nonexistent:" + kPrograms});
+  EXPECT_LINE(r, "tools in the order of the changes: T1 T2 T3\n");
+  EXPECT_LINE(r, "  2  3         M6 T2         pocket 2 ");
+  // In a subroutine file: no line of the program.
+  EXPECT_LINE(r, "  3  -         M6 T3         pocket 3 ");
+  EXPECT_LINE(r, "calls.ngc: line 9: LinuxCNC stops the program here: EOF in file:" +
+                     program("calls.ngc") + " seeking o-word: o<missingsub> from line: 8\n");
+}
+
+TEST_F(Lint, shouldFindNoSubroutineBesideTheProgramAsLinuxCnc) {
+  const LintRun r = lint(program("calls.ngc"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r, "tools in the order of the changes: T1 T2\n");
+  EXPECT_LINE(r, "seeking o-word: o<sub_change> from line: 7\n");
+}
+
+TEST_F(Lint, shouldRunLoopsAndTakeOnlyTheBranchTheProgramTakes) {
+  // while: 3 times; if/else: the if; do-while: no change; repeat 2: a subroutine's.
+  const LintRun r = lint(program("flow.ngc"),
+                         {"--subroutine-path", kPrograms, "--state", state_with_lengths({1, 2, 3})});
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_LINE(r, "tools in the order of the changes: T1 T1 T1 T2 T3 T3\n");
+  EXPECT_LINE(r, "  2  4         M6 T1         in the spindle already ");
+  EXPECT_NO_LINE(r, "  10        M6 T3");  // the else branch
+}
+
+TEST_F(Lint, shouldFollowARecursiveSubroutineAsItRuns) {
+  const LintRun r = lint(program("recursive.ngc"), {"--state", state_with_lengths({1})});
+  EXPECT_LINE(r, "tools in the order of the changes: T1 T1 T1 T1\n");
+  EXPECT_LINE(r, "recursive.ngc: 4 tool changes (M6), 0 M61, 0 problems, 0 not known\n");
+}
+
+TEST_F(Lint, shouldComputeToolNumbersFromParametersAndExpressions) {
+  const LintRun r = lint(program("computed.ngc"), {"--state", state_with_lengths({2, 3, 4})});
+  EXPECT_EQ(r.code, 1) << r.out;  // M61 Q3 while the changer holds T4
+  EXPECT_LINE(r, "tools in the order of the changes: T3 T4 T2\n");
+  EXPECT_LINE(r, "  3  4         M61 Q3 ");
+  // A parameter set two lines before the T word.
+  const LintRun later = lint(write("later.ngc", "#<t> = 3\nG0 X1\nT#<t> M6\nM2\n"));
+  EXPECT_LINE(later, "tools in the order of the changes: T3\n");
+  EXPECT_LINE(later, "  1  3         M6 T3 ");
+}
+
+TEST_F(Lint, shouldListTZeroAndRepeatsInTheOrderOfTheChanges) {
+  const LintRun r = lint(write("zero.ngc", "T1 M6\nT3 M6\nT1 M6\nM61 Q3\nT0 M6\nM2\n"),
+                         {"--state", state_with_lengths({1, 3})});
+  EXPECT_LINE(r, "tools in the order of the changes: T1 T3 T1 T0\n");
+  EXPECT_LINE(r, "  4  4         M61 Q3 ");
+}
+
+TEST_F(Lint, shouldRunTheMachinesRemapsAndUserCodes) {
+  const LintRun r = lint(program("codes.ngc"), {"--state", state_with_lengths({1, 2}), "--ini",
+                                                kPrograms + "/remap.ini"});
+  EXPECT_EQ(r.code, 1) << r.out;
+  // REMAP = M400 ... ngc=m400: m400.ngc in the INI's subroutine folder changes to T2.
+  EXPECT_LINE(r, "tools in the order of the changes: T1 T2\n");
+  EXPECT_LINE(r, "codes.ngc: line 2: LinuxCNC stops the program here: Unknown m code used: M101\n");
+  EXPECT_LINE(r, "codes.ngc: line 4: LinuxCNC stops the program here: Unknown g code used\n");
+  EXPECT_LINE(r,
+              "rapids at 6000 mm/min ([TRAJ]MAX_LINEAR_VELOCITY of " + kPrograms + "/remap.ini)");
+}
+
+TEST_F(Lint, shouldReportAnIniWithoutTheM6Remap) {
+  const LintRun r = lint(program("manual.ngc"), {"--state", state_with_lengths({1, 42}), "--ini",
+                                                 kPrograms + "/no_m6_remap.ini"});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r,
+              "manual.ngc: line 1: the INI remaps no M6: LinuxCNC's own M6 would run here, "
+              "not fixed_atc_probe_m6\n");
+  // 2 inch/s in an inch machine: 3048 mm/min for the mm config.
+  EXPECT_LINE(r, "rapids at 3048 mm/min ([TRAJ]MAX_LINEAR_VELOCITY of ");
+}
+
+// ---- with the sample machine's INI: the M6 remap, HAL pins, its tool table ----
+
+TEST_F(Lint, shouldReadLinuxCncsSampleWithCutterCompensation) {
+  // sim.tbl's diameters are mm: as inches (rs274 reads them so) the entry
+  // moves of the cutter compensation would be refused.
+  const LintRun r = lint(program("linuxcnc/gmoccapy_2_tools_with_cutter_radius_compensation.ngc"),
+                         {"--ini", kSimIni, "--tool-table", kSimTable});
+  EXPECT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_LINE(r, "tools in the order of the changes: T3 T1\n");
+  EXPECT_LINE(r, "  1  17        M6 T3         pocket 3 ");
+  EXPECT_LINE(r, "  2  53        M6 T1         pocket 1 ");
+  EXPECT_NO_LINE(r, "cutter compensation entry");
+}
+
+TEST_F(Lint, shouldReadLinuxCncsSkeletonProgram) {
+  const LintRun r =
+      lint(program("linuxcnc/skeleton.ngc"), {"--ini", kSimIni, "--tool-table", kSimTable});
+  EXPECT_LINE(r, "tools in the order of the changes: T1 T0\n");
+  EXPECT_LINE(r, "  1  10        M6 T1         pocket 1 ");
+  EXPECT_LINE(r, "  2  18        M6 T0         empties the spindle ");
+}
+
+TEST_F(Lint, shouldSayAToolFromAHalPinIsNotKnown) {
+  const LintRun r =
+      lint(write("operator.ngc", "T1 M6\nT[#<_hal[fixed_atc_probe.number]>] M6\nT2 M6\nM2\n"),
+           {"--ini", kSimIni, "--tool-table", kSimTable, "--state", state_with_lengths({1, 2})});
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_LINE(r, "tools in the order of the changes: T1 T? T2\n");
+  EXPECT_LINE(r, "  2  2         M6            not known ");
+  EXPECT_LINE(r,
+              "operator.ngc: line 2: Named parameter #<_hal[fixed_atc_probe.number]> not "
+              "defined: a HAL pin, read only when the program runs on the machine: what the line "
+              "does is not known\n");
+  EXPECT_LINE(r, "operator.ngc: 3 tool changes (M6), 0 M61, 0 problems, 1 not known\n");
+}
+
+TEST_F(Lint, shouldSayAToolFromAnM66InputIsNotKnown) {
+  const LintRun r = lint(write("input.ngc", "M66 P0 L0\nT#5399 M6\nM2\n"));
+  EXPECT_LINE(r, "tools in the order of the changes: T?\n");
+  EXPECT_LINE(r,
+              "input.ngc: line 2: the tool number reads #5399, the input M66 waited for: known "
+              "only when the program runs on the machine (rs274 reads 0)\n");
+}
+
+// ---- the estimate ----
+
+/// A move as the changer publishes it, into a plan of the test's own.
+void publish_move(Simulator& plan, StepKind kind, unsigned axes, Point target, double feed) {
+  Step step;
+  step.kind = kind;
+  step.axes = axes;
+  step.target = target;
+  step.feed = feed;
+  plan.publish(step);
+}
+
+TEST(Estimate, shouldAddMovesAtTheirFeedAndTheDwells) {
+  Simulator plan;
+  plan.sensor_z = -20.0;
+  publish_move(plan, StepKind::rapid, axis_z, {0, 0, 10}, 0);    // 10 at the rapid 600/min: 1 s
+  publish_move(plan, StepKind::feed, axis_xy, {30, 40, 0}, 60);  // 50 at 60/min: 50 s
+  plan.start_timer(0.5);
+  publish_move(plan, StepKind::probe, axis_z, {0, 0, -100},
+               300);  // to the sensor at -20: 30 at 300: 6 s
+  publish_move(plan, StepKind::feed, axis_z, {0, 0, 40}, 6000);  // 60 above the rapid: at 600: 6 s
+  plan.tell(MessageKind::prompt, "insert tool 7");               // the operator's time: not counted
+  int waits = 0;
+  EXPECT_NEAR(estimate_seconds(plan, {0, 0, 0}, 600.0, waits), 63.5, 1e-9);
+  EXPECT_EQ(waits, 1);
+}
+
+MotionLimits limits_of(double velocity, double acceleration) {
+  MotionLimits limits;
+  limits.velocity = {velocity, velocity, velocity};
+  limits.acceleration = {acceleration, acceleration, acceleration};
+  limits.linear_velocity = std::numeric_limits<double>::infinity();
+  limits.linear_acceleration = std::numeric_limits<double>::infinity();
+  return limits;
+}
+
+TEST(Bound, shouldTakeATrapezoidWhenTheMoveReachesFullSpeed) {
+  // 100 at 10/s with 10/s²: 1 s up, 8 s at speed, 1 s down.
+  EXPECT_NEAR(move_seconds({0, 0, 0}, {100, 0, 0}, 0.0, limits_of(10, 10)), 11.0, 1e-9);
+}
+
+TEST(Bound, shouldTakeATriangleWhenTheMoveIsTooShortForFullSpeed) {
+  // 4 with 1/s²: 2 s up to 2/s, 2 s down, never at 10/s.
+  EXPECT_NEAR(move_seconds({0, 0, 0}, {0, 0, 4}, 0.0, limits_of(10, 1)), 4.0, 1e-9);
+}
+
+TEST(Bound, shouldHoldAFeedBelowTheMachinesSpeed) {
+  // 100 at F600 (10/s) on a 100/s machine with 10/s²: 10 s + 1 s.
+  EXPECT_NEAR(move_seconds({0, 0, 0}, {0, 100, 0}, 600.0, limits_of(100, 10)), 11.0, 1e-9);
+}
+
+TEST(Bound, shouldLetTheSlowestAxisAndTheLinearLimitsDecide) {
+  MotionLimits limits = limits_of(100, 1000);
+  limits.velocity.z = 10;  // a slow Z: along X and Z at once, Z's share decides
+  // 30 along X, 40 along Z: Z has 0.8 of the move, so at most 12.5/s along it.
+  const double diagonal = move_seconds({0, 0, 0}, {30, 0, 40}, 0.0, limits);
+  EXPECT_NEAR(diagonal, 50.0 / 12.5 + 12.5 / (1000 / 0.8), 1e-9);
+  limits.linear_velocity = 5;
+  EXPECT_NEAR(move_seconds({0, 0, 0}, {30, 0, 40}, 0.0, limits), 50.0 / 5 + 5 / 1250.0, 1e-9);
+  EXPECT_EQ(move_seconds({1, 2, 3}, {1, 2, 3}, 0.0, limits), 0.0);
+}
+
+TEST(Bound, shouldAddEveryMoveAsAnExactStopAndTheDwells) {
+  Simulator plan;
+  publish_move(plan, StepKind::rapid, axis_z, {0, 0, 4}, 0);  // 4 with 1/s²: 4 s
+  plan.start_timer(0.5);
+  publish_move(plan, StepKind::feed, axis_xy, {100, 0, 0},
+               600);  // 100 at 10/s: 10 s + 10 s of ramps at 1/s²
+  EXPECT_NEAR(limits_seconds(plan, {0, 0, 0}, limits_of(100, 1)), 4.0 + 0.5 + 20.0, 1e-9);
+}
+
+TEST(Bound, shouldTakeARunOfRapidsAsOneMoveForWhatBlendingIsWorthAtMost) {
+  Simulator plan;
+  publish_move(plan, StepKind::rapid, axis_z, {0, 0, 50}, 0);    // 50 up
+  publish_move(plan, StepKind::rapid, axis_xy, {50, 0, 0}, 0);   // 50 over: one run of 100
+  publish_move(plan, StepKind::feed, axis_xy, {60, 0, 0}, 600);  // 10 at 10/s, on its own
+  publish_move(plan, StepKind::rapid, axis_z, {0, 0, 0}, 0);     // 50 down
+  plan.start_timer(0.5);                                         // a dwell ends the run
+  publish_move(plan, StepKind::rapid, axis_xy, {0, 0, 0}, 0);    // 60 back
+  const MotionLimits limits = limits_of(10, 100);
+  // At 10/s with 100/s²: a move of d stopped at both ends takes d/10 + 0.1 s.
+  // The first run: Z travels 50 and X 50, at once at best.
+  EXPECT_NEAR(blended_seconds(plan, {0, 0, 0}, limits), 5.1 + 1.1 + 5.1 + 0.5 + 6.1, 1e-9);
+  MotionLimits slow_z = limits;
+  slow_z.velocity.z = 1;  // the run's Z travel decides now: 50 at 1/s, + 0.01 s
+  EXPECT_NEAR(blended_seconds(plan, {0, 0, 0}, slow_z), 50.01 + 1.1 + 50.01 + 0.5 + 6.1, 1e-9);
+  EXPECT_LT(blended_seconds(plan, {0, 0, 0}, slow_z), limits_seconds(plan, {0, 0, 0}, slow_z));
+  EXPECT_NEAR(limits_seconds(plan, {0, 0, 0}, limits), 5.1 + 5.1 + 1.1 + 5.1 + 0.5 + 6.1, 1e-9);
+}
+
+TEST_F(Lint, shouldEstimateTheChangeTimeFromThePlannedSteps) {
+  const LintRun r =
+      lint(write("two.ngc", "T1 M6\nT2 M6\nM2\n"), {"--state", state_with_lengths({1, 2})});
+  EXPECT_LINE(r, "\nestimated tool-change time: ");
+  EXPECT_LINE(r,
+              " for 2 changes, from the steps --plan prints for each: moves at their feed, "
+              "rapids at 3000 mm/min, assumed (--ini gives the machine's "
+              "[TRAJ]MAX_LINEAR_VELOCITY), plus the dwells; from safe to safe (the way "
+              "between the work and safe, acceleration not counted)\n");
+}
+
+// ---- usage and unreadable input: exit 2 ----
+
+TEST_F(Lint, shouldExitTwoOnUsageMistakes) {
+  EXPECT_EQ(run({"--lint"}).err, "--lint needs a value");
+  EXPECT_EQ(run({"--lint", "a.ngc"}).err, "--config FILE is required");
+  EXPECT_EQ(run({"--lint", "a.ngc", "--config", kConfig, "--from", "1"}).err,
+            "--from is not used by --lint");
+  EXPECT_EQ(run({"--check", "--config", kConfig, "--tool-table", "t"}).err,
+            "--tool-table is not used by --check");
+  EXPECT_EQ(run({"--lint", "a.ngc", "--lint", "b.ngc"}).err, "--lint given twice");
+  EXPECT_EQ(run({"--lint", "", "--config", kConfig}).err,
+            "--lint: expected a file path, got nothing");
+}
+
+TEST_F(Lint, shouldExitTwoWhenAnInputCannotBeRead) {
+  const LintRun missing = lint(path("missing.ngc"));
+  EXPECT_EQ(missing.code, 2);
+  EXPECT_EQ(missing.err, path("missing.ngc") + ": cannot open (No such file or directory)\n");
+  EXPECT_EQ(missing.out, "");
+  const LintRun table = lint(program("manual.ngc"), {"--tool-table", path("none.tbl")});
+  EXPECT_EQ(table.code, 2);
+  EXPECT_EQ(table.err, path("none.tbl") + ": cannot open (No such file or directory)\n");
+  const LintRun config = run({"--lint", program("manual.ngc"), "--config", path("none.json")});
+  EXPECT_EQ(config.code, 2);
+}
+
+// ---- hostile programs: one clear line, non-zero, within a second ----
+
+TEST_F(Lint, shouldRefuseADirectoryOrAFifoAtOnce) {
+  const LintRun folder = lint(dir_.string());
+  EXPECT_EQ(folder.code, 2);
+  EXPECT_EQ(folder.err, dir_.string() + ": expected a regular file, got a directory\n");
+  ASSERT_EQ(::mkfifo(path("fifo.ngc").c_str(), 0600), 0);
+  const LintRun fifo = lint(path("fifo.ngc"));
+  EXPECT_EQ(fifo.code, 2);
+  EXPECT_EQ(fifo.err, path("fifo.ngc") + ": expected a regular file, got a FIFO\n");
+  EXPECT_WITHIN_A_SECOND(fifo);
+}
+
+TEST_F(Lint, shouldRefuseABinaryFileInOneLine) {
+  std::string binary =
+      "\x7f"
+      "ELF\x02\x01\x01";
+  binary += std::string("\0\0\0\x03\n\x89PNG", 10);
+  for (int i = 0; i < 100000; ++i) binary.push_back(static_cast<char>(i * 7919 % 256));
+  const LintRun r = lint(write("binary.ngc", binary));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r, "\nproblems:\n  " + path("binary.ngc") +
+                     ": line 1: NUL byte at column 8: not a G-code text "
+                     "file (LinuxCNC stops reading a line at a NUL); nothing of it read\n\n");
+  EXPECT_WITHIN_A_SECOND(r);
+}
+
+TEST_F(Lint, shouldRefuseAFileWithANulByte) {
+  const LintRun r = lint(write("nul.ngc", std::string("T1 M6\nG0 X1\nG0\0 X2\nM2\n", 22)));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r,
+              "nul.ngc: line 3: NUL byte at column 3: not a G-code text file (LinuxCNC "
+              "stops reading a line at a NUL); nothing of it read\n");
+}
+
+// ---- the interpreter's bounds ----
+
+/// run_interpreter on `program` with the bounds given.
+std::optional<program::InterpreterRun> interpret(const std::string& program, double seconds,
+                                                 std::size_t max_output, std::string& error) {
+  io::InterpreterInput input;
+  input.rs274 = *io::find_rs274(error);
+  input.program_path = program;
+  input.seconds = seconds;
+  input.max_output_bytes = max_output;
+  return io::run_interpreter(input, error);
+}
+
+TEST_F(Lint, shouldStopAnInterpreterThatRunsWithoutEnd) {
+  const std::string endless = write("endless.ngc", "T1 M6\no100 while [1]\n  G0 X1\n  G0 X2\no100 endwhile\nM2\n");
+  std::string error;
+  const auto start = Clock::now();
+  const auto run = interpret(endless, 1.0, io::kMaxInterpreterOutput, error);
+  ASSERT_TRUE(run) << error;
+  EXPECT_LT(std::chrono::duration<double>(Clock::now() - start).count(), 3.0);
+  ASSERT_EQ(run->uses.size(), 1u);
+  ASSERT_EQ(run->problems.size(), 1u);
+  EXPECT_EQ(run->problems[0].text,
+            "LinuxCNC's interpreter (rs274) still ran after 1 s (a loop without end?): stopped; "
+            "tool changes after that are not known");
+}
+
+TEST_F(Lint, shouldStopReadingAnInterpreterThatPrintsTooMuch) {
+  const std::string endless = write("endless.ngc", "o100 while [1]\n  G0 X1\n  G0 X2\no100 endwhile\nM2\n");
+  std::string error;
+  const auto run = interpret(endless, 10.0, 100000, error);
+  ASSERT_TRUE(run) << error;
+  ASSERT_EQ(run->problems.size(), 1u);
+  EXPECT_EQ(run->problems[0].text,
+            "LinuxCNC's interpreter (rs274) printed over 100000 bytes: stopped; tool changes "
+            "after that are not known");
+}
+
+TEST_F(Lint, shouldGiveTheInterpreterOnlyTheStartOfAHugeProgram) {
+  std::string text = "T1 M6\n";
+  while (text.size() < 100000) text += "G1 X1.000 Y2.000 F100\n";
+  const std::string huge = write("huge.ngc", text + "T2 M6\nM2\n");
+  io::InterpreterInput input;
+  std::string error;
+  input.rs274 = *io::find_rs274(error);
+  input.program_path = huge;
+  input.max_program_bytes = 50000;
+  const auto run = io::run_interpreter(input, error);
+  ASSERT_TRUE(run) << error;
+  ASSERT_EQ(run->uses.size(), 1u);
+  ASSERT_FALSE(run->problems.empty());
+  EXPECT_EQ(run->problems[0].text.rfind("only the first 49990 of its " +
+                                            std::to_string(fs::file_size(huge)) +
+                                            " bytes read (the lint reads at most 50000 bytes of "
+                                            "G-code): tool changes after line 2273 are not known",
+                                        0),
+            0u)
+      << run->problems[0].text;
+}
+
+TEST_F(Lint, shouldSayInOneLineThatRs274IsMissing) {
+  ::setenv("FATC_RS274", "/nonexistent/rs274", 1);
+  const LintRun r = lint(program("manual.ngc"));
+  ::unsetenv("FATC_RS274");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err,
+            "/nonexistent/rs274 ($FATC_RS274): no such program: LinuxCNC's interpreter rs274 is "
+            "needed to read the program\n");
+  EXPECT_EQ(r.out, "");
+}
+
+TEST_F(Lint, shouldLeaveTheToolDataOfARunningLinuxCncAloneWhenTheInterpreterRuns) {
+  // rs274 makes LinuxCNC's tool data anew in $HOME/.tool.mmap, where a
+  // running LinuxCNC of the same user keeps its own.
+  const std::string home = path("home");
+  fs::create_directories(home);
+  const char* was = std::getenv("HOME");
+  const std::string saved = was ? was : "";
+  ::setenv("HOME", home.c_str(), 1);
+  const LintRun r = lint(program("changes.ngc"));
+  ::setenv("HOME", saved.c_str(), 1);
+  EXPECT_NE(r.out.find("tools in the order of the changes:"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(home + "/.tool.mmap"));
+}
+
+TEST_F(Lint, shouldReadAProgramWhoseNameHasSpacesAndQuotes) {
+  const std::string name = write("it's a \"test\" $(x).ngc", "T2 M6\nM2\n");
+  const LintRun r = lint(name);
+  EXPECT_EQ(r.code, 1) << r.out << r.err;  // T2 never measured
+  EXPECT_LINE(r, "tools in the order of the changes: T2\n");
+}
+
+TEST_F(Lint, shouldRefuseAVeryLongLine) {
+  const LintRun r =
+      lint(write("long.ngc", "T1 M6\nG0 X" + std::string(100'000, '1') + "\nT2 M6\nM2\n"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r, "long.ngc: LinuxCNC stops the program here: Command too long (at \"G0 X111");
+  EXPECT_LINE(r, "tools in the order of the changes: T1 T2\n");
+  EXPECT_WITHIN_A_SECOND(r);
+}
+
+TEST_F(Lint, shouldKeepAThousandErrorsAndCountTheRest) {
+  std::string text;
+  for (int i = 0; i < 3000; ++i) text += "G0 X1 {\n";
+  const LintRun r = lint(write("garbage.ngc", text));
+  EXPECT_EQ(r.code, 1);
+  // 2000 more, and the end of the file without M2.
+  EXPECT_LINE(r, "garbage.ngc: 2001 more errors of the interpreter, not listed\n");
+  EXPECT_LINE(r, "garbage.ngc: 0 tool changes (M6), 0 M61, 1001 problems, 0 not known\n");
+  EXPECT_WITHIN_A_SECOND(r);
+}
+
+TEST_F(Lint, shouldStopAtTheEndOfAProgramWithoutM2) {
+  // rs274 -n 0 would repeat the error for ever.
+  const LintRun r = lint(write("no_end.ngc", "T1 M6\nG0 X1\n"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r,
+              "no_end.ngc: line 2: LinuxCNC stops the program here: File ended with no percent "
+              "sign or program end\n");
+  EXPECT_LINE(r, "no_end.ngc: 1 tool change (M6), 0 M61, 2 problems, 0 not known\n");
+  EXPECT_WITHIN_A_SECOND(r);
+}
+
+TEST_F(Lint, shouldStopCallsNestedDeeperThanLinuxCncAllows) {
+  for (int level = 0; level < 12; ++level) {
+    const std::string name = "level" + std::to_string(level);
+    write(name + ".ngc", "o<" + name + "> sub\nT" + std::to_string(level + 1) + " M6\no<level" +
+                             std::to_string(level + 1) + "> call\no<" + name + "> endsub\nM2\n");
+  }
+  const LintRun r = lint(write("deep.ngc", "o<level0> call\nM2\n"), {"--subroutine-path", dir_.string()});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r, "tools in the order of the changes: T1 T2 T3 T4 T5 T6 T7 T8 T9\n");
+  EXPECT_LINE(r, "LinuxCNC stops the program here: ");
+}
+
+TEST_F(Lint, shouldStopCountingAfterTenThousandChanges) {
+  std::string text;
+  for (int i = 0; i < 6000; ++i) text += "T1 M6\nT2 M6\n";
+  const LintRun r = lint(write("many.ngc", text + "M2\n"), {"--state", state_with_lengths({1, 2})});
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_LINE(r,
+              "many.ngc: more than 10000 tool changes and M61: the other 2000 are not counted\n");
+  EXPECT_LINE(r, "  ... and 9800 more\n");
+  EXPECT_LINE(r, "many.ngc: 10000 tool changes (M6), 0 M61, 0 problems, 1 not known\n");
+}
+
+}  // namespace
+}  // namespace fatc

@@ -1,0 +1,98 @@
+// --plot: the rack from above as SVG, from the config and the tool state, and
+// the path of one change.
+#include "io/plot.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "cli_run.hpp"
+#include "core/plan/simulator.hpp"
+#include "test_config.hpp"
+
+namespace fatc {
+namespace {
+
+using test::valid_config;
+
+long count(const std::string& text, const std::string& part) {
+  long n = 0;
+  for (auto at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
+  return n;
+}
+
+TEST(Plot, shouldDrawEveryPocketWithItsToolKeepOutAndApproach) {
+  const Config config = valid_config();
+  const std::string svg = io::rack_svg(config, ToolState::fresh(config), nullptr, "the rack");
+  EXPECT_EQ(svg.rfind("<?xml", 0), 0u);
+  EXPECT_EQ(svg.substr(svg.size() - 7), "</svg>\n");
+  for (int n = 1; n <= 6; ++n) {
+    EXPECT_NE(svg.find(">pocket " + std::to_string(n) + "</text>"), std::string::npos) << n;
+    EXPECT_NE(svg.find(">T" + std::to_string(n) + "</text>"), std::string::npos) << n;
+  }
+  EXPECT_EQ(count(svg, "stroke-dasharray=\"4 3\""), 6) << "one keep-out square a pocket";
+  EXPECT_EQ(count(svg, "marker-end=\"url(#arrow)\""), 6) << "one side approach a pocket";
+  for (const char* station : {">safe</text>", ">loading</text>", ">touch-off sensor</text>"}) {
+    EXPECT_NE(svg.find(station), std::string::npos) << station;
+  }
+}
+
+TEST(Plot, shouldShowWhereEachToolIsAndTopPockets) {
+  const std::string side = R"("pocket_default": {"y": 20.0, "z": -80.0})";
+  std::string text = test::kValidConfig;
+  text.replace(text.find(side), side.size(),
+               R"("pocket_default": {"y": 20.0, "z": -80.0, "approach": "top"})");
+  const Config config = parse_config(text).config.value();
+  ToolState tools = ToolState::fresh(config);
+  tools.put_in_spindle(2);
+  const std::string svg = io::rack_svg(config, tools, nullptr, "A & <B>");
+  EXPECT_NE(svg.find(">T2 (spindle), top</text>"), std::string::npos) << svg;
+  EXPECT_NE(svg.find(">T1, top</text>"), std::string::npos);
+  EXPECT_EQ(count(svg, "marker-end"), 0) << "no side approach to draw";
+  EXPECT_NE(svg.find(">A &amp; &lt;B&gt;</text>"), std::string::npos) << "the title escaped";
+}
+
+TEST(Plot, shouldDrawTheChangesMovesInXYSlowOnesApart) {
+  const Config config = valid_config();
+  const Simulator change = plan_change(config, 1, 2, -70.0);
+  const std::string svg = io::rack_svg(config, ToolState::fresh(config), &change, "M6 T2");
+  // Six approach arrows, and the change's moves in XY: two slow ones (into
+  // pocket 1, out of pocket 2), the rest rapids.
+  EXPECT_EQ(count(svg, "stroke=\"#c00\""), 2) << svg;
+  EXPECT_GE(count(svg, "stroke=\"#36c\""), 4);
+  EXPECT_NE(svg.find("The change: blue dashed rapids, red solid slow moves"), std::string::npos);
+}
+
+TEST(Plot, shouldWriteTheFileAndSayWhatItDrew) {
+  const std::string path = ::testing::TempDir() + "fatc_rack.svg";
+  const auto r = test::run_cli({"--plot", path, "--config", FATC_SOURCE_DIR "/config/config.json",
+                                "--from", "2", "--to", "5"});
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_NE(r.out.find(": 6 pockets, and the path of the change\n"), std::string::npos) << r.out;
+  std::ostringstream written;
+  written << std::ifstream(path).rdbuf();
+  std::remove(path.c_str());
+  EXPECT_NE(written.str().find("M6 T5 with T2 in the spindle, the prototype path"),
+            std::string::npos);
+}
+
+TEST(Plot, shouldRefuseWhatItCannotDrawInOneLine) {
+  const std::string config = FATC_SOURCE_DIR "/config/config.json";
+  auto r = test::run_cli({"--plot", "x.svg", "--config", config, "--from", "2"});
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err, "--plot: --from A and --to B go together (the change to draw)");
+  r = test::run_cli({"--plot", "/nonexistent/dir/x.svg", "--config", config});
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(
+      r.err.find("/nonexistent/dir/x.svg: cannot write the drawing: No such file or directory"),
+      std::string::npos)
+      << r.err;
+  r = test::run_cli({"--plot", "x.svg", "--config", config, "--ini", "sim.ini"});
+  EXPECT_EQ(r.code, 2);
+  EXPECT_NE(r.err.find("--ini is not used by --plot"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace fatc

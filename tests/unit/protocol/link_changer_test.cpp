@@ -1,0 +1,67 @@
+// The executor link and the changer together, the way the component joins
+// them, against a fake executor that follows nc_files/fixed_atc_probe_execute.ngc.
+// Prints the timeline of one M6 (pins in, events, what the changer does, pins
+// out) so that the handshake can be read as it happens.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/machine/changer.hpp"
+#include "core/protocol/executor_link.hpp"
+#include "core/plan/simulator.hpp"
+#include "link_rig.hpp"
+#include "test_config.hpp"
+
+namespace fatc {
+namespace {
+
+using test::FakeExecutor;
+using test::LinkedPorts;
+using test::show;
+
+TEST(LinkWithChanger, shouldPerformThePlannedStepsInOrderAndAnswerIocontrolWhenOneM6Runs) {
+  const Config config = test::valid_config();
+  LinkedPorts ports;
+  Changer changer(config, ports, ToolState::fresh(config));
+  changer.ready();
+  changer.spindle_stopped(true);
+  LinkInputs in;
+  in.interpreter_idle = false;  // a program runs
+  in.number = 2;                // T2 prepared
+  FakeExecutor executor(in);
+  executor.call(ExecutorCall::tool_change);
+
+  test::LinkRig rig{ports, changer, in, executor};
+  for (int turn = 0; turn < 2000 && executor.running; ++turn) rig.turn();
+
+  // The builtin M6 at the end of the remap: iocontrol's level handshake.
+  in.tool_change = true;
+  ports.link.read(in, ports.now);
+  const bool changed = ports.link.write(changer.status().phase == Phase::idle).changed;
+  ports.log.push_back("in: tool-change 1 -> out: changed " + std::to_string(changed));
+  in.tool_change = false;
+  ports.link.read(in, ports.now);
+  const bool dropped = !ports.link.write(true).changed;
+  ports.log.push_back("in: tool-change 0 -> out: changed " + std::to_string(!dropped));
+
+  for (const auto& line : ports.log) std::cout << line << "\n";
+
+  std::vector<std::string> planned;
+  for (const Step& step : plan_change(config, 0, 2, 0.0).steps()) planned.push_back(describe(step));
+  std::vector<std::string> performed;
+  for (const Step& step : executor.performed) performed.push_back(describe(step));
+  EXPECT_EQ(performed, planned);
+  EXPECT_FALSE(executor.running);
+  EXPECT_EQ(changer.tools().spindle, 2);
+  EXPECT_TRUE(changed);
+  EXPECT_TRUE(dropped);
+  EXPECT_TRUE(ports.unexpected_events.empty());
+}
+
+}  // namespace
+}  // namespace fatc
