@@ -21,6 +21,7 @@
 #include "core/plan/simulator.hpp"
 #include "files.hpp"
 #include "ini.hpp"
+#include "confirm.hpp"
 #include "lint.hpp"
 #include "plot.hpp"
 
@@ -508,42 +509,6 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
 }
 
 namespace {
-
-/// The recovery of a fault without LinuxCNC: the operator's word into the
-/// state file, as the clear-fault pin would record it. Nothing moves.
-int confirm(const Options& options, std::ostream& out, std::ostream& err) {
-  const auto config = load_config_file(options.config_path);
-  if (!config.config) {
-    for (const auto& error : config.errors) err << error << "\n";
-    return 1;
-  }
-  auto state = load_state_file(options.state_path, *config.config);
-  if (!state.state) {
-    err << state.error << "\n";
-    return 1;
-  }
-  ToolState& tools = *state.state;
-  const int pocket = tools.in_progress ? tools.in_progress->pocket : 0;
-  if (options.pocket_holds_tool && pocket == 0) {
-    err << shown_path(options.state_path) << ": --pocket: no sequence was cut off at a pocket\n";
-    return 1;
-  }
-  tools.confirm(*options.spindle_tool, options.pocket_holds_tool);
-  try {
-    save_state_file(options.state_path, tools);
-  } catch (const std::exception& e) {
-    err << e.what() << "\n";
-    return 1;
-  }
-  out << shown_path(options.state_path) << ": the spindle holds "
-      << (tools.spindle == 0 ? std::string("nothing") : "tool " + std::to_string(tools.spindle));
-  if (pocket != 0) {
-    out << "; pocket " << pocket << (tools.holds(pocket) ? " holds" : " does not hold") << " tool "
-        << tools.tool_of(pocket);
-  }
-  out << "; nothing is uncertain now\n";
-  return 0;
-}
 
 /// --teach: the machine position into config.json, the file as it was kept as PATH.bak.
 int teach_position(const Options& options, std::ostream& out, std::ostream& err) {

@@ -1,0 +1,45 @@
+#include "confirm.hpp"
+
+#include <ostream>
+
+#include "files.hpp"
+
+namespace fatc::io {
+
+/// The recovery of a fault without LinuxCNC: the operator's word into the
+/// state file, as the clear-fault pin would record it. Nothing moves.
+int confirm(const Options& options, std::ostream& out, std::ostream& err) {
+  const auto config = load_config_file(options.config_path);
+  if (!config.config) {
+    for (const auto& error : config.errors) err << error << "\n";
+    return 1;
+  }
+  auto state = load_state_file(options.state_path, *config.config);
+  if (!state.state) {
+    err << state.error << "\n";
+    return 1;
+  }
+  ToolState& tools = *state.state;
+  const int pocket = tools.in_progress ? tools.in_progress->pocket : 0;
+  if (options.pocket_holds_tool && pocket == 0) {
+    err << shown_path(options.state_path) << ": --pocket: no sequence was cut off at a pocket\n";
+    return 1;
+  }
+  tools.confirm(*options.spindle_tool, options.pocket_holds_tool);
+  try {
+    save_state_file(options.state_path, tools);
+  } catch (const std::exception& e) {
+    err << e.what() << "\n";
+    return 1;
+  }
+  out << shown_path(options.state_path) << ": the spindle holds "
+      << (tools.spindle == 0 ? std::string("nothing") : "tool " + std::to_string(tools.spindle));
+  if (pocket != 0) {
+    out << "; pocket " << pocket << (tools.holds(pocket) ? " holds" : " does not hold") << " tool "
+        << tools.tool_of(pocket);
+  }
+  out << "; nothing is uncertain now\n";
+  return 0;
+}
+
+}  // namespace fatc::io
