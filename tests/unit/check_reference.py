@@ -100,9 +100,10 @@ def call_arguments(text, open_paren):
 
 
 class CppFile:
-    def __init__(self, path):
+    def __init__(self, path, *more):
+        """`more`: files read as one with `path` (the reader the config's calls go through)."""
         self.path = path
-        self.text = path.read_text()
+        self.text = "\n".join(p.read_text() for p in (*more, path))
         # Function definitions: name, parameter names, body start and end.
         self.functions = []
         for m in DEFINITION.finditer(self.text):
@@ -173,7 +174,7 @@ class CppFile:
 
 
 def accepted_config_keys(root):
-    cpp = CppFile(root / "src/core/config/config.cpp")
+    cpp = CppFile(root / "src/core/config/config.cpp", root / "src/core/config/reader.hpp")
     keys = set()
     calls = list(re.finditer(r"reject_unknown_keys\(", cpp.text))
     for call in calls:
