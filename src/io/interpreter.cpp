@@ -335,21 +335,22 @@ std::optional<program::InterpreterRun> run_interpreter(const InterpreterInput& i
 
   std::vector<std::string> argv = {input.rs274};
   if (input.ini_path) {
-    std::string ini_for_run = absolute(*input.ini_path);
+    const auto ini_text = read_small_file(*input.ini_path, error);
+    if (!ini_text) return std::nullopt;
+    std::string folders;
     if (input.subroutine_path) {
-      const auto ini_text = read_small_file(*input.ini_path, error);
-      if (!ini_text) return std::nullopt;
-      std::string folders = absolute_folders(*input.subroutine_path);
+      folders = absolute_folders(*input.subroutine_path);
       if (const auto own = ini->get("RS274NGC", "SUBROUTINE_PATH")) folders += ":" + *own;
-      const auto written = scratch.write(
-          "machine.ini", program::ini_with_subroutine_folders(*ini_text, folders), error);
-      if (!written) return std::nullopt;
-      ini_for_run = *written;
     }
-    argv.insert(argv.end(), {"-i", ini_for_run});
-  } else if (input.subroutine_path) {
+    const auto written =
+        scratch.write("machine.ini", program::ini_for_preflight(*ini_text, folders), error);
+    if (!written) return std::nullopt;
+    argv.insert(argv.end(), {"-i", *written});
+  } else {
     const auto written = scratch.write(
-        "machine.ini", program::ini_with_subroutine_folders("", absolute_folders(*input.subroutine_path)),
+        "machine.ini",
+        program::ini_for_preflight(
+            "", input.subroutine_path ? absolute_folders(*input.subroutine_path) : ""),
         error);
     if (!written) return std::nullopt;
     argv.insert(argv.end(), {"-i", *written});

@@ -15,6 +15,10 @@ namespace fatc::machine {
 /// if `probe_after_change` asks. docs/sequences.md#m6.
 struct ChangeFlow_ : Flow<ChangeFlow_> {
   using flag_list = boost::mpl::vector2<flag::Busy, flag::Changing>;
+  /// The requested tool is in the rack: a fetch follows the return.
+  static bool fetch_follows_return(const Context& c) {
+    return c.tools.pocket_holding(c.requested_tool).has_value();
+  }
 
   /// LinuxCNC's spindle off and, where wired, zero speed.
   struct WaitingForSpindle

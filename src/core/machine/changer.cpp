@@ -169,8 +169,11 @@ Status Changer::status() const {
   status.step_number = status.busy() ? c.sequence_step : 0;
   status.pocket = status.busy() && c.tools.in_progress ? c.tools.in_progress->pocket : 0;
   if (status.phase == Phase::measuring) {
-    status.batch_done = static_cast<int>(c.batch.done);
-    status.batch_total = static_cast<int>(c.batch.tools.size());
+    const auto& batch = fsm.get_state<const machine::Operating&>()
+                            .get_state<const machine::MeasureAllFlow&>()
+                            .batch;
+    status.batch_done = static_cast<int>(batch.done);
+    status.batch_total = static_cast<int>(batch.tools.size());
   }
   status.activity = activity_of(status, c);
   return status;

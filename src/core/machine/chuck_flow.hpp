@@ -19,12 +19,21 @@ inline constexpr const char* kChuckHeldOpen = "the chuck held open (released fro
 struct ChuckFlow_ : Flow<ChuckFlow_> {
   using flag_list = boost::mpl::vector2<flag::Busy, flag::Chucking>;
   static int served_tool(const Context& ctx) { return ctx.tools.spindle; }
-  static int served_pocket(const Context&, int) { return 0; }
+  template <class Parent>
+  static int served_pocket(const Context&, int, const Parent&) {
+    return 0;
+  }
+  ChuckRequest::Action action = ChuckRequest::Action::clamp;  ///< what this atom does
+  template <class Event, class Parent>
+  void on_entry(const Event& e, Parent& parent) {
+    Flow::on_entry(e, parent);
+    if constexpr (std::is_same_v<Event, ChuckRequest>) action = e.action;
+  }
 
   struct Releases {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      return fsm.ctx->chuck_action == ChuckRequest::Action::release;
+      return fsm.action == ChuckRequest::Action::release;
     }
   };
   struct DecidingWhich : Decision {};

@@ -115,12 +115,16 @@ struct Flow : msmf::state_machine_def<Derived> {
   void on_entry(const Event&, Parent& parent) {
     ctx = parent.ctx;
     tool = Derived::served_tool(*ctx);
-    pocket = Derived::served_pocket(*ctx, tool);
+    pocket = Derived::served_pocket(*ctx, tool, parent);
   }
   static int served_tool(const Context& ctx) { return ctx.requested_tool; }
-  static int served_pocket(const Context& ctx, int tool) {
+  template <class Parent>
+  static int served_pocket(const Context& ctx, int tool, const Parent&) {
     return ctx.tools.pocket_holding(tool).value_or(0);
   }
+  /// A fetch follows a return of this flow's: on the direct path that return
+  /// may end at safe Z over its pocket, where the fetch starts.
+  static bool fetch_follows_return(const Context&) { return false; }
 };
 
 // ---------------------------------------------------------------- kinds of state

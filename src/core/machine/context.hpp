@@ -31,21 +31,6 @@ class Context {
   /// The flow under way runs inside a G-code program (M6, a chuck atom): the
   /// operator's answers hold the program, and only LinuxCNC's Stop ends a probe.
   bool in_program = false;
-  int load_pocket = 0;     ///< the pocket the load flow puts its tool in
-  int verify_pocket = 0;   ///< the pocket a dry run goes through
-  /// What the chuck atom under way does.
-  ChuckRequest::Action chuck_action = ChuckRequest::Action::clamp;
-  /// A fetch follows the return of the spindle's tool (M6 to a tool in the
-  /// rack, unload): on the direct path the return may end at safe Z.
-  bool fetch_follows_return = false;
-  /// Measure all: the tools to measure, in order, and how far it got.
-  struct Batch {
-    std::vector<int> tools;
-    std::size_t done = 0;          ///< tools measured or tried
-    bool cancel = false;           ///< stop once the tool under way is back in its pocket
-    std::optional<double> stored;  ///< the length of the tool under way before it was measured
-    std::vector<std::string> report;
-  } batch;
   bool machine_ready = false;   ///< latest Ready/NotReady
   bool spindle_stopped = true;  ///< LinuxCNC's spindle is off (`spindle-stopped`)
   SensorReadings sensors;       ///< what the optional sensors read
@@ -102,6 +87,8 @@ class Context {
   void begin_sequence(const std::string& sequence);
   void record_progress(const std::string& step, int pocket);
   void end_sequence();
+  /// The pocket the sequence under way serves (its last progress), 0 if none.
+  int sequence_pocket() const { return tools.in_progress ? tools.in_progress->pocket : 0; }
 
   /// The pocket the tool in the spindle goes back to: its own, or, for a tool
   /// from outside the rack, its first-start pocket if that is free.
@@ -149,8 +136,6 @@ class Context {
   /// current event is through); `uncertain`: what the spindle holds is no
   /// longer a fact.
   void fail_check(std::string reason, bool uncertain);
-  /// Why the last probe measured nothing, in words (for the fault after M6).
-  std::string probe_problem;
 
  private:
   void blow_if_due();

@@ -14,6 +14,15 @@ namespace fatc::machine {
 struct LoadFlow_ : Flow<LoadFlow_> {
   using flag_list = boost::mpl::vector2<flag::Busy, flag::Loading>;
 
+  int load_pocket = 0;  ///< the pocket the loaded tool goes into (PutAway)
+  template <class Event, class Parent>
+  void on_entry(const Event& e, Parent& parent) {
+    Flow::on_entry(e, parent);
+    if constexpr (std::is_same_v<Event, LoadRequest>) {
+      load_pocket = choose_load_pocket(*ctx, e.tool, e.pocket).pocket;
+    }
+  }
+
   struct JogPrompt {
     template <class Leg>
     std::string operator()(const Context& c, const Leg&) const {

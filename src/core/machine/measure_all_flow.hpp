@@ -18,6 +18,26 @@ namespace fatc::machine {
 struct MeasureAllFlow_ : Flow<MeasureAllFlow_> {
   using flag_list = boost::mpl::vector2<flag::Busy, flag::Measuring>;
 
+  /// The tools to measure, in order, and how far the batch got.
+  struct Batch {
+    std::vector<int> tools;
+    std::size_t done = 0;          ///< tools measured or tried
+    bool cancel = false;           ///< stop once the tool under way is back in its pocket
+    std::optional<double> stored;  ///< the length of the tool under way before it was measured
+    std::vector<std::string> report;
+  } batch;
+  template <class Event, class Parent>
+  void on_entry(const Event& e, Parent& parent) {
+    Flow::on_entry(e, parent);
+    if constexpr (std::is_same_v<Event, MeasureRequest>) {
+      std::string skipped;
+      batch = {measurable_tools(*ctx, e.tools, skipped), 0, false, {}, {}};
+      if (!skipped.empty()) {
+        ctx->tell(MessageKind::info, "measure all skips what is not in the rack: " + skipped);
+      }
+    }
+  }
+
   using Returning = ReturnLeg<Before>;
   using Probe = ProbingLeg;
   /// The spindle's tool goes back first; then the next tool, if any is left.
@@ -29,7 +49,7 @@ struct MeasureAllFlow_ : Flow<MeasureAllFlow_> {
   struct ToolsLeft {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      const Context::Batch& b = fsm.ctx->batch;
+      const Batch& b = fsm.batch;
       return !b.cancel && b.done < b.tools.size();
     }
   };
@@ -37,14 +57,14 @@ struct MeasureAllFlow_ : Flow<MeasureAllFlow_> {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       Context& c = *fsm.ctx;
-      const int tool = c.batch.tools[c.batch.done];
+      const int tool = fsm.batch.tools[fsm.batch.done];
       c.requested_tool = tool;
       const auto stored = c.tools.lengths.find(tool);
-      c.batch.stored =
+      fsm.batch.stored =
           stored == c.tools.lengths.end() ? std::nullopt : std::optional<double>(stored->second);
       c.tell(MessageKind::info, "measure all: tool " + std::to_string(tool) + " (" +
-                                    std::to_string(c.batch.done + 1) + " of " +
-                                    std::to_string(c.batch.tools.size()) + ")");
+                                    std::to_string(fsm.batch.done + 1) + " of " +
+                                    std::to_string(fsm.batch.tools.size()) + ")");
     }
   };
   struct RecordMeasured {
@@ -54,24 +74,24 @@ struct MeasureAllFlow_ : Flow<MeasureAllFlow_> {
       const double now = *c.last_length;
       std::string line =
           "T" + std::to_string(c.requested_tool) + " " + format_length(c.config, now);
-      if (c.batch.stored) {
+      if (fsm.batch.stored) {
         char change[32];
-        std::snprintf(change, sizeof change, "%+.4f", now - *c.batch.stored);
-        line += " (was " + format_length(c.config, *c.batch.stored) + ", " + change + ")";
+        std::snprintf(change, sizeof change, "%+.4f", now - *fsm.batch.stored);
+        line += " (was " + format_length(c.config, *fsm.batch.stored) + ", " + change + ")";
       } else {
         line += " (first measurement)";
       }
-      c.batch.report.push_back(line);
-      ++c.batch.done;
+      fsm.batch.report.push_back(line);
+      ++fsm.batch.done;
     }
   };
   struct RecordNotMeasured {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       Context& c = *fsm.ctx;
-      c.batch.report.push_back("T" + std::to_string(c.requested_tool) +
-                               " not measured: " + c.probe_problem);
-      ++c.batch.done;
+      fsm.batch.report.push_back("T" + std::to_string(c.requested_tool) +
+                               " not measured: " + fsm.template get_state<Probe&>().problem);
+      ++fsm.batch.done;
     }
   };
   struct SayReport {
@@ -79,9 +99,9 @@ struct MeasureAllFlow_ : Flow<MeasureAllFlow_> {
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       Context& c = *fsm.ctx;
       std::string text =
-          "measure all " + std::string(c.batch.cancel ? "cancelled after " : "done: ") +
-          std::to_string(c.batch.done) + " of " + std::to_string(c.batch.tools.size()) + " tools";
-      for (const auto& line : c.batch.report) text += "; " + line;
+          "measure all " + std::string(fsm.batch.cancel ? "cancelled after " : "done: ") +
+          std::to_string(fsm.batch.done) + " of " + std::to_string(fsm.batch.tools.size()) + " tools";
+      for (const auto& line : fsm.batch.report) text += "; " + line;
       c.tell(MessageKind::info, text);
     }
   };
@@ -91,7 +111,7 @@ struct MeasureAllFlow_ : Flow<MeasureAllFlow_> {
   struct AskToStop {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      fsm.ctx->batch.cancel = true;
+      fsm.batch.cancel = true;
       fsm.ctx->tell(MessageKind::info, "measure all stops once tool " +
                                            std::to_string(fsm.ctx->requested_tool) +
                                            " is back in its pocket");

@@ -94,7 +94,7 @@ struct BecauseBusy {
     if (fsm.template is_flag_active<flag::Unloading>())
       return "the changer is busy unloading tool " + tool;
     if (fsm.template is_flag_active<flag::Verifying>())
-      return "the changer is busy verifying pocket " + std::to_string(fsm.ctx->verify_pocket);
+      return "the changer is busy verifying pocket " + std::to_string(fsm.ctx->sequence_pocket());
     if (fsm.template is_flag_active<flag::Chucking>()) return "the changer is busy with the chuck";
     return "the changer is busy changing to tool " + tool;
   }
@@ -127,8 +127,9 @@ struct StopDryRun {
     Context& c = *fsm.ctx;
     std::string why = "the machine went off, lost homing or entered estop";
     if constexpr (std::is_same_v<Event, Abort>) why = e.reason;
+    const int pocket = c.sequence_pocket();
     c.end_sequence();
-    c.tell(MessageKind::info, "verify of pocket " + std::to_string(c.verify_pocket) + " stopped (" +
+    c.tell(MessageKind::info, "verify of pocket " + std::to_string(pocket) + " stopped (" +
                                   why +
                                   "); nothing was recorded. The spindle may be in the rack: jog "
                                   "it out the way it came in before the next change");
@@ -181,33 +182,16 @@ struct Operating_ : Flow<Operating_> {
   struct TakeRequest {
     template <class Request, class Fsm, class Source, class Target>
     void operator()(const Request& e, Fsm& fsm, Source&, Target&) const {
+      // What the flow itself needs of the request it takes on entry.
       Context& c = *fsm.ctx;
       c.in_program = std::is_same_v<Request, ToolChange> || std::is_same_v<Request, ChuckRequest>;
-      if constexpr (std::is_same_v<Request, ToolChange>) {
-        c.fetch_follows_return = c.tools.pocket_holding(e.tool).has_value();
-      } else {
-        c.fetch_follows_return = std::is_same_v<Request, UnloadRequest>;
-      }
-      if constexpr (std::is_same_v<Request, VerifyRequest>) {
-        fsm.ctx->requested_tool = fsm.ctx->tools.spindle;
-        fsm.ctx->verify_pocket = e.pocket;
-      } else if constexpr (std::is_same_v<Request, ChuckRequest>) {
-        fsm.ctx->requested_tool = fsm.ctx->tools.spindle;
-        fsm.ctx->chuck_action = e.action;
+      if constexpr (std::is_same_v<Request, VerifyRequest> ||
+                    std::is_same_v<Request, ChuckRequest>) {
+        c.requested_tool = c.tools.spindle;
       } else if constexpr (!std::is_same_v<Request, MeasureRequest>) {
-        fsm.ctx->requested_tool = e.tool;
+        c.requested_tool = e.tool;
       }
-      if constexpr (std::is_same_v<Request, LoadRequest>) {
-        fsm.ctx->load_pocket = choose_load_pocket(*fsm.ctx, e.tool, e.pocket).pocket;
-      }
-      if constexpr (std::is_same_v<Request, MeasureRequest>) {
-        std::string skipped;
-        fsm.ctx->batch = {measurable_tools(*fsm.ctx, e.tools, skipped), 0, false, {}, {}};
-        if (!skipped.empty()) {
-          fsm.ctx->tell(MessageKind::info, "measure all skips what is not in the rack: " + skipped);
-        }
-      }
-      fsm.ctx->begin_sequence(request_name(e));
+      c.begin_sequence(request_name(e));
     }
   };
   /// The executor's last step: done, with the tool in the spindle.

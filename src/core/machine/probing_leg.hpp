@@ -20,10 +20,12 @@ namespace fatc::machine {
 struct ProbingLeg_ : Flow<ProbingLeg_> {
   double first_touch_z = 0.0;  ///< where the seek touched
   double latched_z = 0.0;      ///< where the latch touched
+  std::string problem;         ///< why nothing was measured, in words
 
   template <class Event, class Parent>
   void on_entry(const Event& e, Parent& parent) {
     Flow::on_entry(e, parent);
+    problem.clear();
     ctx->record_progress("measuring tool " + std::to_string(tool), 0);
   }
 
@@ -119,13 +121,13 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
     template <class Fsm, class Source, class Target>
     void operator()(const ProbeResult& e, Fsm& fsm, Source&, Target&) const {
       const std::string tool = "tool " + std::to_string(fsm.tool);
-      fsm.ctx->probe_problem = e.tripped_before
+      fsm.problem = e.tripped_before
                                    ? "the touch-off sensor was already tripped"
                                    : tool + " did not touch the sensor before probe_limit";
       fsm.ctx->tell(MessageKind::error,
                     e.tripped_before
-                        ? "probe: " + tool + ": " + fsm.ctx->probe_problem + "; nothing written"
-                        : "probe: " + fsm.ctx->probe_problem + "; nothing written");
+                        ? "probe: " + tool + ": " + fsm.problem + "; nothing written"
+                        : "probe: " + fsm.problem + "; nothing written");
     }
   };
   struct SayOutsideWindow {
@@ -135,7 +137,7 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
       const double stored = c.tools.lengths.at(fsm.tool);
       const double expected = stored + c.config.probe_length_compensation_offset;
       const bool early = e.z > expected;
-      c.probe_problem =
+      fsm.problem =
           "tool " + std::to_string(fsm.tool) + " touched the sensor at Z " +
           format_length(c.config, e.z) + ", " + format_length(c.config, std::abs(e.z - expected)) +
           (early ? " too early" : " too late") + ": its stored length " +
@@ -143,13 +145,13 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
           format_length(c.config, expected) + " (probe_window " +
           format_length(c.config, c.config.window()) + "); " +
           (early ? "a shorted sensor, a wrong or pulled-out tool?" : "a broken or wrong tool?");
-      c.tell(MessageKind::error, "probe: " + c.probe_problem + " Nothing written");
+      c.tell(MessageKind::error, "probe: " + fsm.problem + " Nothing written");
     }
   };
   struct SayCancelled {
     template <class Fsm, class Source, class Target>
     void operator()(const OperatorCancel&, Fsm& fsm, Source&, Target&) const {
-      fsm.ctx->probe_problem = "the probe was cancelled by the operator";
+      fsm.problem = "the probe was cancelled by the operator";
       fsm.ctx->tell(MessageKind::info, "probe of tool " + std::to_string(fsm.tool) +
                                            " cancelled by the operator; nothing written");
     }
@@ -221,7 +223,8 @@ struct MeasureLeg_ : Flow<MeasureLeg_> {
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       fsm.ctx->fault_reason =
           "tool " + std::to_string(fsm.tool) +
-          " could not be measured after the change (probe_after_change): " + fsm.ctx->probe_problem;
+          " could not be measured after the change (probe_after_change): " +
+          fsm.template get_state<Probe&>().problem;
     }
   };
 

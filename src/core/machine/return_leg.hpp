@@ -9,11 +9,17 @@ namespace fatc::machine {
 // ================================================================ return
 /// The return of whatever the spindle held before: to its own pocket.
 struct Before {
-  static int pocket(const Context& ctx, int tool) { return ctx.return_pocket(tool).value_or(0); }
+  template <class Parent>
+  static int pocket(const Context& ctx, int tool, const Parent&) {
+    return ctx.return_pocket(tool).value_or(0);
+  }
 };
 /// The return of the tool the load flow is about: to the pocket the load chose.
 struct PutAway {
-  static int pocket(const Context& ctx, int) { return ctx.load_pocket; }
+  template <class Parent>
+  static int pocket(const Context&, int, const Parent& load) {
+    return load.load_pocket;
+  }
 };
 
 /// Puts the tool in the spindle into a pocket (docs/sequences.md#return):
@@ -21,10 +27,15 @@ struct PutAway {
 template <class Which>
 struct ReturnLeg_ : Flow<ReturnLeg_<Which>> {
   static int served_tool(const Context& ctx) { return ctx.tools.spindle; }
-  static int served_pocket(const Context& ctx, int tool) { return Which::pocket(ctx, tool); }
+  template <class Parent>
+  static int served_pocket(const Context& ctx, int tool, const Parent& parent) {
+    return Which::pocket(ctx, tool, parent);
+  }
+  bool fetch_follows = false;  ///< the flow fetches a tool next (Flow::fetch_follows_return)
   template <class Event, class Parent>
   void on_entry(const Event& e, Parent& parent) {
     Flow<ReturnLeg_<Which>>::on_entry(e, parent);
+    fetch_follows = Parent::fetch_follows_return(*this->ctx);
     this->ctx->record_progress("returning tool " + std::to_string(this->tool) + " to pocket " +
                                    std::to_string(this->pocket),
                                this->pocket);
@@ -50,7 +61,7 @@ struct ReturnLeg_ : Flow<ReturnLeg_<Which>> {
   struct Away : Walking<Away> {
     template <class Leg>
     static plan::Route route(const Context& c, const Leg& leg) {
-      return plan::return_away(c.config, leg.pocket, c.fetch_follows_return);
+      return plan::return_away(c.config, leg.pocket, leg.fetch_follows);
     }
   };
 

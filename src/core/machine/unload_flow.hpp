@@ -13,6 +13,7 @@ namespace fatc::machine {
 /// out by the operator at `loading`. docs/sequences.md#unload.
 struct UnloadFlow_ : Flow<UnloadFlow_> {
   using flag_list = boost::mpl::vector2<flag::Busy, flag::Unloading>;
+  static bool fetch_follows_return(const Context&) { return true; }
 
   struct SayCancelled {
     template <class Event, class Fsm, class Source, class Target>

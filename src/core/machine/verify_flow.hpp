@@ -16,7 +16,6 @@ namespace fatc::machine {
 struct VerifyFlow_ : Flow<VerifyFlow_> {
   using flag_list = boost::mpl::vector2<flag::Busy, flag::Verifying>;
   static int served_tool(const Context& ctx) { return ctx.tools.spindle; }
-  static int served_pocket(const Context& ctx, int) { return ctx.verify_pocket; }
 
   /// The waypoints, in order (plan::verify_pocket).
   plan::Route route;
@@ -25,6 +24,7 @@ struct VerifyFlow_ : Flow<VerifyFlow_> {
   template <class Event, class Parent>
   void on_entry(const Event& e, Parent& parent) {
     Flow::on_entry(e, parent);
+    if constexpr (std::is_same_v<Event, VerifyRequest>) pocket = e.pocket;
     route = plan::verify_pocket(ctx->config, pocket);
     reached = 0;
     ctx->record_progress("verifying pocket " + std::to_string(pocket), pocket);

@@ -42,8 +42,9 @@ InterpreterTable any_tool_table() {
   return result;
 }
 
-std::string ini_with_subroutine_folders(std::string_view ini_text, const std::string& folders) {
-  const std::string line = "SUBROUTINE_PATH = " + folders + "\n";
+std::string ini_for_preflight(std::string_view ini_text, const std::string& folders) {
+  const std::string line =
+      "HAL_PIN_VARS = 0\n" + (folders.empty() ? "" : "SUBROUTINE_PATH = " + folders + "\n");
   std::size_t start = 0;
   while (start < ini_text.size()) {
     std::size_t end = ini_text.find('\n', start);

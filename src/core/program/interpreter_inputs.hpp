@@ -27,10 +27,12 @@ InterpreterTable interpreter_table(const ToolTable& table, double diameter_scale
 constexpr int kToolsWithoutTable = 1000;
 InterpreterTable any_tool_table();
 
-/// The machine's INI text with `folders` (':' between) as its
-/// [RS274NGC]SUBROUTINE_PATH: LinuxCNC takes the first of a key, so the line
-/// goes first in the section (a new section when there is none). `folders`
-/// ends with the INI's own.
-std::string ini_with_subroutine_folders(std::string_view ini_text, const std::string& folders);
+/// The machine's INI text as the preflight's interpreter reads it: HAL pins
+/// off (`HAL_PIN_VARS = 0`: with a LinuxCNC running, rs274 would read its live
+/// pins, and a tool from a pin is known only when the program runs), and, when
+/// given, `folders` (':' between) as its SUBROUTINE_PATH. LinuxCNC takes the
+/// first of a key, so the lines go first in [RS274NGC] (a new section when
+/// there is none). `folders` ends with the INI's own.
+std::string ini_for_preflight(std::string_view ini_text, const std::string& folders);
 
 }  // namespace fatc::program

@@ -213,11 +213,14 @@ TEST(InterpreterTable, shouldListEachToolOnceWithItsDiameterInInches) {
   EXPECT_EQ(any.tool_of_row[42], 42);
 }
 
-TEST(InterpreterIni, shouldPutTheSubroutineFoldersFirstInTheSection) {
-  EXPECT_EQ(ini_with_subroutine_folders("[EMC]\nA = 1\n[RS274NGC]\nSUBROUTINE_PATH = b\n", "/a:b"),
-            "[EMC]\nA = 1\n[RS274NGC]\nSUBROUTINE_PATH = /a:b\nSUBROUTINE_PATH = b\n");
-  EXPECT_EQ(ini_with_subroutine_folders("[EMC]\nA = 1", "/a"),
-            "[EMC]\nA = 1\n[RS274NGC]\nSUBROUTINE_PATH = /a\n");
+TEST(InterpreterIni, shouldPutHalPinsOffAndTheSubroutineFoldersFirstInTheSection) {
+  EXPECT_EQ(ini_for_preflight("[EMC]\nA = 1\n[RS274NGC]\nHAL_PIN_VARS = 1\nSUBROUTINE_PATH = b\n",
+                              "/a:b"),
+            "[EMC]\nA = 1\n[RS274NGC]\nHAL_PIN_VARS = 0\nSUBROUTINE_PATH = /a:b\nHAL_PIN_VARS = "
+            "1\nSUBROUTINE_PATH = b\n");
+  EXPECT_EQ(ini_for_preflight("[EMC]\nA = 1", "/a"),
+            "[EMC]\nA = 1\n[RS274NGC]\nHAL_PIN_VARS = 0\nSUBROUTINE_PATH = /a\n");
+  EXPECT_EQ(ini_for_preflight("[RS274NGC]\n", ""), "[RS274NGC]\nHAL_PIN_VARS = 0\n");
 }
 
 }  // namespace
