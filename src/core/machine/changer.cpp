@@ -1,24 +1,8 @@
 #include "changer.hpp"
 
-#include "machine.hpp"
+#include "engine.hpp"
 
 namespace fatc {
-namespace machine {
-
-class Engine {
- public:
-  Engine(const Config& config, Ports& ports, ToolState tools)
-      : context(config, ports, std::move(tools)), fsm(&context) {
-    context.refuse_step = [this](const std::string& why) { fsm.process_event(UnsafeStep{why}); };
-    context.raise_check_failed = [this](const CheckFailed& e) { fsm.process_event(e); };
-    context.recheck_sensors = [this] { fsm.process_event(SensorReport{}); };
-    fsm.start();
-  }
-  Context context;
-  Machine fsm;
-};
-
-}  // namespace machine
 
 Changer::Changer(const Config& config, Ports& ports, ToolState tools)
     : engine_(std::make_unique<machine::Engine>(config, ports, std::move(tools))) {}
