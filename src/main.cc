@@ -38,8 +38,7 @@ int run_component(const fatc::io::Options& options) {
     for (const auto& error : loaded.errors) std::cerr << "fixed_atc_probe: " << error << "\n";
     return 1;
   }
-  // Teaching replaces it in place while the changer is idle.
-  fatc::Config config = *loaded.config;
+  const fatc::Config config = *loaded.config;
   const std::string state_path =
       options.state_path.empty() ? options.config_path + ".state" : options.state_path;
   const auto tools = fatc::io::load_state_file(state_path, config);

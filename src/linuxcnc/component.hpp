@@ -4,12 +4,14 @@
 #include <optional>
 #include <string>
 
+#include "config_teacher.hpp"
 #include "core/machine/changer.hpp"
 #include "core/protocol/executor_link.hpp"
 #include "core/machine/ports.hpp"
 #include "core/config/teach.hpp"
 #include "io/status_file.hpp"
 #include "program_tools_job.hpp"
+#include "spindle_tool_sync.hpp"
 
 namespace fatc::linuxcnc {
 
@@ -23,14 +25,14 @@ class Component : public Ports {
  public:
   using Clock = std::chrono::steady_clock;
 
-  /// `nml` may be null (no LinuxCNC task, as under halrun).
-  /// `config` is the one the changer runs with: teaching updates it in place
-  /// (only while idle) after writing `config_path`.
-  Component(HalPins* pins, Config& config, std::string config_path, std::string state_path,
+  /// `nml` may be null (no LinuxCNC task, as under halrun). `config` is the
+  /// one the changer starts with; teaching writes `config_path` and hands the
+  /// changer the new one.
+  Component(HalPins* pins, const Config& config, std::string config_path, std::string state_path,
             NmlLink* nml);
   void attach(Changer* changer) { changer_ = changer; }
   /// The machine's soft limits, which a taught position must respect.
-  void soft_limits(std::optional<SoftLimits> limits) { limits_ = std::move(limits); }
+  void soft_limits(std::optional<SoftLimits> limits) { teacher_.soft_limits(std::move(limits)); }
   /// `interpreter_idle`: LinuxCNC's interpreter state, when NML is available.
   void poll(Clock::time_point now, std::optional<bool> interpreter_idle);
   /// Whether the next poll should come soon: a sequence runs or a handshake is open.
@@ -43,6 +45,7 @@ class Component : public Ports {
   void start_timer(double seconds) override;
   void cancel_timer() override { deadline_.reset(); }
   void tell(MessageKind kind, const std::string& text) override;
+  void ask(const Prompt& prompt) override;
   void save(const ToolState& state) override;
   void unexpected(const std::string& state, const std::string& event) override;
 
@@ -60,24 +63,19 @@ class Component : public Ports {
   void read_machine(std::optional<bool> interpreter_idle);
   void read_executor(std::optional<bool> interpreter_idle);
   void read_operator();
-  /// Teaching: the machine position into config.json at `target`, if idle.
   void teach(const TeachTarget& target);
   /// Where the machine stands, in machine coordinates and config units; nothing without NML.
-  std::optional<Point> machine_position() const;
+  std::optional<Point> position() const;
   /// Measure all, of the tools `measure-which` names (the program's: once
   /// program_tools_ has them).
   void measure_all();
   void measure_program_tools();
   void abort(const std::string& reason);
   void start_executor_if_needed();
-  void sync_linuxcnc_tool();
-  void write_pins();
 
   HalPins* pins_;
   NmlLink* nml_;
-  Config& config_;
-  std::string config_path_;
-  std::optional<SoftLimits> limits_;
+  ConfigTeacher teacher_;
   std::string state_path_;
   Changer* changer_ = nullptr;
   ExecutorLink link_;
@@ -85,11 +83,9 @@ class Component : public Ports {
   std::optional<Clock::time_point> deadline_;
   std::optional<bool> machine_ready_;
   std::optional<bool> spindle_stopped_;
-  const SensorConfig wired_;
   std::optional<SensorReadings> sensors_;
   bool task_free_ = false;
-  bool sync_wanted_ = true;  ///< LinuxCNC's tool in spindle must be brought in line
-  std::optional<Clock::time_point> sync_sent_;
+  SpindleToolSync spindle_tool_;
   io::StatusFile status_file_;
   ProgramToolsJob program_tools_;
   Edge abort_, clear_, load_, unload_, continue_, cancel_;

@@ -50,6 +50,7 @@ struct LinkedPorts : Ports {
   void tell(MessageKind, const std::string& text) override {
     log.push_back("  changer: message " + text);
   }
+  void ask(const Prompt& prompt) override { log.push_back("  changer: message " + words(prompt)); }
   void save(const ToolState&) override { log.push_back("  changer: save tool state"); }
   void unexpected(const std::string& state, const std::string& event) override {
     unexpected_events.push_back(event + " in " + state);

@@ -68,6 +68,12 @@ void Changer::clear_fault(int spindle_tool, std::optional<bool> pocket_holds_too
   engine_->fsm.process_event(ClearFault{spindle_tool, pocket_holds_tool});
 }
 
+bool Changer::reconfigure(Config config, std::string request) {
+  const unsigned taken = engine_->context.configs_taken;
+  engine_->fsm.process_event(ConfigChanged{std::move(config), std::move(request)});
+  return engine_->context.configs_taken != taken;
+}
+
 namespace {
 
 template <class Flag>
@@ -126,7 +132,7 @@ std::string activity_of(const Status& status, const Context& c) {
     case Awaiting::sensor:
       return c.dwell;
     case Awaiting::operator_choice:
-      return c.prompt;
+      return words(c.prompt);
     case Awaiting::nothing:
       break;
   }
@@ -146,6 +152,7 @@ Status Changer::status() const {
   status.holds_program = active<machine::flag::HoldsProgram>(fsm) ||
                          (active<machine::flag::AwaitsOperator>(fsm) && in_program);
   status.probe_cancellable = active<machine::flag::AwaitsProbe>(fsm) && !in_program;
+  status.over_mdi = status.busy() && !in_program;
   status.accepting = status.phase == Phase::idle && status.awaiting == Awaiting::nothing &&
                      !c.task_busy && !c.chuck_open;
   status.chuck_held = c.chuck_open && (status.phase == Phase::idle || status.phase == Phase::chuck);
@@ -164,9 +171,23 @@ Status Changer::status() const {
 }
 
 const ToolState& Changer::tools() const { return engine_->context.tools; }
+const Config& Changer::config() const { return engine_->context.config; }
+
+std::optional<std::string> Changer::why_not_teach(bool linuxcnc_status,
+                                                  const std::optional<Point>& at) const {
+  // The same words as a ConfigChanged refused, before anything is read or written.
+  const Status now = status();
+  if (auto why = why_not_reconfigure(engine_->context, now.phase == Phase::idle,
+                                     now.awaiting == Awaiting::sensor)) {
+    return why;
+  }
+  if (!now.accepting) return std::string("only while the changer is idle");
+  if (!linuxcnc_status) return std::string("no LinuxCNC status to read the machine position from");
+  if (!at) return std::string("LinuxCNC's status says nothing of the machine position now");
+  return std::nullopt;
+}
 const std::optional<InProgress>& Changer::cut_off() const {
   return engine_->context.tools.in_progress;
 }
-
 
 }  // namespace fatc

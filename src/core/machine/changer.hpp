@@ -58,6 +58,16 @@ class Changer {
   void operator_continue();
   void operator_cancel();
   void abort(const std::string& reason);
+  /// Why teaching cannot start now, in the words after "teach T refused: ",
+  /// or nothing if it can: only while idle and accepting (task free, the
+  /// chuck clamped), with LinuxCNC's status read (`linuxcnc_status`) and a
+  /// machine position (`at`) in it.
+  std::optional<std::string> why_not_teach(bool linuxcnc_status,
+                                           const std::optional<Point>& at) const;
+  /// A taught config (ConfigChanged): the changer works with it from the next
+  /// request on. Taken only while idle; otherwise refused with one message
+  /// naming `request` ("teach safe"). Says whether it was taken.
+  bool reconfigure(Config config, std::string request);
   /// The operator's confirmation after a fault: what the spindle holds and,
   /// if a sequence was cut off at a pocket, whether that pocket holds its tool.
   void clear_fault(int spindle_tool, std::optional<bool> pocket_holds_tool = std::nullopt);
@@ -67,6 +77,8 @@ class Changer {
   /// Computed from the machine's flags on each call.
   Status status() const;
   const ToolState& tools() const;
+  /// The config the changer works with (its own copy).
+  const Config& config() const;
 
   /// The state machine as Graphviz, generated from the transition tables.
   static std::string dot();

@@ -11,7 +11,6 @@
 #include <boost/msm/front/functor_row.hpp>
 #include <boost/msm/front/state_machine_def.hpp>
 #include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <type_traits>
 
@@ -227,48 +226,39 @@ struct Waiting : Timed {
   }
 };
 
-/// Asks the operator; Continue or Cancel follow. An operator flow ends the
-/// executor run first, so the GUI and jogging are free while the operator
-/// works; inside a program (M6) nothing is published, and the program holds
-/// at `loading` until the operator answers.
-template <class Prompt>
+/// Asks the operator what `Question` makes (a Prompt); Continue or Cancel
+/// follow. An operator flow ends the executor run first, so the GUI and
+/// jogging are free while the operator works; inside a program (M6) nothing
+/// is published, and the program holds at `loading` until the operator answers.
+template <class Question>
 struct AskingOperator : msmf::state<> {
   using flag_list = boost::mpl::vector1<flag::AwaitsOperator>;
   template <class Event, class Fsm>
   void on_entry(const Event&, Fsm& fsm) {
-    if (!fsm.ctx->in_program) {
+    Prompt prompt = Question{}(*fsm.ctx, fsm);
+    if (fsm.ctx->in_program) {
+      prompt.m6_tool = fsm.ctx->requested_tool;
+    } else {
       Step pause;
       pause.kind = StepKind::wait_operator;
       pause.label = "operator";
       fsm.ctx->publish(pause);
     }
-    fsm.ctx->ask_operator(Prompt{}(*fsm.ctx, fsm));
+    fsm.ctx->ask_operator(prompt);
   }
 };
 
 /// Asks the operator while the executor runs (a dry run over MDI): nothing is
 /// published, so the executor keeps waiting for its next step and nothing can
 /// be jogged meanwhile; Continue or Cancel follow.
-template <class Prompt>
+template <class Question>
 struct HoldingForOperator : msmf::state<> {
   using flag_list = boost::mpl::vector2<flag::AwaitsOperator, flag::HoldsProgram>;
   template <class Event, class Fsm>
   void on_entry(const Event&, Fsm& fsm) {
-    fsm.ctx->ask_operator(Prompt{}(*fsm.ctx, fsm));
+    fsm.ctx->ask_operator(Question{}(*fsm.ctx, fsm));
   }
 };
-
-/// One question to the operator: "<what>, then press Continue (Cancel to
-/// stop)", inside M6 "M6 T<n>: <what>, then press Continue (Cancel stops the program)".
-inline std::string question(const Context& c, const std::string& what) {
-  if (c.in_program) {
-    return "M6 T" + std::to_string(c.requested_tool) + ": " + what +
-           ", then press Continue (Cancel stops the program)";
-  }
-  std::string text = what + ", then press Continue (Cancel to stop)";
-  if (!text.empty()) text[0] = static_cast<char>(std::toupper(text[0]));
-  return text;
-}
 
 /// A state that decides at once, through guarded anonymous rows.
 struct Decision : msmf::state<> {};

@@ -106,9 +106,9 @@ void Context::wait(double seconds, std::string what) {
   ports.start_timer(seconds);
 }
 
-void Context::ask_operator(const std::string& question) {
+void Context::ask_operator(const Prompt& question) {
   prompt = question;
-  ports.tell(MessageKind::prompt, question);
+  ports.ask(question);
 }
 
 void Context::begin_sequence(const std::string& sequence) {
@@ -451,6 +451,17 @@ std::optional<std::string> why_not_chuck(const Context& ctx, const ChuckRequest&
     return why + "; the machine is at " + position_words(ctx.config, at);
   }
   return std::nullopt;
+}
+
+std::optional<std::string> why_not_reconfigure(const Context& ctx, bool idle,
+                                               bool comparing_sensors) {
+  // A position taken while a program or MDI moves the machine is nowhere in particular.
+  if (!idle) return std::string("only while the changer is idle");
+  if (ctx.task_busy) {
+    return std::string("a program or MDI command is running; teach once it stopped");
+  }
+  if (comparing_sensors) return ctx.dwell;
+  return why_chuck_held_open(ctx);
 }
 
 }  // namespace fatc

@@ -13,6 +13,7 @@
 #include "../rack/sensors.hpp"
 #include "../protocol/step.hpp"
 #include "../rack/tool_state.hpp"
+#include "prompt.hpp"
 
 namespace fatc {
 
@@ -20,10 +21,13 @@ namespace fatc {
 /// to the world, the tool state and the request being served.
 class Context {
  public:
-  Context(const Config& config, Ports& ports, ToolState tools)
-      : config(config), ports(ports), tools(std::move(tools)) {}
+  Context(Config config, Ports& ports, ToolState tools)
+      : config(std::move(config)), ports(ports), tools(std::move(tools)) {}
 
-  const Config& config;
+  /// The machine's own copy: only a ConfigChanged taken while idle replaces
+  /// it, so nothing changes under a running flow.
+  Config config;
+  unsigned configs_taken = 0;  ///< ConfigChanged events taken since the start
   Ports& ports;
   ToolState tools;
 
@@ -59,7 +63,7 @@ class Context {
   // What the status view's activity is derived from.
   Step step;                          ///< the last published step
   std::string dwell;                  ///< what the running timer waits for
-  std::string prompt;                 ///< the last question put to the operator
+  Prompt prompt;                      ///< the last question put to the operator
   std::optional<double> last_length;  ///< the last length a probe measured
   /// Steps taken in the current sequence (moves, chuck actions, dwells),
   /// numbered as --plan prints them; 0 between sequences.
@@ -79,7 +83,7 @@ class Context {
   void open_chuck();
   void close_chuck();
   void wait(double seconds, std::string what);
-  void ask_operator(const std::string& prompt);
+  void ask_operator(const Prompt& question);
   void tell(MessageKind kind, const std::string& text) { ports.tell(kind, text); }
 
   /// A sequence starts: saved before anything moves, cleared when it ends,
@@ -175,5 +179,10 @@ double loading_tolerance(const Config& config);
 /// Why a chuck atom cannot run now, or nothing if it can. A release drops
 /// whatever the spindle holds: with a tool recorded in it, only at `loading`.
 std::optional<std::string> why_not_chuck(const Context& ctx, const ChuckRequest& request);
+/// Why a taught config cannot be taken now (ConfigChanged), or nothing if it
+/// can: only while `idle`, with task free and the chuck clamped; while the
+/// idle changer compares its sensors (`comparing_sensors`), it says what it waits for.
+std::optional<std::string> why_not_reconfigure(const Context& ctx, bool idle,
+                                               bool comparing_sensors);
 
 }  // namespace fatc

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "../config/config.hpp"
 #include "../rack/point.hpp"
 
 namespace fatc {
@@ -81,6 +82,13 @@ struct UnsafeStep {
 struct CheckFailed {
   std::string reason;
   bool uncertain = false;
+};
+/// A taught config.json (teach-pocket, teach-loading, ...): the changer works
+/// with `config` from the next request on. Taken only while idle; otherwise
+/// refused, named `request` ("teach safe") in the refusal.
+struct ConfigChanged {
+  Config config;
+  std::string request;
 };
 /// The operator checked the spindle and says what it holds, and, when a
 /// sequence was cut off at a pocket, whether that pocket holds its tool.

@@ -21,9 +21,11 @@ struct InsertLeg_ : Flow<InsertLeg_> {
   }
   struct InsertPrompt {
     template <class Leg>
-    std::string operator()(const Context& c, const Leg& leg) const {
-      return question(c,
-                           "insert tool " + std::to_string(leg.tool) + " into the spindle");
+    Prompt operator()(const Context&, const Leg& leg) const {
+      Prompt insert;
+      insert.kind = Prompt::Kind::insert_tool;
+      insert.tool = leg.tool;
+      return insert;
     }
   };
   struct AwaitingTool : AskingOperator<InsertPrompt> {};
@@ -33,7 +35,7 @@ struct InsertLeg_ : Flow<InsertLeg_> {
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       fsm.ctx->tell(MessageKind::error,
                     "tool " + std::to_string(fsm.tool) +
-                        " is not in the spindle (tool-present off): " + fsm.ctx->prompt);
+                        " is not in the spindle (tool-present off): " + words(fsm.ctx->prompt));
     }
   };
 
@@ -64,9 +66,11 @@ struct RemoveLeg_ : Flow<RemoveLeg_> {
 
   struct RemovePrompt {
     template <class Leg>
-    std::string operator()(const Context& c, const Leg& leg) const {
-      return question(c,
-                           "remove tool " + std::to_string(leg.tool) + " from the spindle");
+    Prompt operator()(const Context&, const Leg& leg) const {
+      Prompt remove;
+      remove.kind = Prompt::Kind::remove_tool;
+      remove.tool = leg.tool;
+      return remove;
     }
   };
   struct AwaitingRemoval : AskingOperator<RemovePrompt> {};
@@ -76,7 +80,7 @@ struct RemoveLeg_ : Flow<RemoveLeg_> {
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       fsm.ctx->tell(MessageKind::error,
                     "tool " + std::to_string(fsm.tool) +
-                        " is still in the spindle (tool-present on): " + fsm.ctx->prompt);
+                        " is still in the spindle (tool-present on): " + words(fsm.ctx->prompt));
     }
   };
 

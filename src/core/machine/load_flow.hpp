@@ -25,10 +25,11 @@ struct LoadFlow_ : Flow<LoadFlow_> {
 
   struct JogPrompt {
     template <class Leg>
-    std::string operator()(const Context& c, const Leg&) const {
-      return "Tool " + std::to_string(c.requested_tool) +
-             " is in the spindle. Jog it closer to the touch-off sensor if you like, then press "
-             "Continue to probe (Cancel to stop)";
+    Prompt operator()(const Context& c, const Leg&) const {
+      Prompt jog;
+      jog.kind = Prompt::Kind::jog_to_sensor;
+      jog.tool = c.requested_tool;
+      return jog;
     }
   };
   struct AwaitingProbe : AskingOperator<JogPrompt> {};

@@ -30,6 +30,7 @@ inline std::string request_name(const VerifyRequest& e) {
 inline std::string request_name(const ChuckRequest& e) {
   return e.action == ChuckRequest::Action::release ? "chuck release" : "chuck clamp";
 }
+inline std::string request_name(const ConfigChanged& e) { return e.request; }
 
 inline std::optional<std::string> why_not(const Context& c, const ToolChange& e) {
   return why_not_change(c, e.tool);
@@ -48,6 +49,9 @@ inline std::optional<std::string> why_not(const Context& c, const VerifyRequest&
 }
 inline std::optional<std::string> why_not(const Context& c, const ChuckRequest& e) {
   return why_not_chuck(c, e);
+}
+inline std::optional<std::string> why_not(const Context& c, const ConfigChanged&) {
+  return why_not_reconfigure(c, true, false);
 }
 
 /// Refuses a request, saying why `Because` gives. The executor of an M6 or a
@@ -99,14 +103,27 @@ struct BecauseBusy {
     return "the changer is busy changing to tool " + tool;
   }
 };
-/// The requests, refused for one reason: a state's internal rows.
+/// A taught config is refused in the same words wherever the changer is not
+/// plainly idle (Changer::why_not_teach asks the same before anything is read).
+struct BecauseNotIdle {
+  template <class Fsm>
+  std::string operator()(Fsm& fsm, const ConfigChanged&) const {
+    return why_not_reconfigure(*fsm.ctx, fsm.template is_flag_active<flag::Idle>(),
+                               fsm.template is_flag_active<flag::AwaitsSensor>())
+        .value_or("only while the changer is idle");
+  }
+};
+/// The requests, refused for one reason (a taught config: for not being idle):
+/// a state's internal rows.
 template <class Because>
-using RefusesRequests = boost::mpl::vector<msmf::Internal<ToolChange, Refuse<Because>, none>,
-                                           msmf::Internal<LoadRequest, Refuse<Because>, none>,
-                                           msmf::Internal<UnloadRequest, Refuse<Because>, none>,
-                                           msmf::Internal<MeasureRequest, Refuse<Because>, none>,
-                                           msmf::Internal<VerifyRequest, Refuse<Because>, none>,
-                                           msmf::Internal<ChuckRequest, Refuse<Because>, none>>;
+using RefusesRequests =
+    boost::mpl::vector<msmf::Internal<ToolChange, Refuse<Because>, none>,
+                       msmf::Internal<LoadRequest, Refuse<Because>, none>,
+                       msmf::Internal<UnloadRequest, Refuse<Because>, none>,
+                       msmf::Internal<MeasureRequest, Refuse<Because>, none>,
+                       msmf::Internal<VerifyRequest, Refuse<Because>, none>,
+                       msmf::Internal<ChuckRequest, Refuse<Because>, none>,
+                       msmf::Internal<ConfigChanged, Refuse<BecauseNotIdle>, none>>;
 
 // ================================================================ operating
 /// The machine on and homed: idle, or running one flow.
@@ -194,6 +211,14 @@ struct Operating_ : Flow<Operating_> {
       c.begin_sequence(request_name(e));
     }
   };
+  /// The changer works with the taught config from the next request on.
+  struct TakeConfig {
+    template <class Fsm, class Source, class Target>
+    void operator()(const ConfigChanged& e, Fsm& fsm, Source&, Target&) const {
+      fsm.ctx->config = e.config;
+      ++fsm.ctx->configs_taken;
+    }
+  };
   /// The executor's last step: done, with the tool in the spindle.
   static void publish_done(Context& c) {
     Step done;
@@ -258,7 +283,9 @@ struct Operating_ : Flow<Operating_> {
   Row < Idle                           , VerifyRequest , none      , Refuse<BecauseNotPossible>, Refused                           >,
   Row < Idle                           , VerifyRequest , VerifyFlow, TakeRequest               , Not<Refused>                      >,
   Row < Idle                           , ChuckRequest  , none      , Refuse<BecauseNotPossible>, Refused                           >,
-  Row < Idle                           , ChuckRequest  , ChuckFlow , TakeRequest               , Not<Refused>                      >
+  Row < Idle                           , ChuckRequest  , ChuckFlow , TakeRequest               , Not<Refused>                      >,
+  Row < Idle                           , ConfigChanged , none      , Refuse<BecauseNotPossible>, Refused                           >,
+  Row < Idle                           , ConfigChanged , none      , TakeConfig                , Not<Refused>                      >
   >;
   /// Comparing the sensors before work, and where each flow ends.
   using around_the_flows = boost::mpl::vector<

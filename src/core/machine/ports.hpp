@@ -4,12 +4,13 @@
 
 #include "../protocol/step.hpp"
 #include "../rack/tool_state.hpp"
+#include "prompt.hpp"
 
 namespace fatc {
 
 enum class MessageKind {
   info,    ///< something happened ("tool 3 returned to its pocket")
-  prompt,  ///< the operator must act, then press Continue or Cancel
+  prompt,  ///< the operator must act, then press Continue or Cancel (the words of a Prompt)
   error,   ///< something failed; says what and where the tools are
 };
 
@@ -30,6 +31,8 @@ class Ports {
   virtual void start_timer(double seconds) = 0;
   virtual void cancel_timer() = 0;
   virtual void tell(MessageKind kind, const std::string& text) = 0;
+  /// The operator must act, then press Continue or Cancel; words(prompt) is what they read.
+  virtual void ask(const Prompt& prompt) = 0;
   /// Called after every change of the tool state, to persist it.
   virtual void save(const ToolState& state) = 0;
   /// An event arrived that no state expects: a bug. The machine faults after this.

@@ -37,6 +37,9 @@ struct Status {
   std::string activity;            ///< what it is doing, in the machinist's words
   bool holds_program = false;      ///< an operator wait inside M6: the executor holds the program
   bool probe_cancellable = false;  ///< a load-flow probe runs over MDI: Cancel stops it
+  /// The flow under way is an operator's (load, unload, measure all, verify):
+  /// its executor runs over MDI, started by the adapter, not inside a program.
+  bool over_mdi = false;
   bool accepting = false;          ///< idle, and task is free for a load or unload
   /// A chuck atom released the chuck and it stays open: motion and the
   /// spindle must wait for the clamp (the `chuck-held` pin).

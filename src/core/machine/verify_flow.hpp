@@ -38,29 +38,25 @@ struct VerifyFlow_ : Flow<VerifyFlow_> {
   };
   struct StopPrompt {
     template <class Leg>
-    std::string operator()(const Context& c, const Leg& leg) const {
-      return "Verify pocket " + std::to_string(leg.pocket) + ", stop " +
-             std::to_string(leg.reached + 1) + " of " + std::to_string(leg.route.size() - 1) +
-             ": " + leg.where(c) + ". Look at the clearance, then press Continue (Cancel " +
-             "stops here)";
+    Prompt operator()(const Context& c, const Leg& leg) const {
+      Prompt stop;
+      stop.kind = Prompt::Kind::verify_stop;
+      stop.tool = c.tools.spindle;
+      stop.pocket = leg.pocket;
+      stop.stop = static_cast<int>(leg.reached) + 1;
+      stop.stops = static_cast<int>(leg.route.size()) - 1;
+      stop.waypoint = leg.route.at(leg.reached).label;
+      stop.at = c.position;
+      stop.known_axes = c.known_axes;
+      return stop;
     }
   };
   struct AtWaypoint : HoldingForOperator<StopPrompt> {};
 
   /// "side of pocket 3 (X=120.000 Y=40.000 Z=-50.000)": what the spindle
-  /// reached last, and where that is (the axes known), as --plan writes it.
+  /// reached last, and where that is.
   std::string where(const Context& c) const {
-    std::string words = route.at(reached).label + " (";
-    const char* names[] = {"X", "Y", "Z"};
-    const double values[] = {c.position.x, c.position.y, c.position.z};
-    for (int axis = 0; axis < 3; ++axis) {
-      if (!(c.known_axes & (1u << axis))) continue;
-      char coordinate[48];
-      std::snprintf(coordinate, sizeof coordinate, "%s%s=%.3f", words.back() == '(' ? "" : " ",
-                    names[axis], values[axis]);
-      words += coordinate;
-    }
-    return words + ")";
+    return waypoint_words(route.at(reached).label, c.position, c.known_axes);
   }
   /// Below the pocket's clearance height, where only its own approach is safe.
   bool inside_rack(const Context& c) const {

@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <regex>
 
 #include "../rack/geometry.hpp"
 
@@ -138,13 +137,9 @@ bool Simulator::report_sensors(Changer& changer) {
 }
 
 void Simulator::operator_obeys(const Changer& changer) {
-  if (!rack.modelled) return;
-  static const std::regex insert("insert tool (\\d+)", std::regex::icase);
-  static const std::regex remove("remove tool (\\d+)", std::regex::icase);
-  const std::string asked = changer.status().activity;
-  std::smatch match;
-  if (std::regex_search(asked, match, insert)) rack.spindle = std::stoi(match[1]);
-  if (std::regex_search(asked, match, remove)) rack.spindle = 0;
+  if (!rack.modelled || !asked || !changer.status().awaits_operator()) return;
+  if (asked->kind == Prompt::Kind::insert_tool) rack.spindle = asked->tool;
+  if (asked->kind == Prompt::Kind::remove_tool) rack.spindle = 0;
 }
 
 void Simulator::start_timer(double seconds) {
@@ -163,6 +158,11 @@ void Simulator::tell(MessageKind kind, const std::string& text) {
   record.message_kind = kind;
   record.text = text;
   records.push_back(record);
+}
+
+void Simulator::ask(const Prompt& prompt) {
+  asked = prompt;
+  tell(MessageKind::prompt, words(prompt));
 }
 
 void Simulator::save(const ToolState& state) {

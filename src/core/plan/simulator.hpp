@@ -62,8 +62,9 @@ class Simulator : public Ports {
   /// Reports the readings to the changer if they changed since the last
   /// report; from then on chuck changes are reported as they happen.
   bool report_sensors(Changer& changer);
-  /// The operator does what the prompt asks: inserts or removes the tool.
+  /// The operator does what the changer waits for: inserts or removes the tool `asked` names.
   void operator_obeys(const Changer& changer);
+  std::optional<Prompt> asked;  ///< the last question put to the operator
 
   std::vector<Record> records;
   std::optional<double> sensor_z;
@@ -81,6 +82,8 @@ class Simulator : public Ports {
   void start_timer(double seconds) override;
   void cancel_timer() override;
   void tell(MessageKind kind, const std::string& text) override;
+  /// Recorded as a prompt message in its words, and kept typed in `asked`.
+  void ask(const Prompt& prompt) override;
   void save(const ToolState& state) override;
   void unexpected(const std::string& state, const std::string& event) override;
 

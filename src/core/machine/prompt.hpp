@@ -1,0 +1,42 @@
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "../rack/point.hpp"
+
+namespace fatc {
+
+/// A question to the operator, as data: what to do, with which tool, where.
+/// Its words come from words() alone, so an adapter or a simulated operator
+/// acts on the fields and nothing reads the English back.
+struct Prompt {
+  enum class Kind {
+    none,           ///< nothing asked yet
+    insert_tool,    ///< put `tool` into the spindle at `loading`
+    remove_tool,    ///< take `tool` out of the spindle at `loading`
+    jog_to_sensor,  ///< `tool` is in: jog closer to the touch-off sensor if wanted, then probe
+    verify_stop,    ///< a dry run of `pocket` holds at `stop` of `stops`, at `waypoint`
+  };
+  Kind kind = Kind::none;
+  int tool = 0;
+  int pocket = 0;
+  /// Inserting or removing inside M6 T<n>: the program holds until the answer.
+  std::optional<int> m6_tool;
+  int stop = 0;          ///< verify_stop: 1 for the first stop
+  int stops = 0;         ///< verify_stop: how many stops the run has
+  std::string waypoint;  ///< verify_stop: the waypoint reached, as --plan names it
+  Point at;              ///< verify_stop: where the spindle stands (the axes of `known_axes`)
+  unsigned known_axes = 0;
+};
+
+/// What the operator reads: "Insert tool 3 into the spindle, then press
+/// Continue (Cancel to stop)", inside M6 "M6 T3: insert tool 3 into the
+/// spindle, then press Continue (Cancel stops the program)", and so on.
+std::string words(const Prompt& prompt);
+
+/// "side of pocket 3 (X=120.000 Y=40.000 Z=-50.000)": a waypoint and where
+/// the spindle stands there (the axes known), as --plan writes it.
+std::string waypoint_words(const std::string& waypoint, const Point& at, unsigned known_axes);
+
+}  // namespace fatc

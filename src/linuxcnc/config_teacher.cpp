@@ -1,0 +1,43 @@
+#include "config_teacher.hpp"
+
+#include "io/files.hpp"
+
+namespace fatc::linuxcnc {
+
+void ConfigTeacher::teach(Changer& changer, const TeachTarget& target, bool linuxcnc_status,
+                          const std::optional<Point>& at) {
+  const std::string request = "teach " + target_name(target);
+  const std::string refused = request + " refused: ";
+  if (const auto why = changer.why_not_teach(linuxcnc_status, at)) {
+    ports_.tell(MessageKind::error, refused + *why);
+    return;
+  }
+  std::string error;
+  const auto text = io::read_small_file(config_path_, error);
+  if (!text) {
+    ports_.tell(MessageKind::error, refused + error);
+    return;
+  }
+  const TeachResult taught = fatc::teach(*text, target, *at, limits_);
+  if (!taught.text) {
+    ports_.tell(MessageKind::error, taught.error);
+    return;
+  }
+  // Taken before it is written: a changer that refuses it (saying why) leaves
+  // the file as it was, and one that took it runs what the file will hold.
+  const Config before = changer.config();
+  if (!changer.reconfigure(*parse_config(*taught.text).config, request)) return;
+  try {
+    io::save_config_file(config_path_, *text, *taught.text);
+  } catch (const std::exception& e) {
+    // Still idle: nothing ran since it was taken, so the old one goes back in.
+    changer.reconfigure(before, request);
+    ports_.tell(MessageKind::error, refused + e.what());
+    return;
+  }
+  ports_.tell(MessageKind::info, "taught " + taught.change + "; " + io::shown_path(config_path_) +
+                                     " written, the previous one kept as " +
+                                     io::shown_path(config_path_ + ".bak"));
+}
+
+}  // namespace fatc::linuxcnc

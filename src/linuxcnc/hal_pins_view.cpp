@@ -1,0 +1,85 @@
+#include "hal_pins_view.hpp"
+
+#include <cmath>
+
+#include "hal_pins_detail.hpp"
+
+namespace fatc::linuxcnc {
+
+SensorReadings read_sensors(const HalPins& pins, const Config& config) {
+  const SensorConfig& wired = config.sensors;
+  SensorReadings sensors;
+  if (wired.zero_speed) sensors.zero_speed = *pins.zero_speed;
+  if (wired.tool_present) sensors.tool_present = *pins.tool_present;
+  if (wired.drawbar_open) sensors.drawbar_open = *pins.drawbar_open;
+  if (wired.drawbar_closed) sensors.drawbar_closed = *pins.drawbar_closed;
+  if (wired.air_pressure) sensors.air_pressure_ok = *pins.air_pressure_ok;
+  if (const auto& cover = config.rack_cover) {
+    if (cover->opened_sensor) sensors.rack_cover_opened = *pins.rack_cover_opened;
+    if (cover->closed_sensor) sensors.rack_cover_closed = *pins.rack_cover_closed;
+  }
+  for (int i = 0; i < pins.pocket_count; ++i) {
+    const int pocket = pins.pocket_tools[i];
+    if (wired.pocket(pocket)) sensors.pocket_occupied[pocket] = *pins.pocket_occupied[i];
+  }
+  return sensors;
+}
+
+LinkInputs read_link(const HalPins& pins, std::optional<bool> interpreter_idle) {
+  LinkInputs in;
+  in.step_request = *pins.step_request;
+  in.call = static_cast<int>(std::lround(*pins.executor_call));
+  in.number = *pins.number;
+  in.probe_result = *pins.probe_result;
+  in.probe_z = *pins.probe_z;
+  in.tool_prepare = *pins.tool_prepare;
+  in.tool_change = *pins.tool_change;
+  in.interpreter_idle = interpreter_idle;
+  return in;
+}
+
+void write_link(HalPins& pins, const LinkOutputs& out) {
+  *pins.step_kind = static_cast<int>(out.step.kind);
+  *pins.step_axes = static_cast<int>(out.step.axes);
+  *pins.step_x = out.step.target.x;
+  *pins.step_y = out.step.target.y;
+  *pins.step_z = out.step.target.z;
+  *pins.step_feed = out.step.feed;
+  *pins.step_tool = out.step.tool;
+  *pins.step_value = out.step.value;
+  *pins.step_ready = out.step_ready;
+  *pins.prepared = out.prepared;
+  *pins.changed = out.changed;
+}
+
+void write_status(HalPins& pins, const Status& status, const Changer& changer,
+                  bool executor_attached, bool linuxcnc_task) {
+  *pins.state = static_cast<int>(status.phase);
+  *pins.ready = status.phase == Phase::idle && !status.chuck_held;
+  *pins.chuck_held = status.chuck_held;
+  *pins.fault = status.phase == Phase::fault;
+  *pins.busy = status.busy();
+  *pins.tool_in_spindle = changer.tools().spindle;
+  *pins.awaiting = static_cast<int>(status.awaiting);
+  *pins.step_number = status.step_number;
+  *pins.pocket_served = status.pocket;
+  *pins.batch_done = status.batch_done;
+  *pins.batch_total = status.batch_total;
+  *pins.accepting = status.accepting;
+  if (status.last_length) *pins.last_length = *status.last_length;
+  // An operator flow waits for the operator once its executor run has ended
+  // (the GUI and jogging are then free); M6 holds its program meanwhile.
+  *pins.waiting_for_operator =
+      status.awaits_operator() && (!executor_attached || status.holds_program);
+  *pins.can_cancel = *pins.waiting_for_operator || (status.probe_cancellable && linuxcnc_task) ||
+                     status.phase == Phase::measuring;
+  const auto& cut_off = changer.cut_off();
+  // Only a pocket with a tool of its own has a question to answer.
+  *pins.cut_off_pocket =
+      cut_off && status.phase == Phase::fault && changer.tools().tool_of(cut_off->pocket) != 0
+          ? cut_off->pocket
+          : 0;
+  *pins.heartbeat = !*pins.heartbeat;
+}
+
+}  // namespace fatc::linuxcnc
