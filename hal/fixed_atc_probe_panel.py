@@ -219,7 +219,13 @@ def summarize_lint(code, out, err):
             unknown += 1
         if line.startswith("estimated tool-change time:"):
             summary["time"] = line.split(":", 1)[1].split(", from")[0].strip()
-    summary["tools"] = ", ".join("%s (%s)" % (t, where[t]) if where.get(t) else t for t in order)
+    # The tools the program needs, once each in order of first use: the
+    # summary line lists every change, repeats and T0 (an empty spindle) too.
+    needed = []
+    for tool in order:
+        if tool != "T0" and tool not in needed:
+            needed.append(tool)
+    summary["tools"] = ", ".join("%s (%s)" % (t, where[t]) if where.get(t) else t for t in needed)
     summary["never"] = never
     summary["never_in_rack"] = never_in_rack  # what Measure these offers to measure
     summary["manual"] = manual

@@ -63,8 +63,6 @@ void write_status(HalPins& pins, const Status& status, const Changer& changer,
   *pins.awaiting = static_cast<int>(status.awaiting);
   *pins.step_number = status.step_number;
   *pins.pocket_served = status.pocket;
-  *pins.batch_done = status.batch_done;
-  *pins.batch_total = status.batch_total;
   *pins.accepting = status.accepting;
   if (status.last_length) *pins.last_length = *status.last_length;
   // An operator flow waits for the operator once its executor run has ended
@@ -73,6 +71,9 @@ void write_status(HalPins& pins, const Status& status, const Changer& changer,
       status.awaits_operator() && (!executor_attached || status.holds_program);
   *pins.can_cancel = *pins.waiting_for_operator || (status.probe_cancellable && linuxcnc_task) ||
                      status.phase == Phase::measuring;
+  // After can-cancel: a reader that sees a batch under way sees it cancellable.
+  *pins.batch_done = status.batch_done;
+  *pins.batch_total = status.batch_total;
   const auto& cut_off = changer.cut_off();
   // Only a pocket with a tool of its own has a question to answer.
   *pins.cut_off_pocket =
