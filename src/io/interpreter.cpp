@@ -49,15 +49,23 @@ std::string absolute(const std::string& path) {
   return failed ? path : (here / path).lexically_normal().string();
 }
 
-/// A list of folders (':' between), each absolute.
-std::string absolute_folders(const std::string& folders) {
-  std::string result;
+/// The folders of a list with ':' between them, empty ones included.
+std::vector<std::string> folders_of(const std::string& folders) {
+  std::vector<std::string> result;
   std::size_t start = 0;
   while (start <= folders.size()) {
     auto colon = folders.find(':', start);
     if (colon == std::string::npos) colon = folders.size();
-    const std::string folder = folders.substr(start, colon - start);
+    result.push_back(folders.substr(start, colon - start));
     start = colon + 1;
+  }
+  return result;
+}
+
+/// A list of folders (':' between), each absolute.
+std::string absolute_folders(const std::string& folders) {
+  std::string result;
+  for (const std::string& folder : folders_of(folders)) {
     if (folder.empty()) continue;
     result += (result.empty() ? "" : ":") + (folder[0] == '~' ? folder : absolute(folder));
   }
@@ -256,13 +264,8 @@ std::optional<std::string> find_rs274(std::string& error) {
     return std::nullopt;
   }
   const char* path = std::getenv("PATH");
-  std::string folders = path && *path ? path : "/usr/bin:/bin";
-  std::size_t start = 0;
-  while (start <= folders.size()) {
-    auto colon = folders.find(':', start);
-    if (colon == std::string::npos) colon = folders.size();
-    const std::string folder = folders.substr(start, colon - start);
-    start = colon + 1;
+  const std::string folders = path && *path ? path : "/usr/bin:/bin";
+  for (const std::string& folder : folders_of(folders)) {
     const std::string candidate = (folder.empty() ? "." : folder) + "/rs274";
     struct stat st;
     if (::stat(candidate.c_str(), &st) == 0 && S_ISREG(st.st_mode) &&

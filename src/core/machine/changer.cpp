@@ -158,7 +158,7 @@ Status Changer::status() const {
   status.chuck_held = c.chuck_open && (status.phase == Phase::idle || status.phase == Phase::chuck);
   status.last_length = c.last_length;
   status.step_number = status.busy() ? c.sequence_step : 0;
-  status.pocket = status.busy() && c.tools.in_progress ? c.tools.in_progress->pocket : 0;
+  status.pocket = status.busy() ? c.sequence_pocket() : 0;
   if (status.phase == Phase::measuring) {
     const auto& batch = fsm.get_state<const machine::Operating&>()
                             .get_state<const machine::MeasureAllFlow&>()

@@ -126,7 +126,7 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
     void operator()(const ClearFault& e, Fsm& fsm, Source&, Target&) const {
       Context& c = *fsm.ctx;
       const int answered =
-          c.tools.in_progress && e.pocket_holds_tool ? c.tools.in_progress->pocket : 0;
+          e.pocket_holds_tool ? c.sequence_pocket() : 0;
       c.tools.confirm(e.spindle_tool, e.pocket_holds_tool);
       // The operator has looked at the rack: every pocket sensor not
       // contradicted by an answer is taken at its word (only while the
