@@ -15,6 +15,7 @@
 #include <limits>
 
 #include "core/config/quote.hpp"
+#include "core/plan/simulator.hpp"
 #include "files.hpp"
 
 namespace fatc::io {
@@ -333,35 +334,14 @@ std::vector<std::string> executor_problems(const IniFile& ini, const Config* con
     return problems;
   }
   if (!config) return problems;
-  // The longest stretch the executor may wait without a step, counted
-  // generously: the spindle stopping, then one opening of the chuck with its
-  // checks, the flush and the closing (or the rack cover opening).
-  const SensorConfig& wired = config->sensors;
-  const double sensor = config->sensor_timeout_seconds;
-  const FlushConfig& flush = config->flush;
-  double chuck = config->chuck_seconds + (wired.air_pressure ? sensor : 0.0) +
-                 (wired.drawbar() ? sensor : 0.0) +
-                 flush.pulses * (flush.pulse_seconds + flush.pause_seconds +
-                                 (wired.drawbar() ? 2.0 * sensor : 0.0)) +
-                 config->chuck_seconds + (wired.drawbar() || wired.tool_present ? sensor : 0.0);
-  // Or a fetch whose first grip failed: settle, grip, check, open, check, grip, check.
-  const double second_grip =
-      4.0 * config->chuck_seconds + (wired.tool_present ? 2.0 * sensor : 0.0) +
-      (wired.drawbar() ? 3.0 * sensor : 0.0) + (wired.air_pressure ? sensor : 0.0);
-  chuck = std::max(chuck, second_grip);
-  if (config->rack_cover) {
-    chuck =
-        std::max(chuck, std::max(config->rack_cover->seconds, config->rack_cover->timeout_seconds));
-  }
-  const double stretch = config->spindle_stop_timeout_seconds + chuck;
+  const double stretch = longest_executor_wait(*config);
   if (stretch >= *timeout) {
     char buffer[512];
     std::snprintf(buffer, sizeof buffer,
                   ": %g s is not longer than %g s, the longest the changer may keep the executor "
-                  "waiting for a step (spindle_stop_timeout_seconds %g s, then the chuck's "
-                  "opening, flush and closing with their sensor checks, a second grip, or the rack "
-                  "cover): the "
-                  "executor would stop the program while the changer waits; raise it",
+                  "waiting for a step (its plans with every sensor answering at its timeout, "
+                  "spindle_stop_timeout_seconds %g s, and a first grip that fails): the executor "
+                  "would stop the program while the changer waits; raise it",
                   *timeout, stretch, config->spindle_stop_timeout_seconds);
     problems.push_back(where("STEP_TIMEOUT") + buffer);
   }

@@ -1,7 +1,10 @@
 #include "simulator.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <iterator>
 
 #include "../rack/geometry.hpp"
 
@@ -33,6 +36,7 @@ void Simulator::publish(const Step& step) {
   Record record;
   record.step = step;
   records.push_back(record);
+  longest_wait = std::max(longest_wait, clock - waiting_since_);
   // done, fail and wait_operator end an executor run: nothing to finish. A
   // refused M6's fail goes to that M6's executor, not to the one running.
   if (is_motion(step.kind) || step.kind == StepKind::set_tool_length ||
@@ -58,7 +62,7 @@ void Simulator::set_chuck_open(bool open) {
   struct ReportAfter {
     Simulator& sim;
     ~ReportAfter() {
-      if (sim.changer_) sim.report_sensors(*sim.changer_);
+      if (sim.changer_ && !sim.answers_late) sim.report_sensors(*sim.changer_);
     }
   } report{*this};
   const int pocket = rack.pocket_at(*config_);
@@ -81,7 +85,7 @@ void Simulator::set_rack_cover_open(bool open) {
   cover_open = open;
   if (!rack.modelled || rack.cover_jammed || rack.cover_open == open) return;
   rack.cover_open = open;
-  if (changer_) report_sensors(*changer_);
+  if (changer_ && !answers_late) report_sensors(*changer_);
 }
 
 void Simulator::set_air_blast(bool on) {
@@ -129,7 +133,7 @@ SensorReadings Simulator::readings() const {
 bool Simulator::report_sensors(Changer& changer) {
   if (!rack.modelled) return false;
   changer_ = &changer;
-  const SensorReadings now = readings();
+  const SensorReadings now = answers_late ? shown_ : readings();
   if (reported_ && *reported_ == now) return false;
   reported_ = now;
   changer.sensors(now);
@@ -148,6 +152,8 @@ void Simulator::start_timer(double seconds) {
   record.seconds = seconds;
   records.push_back(record);
   timer_armed = true;
+  armed_seconds_ = seconds;
+  ++timers_started_;
 }
 
 void Simulator::cancel_timer() { timer_armed = false; }
@@ -177,18 +183,47 @@ void Simulator::unexpected(const std::string& state, const std::string& event) {
   unexpected_events.push_back(event + " in " + state);
 }
 
+void Simulator::answer_late(Changer& changer) {
+  answers_late = true;
+  rack.spindle_still = false;
+  spindle_turning_ = true;
+  shown_ = readings();
+  changer.spindle_stopped(false);
+}
+
+void Simulator::run_out_timer(Changer& changer, bool awaits_sensor) {
+  clock += armed_seconds_;
+  if (answers_late && awaits_sensor) {
+    const int started = timers_started_;
+    rack.air = true;
+    rack.spindle_still = true;
+    shown_ = readings();
+    report_sensors(changer);
+    if (spindle_turning_) {
+      spindle_turning_ = false;
+      changer.spindle_stopped(true);
+    }
+    // What it waited for came: the wait ended, or a new one began.
+    if (!timer_armed || timers_started_ != started) return;
+  }
+  // A sensor that has not come by now never will: its time runs out.
+  timer_armed = false;
+  changer.timer_elapsed();
+}
+
 int Simulator::run(Changer& changer, int limit) {
   int fed = 0;
   for (; fed < limit; ++fed) {
-    if (report_sensors(changer)) continue;
+    if (!answers_late && report_sensors(changer)) continue;
     const Awaiting awaiting = changer.status().awaiting;
-    if ((awaiting == Awaiting::timer || awaiting == Awaiting::sensor) && timer_armed) {
-      // A sensor that has not come by now never will: its time runs out.
-      timer_armed = false;
-      changer.timer_elapsed();
+    const bool waits_on_time = awaiting == Awaiting::timer || awaiting == Awaiting::sensor ||
+                               (answers_late && awaiting == Awaiting::spindle);
+    if (waits_on_time && timer_armed) {
+      run_out_timer(changer, awaiting != Awaiting::timer);
     } else if (awaiting == Awaiting::probe && pending && pending->kind == StepKind::probe) {
       const Step probe = *pending;
       pending.reset();
+      waiting_since_ = clock;
       const bool touched = sensor_z && *sensor_z >= probe.target.z;
       changer.probe_result(touched, touched ? *sensor_z : probe.target.z);
     } else if (awaiting == Awaiting::motion && pending) {
@@ -200,6 +235,13 @@ int Simulator::run(Changer& changer, int limit) {
         rack.known_axes |= pending->axes;
       }
       pending.reset();
+      waiting_since_ = clock;
+      if (answers_late && moved) {
+        // The air dips during the move: the chuck waits for it before it opens.
+        rack.air = false;
+        shown_.air_pressure_ok = false;
+        report_sensors(changer);
+      }
       moved ? changer.in_position() : changer.command_done();
     } else {
       break;
@@ -257,6 +299,30 @@ void run_with_operator(Simulator& sim, Changer& changer) {
   }
 }
 
+/// How a plan is run: where the sensor touches, and the worst case's faults.
+struct Planning {
+  std::optional<double> sensor_z;
+  bool late = false;      ///< Simulator::answer_late
+  int grips_failing = 0;  ///< Rack::grips_failing
+};
+
+/// The records of `request` made of a ready changer with `tools`.
+Simulator planned(const Config& config, const ToolState& tools, const Planning& planning,
+                  const std::function<void(Changer&)>& request) {
+  Simulator sim;
+  sim.sensor_z = planning.sensor_z;
+  sim.model_rack(config, tools);
+  sim.rack.grips_failing = planning.grips_failing;
+  Changer changer(config, sim, tools);
+  changer.plan_only();
+  sim.report_sensors(changer);
+  changer.ready();
+  if (planning.late) sim.answer_late(changer);
+  request(changer);
+  run_with_operator(sim, changer);
+  return sim;
+}
+
 }  // namespace
 
 Simulator plan_change(const Config& config, int from, int to, double sensor_z) {
@@ -264,16 +330,7 @@ Simulator plan_change(const Config& config, int from, int to, double sensor_z) {
 }
 
 Simulator plan_change(const Config& config, const ToolState& tools, int to, double sensor_z) {
-  Simulator sim;
-  sim.sensor_z = sensor_z;
-  sim.model_rack(config, tools);
-  Changer changer(config, sim, tools);
-  changer.plan_only();
-  sim.report_sensors(changer);
-  changer.ready();
-  changer.tool_change(to);
-  run_with_operator(sim, changer);
-  return sim;
+  return planned(config, tools, {sensor_z}, [to](Changer& c) { c.tool_change(to); });
 }
 
 Simulator plan_load(const Config& config, int tool, int from, double sensor_z) {
@@ -285,16 +342,7 @@ Simulator plan_load(const Config& config, int tool, int from, double sensor_z) {
 
 Simulator plan_load(const Config& config, const ToolState& tools, int tool, int pocket,
                     double sensor_z) {
-  Simulator sim;
-  sim.sensor_z = sensor_z;
-  sim.model_rack(config, tools);
-  Changer changer(config, sim, tools);
-  changer.plan_only();
-  sim.report_sensors(changer);
-  changer.ready();
-  changer.load(tool, pocket);
-  run_with_operator(sim, changer);
-  return sim;
+  return planned(config, tools, {sensor_z}, [=](Changer& c) { c.load(tool, pocket); });
 }
 
 Simulator plan_unload(const Config& config, int tool, int from) {
@@ -302,15 +350,31 @@ Simulator plan_unload(const Config& config, int tool, int from) {
 }
 
 Simulator plan_unload(const Config& config, const ToolState& tools, int tool) {
-  Simulator sim;
-  sim.model_rack(config, tools);
-  Changer changer(config, sim, tools);
-  changer.plan_only();
-  sim.report_sensors(changer);
-  changer.ready();
-  changer.unload(tool);
-  run_with_operator(sim, changer);
-  return sim;
+  return planned(config, tools, {}, [tool](Changer& c) { c.unload(tool); });
+}
+
+double longest_executor_wait(const Config& config) {
+  if (config.pockets.empty()) return 0.0;
+  const ToolState full = ToolState::fresh(config);
+  const int first = full.tool_of(config.pockets.begin()->first);
+  const int second =
+      config.pockets.size() > 1 ? full.tool_of(std::next(config.pockets.begin())->first) : 0;
+  const double z = config.probe_limit.z;
+  double longest = 0.0;
+  const auto late = [&](const ToolState& tools, int grips_failing,
+                        const std::function<void(Changer&)>& request) {
+    const Simulator sim = planned(config, tools, {z, true, grips_failing}, request);
+    longest = std::max(longest, sim.longest_wait);
+  };
+  for (const int grips_failing : {0, 1}) {
+    late(with_in_spindle(config, first), grips_failing, [=](Changer& c) { c.tool_change(second); });
+    late(full, grips_failing, [=](Changer& c) { c.tool_change(first); });
+  }
+  ToolState free = with_in_spindle(config, 0);
+  free.pockets[config.pockets.begin()->first] = {};
+  late(free, 0, [=](Changer& c) { c.load(first, 0); });
+  late(with_in_spindle(config, first), 0, [=](Changer& c) { c.unload(first); });
+  return longest;
 }
 
 }  // namespace fatc

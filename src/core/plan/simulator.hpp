@@ -91,6 +91,14 @@ class Simulator : public Ports {
   /// else (operator, spindle) or a sequence ends. Returns how many events it fed.
   int run(Changer& changer, int limit = 1000);
 
+  /// The executor's worst case (model_rack first): the spindle still turns
+  /// at the request, the air dips during every move, and every sensor the
+  /// changer waits for answers only as its time runs out.
+  void answer_late(Changer& changer);
+  bool answers_late = false;
+  double clock = 0.0;         ///< seconds of timers run out since the start
+  double longest_wait = 0.0;  ///< the longest stretch the executor waited for a step
+
   std::vector<Step> steps() const;
   std::vector<Step> motion_steps() const;
   std::vector<std::string> messages(MessageKind kind) const;
@@ -99,9 +107,18 @@ class Simulator : public Ports {
  private:
   /// Records a change of the chuck, the rack cover or the air blast.
   void record_output(Record::Kind kind, bool on);
+  /// Runs out the armed timer; answering late, the sensors a sensor wait
+  /// awaits answer just before.
+  void run_out_timer(Changer& changer, bool awaits_sensor);
   const Config* config_ = nullptr;
+  double armed_seconds_ = 0.0;
+  int timers_started_ = 0;
+  bool spindle_turning_ = false;
+  double waiting_since_ = 0.0;  ///< when the executor finished its last step
   Changer* changer_ = nullptr;
   std::optional<SensorReadings> reported_;
+  /// Answering late: what the sensors have told so far, not what they read.
+  SensorReadings shown_;
 };
 
 }  // namespace fatc
@@ -128,5 +145,10 @@ Simulator plan_load(const Config& config, const ToolState& tools, int tool, int 
 Simulator plan_unload(const Config& config, int tool, int from);
 /// The same from `tools`.
 Simulator plan_unload(const Config& config, const ToolState& tools, int tool);
+
+/// The longest the changer may keep the executor waiting between two steps,
+/// in seconds: the most of every change, load and unload planned with the
+/// Simulator answering late, and of a change whose first grip fails.
+double longest_executor_wait(const Config& config);
 
 }  // namespace fatc

@@ -317,11 +317,10 @@ TEST_F(CheckRun, shouldRefuseAStepTimeoutTheChangersWaitsOutlast) {
   EXPECT_NE(r.err.find(ini + ": [FIXED_ATC_PROBE]STEP_TIMEOUT (line "), std::string::npos) << r.err;
   EXPECT_NE(
       r.err.find(
-          "): 30 s is not longer than 47 s, the longest the changer may keep the "
-          "executor waiting for a step (spindle_stop_timeout_seconds 45 s, then the "
-          "chuck's opening, flush and closing with their sensor checks, a second grip, "
-          "or the rack cover): the executor would stop the program while the changer waits; raise "
-          "it\n"),
+          "): 30 s is not longer than 45 s, the longest the changer may keep the executor "
+          "waiting for a step (its plans with every sensor answering at its timeout, "
+          "spindle_stop_timeout_seconds 45 s, and a first grip that fails): the executor "
+          "would stop the program while the changer waits; raise it\n"),
       std::string::npos)
       << r.err;
 }
