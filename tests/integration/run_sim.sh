@@ -11,6 +11,10 @@ display=$2
 user=${FATC_SIM_USER:-fatc}
 id "$user" >/dev/null 2>&1 || useradd -m -s /bin/bash "$user"
 
+# One LinuxCNC per machine: a run from another checkout or test waits its turn
+# (two at once share LinuxCNC's IPC keys and both fail).
+exec 9>>/tmp/fixed_atc_probe-linuxcnc.lock
+flock -w 3600 9 || { echo "run_sim.sh: another LinuxCNC run held the machine for an hour" >&2; exit 1; }
 mkdir -p "$work"
 rm -f "$work/results.json"
 if [ -z "${FATC_KEEP_STATE:-}" ] || [ ! -e "$work/sim.tbl" ]; then
