@@ -334,6 +334,59 @@ def check_abort(r, rack):
     ok("after abort: fault set, not busy, chuck closed")
 
 
+def modes_restored(r, tool):
+    """After an M6 cut off: the modes of abort_modes.ngc and cut_off_modes.ngc
+    (G20 G91 G18 G95 F0.01 M51 P0, feed override on) are back, as LinuxCNC
+    reports them, with G43 and the length of `tool`, which LinuxCNC has in the
+    spindle; the executor's G90 G94 G17 G21 G49 and overrides off are gone."""
+    modes = r.get("modes", {}).get("after_abort")
+    if not modes:
+        fail("no modes read after the abort: %s" % r.get("messages"))
+    codes = set(modes["gcodes"])
+    for code, name in ((200, "G20"), (910, "G91"), (180, "G18"), (950, "G95"), (430, "G43")):
+        if code not in codes:
+            fail("%s not in force after the abort (G codes: %s; messages %s)" %
+                 (name, sorted(c / 10 for c in codes if c > 0), r["messages"]))
+    ok("G20 G91 G18 G95 G43 in force %.2f s into the scenario, after the abort" % modes["t"])
+    if modes["tool_in_spindle"] != tool:
+        fail("LinuxCNC has tool %s in the spindle, expected %d" % (modes["tool_in_spindle"], tool))
+    # stat.tool_offset is in machine units (mm), the table's Z too.
+    if modes["tool_z"] is None or abs(modes["tool_offset"][2] - modes["tool_z"]) > 1e-6 or \
+            modes["tool_z"] == 0.0:
+        fail("tool length offset %s, expected tool %d's Z %s" %
+             (modes["tool_offset"][2], tool, modes["tool_z"]))
+    ok("motion applies tool %d's length %.4f" % (tool, modes["tool_offset"][2]))
+    if abs(modes["feed"] - 0.01) > 1e-9:
+        fail("feed rate F%s after the abort, expected the program's F0.01" % modes["feed"])
+    if not modes["feed_override_enabled"] or modes["spindle_override_enabled"]:
+        fail("overrides after the abort: feed %s spindle %s, expected the program's on and off" %
+             (modes["feed_override_enabled"], modes["spindle_override_enabled"]))
+    ok("F0.01, feed override on and spindle override off, as the program had them")
+
+
+def check_abort_modes(r, rack):
+    if "aborted_at" not in r:
+        fail("the program was not aborted")
+    modes_restored(r, 1)
+
+
+def check_stopped_answering_modes(r, rack):
+    if "stopped_at" not in r:
+        fail("the component was not stopped")
+    said(r, "fixed_atc_probe stopped answering")
+    if not r.get("decoy_ran"):
+        fail("the other fixed_atc_probe (a --lint) did not run beside the component")
+    ok("the component's pid %d taken from HAL, another fixed_atc_probe running beside it" %
+       r["stopped_pid"])
+    modes_restored(r, 1)
+
+
+def check_estop_modes(r, rack):
+    if "estop_at" not in r:
+        fail("no estop")
+    modes_restored(r, 1)
+
+
 def check_after_abort(r, rack):
     if not any("M6 T1 refused" in m and "fault" in m for m in r["messages"]):
         fail("M6 was not refused with a message while faulted: %s" % r["messages"])
