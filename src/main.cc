@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <memory>
+#include <new>
 #include <optional>
 #include <string>
 #include <thread>
@@ -82,28 +83,30 @@ int run_component(const fatc::io::Options& options) {
   std::signal(SIGTERM, request_stop);
   std::signal(SIGINT, request_stop);
 
-  fatc::linuxcnc::Component component(pins, config, options.config_path, state_path, nml.get());
-  component.soft_limits(limits);
-  fatc::Changer changer(config, component, *tools.state);
-  changer.soft_limits(limits);
-  component.attach(&changer);
-  auto interpreter_idle = [&]() -> std::optional<bool> {
-    if (!nml || !nml->poll()) return std::nullopt;
-    return nml->interpreter_idle();
-  };
-  component.poll(std::chrono::steady_clock::now(), interpreter_idle());
-  hal_ready(id);
-
+  // From here on, whatever fails leaves HAL as it found it.
   try {
+    fatc::linuxcnc::Component component(pins, config, options.config_path, state_path, nml.get());
+    component.soft_limits(limits);
+    fatc::Changer changer(config, component, *tools.state);
+    changer.soft_limits(limits);
+    component.attach(&changer);
+    auto interpreter_idle = [&]() -> std::optional<bool> {
+      if (!nml || !nml->poll()) return std::nullopt;
+      return nml->interpreter_idle();
+    };
+    component.poll(std::chrono::steady_clock::now(), interpreter_idle());
+    hal_ready(id);
     while (!stop_requested) {
       component.poll(std::chrono::steady_clock::now(), interpreter_idle());
       // Quick turns while a handshake is open; otherwise sleep, don't spin.
       std::this_thread::sleep_for(std::chrono::milliseconds(component.active() ? 1 : 20));
     }
-  } catch (const std::exception& e) {
-    std::cerr << "fixed_atc_probe: " << e.what() << std::endl;
+  } catch (const std::bad_alloc&) {
     hal_exit(id);
-    return 1;
+    return fail("out of memory");
+  } catch (const std::exception& e) {
+    hal_exit(id);
+    return fail(e.what());
   }
   hal_exit(id);
   return 0;
@@ -112,13 +115,22 @@ int run_component(const fatc::io::Options& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string error;
-  const auto options =
-      fatc::io::parse_options(std::vector<std::string>(argv + 1, argv + argc), error);
-  if (!options) {
-    std::cerr << "fixed_atc_probe: " << error << "\n" << fatc::io::kUsage;
-    return 2;
+  // Every mode ends in one line, whatever fails (memory included): never on
+  // std::terminate's abort.
+  try {
+    std::string error;
+    const auto options =
+        fatc::io::parse_options(std::vector<std::string>(argv + 1, argv + argc), error);
+    if (!options) {
+      std::cerr << "fixed_atc_probe: " << error << "\n" << fatc::io::kUsage;
+      return 2;
+    }
+    if (options->mode == fatc::io::Options::Mode::component) return run_component(*options);
+    return fatc::io::run_tool_mode(*options, std::cout, std::cerr);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "fixed_atc_probe: out of memory" << std::endl;
+  } catch (const std::exception& e) {
+    std::cerr << "fixed_atc_probe: " << e.what() << std::endl;
   }
-  if (options->mode == fatc::io::Options::Mode::component) return run_component(*options);
-  return fatc::io::run_tool_mode(*options, std::cout, std::cerr);
+  return 2;
 }

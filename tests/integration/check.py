@@ -334,34 +334,41 @@ def check_abort(r, rack):
     ok("after abort: fault set, not busy, chuck closed")
 
 
+def program_modes(modes):
+    """The modes of abort_modes.ngc and cut_off_modes.ngc, the interpreter's own:
+    G20 G91 G18 G95 F0.01, not the executor's G21 G90 G17 G94 and feed."""
+    codes = set(modes["gcodes"])
+    for code, name in ((200, "G20"), (910, "G91"), (180, "G18"), (950, "G95")):
+        if code not in codes:
+            fail("%s not in force after the abort (G codes: %s)" %
+                 (name, sorted(c / 10 for c in codes if c > 0)))
+    if abs(modes["feed"] - 0.01) > 1e-9:
+        fail("feed rate F%s after the abort, expected the program's F0.01" % modes["feed"])
+    ok("G20 G91 G18 G95 F0.01 in force %.2f s into the scenario, after the abort" % modes["t"])
+
+
 def modes_restored(r, tool):
-    """After an M6 cut off: the modes of abort_modes.ngc and cut_off_modes.ngc
-    (G20 G91 G18 G95 F0.01 M51 P0, feed override on) are back, as LinuxCNC
-    reports them, with G43 and the length of `tool`, which LinuxCNC has in the
-    spindle; the executor's G90 G94 G17 G21 G49 and overrides off are gone."""
+    """After an M6 cut off: the program's modes are back, as LinuxCNC reports
+    them, with its overrides (feed on, spindle off) and G43 with the length of
+    `tool`, which LinuxCNC has in the spindle; motion applies both."""
     modes = r.get("modes", {}).get("after_abort")
     if not modes:
         fail("no modes read after the abort: %s" % r.get("messages"))
-    codes = set(modes["gcodes"])
-    for code, name in ((200, "G20"), (910, "G91"), (180, "G18"), (950, "G95"), (430, "G43")):
-        if code not in codes:
-            fail("%s not in force after the abort (G codes: %s; messages %s)" %
-                 (name, sorted(c / 10 for c in codes if c > 0), r["messages"]))
-    ok("G20 G91 G18 G95 G43 in force %.2f s into the scenario, after the abort" % modes["t"])
+    program_modes(modes)
+    if 430 not in modes["gcodes"]:
+        fail("G43 not in force after the abort (messages %s)" % r["messages"])
     if modes["tool_in_spindle"] != tool:
         fail("LinuxCNC has tool %s in the spindle, expected %d" % (modes["tool_in_spindle"], tool))
-    # stat.tool_offset is in machine units (mm), the table's Z too.
-    if modes["tool_z"] is None or abs(modes["tool_offset"][2] - modes["tool_z"]) > 1e-6 or \
-            modes["tool_z"] == 0.0:
+    # stat.tool_offset and the table's Z are both in machine units (mm).
+    if modes["tool_z"] is None or modes["tool_z"] == 0.0 or \
+            abs(modes["tool_offset"][2] - modes["tool_z"]) > 1e-6:
         fail("tool length offset %s, expected tool %d's Z %s" %
              (modes["tool_offset"][2], tool, modes["tool_z"]))
-    ok("motion applies tool %d's length %.4f" % (tool, modes["tool_offset"][2]))
-    if abs(modes["feed"] - 0.01) > 1e-9:
-        fail("feed rate F%s after the abort, expected the program's F0.01" % modes["feed"])
+    ok("G43: motion applies tool %d's length %.4f" % (tool, modes["tool_offset"][2]))
     if not modes["feed_override_enabled"] or modes["spindle_override_enabled"]:
         fail("overrides after the abort: feed %s spindle %s, expected the program's on and off" %
              (modes["feed_override_enabled"], modes["spindle_override_enabled"]))
-    ok("F0.01, feed override on and spindle override off, as the program had them")
+    ok("feed override on and spindle override off, as the program had them")
 
 
 def check_abort_modes(r, rack):
@@ -382,9 +389,21 @@ def check_stopped_answering_modes(r, rack):
 
 
 def check_estop_modes(r, rack):
+    """Motion takes no command in estop: the interpreter's own modes come back,
+    and it says what motion has, G49 and the overrides off, on again too."""
     if "estop_at" not in r:
         fail("no estop")
-    modes_restored(r, 1)
+    for name in ("after_abort", "machine_on"):
+        modes = r.get("modes", {}).get(name)
+        if not modes:
+            fail("no modes read %s" % name)
+        program_modes(modes)
+        if 490 not in modes["gcodes"] or modes["tool_offset"][2] != 0.0:
+            fail("%s: the interpreter says %s, motion applies a tool length of %s" %
+                 (name, "G49" if 490 in modes["gcodes"] else "G43", modes["tool_offset"][2]))
+        if modes["feed_override_enabled"]:
+            fail("%s: motion's feed override on, where the executor had it off" % name)
+        ok("%s: G49 and no tool length, as motion has it; feed override off in both" % name)
 
 
 def check_after_abort(r, rack):

@@ -500,18 +500,23 @@ def perform(step, result, start):
     elif step["do"] == "snapshot":
         result.setdefault("snapshots", {})[step["name"]] = snapshot(start)
     elif step["do"] == "modes":
-        # After an abort: once the interpreter is idle, until G43 shows (an
-        # abort handler's commands run after the abort) or 20 s; the checker judges.
+        # After an abort: once the interpreter is idle, until the G code
+        # `until` (G43: 430) shows, an abort handler's commands running after
+        # the abort, or 20 s; the checker judges.
+        until = step.get("until", 430)
+
         def restored():
-            return stat.interp_state == linuxcnc.INTERP_IDLE and 430 in stat.gcodes
+            return stat.interp_state == linuxcnc.INTERP_IDLE and until in stat.gcodes
         try:
-            wait(restored, 20, "G43 after the abort")
+            wait(restored, 20, "G%g after the abort" % (until / 10.0))
         except TimeoutError:
             pass
         modes = stat_modes()
         modes["t"] = now()
         result.setdefault("modes", {})[step["name"]] = modes
     elif step["do"] == "continue":
+        if "stopped_pid" not in result:
+            return  # never stopped: the checker says so
         os.kill(result["stopped_pid"], signal.SIGCONT)
         result["continued_at"] = now()
         wait(lambda: hal.get_value(COMPONENT + ".fault"), 30, "the component to fault")
