@@ -398,6 +398,14 @@ std::optional<program::InterpreterRun> run_interpreter(const InterpreterInput& i
     }
   }
   std::string folders = input.subroutine_path ? absolute_folders(*input.subroutine_path) : "";
+  for (const std::string& folder : folders_of(folders)) {
+    if (folder.size() > program::kMaxFolderLength) {
+      error = "--subroutine-path: " + shown_path(folder) + ": over the " +
+              std::to_string(program::kMaxFolderLength) +
+              " characters LinuxCNC reads of a folder in its INI";
+      return std::nullopt;
+    }
+  }
   if (ini) {
     if (const auto own = ini->get("RS274NGC", "SUBROUTINE_PATH")) {
       folders += (folders.empty() ? "" : ":") + *own;

@@ -351,10 +351,10 @@ TEST(InterpreterTable, shouldListEachToolOnceWithItsDiameterInInches) {
   EXPECT_EQ(any.tool_of_row[42], 42);
 }
 
-TEST(InterpreterIni, shouldPutHalPinsOffAndTheSubroutineFoldersFirstInTheSection) {
+TEST(InterpreterIni, shouldPutHalPinsOffAndTheSubroutineFoldersFirstInTheSectionOneALine) {
   EXPECT_EQ(ini_for_preflight("[EMC]\nA = 1\n[RS274NGC]\nHAL_PIN_VARS = 1\nSUBROUTINE_PATH = b\n",
                               "/a:b"),
-            "[EMC]\nA = 1\n[RS274NGC]\nHAL_PIN_VARS = 0\nSUBROUTINE_PATH = /a:b\nHAL_PIN_VARS = "
+            "[EMC]\nA = 1\n[RS274NGC]\nHAL_PIN_VARS = 0\nSUBROUTINE_PATH = /a:\\\nb\nHAL_PIN_VARS = "
             "1\nSUBROUTINE_PATH = b\n");
   EXPECT_EQ(ini_for_preflight("[EMC]\nA = 1", "/a"),
             "[EMC]\nA = 1\n[RS274NGC]\nHAL_PIN_VARS = 0\nSUBROUTINE_PATH = /a\n");
