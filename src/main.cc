@@ -5,7 +5,9 @@
 
 #include <chrono>
 #include <csignal>
+#include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <iostream>
 #include <memory>
 #include <new>
@@ -23,6 +25,32 @@
 #include "linuxcnc/nml_link.hpp"
 
 namespace {
+
+/// The last resort behind main's own catch: what escapes it - a throw while
+/// the program starts, before main (the memory left by a low `ulimit -v`),
+/// or out of a noexcept function - ends on one line and exit 2, never on
+/// abort()'s signal.
+[[noreturn]] void one_line_terminate() {
+  const char* what = "stopped on an error it did not expect";
+  try {
+    if (const auto thrown = std::current_exception()) std::rethrow_exception(thrown);
+  } catch (const std::bad_alloc&) {
+    what = "out of memory";
+  } catch (const std::exception& e) {
+    what = e.what();
+  } catch (...) {
+  }
+  std::fputs("fixed_atc_probe: ", stderr);
+  std::fputs(what, stderr);
+  std::fputs("\n", stderr);
+  std::_Exit(2);
+}
+
+/// Before every other initializer of the program (101: the first priority
+/// after the implementation's own).
+__attribute__((constructor(101))) void install_terminate() {
+  std::set_terminate(one_line_terminate);
+}
 
 volatile std::sig_atomic_t stop_requested = 0;
 
