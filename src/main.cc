@@ -13,6 +13,7 @@
 #include <thread>
 #include <vector>
 
+#include "core/config/quote.hpp"
 #include "core/machine/changer.hpp"
 #include "io/cli.hpp"
 #include "io/files.hpp"
@@ -33,6 +34,9 @@ int fail(const std::string& message) {
 }
 
 int run_component(const fatc::io::Options& options) {
+  if (const std::string refused = fatc::io::written_onto_input(options); !refused.empty()) {
+    return fail(refused);
+  }
   const auto loaded = fatc::io::load_config_file(options.config_path);
   if (!loaded.config) {
     for (const auto& error : loaded.errors) std::cerr << "fixed_atc_probe: " << error << "\n";
@@ -47,7 +51,7 @@ int run_component(const fatc::io::Options& options) {
     // A first start writes what it assumes (every pocket full, the spindle
     // empty) at once: panels can show it, and an unwritable path fails now.
     try {
-      fatc::io::save_state_file(state_path, *tools.state);
+      fatc::io::save_state_file(state_path, *tools.state, fatc::io::kComponentWait);
     } catch (const std::exception& e) {
       return fail(e.what());
     }
@@ -116,7 +120,8 @@ int main(int argc, char** argv) {
   const auto options =
       fatc::io::parse_options(std::vector<std::string>(argv + 1, argv + argc), error);
   if (!options) {
-    std::cerr << "fixed_atc_probe: " << error << "\n" << fatc::io::kUsage;
+    // One line: the mistake stays in sight, the usage is a --help away.
+    std::cerr << "fixed_atc_probe: " << fatc::capped_lines(error) << " (see --help)\n";
     return 2;
   }
   if (options->mode == fatc::io::Options::Mode::component) return run_component(*options);

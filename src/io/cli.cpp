@@ -7,7 +7,6 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <map>
 #include <ostream>
 #include <set>
@@ -19,6 +18,8 @@
 #include "core/config/quote.hpp"
 #include "core/plan/sequence_check.hpp"
 #include "core/plan/simulator.hpp"
+#include "capped_lines.hpp"
+#include "file_writer.hpp"
 #include "files.hpp"
 #include "ini.hpp"
 #include "confirm.hpp"
@@ -26,6 +27,7 @@
 #include "plot.hpp"
 
 namespace fatc::io {
+namespace {
 
 const char* const kUsage =
     "usage: fixed_atc_probe --config FILE [--state FILE]          run as a HAL component\n"
@@ -49,8 +51,6 @@ const char* const kUsage =
     "       fixed_atc_probe --plot FILE.svg --config FILE [--state FILE] [--from A --to B]\n"
     "                                     draw the rack from above, and the path of M6 A to B\n"
     "       fixed_atc_probe --dot         the state machine as Graphviz\n";
-
-namespace {
 
 std::optional<int> tool_argument(const std::string& text) {
   if (text.empty() || text.size() > 9) return std::nullopt;
@@ -93,10 +93,18 @@ std::optional<SoftLimits> read_limits(const std::string& ini_path, Units units, 
   return limits;
 }
 
+/// "config unreadable" or "config not valid": what kept an input from being checked.
+std::string fault_of(const char* input, const std::string& path) {
+  std::string ignored;
+  return std::string(input) + (read_small_file(path, ignored) ? " not valid" : " unreadable");
+}
+
 struct Loaded {
   std::optional<Config> config;
   std::optional<SoftLimits> limits;
   int problems = 0;  ///< lines written to `err`
+  /// What an input kept from being checked, "INI unreadable: soft limits not checked".
+  std::vector<std::string> not_checked;
 };
 
 /// Reads the config and, if given, the INI; every problem one line on `err`.
@@ -106,11 +114,19 @@ Loaded load(const Options& options, std::ostream& err) {
   for (const auto& error : result.errors) err << error << "\n";
   loaded.problems += static_cast<int>(result.errors.size());
   loaded.config = result.config;
+  if (!loaded.config) {
+    loaded.not_checked.push_back(fault_of("config", options.config_path) +
+                                 ": the rack and its sequences not checked");
+  }
   if (options.ini_path) {
     // Without a valid config the INI is still checked, its numbers as in mm.
     loaded.limits =
         read_limits(*options.ini_path, loaded.config ? loaded.config->units : Units::mm, err);
-    if (!loaded.limits) ++loaded.problems;
+    if (!loaded.limits) {
+      ++loaded.problems;
+      loaded.not_checked.push_back(fault_of("INI", *options.ini_path) +
+                                   ": soft limits not checked");
+    }
   }
   return loaded;
 }
@@ -123,8 +139,8 @@ std::size_t tools_in_rack(const ToolState& tools) {
 }
 
 /// --check of the state file: what the component would read at start.
-int check_state(const Options& options, const std::optional<Config>& config, std::ostream& out,
-                std::ostream& err) {
+int check_state(const Options& options, Loaded& loaded, std::ostream& out, std::ostream& err) {
+  const std::optional<Config>& config = loaded.config;
   const std::string& path = options.state_path;
   struct stat st;
   if (::stat(path.c_str(), &st) != 0 && errno == ENOENT) {
@@ -136,6 +152,8 @@ int check_state(const Options& options, const std::optional<Config>& config, std
   const ToolStateResult state = config ? load_state_file(path, *config) : load_state_file(path);
   if (!state.state) {
     err << state.error << "\n";
+    loaded.not_checked.push_back(fault_of("state file", path) +
+                                 ": where the tools are not checked");
     return 1;
   }
   const ToolState& tools = *state.state;
@@ -165,12 +183,9 @@ std::string sensors_wired(const Config& config) {
   add(wired.drawbar_closed, "drawbar-closed");
   add(wired.air_pressure, "air-pressure-ok");
   if (!wired.pocket_occupancy.empty()) {
-    pins += std::string(pins.empty() ? "" : ", ") + "pocket-occupied-";
-    bool first = true;
-    for (const int pocket : wired.pocket_occupancy) {
-      pins += (first ? "" : " ") + std::to_string(pocket);
-      first = false;
-    }
+    std::vector<std::string> pockets;
+    for (const int pocket : wired.pocket_occupancy) pockets.push_back(std::to_string(pocket));
+    pins += std::string(pins.empty() ? "" : ", ") + "pocket-occupied-" + listed(pockets, " ");
   }
   if (pins.empty()) return "none";
   std::ostringstream timeout;
@@ -178,9 +193,25 @@ std::string sensors_wired(const Config& config) {
   return pins + " (sensor_timeout_seconds " + timeout.str() + ")";
 }
 
+/// --check's verdict when an input could not be read or is not valid: the
+/// sequences it could still check, and last what it could not.
+int partial_verdict(const Loaded& loaded, std::ostream& out) {
+  if (loaded.config) {
+    const SequencesChecked checked = check_sequences(*loaded.config, loaded.limits);
+    const std::size_t violations = checked.violations.size();
+    out << checked.sequences << " sequences checked against the rack keep-out"
+        << (loaded.limits ? " and the soft limits" : "") << ", " << violations << " violation"
+        << (violations == 1 ? "" : "s") << "\n";
+  }
+  std::string last;
+  for (const std::string& part : loaded.not_checked) last += (last.empty() ? "" : "; ") + part;
+  out << last << "\n";
+  return 1;
+}
+
 int check(const Options& options, std::ostream& out, std::ostream& err) {
-  const Loaded loaded = load(options, err);
-  int problems = loaded.problems + check_state(options, loaded.config, out, err);
+  Loaded loaded = load(options, err);
+  int problems = loaded.problems + check_state(options, loaded, out, err);
   if (options.ini_path) {
     std::string error;
     if (const auto ini = IniFile::read(*options.ini_path, error)) {
@@ -191,7 +222,7 @@ int check(const Options& options, std::ostream& out, std::ostream& err) {
       }
     }
   }
-  if (!loaded.config) return 1;
+  if (!loaded.not_checked.empty()) return partial_verdict(loaded, out);
   const Config& config = *loaded.config;
   out << shown_path(options.config_path) << ": units " << units_name(config.units) << ", "
       << config.pockets.size() << " pockets, keep-out margin " << config.keepout_margin() << "\n";
@@ -273,15 +304,11 @@ int plot(const Options& options, std::ostream& out, std::ostream& err) {
              spindle_words(*options.from_tool) + ", the " +
              (config.path == Path::direct ? "direct" : "prototype") + " path";
   }
-  // Written beside the drawing and renamed over it: a failed write leaves the old one.
-  const std::string written = options.plot_path + ".tmp";
-  std::ofstream file(written, std::ios::trunc);
-  file << rack_svg(config, *rack, change ? &*change : nullptr, title);
-  file.close();
-  if (!file || std::rename(written.c_str(), options.plot_path.c_str()) != 0) {
-    err << shown_path(options.plot_path) << ": cannot write the drawing: " << std::strerror(errno)
-        << "\n";
-    std::remove(written.c_str());
+  try {
+    write_file(options.plot_path, rack_svg(config, *rack, change ? &*change : nullptr, title),
+               kCommandLineWait);
+  } catch (const std::exception& e) {
+    err << e.what() << "\n";
     return 2;
   }
   out << "wrote " << shown_path(options.plot_path) << ": " << config.pockets.size()
@@ -511,37 +538,83 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
 namespace {
 
 /// --teach: the machine position into config.json, the file as it was kept as PATH.bak.
+/// The config is taken before it is read: a teach at the same time (here or
+/// in the component) waits its turn and then reads what this one wrote.
 int teach_position(const Options& options, std::ostream& out, std::ostream& err) {
-  std::string error;
-  const auto text = read_small_file(options.config_path, error);
-  if (!text) {
-    err << error << "\n";
-    return 2;
-  }
-  std::optional<SoftLimits> limits;
-  if (options.ini_path) {
-    limits = read_limits(*options.ini_path, declared_units(*text), err);
-    if (!limits) return 2;
-  }
-  const TeachResult taught = teach(*text, *options.teach_target, *options.teach_at, limits);
-  if (!taught.text) {
-    err << shown_path(options.config_path) << ": " << taught.error << "\n";
-    return 1;
-  }
   try {
-    save_config_file(options.config_path, *text, *taught.text);
+    const FileWriter config(options.config_path, kCommandLineWait);
+    std::string error;
+    const auto text = read_small_file(options.config_path, error);
+    if (!text) {
+      err << error << "\n";
+      return 2;
+    }
+    std::optional<SoftLimits> limits;
+    if (options.ini_path) {
+      limits = read_limits(*options.ini_path, declared_units(*text), err);
+      if (!limits) return 2;
+    }
+    const TeachResult taught = teach(*text, *options.teach_target, *options.teach_at, limits);
+    if (!taught.text) {
+      err << shown_path(options.config_path) << ": " << taught.error << "\n";
+      return 1;
+    }
+    save_config_file(config, *text, *taught.text, kCommandLineWait);
+    out << taught.change << "\n"
+        << "written (previous file kept as " << shown_path(options.config_path + ".bak") << ")\n";
+    return 0;
   } catch (const std::exception& e) {
     err << e.what() << "\n";
     return 2;
   }
-  out << taught.change << "\n"
-      << "written (previous file kept as " << shown_path(options.config_path + ".bak") << ")\n";
-  return 0;
 }
+
+/// A file given on the command line, as a message names it.
+struct GivenFile {
+  std::string name;  ///< "--plot \"rack.svg\"", "the backup \"config.json.bak\""
+  std::string path;
+};
 
 }  // namespace
 
-int run_tool_mode(const Options& options, std::ostream& out, std::ostream& err) {
+std::string written_onto_input(const Options& options) {
+  std::vector<GivenFile> written;
+  std::vector<GivenFile> inputs;
+  switch (options.mode) {
+    case Options::Mode::plot:
+      written = {{"--plot " + quote(options.plot_path), options.plot_path}};
+      inputs = {{"--config", options.config_path}, {"--state", options.state_path}};
+      break;
+    case Options::Mode::teach: {
+      const std::string backup = options.config_path + ".bak";
+      written = {{"the backup " + quote(backup), backup}};
+      inputs = {{"--ini", options.ini_path.value_or("")}};
+      break;
+    }
+    case Options::Mode::confirm:
+    case Options::Mode::component:
+      written = {{"--state " + quote(options.state_path), options.state_path}};
+      inputs = {{"--config", options.config_path}};
+      break;
+    default:
+      break;
+  }
+  for (const GivenFile& output : written) {
+    for (const GivenFile& input : inputs) {
+      if (input.path.empty() || !same_file(output.path, input.path)) continue;
+      return output.name + " is the file given as " + input.name + ": nothing written";
+    }
+  }
+  return "";
+}
+
+namespace {
+
+int run_mode(const Options& options, std::ostream& out, std::ostream& err) {
+  if (const std::string refused = written_onto_input(options); !refused.empty()) {
+    err << refused << "\n";
+    return 2;
+  }
   switch (options.mode) {
     case Options::Mode::check:
       return check(options, out, err);
@@ -565,6 +638,21 @@ int run_tool_mode(const Options& options, std::ostream& out, std::ostream& err) 
       break;
   }
   return 2;
+}
+
+}  // namespace
+
+int run_tool_mode(const Options& options, std::ostream& out, std::ostream& err) {
+  // Graphviz and the usage are ours alone; every other line may hold a file's text.
+  if (options.mode == Options::Mode::dot || options.mode == Options::Mode::help) {
+    return run_mode(options, out, err);
+  }
+  CappedLines out_lines(out), err_lines(err);
+  std::ostream capped_out(&out_lines), capped_err(&err_lines);
+  const int code = run_mode(options, capped_out, capped_err);
+  capped_out.flush();
+  capped_err.flush();
+  return code;
 }
 
 }  // namespace fatc::io

@@ -29,13 +29,6 @@ namespace {
 namespace fs = std::filesystem;
 using program::finding;
 
-std::string folder_of(const std::string& path) {
-  const auto slash = path.rfind('/');
-  if (slash == std::string::npos) return ".";
-  if (slash == 0) return "/";
-  return path.substr(0, slash);
-}
-
 /// `path` as seen from `base` (the INI's folder, where LinuxCNC runs).
 std::string from_folder(const std::string& path, const std::string& base) {
   return path.empty() || path[0] == '/' ? path : base + "/" + path;

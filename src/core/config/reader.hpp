@@ -45,12 +45,16 @@ struct Range {
 constexpr Range kCoordinate{-100000.0, 100000.0, "length"};
 constexpr Range kOffset{0.001, 1000.0, "length"};
 constexpr Range kSideComponent{-1000.0, 1000.0, "length"};
-constexpr Range kMargin{0.0, 1000.0, "length"};
 constexpr Range kTolerance{0.0001, 100.0, "length"};
 constexpr Range kFeed{0.01, 100000.0, "feed"};
 constexpr Range kPulse{0.01, 60.0, "seconds"};
 constexpr Range kTimeout{0.01, 3600.0, "seconds"};
 constexpr Range kSensorTimeout{0.01, 60.0, "seconds"};
+/// rack_keepout_margin, a keep-out column's half-width: a tool holder is not
+/// zero wide, and a column of nothing lets every move through the rack.
+inline Range keepout_margin_range(Units units) {
+  return {units == Units::mm ? 1.0 : 0.04, 1000.0, "length"};
+}
 
 /// How many single-character edits turn `a` into `b`: for "did you mean".
 std::size_t edit_distance(const std::string& a, const std::string& b);

@@ -57,7 +57,7 @@ class CrashSafeSave : public ::testing::Test {
 TEST_F(CrashSafeSave, shouldLeaveTheOldOrTheNewStateWhenKilledAtAnyMoment) {
   const ToolState a = small();
   const ToolState b = large();
-  io::save_state_file(path_, a);
+  io::save_state_file(path_, a, io::kCommandLineWait);
   std::mt19937 random(20240611);
   std::uniform_int_distribution<int> pause_us(0, 4000);
   int found_a = 0, found_b = 0, temporary_files = 0;
@@ -71,8 +71,8 @@ TEST_F(CrashSafeSave, shouldLeaveTheOldOrTheNewStateWhenKilledAtAnyMoment) {
       ::close(saved[0]);
       try {
         for (;;) {
-          io::save_state_file(path_, b);
-          io::save_state_file(path_, a);
+          io::save_state_file(path_, b, io::kCommandLineWait);
+          io::save_state_file(path_, a, io::kCommandLineWait);
           // At work: however slow the disk, the kill below comes after this.
           if (saved[1] >= 0 && ::write(saved[1], "s", 1) == 1) {
             ::close(saved[1]);
@@ -102,7 +102,7 @@ TEST_F(CrashSafeSave, shouldLeaveTheOldOrTheNewStateWhenKilledAtAnyMoment) {
     if (temporary_left()) ++temporary_files;
 
     // Whatever the killed writer left, the next save works and cleans up.
-    io::save_state_file(path_, a);
+    io::save_state_file(path_, a, io::kCommandLineWait);
     ASSERT_FALSE(temporary_left()) << "after kill " << kill;
   }
   std::cout << "[ figures  ] " << kKills << " kills: old or new state each time (" << found_a
@@ -120,7 +120,7 @@ TEST_F(CrashSafeSave, shouldNotFollowASymlinkLeftAsTheTemporaryFile) {
   const std::string target = folder_ + "/precious";
   std::ofstream(target) << "keep me";
   std::filesystem::create_symlink(target, path_ + ".tmp");
-  io::save_state_file(path_, small());
+  io::save_state_file(path_, small(), io::kCommandLineWait);
   std::ifstream in(target);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_EQ(text, "keep me");
@@ -130,7 +130,7 @@ TEST_F(CrashSafeSave, shouldNotFollowASymlinkLeftAsTheTemporaryFile) {
 TEST_F(CrashSafeSave, shouldReplaceAReadOnlyTemporaryFileLeftBehind) {
   std::ofstream(path_ + ".tmp") << "{\"version\": 1, \"spi";
   ::chmod((path_ + ".tmp").c_str(), 0444);
-  io::save_state_file(path_, large());
+  io::save_state_file(path_, large(), io::kCommandLineWait);
   const auto loaded = io::load_state_file(path_, test::valid_config());
   ASSERT_TRUE(loaded.state) << loaded.error;
   EXPECT_EQ(*loaded.state, large());

@@ -127,7 +127,7 @@ const Hostile kBadConfigs[] = {
   {"pocket_plus_offset_overflows.json", "pocket_above_clearance_offset_z: must be from 0.001 to 1000 mm, got 1.7e+308"},
   {"clearance_offset_huge.json", "pocket_above_clearance_offset_z: must be from 0.001 to 1000 mm, got 1e+308"},
   {"tolerance_tiny.json", "probe_check_tolerance: must be from 0.0001 to 100 mm, got 1e-300"},
-  {"margin_huge.json", "rack_keepout_margin: must be from 0 to 1000 mm, got 1e+300"},
+  {"margin_huge.json", "rack_keepout_margin: must be from 1 to 1000 mm, got 1e+300"},
   {"retract_denormal.json", "probe_retract_offset_z: must be from 0.001 to 1000 mm, got 4.94066e-324"},
   {"backoff_huge.json", "probe_backoff: must be from 0.001 to 1000 mm, got 1e+06"},
   {"length_offset_huge.json", "probe_length_compensation_offset: must be from -100000 to 100000 mm, got -1e+200"},

@@ -100,7 +100,7 @@ TEST_F(StateFile, shouldBeAFreshStateWhenMissing) {
 }
 
 TEST_F(StateFile, shouldSaveAndLoadTheSameState) {
-  io::save_state_file(path_, sample());
+  io::save_state_file(path_, sample(), io::kCommandLineWait);
   const auto result = io::load_state_file(path_, test::valid_config());
   ASSERT_TRUE(result.state) << result.error;
   EXPECT_EQ(*result.state, sample());
@@ -118,7 +118,7 @@ TEST_F(StateFile, shouldNameTheFileWhenCorruptNeverReset) {
 TEST_F(StateFile, shouldRefuseAPocketTheConfigDoesNotHave) {
   ToolState state = sample();
   state.pockets[9] = {9, true};
-  io::save_state_file(path_, state);
+  io::save_state_file(path_, state, io::kCommandLineWait);
   const auto result = io::load_state_file(path_, test::valid_config());
   ASSERT_FALSE(result.state);
   EXPECT_EQ(result.error,
@@ -126,7 +126,8 @@ TEST_F(StateFile, shouldRefuseAPocketTheConfigDoesNotHave) {
 }
 
 TEST_F(StateFile, shouldKeepTheOldFileWhenTheFolderIsGone) {
-  EXPECT_THROW(io::save_state_file("/nonexistent/folder/state.json", sample()), std::runtime_error);
+  EXPECT_THROW(io::save_state_file("/nonexistent/folder/state.json", sample(), io::kCommandLineWait),
+               std::runtime_error);
 }
 
 }  // namespace
