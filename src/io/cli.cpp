@@ -582,18 +582,18 @@ std::string written_onto_input(const Options& options) {
   std::vector<GivenFile> inputs;
   switch (options.mode) {
     case Options::Mode::plot:
-      written = {{"--plot " + quote(options.plot_path), options.plot_path}};
+      written = {{"--plot " + quote(options.plot_path, 200), options.plot_path}};
       inputs = {{"--config", options.config_path}, {"--state", options.state_path}};
       break;
     case Options::Mode::teach: {
       const std::string backup = options.config_path + ".bak";
-      written = {{"the backup " + quote(backup), backup}};
+      written = {{"the backup " + quote(backup, 200), backup}};
       inputs = {{"--ini", options.ini_path.value_or("")}};
       break;
     }
     case Options::Mode::confirm:
     case Options::Mode::component:
-      written = {{"--state " + quote(options.state_path), options.state_path}};
+      written = {{"--state " + quote(options.state_path, 200), options.state_path}};
       inputs = {{"--config", options.config_path}};
       break;
     default:

@@ -154,7 +154,8 @@ ConfigResult load_config_file(const std::string& path) {
     return result;
   }
   result = parse_config(*text);
-  for (auto& message : result.errors) message = shown_path(path) + ": " + message;
+  // A JSON path deep down repeats many keys: the line is cut, not the message lost.
+  for (auto& message : result.errors) message = capped_lines(shown_path(path) + ": " + message);
   return result;
 }
 
@@ -163,7 +164,7 @@ ToolStateResult load_state_file(const std::string& path) {
   const auto text = read_small_file(path, error);
   if (!text) return {std::nullopt, error};
   auto result = tool_state_from_json(*text);
-  if (!result.state) return {std::nullopt, shown_path(path) + ": " + result.error};
+  if (!result.state) return {std::nullopt, capped_lines(shown_path(path) + ": " + result.error)};
   return result;
 }
 

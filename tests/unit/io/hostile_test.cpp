@@ -63,7 +63,7 @@ std::vector<std::string> read_state(const std::string& path) {
 std::vector<std::string> read_ini(const std::string& path) {
   std::string error;
   const auto ini = io::IniFile::read(path, error);
-  if (ini && io::soft_limits(*ini, Units::mm, error)) return {};
+  if (ini && io::soft_limits(*ini, Units::mm, error)) return io::executor_problems(*ini, nullptr);
   return {error};
 }
 
@@ -98,6 +98,9 @@ void expect_refused(const std::vector<std::string>& messages, const std::string&
 
 // ---------------------------------------------------------------- the corpus
 
+/// Fifty-eight k's, a key of deep_duplicate_long_keys.json without its number.
+#define K58 "kkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkk"
+
 // clang-format off
 const Hostile kBadConfigs[] = {
   // numbers beyond a double
@@ -128,6 +131,10 @@ const Hostile kBadConfigs[] = {
   {"clearance_offset_huge.json", "pocket_above_clearance_offset_z: must be from 0.001 to 1000 mm, got 1e+308"},
   {"tolerance_tiny.json", "probe_check_tolerance: must be from 0.0001 to 100 mm, got 1e-300"},
   {"margin_huge.json", "rack_keepout_margin: must be from 1 to 1000 mm, got 1e+300"},
+  // a keep-out too narrow to catch a move through a holder
+  {"margin_zero.json", "rack_keepout_margin: must be from 1 to 1000 mm, got 0"},
+  {"margin_tiny.json", "rack_keepout_margin: must be from 1 to 1000 mm, got 1e-09"},
+  {"margin_default_below_floor.json", "rack_keepout_margin: missing, and its default, half the side offset (0.75), is below 1 mm: give the tool holder's half-width"},
   {"retract_denormal.json", "probe_retract_offset_z: must be from 0.001 to 1000 mm, got 4.94066e-324"},
   {"backoff_huge.json", "probe_backoff: must be from 0.001 to 1000 mm, got 1e+06"},
   {"length_offset_huge.json", "probe_length_compensation_offset: must be from -100000 to 100000 mm, got -1e+200"},
@@ -139,6 +146,11 @@ const Hostile kBadConfigs[] = {
   {"escape_sequence_key.json", "\\x1b[31mred\\x1b[0m: unknown key"},
   {"escape_sequence_value.json", "units: expected \"mm\" or \"inch\", got \"\\x1b]0;pwned\\x07mm\""},
   {"bidi_override_value.json", "units: expected \"mm\" or \"inch\", got \"\\u{202e}mm\""},
+  {"bidi_isolate_key.json", "\\u{2067}safe\\u{2069}: unknown key"},
+  {"tag_characters_value.json", "units: expected \"mm\" or \"inch\", got \"mm\\u{e0041}\\u{e007f}\""},
+  {"soft_hyphen_value.json", "probe_after_change: expected \"off\", \"measure\" or \"check\", got \"mea\\u{00ad}sure\""},
+  {"zero_width_key.json", "chuck_seconds\\u{200b}: unknown key, did you mean \"chuck_seconds\"?"},
+  {"deep_duplicate_long_keys.json", "\u2026kkkkkkkkkkkkk56." K58 "57." K58 "58." K58 "59.x: appears twice"},
   {"newline_in_pocket_key.json", "pockets.1\\n2: the key must be a pocket number"},
   {"long_string_value.json", "probe_after_change: expected \"off\", \"measure\" or \"check\", got \"xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx\u2026\""},
   {"long_unterminated_string.json", "line 1, column 20012: invalid JSON: syntax error while parsing value - invalid string: missing closing quote; last read: '\"mmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmm\u2026'"},
@@ -198,6 +210,9 @@ const Hostile kBadStates[] = {
   {"empty.json", "line 1, column 1: invalid JSON: syntax error while parsing value - unexpected end of input"},
   {"torn_write.json", "line 11, column 3: invalid JSON: syntax error while parsing array - unexpected end of input"},
   {"top_level_array.json", "state: expected a JSON object, got an array"},
+  {"in_progress_pocket_not_in_config.json", "in_progress.pocket: the sequence was cut off at pocket 99, which config.json does not have"},
+  {"in_progress_bidi.json", "in_progress.step: expected text without invisible or direction-changing characters, got \"returning tool 3 \\u{202e}to pocket 3\""},
+  {"in_progress_tag.json", "in_progress.sequence: expected text without invisible or direction-changing characters, got \"M6 T4\\u{e0001}\""},
 };
 
 const Hostile kBadInis[] = {
@@ -220,6 +235,9 @@ const Hostile kBadInis[] = {
   {"linear_units_nan.ini", "[TRAJ]LINEAR_UNITS (line 4): expected machine units per mm from 0.001 to 1000, got \"nan\""},
   {"linear_units_with_junk.ini", "[TRAJ]LINEAR_UNITS (line 4): expected mm, metric, in, inch, imperial or machine units per mm, got \"1.0 mm\""},
   {"empty_value.ini", "[AXIS_Y]MAX_LIMIT: missing or empty"},
+  {"return_to_xy_bidi.ini", "[FIXED_ATC_PROBE]RETURN_TO_XY (line 17): expected 0 or 1 (halcmd setp of a bit), got \"\\u{202e}1\""},
+  {"step_timeout_soft_hyphen.ini", "[FIXED_ATC_PROBE]STEP_TIMEOUT (line 24): expected seconds, 1 or more, got \"3\\u{00ad}0\""},
+  {"analog_out_twice_escape.ini", "[FIXED_ATC_PROBE]PROBE_Z_OUT (line 21): expected two digits as in the motion pin names (03), got \"\\x1b[8m\""},
 };
 // clang-format on
 
