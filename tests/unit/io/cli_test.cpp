@@ -447,19 +447,50 @@ TEST_F(CheckRun, shouldCutEveryLineItPrintsAtFourHundredCharacters) {
   EXPECT_NE(r.err.find("\u2026\n"), std::string::npos) << r.err;
 }
 
+/// The program itself run with `args` (a shell line): its exit status and
+/// what it printed on stdout and stderr.
+CliRun run_program(const std::string& args) {
+  const std::string command = std::string(FATC_PROGRAM) + " " + args + " 2>&1";
+  std::FILE* pipe = ::popen(command.c_str(), "r");
+  if (pipe == nullptr) return {-1, "", "popen failed"};
+  std::string said;
+  char buffer[4096];
+  while (const std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) said.append(buffer, n);
+  return {WEXITSTATUS(::pclose(pipe)), said, ""};
+}
+
 TEST(Usage, shouldBeOneLineThatPointsToHelp) {
-  for (const std::string& args :
-       {std::string("--plan --config c.json"), std::string("--bogus"), std::string("")}) {
-    const std::string command = std::string(FATC_PROGRAM) + " " + args + " --check 2>&1";
-    std::FILE* pipe = ::popen(command.c_str(), "r");
-    ASSERT_NE(pipe, nullptr);
-    std::string said;
-    char buffer[4096];
-    while (const std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) said.append(buffer, n);
-    EXPECT_EQ(WEXITSTATUS(::pclose(pipe)), 2) << args;
-    EXPECT_EQ(said.find('\n'), said.size() - 1) << said;
-    EXPECT_NE(said.find(" (see --help)\n"), std::string::npos) << said;
-  }
+  const CliRun twice = run_program("--plan --config c.json --check");
+  EXPECT_EQ(twice.code, 2);
+  EXPECT_EQ(twice.out, "fixed_atc_probe: --plan and --check cannot be combined (see --help)\n");
+  const CliRun unknown = run_program("--bogus");
+  EXPECT_EQ(unknown.code, 2);
+  EXPECT_EQ(unknown.out, "fixed_atc_probe: unknown argument \"--bogus\" (see --help)\n");
+  const CliRun bare = run_program("--check");
+  EXPECT_EQ(bare.code, 2);
+  EXPECT_EQ(bare.out, "fixed_atc_probe: --config FILE is required (see --help)\n");
+  EXPECT_NE(run_program("--help").out.find("usage: fixed_atc_probe"), std::string::npos);
+}
+
+TEST_F(CheckRun, shouldNotStartTheComponentOnAStateThatIsItsConfig) {
+  const std::string config = file("config.json", test::kValidConfig);
+  const CliRun r = run_program("--config " + config + " --state " + config);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.out, "fixed_atc_probe: --state \"" + config +
+                       "\" is the file given as --config: nothing written\n");
+}
+
+TEST_F(CheckRun, shouldNotStartTheComponentOnACutOffPocketTheConfigDoesNotHave) {
+  const std::string config = file("config.json", test::kValidConfig);
+  ToolState tools = ToolState::fresh(test::valid_config());
+  tools.uncertain = true;
+  tools.in_progress = InProgress{"M6 T4", "returning tool 3 to pocket 9", 9};
+  const std::string state = file("config.json.state", to_json(tools));
+  const CliRun r = run_program("--config " + config);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.out, "fixed_atc_probe: " + state +
+                       ": in_progress.pocket: the sequence was cut off at pocket 9, which "
+                       "config.json does not have\n");
 }
 
 TEST(Cli, shouldPrintTheDiagram) {

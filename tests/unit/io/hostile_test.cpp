@@ -541,6 +541,68 @@ TEST(Quote, shouldKeepUtf8AndEscapeWhatIsNot) {
   EXPECT_EQ(quote("\xe0\x80\xaf"), "\"\\xe0\\x80\\xaf\"") << "an overlong encoding";
 }
 
+/// A character that shows as nothing, hides or reorders text, and how quote() shows it.
+struct Invisible {
+  const char* name;
+  const char* text;
+  const char* shown;
+};
+std::ostream& operator<<(std::ostream& out, const Invisible& c) { return out << c.name; }
+
+class InvisibleCharacter : public ::testing::TestWithParam<Invisible> {};
+
+TEST_P(InvisibleCharacter, shouldBeShownAsAnEscape) {
+  EXPECT_EQ(quote(std::string("a") + GetParam().text + "b"),
+            std::string("\"a") + GetParam().shown + "b\"");
+  EXPECT_TRUE(has_invisible_characters(GetParam().text));
+}
+
+// clang-format off
+INSTANTIATE_TEST_SUITE_P(Quote, InvisibleCharacter, ::testing::Values(
+    Invisible{"left_to_right_embedding", "\u202a", "\\u{202a}"},
+    Invisible{"right_to_left_override", "\u202e", "\\u{202e}"},
+    Invisible{"left_to_right_isolate", "\u2066", "\\u{2066}"},
+    Invisible{"pop_directional_isolate", "\u2069", "\\u{2069}"},
+    Invisible{"left_to_right_mark", "\u200e", "\\u{200e}"},
+    Invisible{"right_to_left_mark", "\u200f", "\\u{200f}"},
+    Invisible{"arabic_letter_mark", "\u061c", "\\u{061c}"},
+    Invisible{"zero_width_space", "\u200b", "\\u{200b}"},
+    Invisible{"zero_width_joiner", "\u200d", "\\u{200d}"},
+    Invisible{"word_joiner", "\u2060", "\\u{2060}"},
+    Invisible{"byte_order_mark", "\ufeff", "\\u{feff}"},
+    Invisible{"soft_hyphen", "\u00ad", "\\u{00ad}"},
+    Invisible{"tag_begin", "\U000e0001", "\\u{e0001}"},
+    Invisible{"tag_latin_a", "\U000e0041", "\\u{e0041}"},
+    Invisible{"cancel_tag", "\U000e007f", "\\u{e007f}"},
+    Invisible{"variation_selector", "\ufe0f", "\\u{fe0f}"},
+    Invisible{"hangul_filler", "\u3164", "\\u{3164}"}),
+    [](const ::testing::TestParamInfo<Invisible>& info) { return std::string(info.param.name); });
+// clang-format on
+
+TEST(Quote, shouldKeepVisibleTextAsItIs) {
+  EXPECT_FALSE(has_invisible_characters("Fräser ø6 → T3, 日本"));
+  EXPECT_EQ(quote("Fräser ø6 → T3"), "\"Fräser ø6 → T3\"");
+}
+
+TEST(MessageLines, shouldCutALineOverFourHundredCharactersAndKeepTheOthers) {
+  const std::string fits(400, 'a');
+  EXPECT_EQ(capped_lines(fits), fits);
+  EXPECT_EQ(capped_lines(std::string(401, 'a') + "\nshort\n"),
+            std::string(399, 'a') + "\u2026\nshort\n");
+  std::string umlauts;
+  for (int i = 0; i < 500; ++i) umlauts += "\u00e4";
+  std::string kept;
+  for (int i = 0; i < 399; ++i) kept += "\u00e4";
+  EXPECT_EQ(capped_lines(umlauts), kept + "\u2026") << "characters, not bytes";
+}
+
+TEST(MessageLines, shouldEndALongListWithHowManyMore) {
+  using Items = std::vector<std::string>;
+  EXPECT_EQ(fatc::listed(Items{"1", "2", "3"}, ", ", 2), "1, 2 \u2026 and 1 more");
+  EXPECT_EQ(fatc::listed(Items{"1", "2"}, " ", 2), "1 2");
+  EXPECT_EQ(fatc::listed(Items{}), "");
+}
+
 TEST(Quote, shouldCutLongTextAtSixtyCharacters) {
   EXPECT_EQ(quote(std::string(60, 'a')), "\"" + std::string(60, 'a') + "\"");
   EXPECT_EQ(quote(std::string(61, 'a')), "\"" + std::string(60, 'a') + "\u2026\"");

@@ -28,6 +28,15 @@ TEST(ToolState, shouldStartWithEveryPocketFullAndTheSpindleEmpty) {
   EXPECT_FALSE(fresh.uncertain);
 }
 
+TEST(ToolState, shouldNameTwentyPocketsAndCountTheRest) {
+  std::vector<int> numbers;
+  for (int n = 1; n <= 30; ++n) numbers.push_back(n);
+  EXPECT_EQ(pocket_list(numbers),
+            "pockets 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20 "
+            "\u2026 and 10 more");
+  EXPECT_EQ(pocket_list({4}), "pocket 4");
+}
+
 TEST(ToolState, shouldRoundTripThroughJson) {
   ToolState state = sample();
   state.uncertain = true;
