@@ -253,14 +253,21 @@ TEST_F(CheckRun, shouldReadTheStateAndSayWhatItHolds) {
       << r.out;
 }
 
-TEST_F(CheckRun, shouldFailOnABadStateEvenWhenTheConfigIsGood) {
+TEST_F(CheckRun, shouldFailOnABadOrUnreadableStateEvenWhenTheConfigIsGood) {
   const std::string state = file("state.json", R"({"version": 1, "spindle": 1e309})");
-  const CliRun r = run({"--check", "--config", kConfig, "--state", state});
-  EXPECT_EQ(r.code, 1);
-  EXPECT_EQ(r.err, state + ": line 1, column 31: invalid JSON: number overflow parsing '1e309'\n");
-  EXPECT_EQ(r.out,
+  const CliRun bad = run({"--check", "--config", kConfig, "--state", state});
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_EQ(bad.err, state + ": line 1, column 31: invalid JSON: number overflow parsing '1e309'\n");
+  EXPECT_EQ(bad.out,
             "24 sequences checked against the rack keep-out, 0 violations\n"
             "state file not valid: where the tools are not checked\n");
+  ASSERT_EQ(::mkfifo((folder_ + "/fifo").c_str(), 0600), 0);
+  const CliRun fifo = run({"--check", "--config", kConfig, "--state", folder_ + "/fifo"});
+  EXPECT_EQ(fifo.code, 1);
+  EXPECT_EQ(fifo.err, folder_ + "/fifo: expected a regular file, got a FIFO\n");
+  EXPECT_EQ(fifo.out,
+            "24 sequences checked against the rack keep-out, 0 violations\n"
+            "state file unreadable: where the tools are not checked\n");
 }
 
 TEST_F(CheckRun, shouldSayWhatIsWrongInEachOfTheThreeFiles) {
@@ -383,16 +390,6 @@ TEST_F(CheckRun, shouldSayNothingWasCheckedAgainstTheRackWhenTheConfigIsUnreadab
             "config unreadable: the rack and its sequences not checked; INI unreadable: soft "
             "limits not checked\n");
   EXPECT_EQ(r.out.find("violations"), std::string::npos) << r.out;
-}
-
-TEST_F(CheckRun, shouldSayWhereTheToolsAreWasNotCheckedWhenTheStateIsUnreadable) {
-  ASSERT_EQ(::mkfifo((folder_ + "/state").c_str(), 0600), 0);
-  const CliRun r = run({"--check", "--config", kConfig, "--state", folder_ + "/state"});
-  EXPECT_EQ(r.code, 1);
-  EXPECT_EQ(r.err, folder_ + "/state: expected a regular file, got a FIFO\n");
-  EXPECT_EQ(r.out,
-            "24 sequences checked against the rack keep-out, 0 violations\n"
-            "state file unreadable: where the tools are not checked\n");
 }
 
 TEST_F(CheckRun, shouldEscapeADuplicatedAnalogPinOfTheExecutor) {

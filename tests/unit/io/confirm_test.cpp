@@ -9,6 +9,7 @@
 
 #include "cli_run.hpp"
 #include "io/files.hpp"
+#include "temp_folder.hpp"
 #include "test_config.hpp"
 
 namespace fatc {
@@ -17,16 +18,14 @@ namespace {
 using test::CliRun;
 const auto& run = test::run_cli;
 
-class Confirm : public ::testing::Test {
+class Confirm : public test::TempFolder {
  protected:
   void SetUp() override {
-    char pattern[] = "/tmp/fatc_confirm_XXXXXX";
-    folder_ = ::mkdtemp(pattern);
+    TempFolder::SetUp();
     config_ = folder_ + "/config.json";
     state_ = folder_ + "/state.json";
     std::ofstream(config_) << test::kValidConfig;
   }
-  void TearDown() override { std::filesystem::remove_all(folder_); }
 
   /// An M6 cut off while it returned tool 2 to pocket 2: the spindle may still hold it.
   void cut_off_at_pocket(int pocket, int tool_of_pocket) {
@@ -37,17 +36,14 @@ class Confirm : public ::testing::Test {
     tools.in_progress = InProgress{"M6 T5", "returning to pocket " + std::to_string(pocket), pocket};
     std::ofstream(state_) << to_json(tools);
   }
-  std::string state_text() const {
-    std::ifstream in(state_);
-    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  }
+  std::string state_text() const { return test::text_of(state_); }
   CliRun confirm(std::vector<std::string> answer) {
     std::vector<std::string> args = {"--confirm", "--config", config_, "--state", state_};
     args.insert(args.end(), answer.begin(), answer.end());
     return run(args);
   }
 
-  std::string folder_, config_, state_;
+  std::string config_, state_;
 };
 
 TEST_F(Confirm, shouldRefuseTheCutOffPocketsToolInTheSpindleAndInItsPocketAtOnce) {

@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "io/files.hpp"
+#include "temp_folder.hpp"
 
 namespace fatc {
 namespace {
@@ -23,24 +24,15 @@ namespace {
 namespace fs = std::filesystem;
 using std::chrono::milliseconds;
 
-class Writer : public ::testing::Test {
+class Writer : public test::TempFolder {
  protected:
   void SetUp() override {
-    char pattern[] = "/tmp/fatc_writer_XXXXXX";
-    folder_ = ::mkdtemp(pattern);
+    TempFolder::SetUp();
     path_ = folder_ + "/rack.svg";
     precious_ = folder_ + "/config.json";
     std::ofstream(precious_) << "keep me";
   }
-  void TearDown() override {
-    ::chmod(folder_.c_str(), 0700);
-    fs::remove_all(folder_);
-  }
-
-  static std::string read(const std::string& path) {
-    std::ifstream in(path);
-    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  }
+  static std::string read(const std::string& path) { return test::text_of(path); }
   /// The one line write_file() refused with, within a second; "" when it wrote.
   static std::string refusal(const std::string& path, milliseconds wait = milliseconds(0)) {
     const auto start = std::chrono::steady_clock::now();
@@ -70,7 +62,6 @@ class Writer : public ::testing::Test {
     return names;
   }
 
-  std::string folder_;
   std::string path_;
   std::string precious_;
 };
@@ -187,18 +178,15 @@ TEST_F(Writer, shouldWaitItsTurnAndTakeTheFileTheWriterBeforeLeft) {
   EXPECT_EQ(read(path_), "first, second");
 }
 
-TEST(SameFile, shouldKnowAFileByItsLinksAndAPathByItsSpelling) {
-  char pattern[] = "/tmp/fatc_same_XXXXXX";
-  const std::string folder = ::mkdtemp(pattern);
-  const std::string file = folder + "/config.json";
-  std::ofstream(file) << "{}";
+TEST_F(Writer, shouldKnowAFileByItsLinksAndAPathByItsSpelling) {
+  const std::string& folder = folder_;
+  const std::string file = precious_;
   fs::create_symlink(file, folder + "/link.svg");
   ASSERT_EQ(::link(file.c_str(), (folder + "/hard.svg").c_str()), 0);
   EXPECT_TRUE(io::same_file(file, folder + "/link.svg"));
   EXPECT_TRUE(io::same_file(file, folder + "/hard.svg"));
   EXPECT_TRUE(io::same_file(folder + "/new.svg", folder + "/./new.svg"));
   EXPECT_FALSE(io::same_file(file, folder + "/new.svg"));
-  fs::remove_all(folder);
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 
 #include "cli_run.hpp"
 #include "core/plan/simulator.hpp"
+#include "temp_folder.hpp"
 #include "test_config.hpp"
 
 namespace fatc {
@@ -97,25 +98,20 @@ TEST(Plot, shouldRefuseWhatItCannotDrawInOneLine) {
 }
 
 /// A folder with a config and a state file, where --plot draws.
-class PlotFiles : public ::testing::Test {
+class PlotFiles : public test::TempFolder {
  protected:
   void SetUp() override {
-    char pattern[] = "/tmp/fatc_plot_XXXXXX";
-    folder_ = ::mkdtemp(pattern);
+    TempFolder::SetUp();
     config_ = folder_ + "/config.json";
     state_ = folder_ + "/state.svg";  // named like a drawing: the mistake to catch
     std::ofstream(config_) << test::kValidConfig;
     std::ofstream(state_) << to_json(ToolState::fresh(valid_config()));
   }
-  void TearDown() override { std::filesystem::remove_all(folder_); }
-  std::string text(const std::string& path) const {
-    std::ifstream in(path);
-    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  }
+  static std::string text(const std::string& path) { return test::text_of(path); }
   test::CliRun plot(const std::string& svg) {
     return test::run_cli({"--plot", svg, "--config", config_, "--state", state_});
   }
-  std::string folder_, config_, state_;
+  std::string config_, state_;
 };
 
 TEST_F(PlotFiles, shouldRefuseToDrawOverItsOwnStateFile) {

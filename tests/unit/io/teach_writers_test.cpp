@@ -14,6 +14,7 @@
 #include "cli_run.hpp"
 #include "io/file_writer.hpp"
 #include "io/files.hpp"
+#include "temp_folder.hpp"
 #include "test_config.hpp"
 
 namespace fatc {
@@ -22,20 +23,14 @@ namespace {
 using test::CliRun;
 const auto& run = test::run_cli;
 
-class TeachWriters : public ::testing::Test {
+class TeachWriters : public test::TempFolder {
  protected:
   void SetUp() override {
-    char pattern[] = "/tmp/fatc_teachers_XXXXXX";
-    folder_ = ::mkdtemp(pattern);
+    TempFolder::SetUp();
     config_ = folder_ + "/config.json";
     std::ofstream(config_) << test::kValidConfig;
   }
-  void TearDown() override { std::filesystem::remove_all(folder_); }
-
-  std::string text(const std::string& path) const {
-    std::ifstream in(path);
-    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  }
+  static std::string text(const std::string& path) { return test::text_of(path); }
   CliRun teach(const std::string& target, const std::string& at) {
     return run({"--teach", target, "--at", at, "--config", config_});
   }
@@ -43,7 +38,6 @@ class TeachWriters : public ::testing::Test {
     return io::load_config_file(config_).config->pockets.at(pocket).at.x;
   }
 
-  std::string folder_;
   std::string config_;
 };
 
