@@ -12,17 +12,17 @@
 #include <set>
 #include <sstream>
 
-#include "core/machine/changer.hpp"
-#include "core/rack/geometry.hpp"
-#include "core/program/preflight.hpp"
+#include "capped_lines.hpp"
+#include "confirm.hpp"
 #include "core/config/quote.hpp"
+#include "core/machine/changer.hpp"
 #include "core/plan/sequence_check.hpp"
 #include "core/plan/simulator.hpp"
-#include "capped_lines.hpp"
+#include "core/program/preflight.hpp"
+#include "core/rack/geometry.hpp"
 #include "file_writer.hpp"
 #include "files.hpp"
 #include "ini.hpp"
-#include "confirm.hpp"
 #include "lint.hpp"
 #include "plot.hpp"
 

@@ -45,8 +45,7 @@ constexpr const char* kTemporarySuffix = ".tmp";
 /// Twelve letters and digits from the kernel's random source: a name nobody
 /// can plant a link or a FIFO at ahead of time.
 std::string random_word() {
-  static const char kAlphabet[] =
-      "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789";
+  static const char kAlphabet[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789";
   unsigned char bytes[kRandomChars];
   std::size_t got = 0;
   while (got < sizeof bytes) {
@@ -122,8 +121,8 @@ FileWriter::FileWriter(std::string path, std::chrono::milliseconds wait) : path_
         ::close(fd);
         char waited[32];
         std::snprintf(waited, sizeof waited, "%g", wait.count() / 1000.0);
-        refuse(path_, std::string("another program is writing it (waited ") + waited +
-                          " s): not written");
+        refuse(path_,
+               std::string("another program is writing it (waited ") + waited + " s): not written");
       }
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
@@ -155,8 +154,8 @@ void FileWriter::remove_leftovers() const {
   while (const dirent* entry = ::readdir(folder)) {
     const std::string name = entry->d_name;
     if (name.size() == length && name.compare(0, start.size(), start) == 0 &&
-        name.compare(length - std::strlen(kTemporarySuffix), std::string::npos,
-                     kTemporarySuffix) == 0) {
+        name.compare(length - std::strlen(kTemporarySuffix), std::string::npos, kTemporarySuffix) ==
+            0) {
       ::unlinkat(::dirfd(folder), name.c_str(), 0);  // a link is removed, not followed
     }
   }
@@ -216,7 +215,8 @@ bool same_file(const std::string& a, const std::string& b) {
   struct stat first, second;
   const bool has_first = ::stat(a.c_str(), &first) == 0;
   const bool has_second = ::stat(b.c_str(), &second) == 0;
-  if (has_first && has_second) return first.st_dev == second.st_dev && first.st_ino == second.st_ino;
+  if (has_first && has_second)
+    return first.st_dev == second.st_dev && first.st_ino == second.st_ino;
   if (has_first || has_second) return false;
   std::error_code failed;
   const auto normal = [&](const std::string& path) {

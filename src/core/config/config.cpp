@@ -341,11 +341,11 @@ void check_geometry(Reader& reader, Config& config) {
   }
   if (const double floor = keepout_margin_range(config.units).min;
       !config.rack_keepout_margin && config.keepout_margin() < floor) {
-    reader.error("rack_keepout_margin",
-                 "missing, and its default, half the side offset (" +
-                     format_number(config.keepout_margin()) + "), is below " +
-                     format_number(floor) + " " + units_name(config.units) +
-                     ": give the tool holder's half-width");
+    reader.error("rack_keepout_margin", "missing, and its default, half the side offset (" +
+                                            format_number(config.keepout_margin()) +
+                                            "), is below " + format_number(floor) + " " +
+                                            units_name(config.units) +
+                                            ": give the tool holder's half-width");
   }
   if (config.rack_keepout_margin && *config.rack_keepout_margin >= side && side > 0.0) {
     reader.error("rack_keepout_margin", "must be smaller than the side offset (" +
@@ -478,8 +478,8 @@ ConfigResult parse_config(const std::string& json_text) {
   read_flush(reader, root, config);
   reader.read(root, "", "spindle_stop_timeout_seconds", config.spindle_stop_timeout_seconds,
               kTimeout, false);
-  config.rack_keepout_margin = reader.ranged(root, "", "rack_keepout_margin",
-                                             keepout_margin_range(config.units), false);
+  config.rack_keepout_margin =
+      reader.ranged(root, "", "rack_keepout_margin", keepout_margin_range(config.units), false);
 
   read_probe_after_change(reader, root, config);
   read_choice(reader, root, "path",

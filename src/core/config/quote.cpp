@@ -147,7 +147,8 @@ std::string capped_lines(std::string_view text) {
       if (++chars == kMaxMessageLine) cut = at;
       if (chars > kMaxMessageLine) break;
     }
-    out += chars > kMaxMessageLine ? std::string(line.substr(0, cut)) + "\u2026" : std::string(line);
+    out +=
+        chars > kMaxMessageLine ? std::string(line.substr(0, cut)) + "\u2026" : std::string(line);
     if (end < text.size()) out += '\n';
     start = end + 1;
   }

@@ -257,7 +257,8 @@ TEST_F(CheckRun, shouldFailOnABadOrUnreadableStateEvenWhenTheConfigIsGood) {
   const std::string state = file("state.json", R"({"version": 1, "spindle": 1e309})");
   const CliRun bad = run({"--check", "--config", kConfig, "--state", state});
   EXPECT_EQ(bad.code, 1);
-  EXPECT_EQ(bad.err, state + ": line 1, column 31: invalid JSON: number overflow parsing '1e309'\n");
+  EXPECT_EQ(bad.err,
+            state + ": line 1, column 31: invalid JSON: number overflow parsing '1e309'\n");
   EXPECT_EQ(bad.out,
             "24 sequences checked against the rack keep-out, 0 violations\n"
             "state file not valid: where the tools are not checked\n");
@@ -413,8 +414,8 @@ TEST_F(CheckRun, shouldListAtMostTwentyPocketSensorsInTheCheck) {
     config["pockets"][std::to_string(pocket)] = {{"x", 50.0 * pocket}};
     config["sensors"]["pocket_occupancy"].push_back(pocket);
   }
-  const CliRun r = run({"--check", "--config", file("config.json", config.dump()), "--state",
-                        folder_ + "/none"});
+  const CliRun r = run(
+      {"--check", "--config", file("config.json", config.dump()), "--state", folder_ + "/none"});
   EXPECT_NE(r.out.find("sensors wired: pocket-occupied-1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 "
                        "17 18 19 20 \u2026 and 10 more (sensor_timeout_seconds"),
             std::string::npos)
@@ -431,7 +432,8 @@ TEST_F(CheckRun, shouldCutEveryLineItPrintsAtFourHundredCharacters) {
   }
   const std::string ini = folder + "/sim.ini";
   std::ofstream(ini) << sim_ini_with("STEP_TIMEOUT = 30", "STEP_TIMEOUT = 1");
-  const CliRun r = run({"--check", "--config", kConfig, "--ini", ini, "--state", folder_ + "/none"});
+  const CliRun r =
+      run({"--check", "--config", kConfig, "--ini", ini, "--state", folder_ + "/none"});
   EXPECT_NE(r.err.find("STEP_TIMEOUT (line "), std::string::npos) << r.err;
   std::size_t start = 0;
   for (std::size_t end = r.err.find('\n'); end != std::string::npos;

@@ -33,7 +33,8 @@ class Confirm : public test::TempFolder {
     tools.pockets[pocket] = {tool_of_pocket, false};
     tools.spindle = tool_of_pocket;
     tools.uncertain = true;
-    tools.in_progress = InProgress{"M6 T5", "returning to pocket " + std::to_string(pocket), pocket};
+    tools.in_progress =
+        InProgress{"M6 T5", "returning to pocket " + std::to_string(pocket), pocket};
     std::ofstream(state_) << to_json(tools);
   }
   std::string state_text() const { return test::text_of(state_); }
@@ -62,8 +63,9 @@ TEST_F(Confirm, shouldRefusePocketYesWhereNoToolBelongs) {
   const std::string before = state_text();
   const CliRun r = confirm({"--spindle", "0", "--pocket", "yes"});
   EXPECT_EQ(r.code, 1);
-  EXPECT_EQ(r.err,
-            state_ + ": --pocket yes: no tool belongs in pocket 2, where the sequence was cut off\n");
+  EXPECT_EQ(
+      r.err,
+      state_ + ": --pocket yes: no tool belongs in pocket 2, where the sequence was cut off\n");
   EXPECT_EQ(state_text(), before);
 }
 

@@ -108,8 +108,9 @@ TEST_F(Writer, shouldRefuseADanglingSymlinkedTarget) {
 
 TEST_F(Writer, shouldRefuseAHardLinkedTarget) {
   ASSERT_EQ(::link(precious_.c_str(), path_.c_str()), 0);
-  EXPECT_EQ(refusal(path_), path_ + ": has 2 names (hard links): not written, the other names "
-                                    "would keep the old text");
+  EXPECT_EQ(refusal(path_), path_ +
+                                ": has 2 names (hard links): not written, the other names "
+                                "would keep the old text");
   EXPECT_EQ(read(precious_), "keep me");
 }
 
@@ -126,8 +127,9 @@ TEST_F(Writer, shouldRefuseAFifoTargetWithoutOpeningIt) {
 }
 
 TEST_F(Writer, shouldRefuseADeviceOrAFolder) {
-  EXPECT_EQ(refusal("/dev/null"), "/dev/null: expected a regular file, got a character device: "
-                                  "not written");
+  EXPECT_EQ(refusal("/dev/null"),
+            "/dev/null: expected a regular file, got a character device: "
+            "not written");
   EXPECT_EQ(refusal(folder_), folder_ + ": expected a regular file, got a directory: not written");
   EXPECT_EQ(refusal(""), "\"\" (an empty path): expected a file path, got nothing");
 }

@@ -129,8 +129,8 @@ TEST_F(PlotFiles, shouldRefuseToDrawOverItsConfigThroughALinkOrASecondName) {
   for (const char* name : {"/soft.svg", "/hard.svg"}) {
     const auto r = plot(folder_ + name);
     EXPECT_EQ(r.code, 2) << name;
-    EXPECT_EQ(r.err, "--plot \"" + folder_ + name +
-                         "\" is the file given as --config: nothing written\n");
+    EXPECT_EQ(r.err,
+              "--plot \"" + folder_ + name + "\" is the file given as --config: nothing written\n");
   }
   EXPECT_EQ(text(config_), before);
 }

@@ -135,8 +135,9 @@ TEST_F(StateFile, shouldRefuseAPocketTheConfigDoesNotHave) {
 }
 
 TEST_F(StateFile, shouldKeepTheOldFileWhenTheFolderIsGone) {
-  EXPECT_THROW(io::save_state_file("/nonexistent/folder/state.json", sample(), io::kCommandLineWait),
-               std::runtime_error);
+  EXPECT_THROW(
+      io::save_state_file("/nonexistent/folder/state.json", sample(), io::kCommandLineWait),
+      std::runtime_error);
 }
 
 }  // namespace
