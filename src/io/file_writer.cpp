@@ -131,8 +131,13 @@ FileWriter::FileWriter(std::string path, std::chrono::milliseconds wait) : path_
     struct stat now;
     if (::lstat(path_.c_str(), &now) == 0 && now.st_dev == held.st_dev &&
         now.st_ino == held.st_ino) {
+      try {
+        refuse_target(path_, now);  // what it is now, with the lock held
+      } catch (...) {
+        ::close(fd);  // a constructor that throws has no destructor to do it
+        throw;
+      }
       locked_ = fd;
-      refuse_target(path_, now);  // what it is now, with the lock held
       mode_ = now.st_mode & 07777;
       remove_leftovers();
       return;
@@ -177,7 +182,9 @@ void FileWriter::replace(const std::string& text, const ReplaceOptions& how) con
     }
   }
   try {
-    if (mode && ::fchmod(fd, *mode) != 0) refuse(path_, "cannot set the mode " + why(errno));
+    if (mode && ::fchmod(fd, *mode) != 0) {
+      refuse(path_, "cannot set the mode " + why(errno) + ": not written");
+    }
     std::size_t written = 0;
     while (written < text.size()) {
       const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
@@ -185,7 +192,9 @@ void FileWriter::replace(const std::string& text, const ReplaceOptions& how) con
       if (n < 0) refuse(path_, "cannot write " + why(errno) + ": not written");
       written += static_cast<std::size_t>(n);
     }
-    if (how.durable && ::fsync(fd) != 0) refuse(path_, "fsync failed " + why(errno));
+    if (how.durable && ::fsync(fd) != 0) {
+      refuse(path_, "fsync failed " + why(errno) + ": not written");
+    }
   } catch (...) {
     ::close(fd);
     ::unlink(temporary.c_str());

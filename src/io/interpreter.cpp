@@ -91,11 +91,11 @@ class ScratchFolder {
   std::optional<std::string> write(const std::string& name, const std::string& text,
                                    std::string& error) const {
     const std::string path = path_ + "/" + name;
-    std::ofstream out(path, std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) {
-      error = "cannot write " + path + " for the interpreter";
+    try {
+      // Scratch, removed after the run: no fsync.
+      write_file(path, text, std::chrono::milliseconds(0), {false, std::nullopt});
+    } catch (const std::exception& e) {
+      error = std::string(e.what()) + " (a file for the interpreter)";
       return std::nullopt;
     }
     return path;
