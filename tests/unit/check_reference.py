@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""README.md's reference tables against the sources they describe.
+"""docs/reference.md's reference tables against the sources they describe.
 
 Every config.json key that src/core/config/config.cpp accepts must have a row in
 the table of "## config.json reference" (a key with keys below it, such as
@@ -269,15 +269,18 @@ def panel_pins(root):
     return pins
 
 
-# ---------------------------------------------------------------- README reading
+# ---------------------------------------------------------------- reference reading
 
-def section(readme, title):
-    start = readme.find("\n## " + title + "\n")
+REFERENCE = "docs/reference.md"
+
+
+def section(reference, title):
+    start = reference.find("\n## " + title + "\n")
     if start < 0:
-        problem('README.md: no section "## %s"' % title)
+        problem('%s: no section "## %s"' % (REFERENCE, title))
         return ""
-    end = readme.find("\n## ", start + 1)
-    return readme[start:end if end >= 0 else len(readme)]
+    end = reference.find("\n## ", start + 1)
+    return reference[start:end if end >= 0 else len(reference)]
 
 
 def tables(text):
@@ -310,51 +313,51 @@ def main():
     if len(sys.argv) != 2:
         sys.exit("usage: check_reference.py PROJECT_ROOT")
     root = Path(sys.argv[1])
-    readme = (root / "README.md").read_text()
+    reference = (root / REFERENCE).read_text()
 
     # config.json keys
     keys = accepted_config_keys(root)
-    config_tables = tables(section(readme, "config.json reference"))
+    config_tables = tables(section(reference, "config.json reference"))
     rows = {name for name, _ in first_cell_names(config_tables[0])} if config_tables else set()
     if not config_tables:
-        problem('README.md: "## config.json reference" has no table')
+        problem('%s: "## config.json reference" has no table' % REFERENCE)
     for key in sorted(keys):
         children = [k for k in rows if k.startswith(key + ".")]
         if key not in rows and not children:
-            problem("README.md: config key %s (accepted by src/core/config/config.cpp) is missing from "
-                    'the table of "## config.json reference"' % key)
+            problem("%s: config key %s (accepted by src/core/config/config.cpp) is missing from "
+                    'the table of "## config.json reference"' % (REFERENCE, key))
     for row in sorted(rows):
         if row not in keys and not any(k.startswith(row + ".") for k in keys):
-            problem("README.md: config key %s in the table of \"## config.json reference\" is "
-                    "not accepted by src/core/config/config.cpp" % row)
+            problem("%s: config key %s in the table of \"## config.json reference\" is "
+                    "not accepted by src/core/config/config.cpp" % (REFERENCE, row))
 
     # pins
-    pin_tables = tables(section(readme, "HAL pins"))
+    pin_tables = tables(section(reference, "HAL pins"))
     for index, (who, source, pins) in enumerate(
             [("panel fatc-panel", "hal/fixed_atc_probe_panel.py", panel_pins(root))]):
         if len(pin_tables) <= index:
-            problem('README.md: "## HAL pins" has no table %d (the %s\'s pins)' % (index + 1, who))
+            problem('%s: "## HAL pins" has no table %d (the %s\'s pins)' % (REFERENCE, index + 1, who))
             continue
         shown = {}
         for name, cells in first_cell_names(pin_tables[index]):
             shown[name] = (cells[1] if len(cells) > 1 else "", cells[2] if len(cells) > 2 else "")
         for name, (kind, direction) in sorted(pins.items()):
             if name not in shown:
-                problem('README.md: pin %s of the %s (%s, %s %s) is missing from table %d of '
-                        '"## HAL pins"' % (name, who, source, kind, direction, index + 1))
+                problem('%s: pin %s of the %s (%s, %s %s) is missing from table %d of '
+                        '"## HAL pins"' % (REFERENCE, name, who, source, kind, direction, index + 1))
             elif shown[name] != (kind, direction):
-                problem('README.md: pin %s of the %s is %s %s in %s, the table says %s %s' %
-                        (name, who, kind, direction, source, *shown[name]))
+                problem('%s: pin %s of the %s is %s %s in %s, the table says %s %s' %
+                        (REFERENCE, name, who, kind, direction, source, *shown[name]))
         for name in sorted(set(shown) - set(pins)):
-            problem('README.md: pin %s in table %d of "## HAL pins" is not created by %s' %
-                    (name, index + 1, source))
+            problem('%s: pin %s in table %d of "## HAL pins" is not created by %s' %
+                    (REFERENCE, name, index + 1, source))
 
     for line in PROBLEMS:
         print(line)
     if PROBLEMS:
         return 1
-    print("README.md: %d config keys and %d pins, all in the reference tables" %
-          (len(keys), len(panel_pins(root))))
+    print("%s: %d config keys and %d pins, all in the reference tables" %
+          (REFERENCE, len(keys), len(panel_pins(root))))
     return 0
 
 
