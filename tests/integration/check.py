@@ -387,6 +387,7 @@ def check_load_probe(r, rack):
         fail("after load and probe the spindle should be empty, LinuxCNC says T%d" % last["tool_in_spindle"])
     visits_in_order(r["samples"], rack.return_waypoints(4))
     ok("tool 4 put away in its pocket; the spindle is empty")
+    said(r, "tool 4 measured %.3f mm, in pocket 4" % last["fixed_atc_probe.last-length"])
 
 
 def check_unload_cancel(r, rack):

@@ -1,18 +1,18 @@
 #!/usr/bin/env python3
-"""README.md's reference tables against the sources they describe.
+"""docs/reference.md's reference tables against the sources they describe.
 
 Every config.json key that src/core/config/config.cpp accepts must have a row in
 the table of "## config.json reference" (a key with keys below it, such as
 `loading`, counts as there when one of its own keys is), and every row there
-must name a key the reader accepts. Every pin src/linuxcnc/hal_pins.cpp
-creates must be in the first table of "## HAL pins" with its type and
-direction, and every pin hal/fixed_atc_probe_panel.py creates in the second;
-no row may name a pin that is not created.
+must name a key the reader accepts. Every pin hal/fixed_atc_probe_panel.py
+creates must be in the table of "## HAL pins" with its type and direction;
+no row may name a pin that is not created. (The component's own pins are
+generated from src/linuxcnc/pin_list.hpp into docs/pins.md:
+references_are_current.)
 
 The names are read from the sources as written: config.cpp's
 reject_unknown_keys lists (the keys it does not refuse), their paths
-followed through join_path, local variables and call sites; hal_pins.cpp's
-make(...) calls and the member types of hal_pins_detail.hpp; the panel's
+followed through join_path, local variables and call sites; the panel's
 newpin calls through its module constants and for loops. A source this
 script cannot follow fails it with the place, so it never passes by reading
 less.
@@ -200,42 +200,6 @@ def accepted_config_keys(root):
     return keys
 
 
-def component_pins(root):
-    pins_cpp = (root / "src/linuxcnc/hal_pins.cpp").read_text()
-    detail = (root / "src/linuxcnc/hal_pins_detail.hpp").read_text()
-    types = {m.group(2): m.group(1) for m in
-             re.finditer(r"hal_(bit|s32|u32|float)_t\s*\*+\s*(\w+);", detail)}
-    pins = {}
-    creations = list(re.finditer(r"\bmake\(id,", pins_cpp))
-    for creation in creations:
-        arguments, _ = call_arguments(pins_cpp, creation.end() - 4)
-        arguments = split_arguments(arguments)
-        where = "hal_pins.cpp:%d" % line_of(pins_cpp, creation.start())
-        direction = re.match(r"^HAL_(IN|OUT|IO)$", arguments[1])
-        member = re.match(r"^&p->(\w+)(\[\w+\])?$", arguments[2])
-        if not direction or not member or member.group(1) not in types:
-            problem("%s: cannot read this pin's direction or type (teach %s)" %
-                    (where, Path(__file__).name))
-            continue
-        name = STRING.match(arguments[4])
-        if name:
-            names = [name.group(1)]
-        else:
-            variable = re.match(r"^(\w+)\.c_str\(\)$", arguments[4])
-            built = variable and re.search(
-                r'\b%s\s*=\s*"([\w-]+)"\s*\+\s*std::to_string' % variable.group(1), pins_cpp)
-            if not built:
-                problem("%s: cannot read this pin's name (teach %s)" %
-                        (where, Path(__file__).name))
-                continue
-            names = [built.group(1) + "N"]
-        for n in names:
-            pins[n] = (types[member.group(1)], direction.group(1).lower())
-    if not pins:
-        problem("src/linuxcnc/hal_pins.cpp: no pins found")
-    return pins
-
-
 def panel_pins(root):
     source = (root / "hal/fixed_atc_probe_panel.py").read_text()
     tree = ast.parse(source)
@@ -305,15 +269,18 @@ def panel_pins(root):
     return pins
 
 
-# ---------------------------------------------------------------- README reading
+# ---------------------------------------------------------------- reference reading
 
-def section(readme, title):
-    start = readme.find("\n## " + title + "\n")
+REFERENCE = "docs/reference.md"
+
+
+def section(reference, title):
+    start = reference.find("\n## " + title + "\n")
     if start < 0:
-        problem('README.md: no section "## %s"' % title)
+        problem('%s: no section "## %s"' % (REFERENCE, title))
         return ""
-    end = readme.find("\n## ", start + 1)
-    return readme[start:end if end >= 0 else len(readme)]
+    end = reference.find("\n## ", start + 1)
+    return reference[start:end if end >= 0 else len(reference)]
 
 
 def tables(text):
@@ -346,52 +313,51 @@ def main():
     if len(sys.argv) != 2:
         sys.exit("usage: check_reference.py PROJECT_ROOT")
     root = Path(sys.argv[1])
-    readme = (root / "README.md").read_text()
+    reference = (root / REFERENCE).read_text()
 
     # config.json keys
     keys = accepted_config_keys(root)
-    config_tables = tables(section(readme, "config.json reference"))
+    config_tables = tables(section(reference, "config.json reference"))
     rows = {name for name, _ in first_cell_names(config_tables[0])} if config_tables else set()
     if not config_tables:
-        problem('README.md: "## config.json reference" has no table')
+        problem('%s: "## config.json reference" has no table' % REFERENCE)
     for key in sorted(keys):
         children = [k for k in rows if k.startswith(key + ".")]
         if key not in rows and not children:
-            problem("README.md: config key %s (accepted by src/core/config/config.cpp) is missing from "
-                    'the table of "## config.json reference"' % key)
+            problem("%s: config key %s (accepted by src/core/config/config.cpp) is missing from "
+                    'the table of "## config.json reference"' % (REFERENCE, key))
     for row in sorted(rows):
         if row not in keys and not any(k.startswith(row + ".") for k in keys):
-            problem("README.md: config key %s in the table of \"## config.json reference\" is "
-                    "not accepted by src/core/config/config.cpp" % row)
+            problem("%s: config key %s in the table of \"## config.json reference\" is "
+                    "not accepted by src/core/config/config.cpp" % (REFERENCE, row))
 
     # pins
-    pin_tables = tables(section(readme, "HAL pins"))
+    pin_tables = tables(section(reference, "HAL pins"))
     for index, (who, source, pins) in enumerate(
-            [("component fixed_atc_probe", "src/linuxcnc/hal_pins.cpp", component_pins(root)),
-             ("panel fatc-panel", "hal/fixed_atc_probe_panel.py", panel_pins(root))]):
+            [("panel fatc-panel", "hal/fixed_atc_probe_panel.py", panel_pins(root))]):
         if len(pin_tables) <= index:
-            problem('README.md: "## HAL pins" has no table %d (the %s\'s pins)' % (index + 1, who))
+            problem('%s: "## HAL pins" has no table %d (the %s\'s pins)' % (REFERENCE, index + 1, who))
             continue
         shown = {}
         for name, cells in first_cell_names(pin_tables[index]):
             shown[name] = (cells[1] if len(cells) > 1 else "", cells[2] if len(cells) > 2 else "")
         for name, (kind, direction) in sorted(pins.items()):
             if name not in shown:
-                problem('README.md: pin %s of the %s (%s, %s %s) is missing from table %d of '
-                        '"## HAL pins"' % (name, who, source, kind, direction, index + 1))
+                problem('%s: pin %s of the %s (%s, %s %s) is missing from table %d of '
+                        '"## HAL pins"' % (REFERENCE, name, who, source, kind, direction, index + 1))
             elif shown[name] != (kind, direction):
-                problem('README.md: pin %s of the %s is %s %s in %s, the table says %s %s' %
-                        (name, who, kind, direction, source, *shown[name]))
+                problem('%s: pin %s of the %s is %s %s in %s, the table says %s %s' %
+                        (REFERENCE, name, who, kind, direction, source, *shown[name]))
         for name in sorted(set(shown) - set(pins)):
-            problem('README.md: pin %s in table %d of "## HAL pins" is not created by %s' %
-                    (name, index + 1, source))
+            problem('%s: pin %s in table %d of "## HAL pins" is not created by %s' %
+                    (REFERENCE, name, index + 1, source))
 
     for line in PROBLEMS:
         print(line)
     if PROBLEMS:
         return 1
-    print("README.md: %d config keys and %d pins, all in the reference tables" %
-          (len(keys), len(component_pins(root)) + len(panel_pins(root))))
+    print("%s: %d config keys and %d pins, all in the reference tables" %
+          (REFERENCE, len(keys), len(panel_pins(root))))
     return 0
 
 
