@@ -1,21 +1,23 @@
 // fatc_docs: the references generated from the code (the pins of
-// pin_list.hpp), so documentation cannot drift from it. Not installed;
+// pin_list.hpp, the config keys of keys.cpp), so documentation cannot drift
+// from it. Not installed;
 // `cmake --build build --target references` writes them into the tree and
 // the unit test references_are_current compares.
-//   fatc_docs pins-md | pins-golden CONFIG | man TEMPLATE
+//   fatc_docs pins-md | config-md | pins-golden CONFIG | man TEMPLATE
 #include <fstream>
 #include <iostream>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "core/config/keys.hpp"
 #include "io/files.hpp"
 #include "linuxcnc/pin_reference.hpp"
 
 namespace {
 
 int usage() {
-  std::cerr << "usage: fatc_docs pins-md | pins-golden CONFIG | man TEMPLATE\n";
+  std::cerr << "usage: fatc_docs pins-md | config-md | pins-golden CONFIG | man TEMPLATE\n";
   return 2;
 }
 
@@ -39,6 +41,17 @@ int main(int argc, char** argv) {
                  "The component's pins, all `fixed_atc_probe.*`, in the order the component\n"
                  "creates them; `man fixed_atc_probe` lists the same.\n\n"
               << fatc::linuxcnc::pins_markdown();
+    return 0;
+  }
+  if (args.size() == 1 && args[0] == "config-md") {
+    std::cout << "# config.json keys\n\n"
+                 "<!-- Generated from src/core/config/keys.cpp by fatc_docs: edit that, then\n"
+                 "     cmake --build build --target references -->\n\n"
+                 "Every key config.json may hold; the reader refuses any other and checks each\n"
+                 "number against the range here. All coordinates are machine coordinates (G53).\n"
+                 "*length* is in `units`, *feed* in `units` per minute, *s* in seconds. A range\n"
+                 "holds in mm and in inch alike unless it says otherwise.\n\n"
+              << fatc::config_markdown();
     return 0;
   }
   if (args.size() == 2 && args[0] == "pins-golden") {
