@@ -4,7 +4,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-packages=(build-essential cmake pkg-config libboost-dev nlohmann-json3-dev libgtest-dev
+packages=(build-essential cmake pkg-config libboost-dev nlohmann-json3-dev libgtest-dev libcli11-dev
           linuxcnc-uspace linuxcnc-uspace-dev graphviz python3
           # the GladeVCP panel, and the GUI test: AXIS on a virtual X server
           python3-gi gir1.2-gtk-3.0 gir1.2-gtksource-3.0 xvfb xauth dbus-daemon at-spi2-core

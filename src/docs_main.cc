@@ -1,9 +1,10 @@
 // fatc_docs: the references generated from the code (the pins of
-// pin_list.hpp, the config keys of keys.cpp), so documentation cannot drift
+// pin_list.hpp, the config keys of keys.cpp, the command line of
+// command_line.cpp), so documentation cannot drift
 // from it. Not installed;
 // `cmake --build build --target references` writes them into the tree and
 // the unit test references_are_current compares.
-//   fatc_docs pins-md | config-md | pins-golden CONFIG | man TEMPLATE
+//   fatc_docs pins-md | config-md | cli-md | pins-golden CONFIG | man TEMPLATE
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -11,13 +12,14 @@
 #include <vector>
 
 #include "core/config/keys.hpp"
+#include "io/command_line.hpp"
 #include "io/files.hpp"
 #include "linuxcnc/pin_reference.hpp"
 
 namespace {
 
 int usage() {
-  std::cerr << "usage: fatc_docs pins-md | config-md | pins-golden CONFIG | man TEMPLATE\n";
+  std::cerr << "usage: fatc_docs pins-md | config-md | cli-md | pins-golden CONFIG | man TEMPLATE\n";
   return 2;
 }
 
@@ -41,6 +43,16 @@ int main(int argc, char** argv) {
                  "The component's pins, all `fixed_atc_probe.*`, in the order the component\n"
                  "creates them; `man fixed_atc_probe` lists the same.\n\n"
               << fatc::linuxcnc::pins_markdown();
+    return 0;
+  }
+  if (args.size() == 1 && args[0] == "cli-md") {
+    std::cout << "# The command line\n\n"
+                 "<!-- Generated from src/io/command_line.cpp by fatc_docs: edit that, then\n"
+                 "     cmake --build build --target references -->\n\n"
+                 "Every mode and option `fixed_atc_probe` accepts (`--help` and the man page say\n"
+                 "the same). A usage mistake (an unknown option, one given twice, two modes, an\n"
+                 "empty value, an option the mode does not read) is one line and exit 2.\n\n"
+              << fatc::io::command_line_markdown();
     return 0;
   }
   if (args.size() == 1 && args[0] == "config-md") {
@@ -75,6 +87,8 @@ int main(int argc, char** argv) {
     text << in.rdbuf();
     std::string page = text.str();
     page = page.substr(page.find('\n') + 1);  // the template's own comment
+    page = fill(page, "@SYNOPSIS@", fatc::io::synopsis_man());
+    page = fill(page, "@OPTIONS@", fatc::io::options_man());
     std::cout << fill(page, "@PINS@", fatc::linuxcnc::pins_man());
     return 0;
   }

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "capped_lines.hpp"
+#include "command_line.hpp"
 #include "confirm.hpp"
 #include "core/config/quote.hpp"
 #include "core/machine/changer.hpp"
@@ -28,54 +29,6 @@
 
 namespace fatc::io {
 namespace {
-
-const char* const kUsage =
-    "usage: fixed_atc_probe --config FILE [--state FILE]          run as a HAL component\n"
-    "       fixed_atc_probe --check --config FILE [--ini FILE] [--state FILE]\n"
-    "                                     check config, state, INI and rack geometry\n"
-    "       fixed_atc_probe --plan --config FILE --from A --to B [--ini FILE]\n"
-    "                                     print the steps of M6 from A to B\n"
-    "       fixed_atc_probe --confirm --config FILE [--state FILE] --spindle N [--pocket yes|no]\n"
-    "                                     after a fault, with LinuxCNC stopped: the spindle\n"
-    "                                     holds tool N (0 empty), the cut-off pocket holds its\n"
-    "                                     tool or not; clears the fault in the state file\n"
-    "       fixed_atc_probe --lint PROGRAM.ngc --config FILE [--state FILE] [--tool-table FILE]\n"
-    "                       [--ini FILE] [--subroutine-path DIR:DIR]\n"
-    "                                     read a G-code program without running it: its tool\n"
-    "                                     changes, the rack, lengths, problems, change time\n"
-    "       fixed_atc_probe --teach pocket:N|loading|safe|sensor --at X,Y,Z --config FILE\n"
-    "                       [--ini FILE]\n"
-    "                                     write a machine position (G53) into config.json,\n"
-    "                                     checked as --check checks; the old file kept as\n"
-    "                                     FILE.bak (sensor: X and Y only)\n"
-    "       fixed_atc_probe --plot FILE.svg --config FILE [--state FILE] [--from A --to B]\n"
-    "                                     draw the rack from above, and the path of M6 A to B\n"
-    "       fixed_atc_probe --dot         the state machine as Graphviz\n";
-
-std::optional<int> tool_argument(const std::string& text) {
-  if (text.empty() || text.size() > 9) return std::nullopt;
-  for (const char c : text) {
-    if (c < '0' || c > '9') return std::nullopt;
-  }
-  return std::stoi(text);
-}
-
-/// "X,Y,Z": three numbers, nothing else.
-std::optional<Point> position_argument(const std::string& text) {
-  double values[3];
-  std::size_t at = 0;
-  for (int axis = 0; axis < 3; ++axis) {
-    const std::size_t end = axis < 2 ? text.find(',', at) : text.size();
-    if (end == std::string::npos) return std::nullopt;
-    const std::string part = text.substr(at, end - at);
-    if (part.empty() || std::isspace(static_cast<unsigned char>(part[0]))) return std::nullopt;
-    char* stop = nullptr;
-    values[axis] = std::strtod(part.c_str(), &stop);
-    if (stop != part.c_str() + part.size()) return std::nullopt;
-    at = end + 1;
-  }
-  return Point{values[0], values[1], values[2]};
-}
 
 std::string format_point(double x, double y, double z) {
   char buffer[96];
@@ -387,153 +340,6 @@ int plan(const Options& options, std::ostream& out, std::ostream& err) {
 
 }  // namespace
 
-std::optional<Options> parse_options(const std::vector<std::string>& args, std::string& error) {
-  using Mode = Options::Mode;
-  Options options;
-  std::optional<std::string> mode_flag;      ///< the one of --check, --plan, --dot, --help given
-  std::map<std::string, std::string> given;  ///< option -> its value, each at most once
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& arg = args[i];
-    static const std::map<std::string, Mode> modes = {
-        {"--check", Mode::check},     {"--plan", Mode::plan},   {"--dot", Mode::dot},
-        {"--confirm", Mode::confirm}, {"--help", Mode::help},   {"-h", Mode::help},
-        {"--lint", Mode::lint},       {"--teach", Mode::teach}, {"--plot", Mode::plot}};
-    if (const auto mode = modes.find(arg); mode != modes.end()) {
-      if (mode_flag) {
-        error = *mode_flag == arg ? arg + " given twice"
-                                  : *mode_flag + " and " + arg + " cannot be combined";
-        return std::nullopt;
-      }
-      mode_flag = arg;
-      options.mode = mode->second;
-      // --lint takes the program as its value, --teach the target, --plot the drawing.
-      if (arg != "--lint" && arg != "--teach" && arg != "--plot") continue;
-    } else if (arg != "--config" && arg != "--state" && arg != "--ini" && arg != "--from" &&
-               arg != "--to" && arg != "--spindle" && arg != "--pocket" && arg != "--tool-table" &&
-               arg != "--subroutine-path" && arg != "--at") {
-      error = "unknown argument " + quote(arg);
-      return std::nullopt;
-    }
-    if (i + 1 >= args.size()) {
-      error = arg + " needs a value";
-      return std::nullopt;
-    }
-    const std::string& text = args[++i];
-    if (const auto before = given.find(arg); before != given.end()) {
-      error = arg + " given twice (" + quote(before->second) + " and " + quote(text) + ")";
-      return std::nullopt;
-    }
-    given[arg] = text;
-    const bool tool = arg == "--from" || arg == "--to" || arg == "--spindle";
-    // --teach and --at say what they expect themselves.
-    if (text.empty() && arg != "--teach" && arg != "--at") {
-      error = arg + ": expected " + (tool ? "a tool number" : "a file path") + ", got nothing";
-      return std::nullopt;
-    }
-    if (text.rfind("--", 0) == 0) {
-      error = arg + " needs a value, got the option " + quote(text);
-      return std::nullopt;
-    }
-    if (tool) {
-      const auto number = tool_argument(text);
-      if (!number) {
-        error = arg + ": expected a tool number (0 for none), got " + quote(text);
-        return std::nullopt;
-      }
-      (arg == "--from" ? options.from_tool
-       : arg == "--to" ? options.to_tool
-                       : options.spindle_tool) = *number;
-    } else if (arg == "--pocket") {
-      if (text != "yes" && text != "no") {
-        error = "--pocket: expected yes or no, got " + quote(text);
-        return std::nullopt;
-      }
-      options.pocket_holds_tool = text == "yes";
-    } else if (arg == "--config") {
-      options.config_path = text;
-    } else if (arg == "--state") {
-      options.state_path = text;
-    } else if (arg == "--lint") {
-      options.program_path = text;
-    } else if (arg == "--plot") {
-      // A name that ends otherwise is likely the config or state given in the wrong place.
-      const std::string tail = text.size() >= 4 ? text.substr(text.size() - 4) : "";
-      if (tail != ".svg" && tail != ".SVG") {
-        error = "--plot: expected a file name ending in .svg, got " + quote(text);
-        return std::nullopt;
-      }
-      options.plot_path = text;
-    } else if (arg == "--tool-table") {
-      options.tool_table_path = text;
-    } else if (arg == "--subroutine-path") {
-      options.subroutine_path = text;
-    } else if (arg == "--teach") {
-      options.teach_target = parse_teach_target(text);
-      if (!options.teach_target) {
-        error = "--teach: expected pocket:N, loading, safe or sensor, got " + quote(text);
-        return std::nullopt;
-      }
-    } else if (arg == "--at") {
-      options.teach_at = position_argument(text);
-      if (!options.teach_at) {
-        error = "--at: expected X,Y,Z (three numbers, machine coordinates), got " + quote(text);
-        return std::nullopt;
-      }
-    } else {
-      options.ini_path = text;
-    }
-  }
-  // An option the mode would not read is refused, not ignored.
-  const std::string mode_name =
-      mode_flag ? *mode_flag : "the component (no --check, --plan, --dot)";
-  const std::map<std::string, std::set<Mode>> used_by = {
-      {"--config",
-       {Mode::component, Mode::check, Mode::plan, Mode::confirm, Mode::lint, Mode::teach,
-        Mode::plot}},
-      {"--state",
-       {Mode::component, Mode::check, Mode::confirm, Mode::lint, Mode::plan, Mode::plot}},
-      {"--spindle", {Mode::confirm}},
-      {"--pocket", {Mode::confirm}},
-      {"--ini", {Mode::check, Mode::plan, Mode::lint, Mode::teach}},
-      {"--at", {Mode::teach}},
-      {"--tool-table", {Mode::lint}},
-      {"--subroutine-path", {Mode::lint}},
-      {"--from", {Mode::plan, Mode::plot}},
-      {"--to", {Mode::plan, Mode::plot}}};
-  for (const auto& [option, modes] : used_by) {
-    if (given.count(option) != 0 && modes.count(options.mode) == 0) {
-      error = option + " is not used by " + mode_name;
-      return std::nullopt;
-    }
-  }
-  const bool needs_config = used_by.at("--config").count(options.mode) != 0;
-  if (needs_config && options.config_path.empty()) {
-    error = "--config FILE is required";
-    return std::nullopt;
-  }
-  if (options.mode == Mode::confirm && !options.spindle_tool) {
-    error = "--confirm needs --spindle N (0: the spindle is empty)";
-    return std::nullopt;
-  }
-  if (options.mode == Mode::teach && !options.teach_at) {
-    error = "--teach needs --at X,Y,Z (the machine position, G53)";
-    return std::nullopt;
-  }
-  if (options.mode == Mode::plan && (!options.from_tool || !options.to_tool)) {
-    error = "--plan needs --from A and --to B";
-    return std::nullopt;
-  }
-  if (options.mode == Mode::plot && options.from_tool.has_value() != options.to_tool.has_value()) {
-    error = "--plot: --from A and --to B go together (the change to draw)";
-    return std::nullopt;
-  }
-  // --plan and --plot read a state file only when given one; the others default to CONFIG.state.
-  if (used_by.at("--state").count(options.mode) != 0 && options.mode != Mode::plan &&
-      options.mode != Mode::plot && options.state_path.empty()) {
-    options.state_path = options.config_path + ".state";
-  }
-  return options;
-}
 
 namespace {
 
@@ -632,7 +438,7 @@ int run_mode(const Options& options, std::ostream& out, std::ostream& err) {
     case Options::Mode::plot:
       return plot(options, out, err);
     case Options::Mode::help:
-      out << kUsage;
+      out << usage();
       return 0;
     case Options::Mode::component:
       break;
