@@ -416,7 +416,24 @@ std::string written_onto_input(const Options& options) {
 
 namespace {
 
-int run_mode(const Options& options, std::ostream& out, std::ostream& err) {
+/// --check and --lint with --ini and no --state read the state file the
+/// component reads: [FIXED_ATC_PROBE]STATE, from the INI's folder, where
+/// LinuxCNC runs the HAL file that hands it to the component.
+Options with_state_of_ini(Options options) {
+  const bool reads_it = options.mode == Options::Mode::check || options.mode == Options::Mode::lint;
+  if (!reads_it || options.state_given || !options.ini_path) return options;
+  std::string error;
+  const auto ini = IniFile::read(*options.ini_path, error);
+  if (!ini) return options;  // the INI's own check says why
+  if (const auto state = ini->get("FIXED_ATC_PROBE", "STATE"); state && !state->empty()) {
+    options.state_path =
+        (*state)[0] == '/' ? *state : folder_of(*options.ini_path) + "/" + *state;
+  }
+  return options;
+}
+
+int run_mode(const Options& given, std::ostream& out, std::ostream& err) {
+  const Options options = with_state_of_ini(given);
   if (const std::string refused = written_onto_input(options); !refused.empty()) {
     err << refused << "\n";
     return 2;

@@ -16,6 +16,7 @@ struct Options {
   Mode mode = Mode::component;
   std::string config_path;
   std::string state_path;  ///< component, --check, --lint: CONFIG.state unless --state is given
+  bool state_given = false;  ///< --state was given (not CONFIG.state)
   std::optional<std::string> ini_path;
   std::optional<int> from_tool;
   std::optional<int> to_tool;

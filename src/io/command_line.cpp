@@ -18,9 +18,10 @@ const std::vector<OptionDeclaration> kOptions = {
   {"--config", "FILE", "config.json: pocket geometry, safe and loading positions, feeds, timings",
    ""},
   {"--state", "FILE",
-   "where the tool state is kept (default: the config path with .state appended; --plan and "
-   "--plot: the first-start map); never the config file itself. The status file for panels is "
-   "FILE.status", ""},
+   "where the tool state is kept (default: with --ini, the INI's [FIXED_ATC_PROBE]STATE from "
+   "the INI's folder, the file the component is given; else the config path with .state "
+   "appended; --plan and --plot: the first-start map); never the config file itself. The "
+   "status file for panels is FILE.status", ""},
   {"--ini", "FILE",
    "the machine's INI, read by LinuxCNC's own reader: soft limits, [FIXED_ATC_PROBE], "
    "velocities and accelerations, REMAP and SUBROUTINE_PATH", ""},
@@ -352,6 +353,7 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
     error = "--plot: --from A and --to B go together (the change to draw)";
     return std::nullopt;
   }
+  options.state_given = !options.state_path.empty();
   // --plan and --plot read a state file only when given one; the others default to CONFIG.state.
   if (reads(*mode, "--state") && options.mode != Mode::plan && options.mode != Mode::plot &&
       options.state_path.empty()) {

@@ -500,3 +500,22 @@ TEST(Cli, shouldPrintTheDiagram) {
 
 }  // namespace
 }  // namespace fatc
+
+namespace fatc {
+namespace {
+
+TEST_F(CheckRun, shouldReadTheStateFileTheIniNamesWhenNoStateIsGiven) {
+  // The component gets [FIXED_ATC_PROBE]STATE from the HAL file LinuxCNC runs
+  // in the INI's folder: --check with --ini reads that one, not CONFIG.state.
+  const std::string ini = file("sim.ini", sim_ini_with("STATE = fixed_atc_state.json",
+                                                       "STATE = the_machines_state.json"));
+  const std::string state = file("the_machines_state.json", "{");
+  const CliRun r = run({"--check", "--config", kConfig, "--ini", ini});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find(state), std::string::npos) << r.err;
+  const CliRun given = run({"--check", "--config", kConfig, "--ini", ini, "--state", state + "x"});
+  EXPECT_EQ(given.err.find(state + ":"), std::string::npos) << "--state wins: " << given.err;
+}
+
+}  // namespace
+}  // namespace fatc
