@@ -18,6 +18,7 @@
 #include "io/cli.hpp"
 #include "io/files.hpp"
 #include "io/ini.hpp"
+#include "io/message_log.hpp"
 #include "linuxcnc/component.hpp"
 #include "linuxcnc/hal_pins.hpp"
 #include "linuxcnc/nml_link.hpp"
@@ -37,14 +38,21 @@ int run_component(const fatc::io::Options& options) {
   if (const std::string refused = fatc::io::written_onto_input(options); !refused.empty()) {
     return fail(refused);
   }
+  const std::string state_path =
+      options.state_path.empty() ? options.config_path + ".state" : options.state_path;
+  // Every line on stderr from here on also goes to STATE.log.
+  fatc::io::MessageLog log(state_path + ".log", std::cerr.rdbuf());
+  struct Restore {
+    std::streambuf* before;
+    ~Restore() { std::cerr.rdbuf(before); }
+  } restore{std::cerr.rdbuf(&log)};
+  log.note("fixed_atc_probe: started with " + options.config_path);
   const auto loaded = fatc::io::load_config_file(options.config_path);
   if (!loaded.config) {
     for (const auto& error : loaded.errors) std::cerr << "fixed_atc_probe: " << error << "\n";
     return 1;
   }
   const fatc::Config config = *loaded.config;
-  const std::string state_path =
-      options.state_path.empty() ? options.config_path + ".state" : options.state_path;
   const auto tools = fatc::io::load_state_file(state_path, config);
   if (!tools.state) return fail(tools.error);
   if (::access(state_path.c_str(), F_OK) != 0) {
