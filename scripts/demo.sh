@@ -4,7 +4,7 @@
 # tool change. --gui opens the same machine in AXIS instead (needs a display).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-scripts/setup.sh >/dev/null
+scripts/setup.sh fixed_atc_probe >/dev/null
 build/fixed_atc_probe --check --config config/config.json --ini config/sim/fixed_atc_sim.ini | tail -1
 work=$(mktemp -d /tmp/fixed_atc_demo.XXXXXX)
 chmod 755 "$work"

@@ -4,7 +4,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-packages=(build-essential cmake pkg-config libboost-dev nlohmann-json3-dev libgtest-dev
+packages=(build-essential cmake pkg-config libboost-dev nlohmann-json3-dev libgtest-dev libcli11-dev
           linuxcnc-uspace linuxcnc-uspace-dev graphviz python3
           # the GladeVCP panel, and the GUI test: AXIS on a virtual X server
           python3-gi gir1.2-gtk-3.0 gir1.2-gtksource-3.0 xvfb xauth dbus-daemon at-spi2-core
@@ -23,9 +23,20 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build build -j"$(nproc)"
-# The realtime chuck guard the HAL snippet loads, into LinuxCNC's modules.
-guard=$(mktemp -d)
-cp src/rt/fatc_chuck_guard.comp "$guard/"
-(cd "$guard" && halcompile --install fatc_chuck_guard.comp >/dev/null)
-rm -rf "$guard"
+# Arguments: the targets to build (the demo builds only what it runs); none: all.
+targets=()
+for target in "$@"; do targets+=(--target "$target"); done
+cmake --build build -j"$(nproc)" "${targets[@]}"
+# The realtime chuck guard the HAL snippet loads must be in LinuxCNC's
+# modules folder. The package installs it there; without the package this
+# checkout's is compiled and installed by halcompile, said on one line, and
+# an installed package later replaces that file with its own.
+if dpkg-query -W -f='${Status}' fixed-atc-probe 2>/dev/null | grep -q "install ok installed"; then
+  echo "setup: the chuck guard is the installed fixed-atc-probe package's"
+else
+  guard=$(mktemp -d)
+  cp src/rt/fatc_chuck_guard.comp "$guard/"
+  (cd "$guard" && halcompile --install fatc_chuck_guard.comp >/dev/null)
+  rm -rf "$guard"
+  echo "setup: installed this checkout's chuck guard into LinuxCNC's modules folder (halcompile --install; no package owns it)"
+fi

@@ -16,10 +16,12 @@
 #include <thread>
 #include <vector>
 
+#include "core/config/quote.hpp"
 #include "core/machine/changer.hpp"
 #include "io/cli.hpp"
 #include "io/files.hpp"
 #include "io/ini.hpp"
+#include "io/message_log.hpp"
 #include "linuxcnc/component.hpp"
 #include "linuxcnc/hal_pins.hpp"
 #include "linuxcnc/nml_link.hpp"
@@ -62,21 +64,31 @@ int fail(const std::string& message) {
 }
 
 int run_component(const fatc::io::Options& options) {
+  if (const std::string refused = fatc::io::written_onto_input(options); !refused.empty()) {
+    return fail(refused);
+  }
+  const std::string state_path =
+      options.state_path.empty() ? options.config_path + ".state" : options.state_path;
+  // Every line on stderr from here on also goes to STATE.log.
+  fatc::io::MessageLog log(state_path + ".log", std::cerr.rdbuf());
+  struct Restore {
+    std::streambuf* before;
+    ~Restore() { std::cerr.rdbuf(before); }
+  } restore{std::cerr.rdbuf(&log)};
+  log.note("fixed_atc_probe: started with " + options.config_path);
   const auto loaded = fatc::io::load_config_file(options.config_path);
   if (!loaded.config) {
     for (const auto& error : loaded.errors) std::cerr << "fixed_atc_probe: " << error << "\n";
     return 1;
   }
   const fatc::Config config = *loaded.config;
-  const std::string state_path =
-      options.state_path.empty() ? options.config_path + ".state" : options.state_path;
   const auto tools = fatc::io::load_state_file(state_path, config);
   if (!tools.state) return fail(tools.error);
   if (::access(state_path.c_str(), F_OK) != 0) {
     // A first start writes what it assumes (every pocket full, the spindle
     // empty) at once: panels can show it, and an unwritable path fails now.
     try {
-      fatc::io::save_state_file(state_path, *tools.state);
+      fatc::io::save_state_file(state_path, *tools.state, fatc::io::kComponentWait);
     } catch (const std::exception& e) {
       return fail(e.what());
     }
@@ -150,7 +162,8 @@ int main(int argc, char** argv) {
     const auto options =
         fatc::io::parse_options(std::vector<std::string>(argv + 1, argv + argc), error);
     if (!options) {
-      std::cerr << "fixed_atc_probe: " << error << "\n" << fatc::io::kUsage;
+      // One line: the mistake stays in sight, the usage is a --help away.
+      std::cerr << "fixed_atc_probe: " << fatc::capped_lines(error) << " (see --help)\n";
       return 2;
     }
     if (options->mode == fatc::io::Options::Mode::component) return run_component(*options);
@@ -158,7 +171,7 @@ int main(int argc, char** argv) {
   } catch (const std::bad_alloc&) {
     std::cerr << "fixed_atc_probe: out of memory" << std::endl;
   } catch (const std::exception& e) {
-    std::cerr << "fixed_atc_probe: " << e.what() << std::endl;
+    std::cerr << "fixed_atc_probe: " << fatc::capped_lines(e.what()) << std::endl;
   }
   return 2;
 }

@@ -7,75 +7,28 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <map>
 #include <ostream>
 #include <set>
 #include <sstream>
 
-#include "core/machine/changer.hpp"
-#include "core/rack/geometry.hpp"
-#include "core/program/preflight.hpp"
+#include "capped_lines.hpp"
+#include "command_line.hpp"
+#include "confirm.hpp"
 #include "core/config/quote.hpp"
+#include "core/machine/changer.hpp"
 #include "core/plan/sequence_check.hpp"
 #include "core/plan/simulator.hpp"
+#include "core/program/preflight.hpp"
+#include "core/rack/geometry.hpp"
+#include "file_writer.hpp"
 #include "files.hpp"
 #include "ini.hpp"
-#include "confirm.hpp"
 #include "lint.hpp"
 #include "plot.hpp"
 
 namespace fatc::io {
-
-const char* const kUsage =
-    "usage: fixed_atc_probe --config FILE [--state FILE]          run as a HAL component\n"
-    "       fixed_atc_probe --check --config FILE [--ini FILE] [--state FILE]\n"
-    "                                     check config, state, INI and rack geometry\n"
-    "       fixed_atc_probe --plan --config FILE --from A --to B [--ini FILE]\n"
-    "                                     print the steps of M6 from A to B\n"
-    "       fixed_atc_probe --confirm --config FILE [--state FILE] --spindle N [--pocket yes|no]\n"
-    "                                     after a fault, with LinuxCNC stopped: the spindle\n"
-    "                                     holds tool N (0 empty), the cut-off pocket holds its\n"
-    "                                     tool or not; clears the fault in the state file\n"
-    "       fixed_atc_probe --lint PROGRAM.ngc --config FILE [--state FILE] [--tool-table FILE]\n"
-    "                       [--ini FILE] [--subroutine-path DIR:DIR]\n"
-    "                                     read a G-code program without running it: its tool\n"
-    "                                     changes, the rack, lengths, problems, change time\n"
-    "       fixed_atc_probe --teach pocket:N|loading|safe|sensor --at X,Y,Z --config FILE\n"
-    "                       [--ini FILE]\n"
-    "                                     write a machine position (G53) into config.json,\n"
-    "                                     checked as --check checks; the old file kept as\n"
-    "                                     FILE.bak (sensor: X and Y only)\n"
-    "       fixed_atc_probe --plot FILE.svg --config FILE [--state FILE] [--from A --to B]\n"
-    "                                     draw the rack from above, and the path of M6 A to B\n"
-    "       fixed_atc_probe --dot         the state machine as Graphviz\n";
-
 namespace {
-
-std::optional<int> tool_argument(const std::string& text) {
-  if (text.empty() || text.size() > 9) return std::nullopt;
-  for (const char c : text) {
-    if (c < '0' || c > '9') return std::nullopt;
-  }
-  return std::stoi(text);
-}
-
-/// "X,Y,Z": three numbers, nothing else.
-std::optional<Point> position_argument(const std::string& text) {
-  double values[3];
-  std::size_t at = 0;
-  for (int axis = 0; axis < 3; ++axis) {
-    const std::size_t end = axis < 2 ? text.find(',', at) : text.size();
-    if (end == std::string::npos) return std::nullopt;
-    const std::string part = text.substr(at, end - at);
-    if (part.empty() || std::isspace(static_cast<unsigned char>(part[0]))) return std::nullopt;
-    char* stop = nullptr;
-    values[axis] = std::strtod(part.c_str(), &stop);
-    if (stop != part.c_str() + part.size()) return std::nullopt;
-    at = end + 1;
-  }
-  return Point{values[0], values[1], values[2]};
-}
 
 std::string format_point(double x, double y, double z) {
   char buffer[96];
@@ -93,10 +46,18 @@ std::optional<SoftLimits> read_limits(const std::string& ini_path, Units units, 
   return limits;
 }
 
+/// "config unreadable" or "config not valid": what kept an input from being checked.
+std::string fault_of(const char* input, const std::string& path) {
+  std::string ignored;
+  return std::string(input) + (read_small_file(path, ignored) ? " not valid" : " unreadable");
+}
+
 struct Loaded {
   std::optional<Config> config;
   std::optional<SoftLimits> limits;
   int problems = 0;  ///< lines written to `err`
+  /// What an input kept from being checked, "INI unreadable: soft limits not checked".
+  std::vector<std::string> not_checked;
 };
 
 /// Reads the config and, if given, the INI; every problem one line on `err`.
@@ -106,11 +67,19 @@ Loaded load(const Options& options, std::ostream& err) {
   for (const auto& error : result.errors) err << error << "\n";
   loaded.problems += static_cast<int>(result.errors.size());
   loaded.config = result.config;
+  if (!loaded.config) {
+    loaded.not_checked.push_back(fault_of("config", options.config_path) +
+                                 ": the rack and its sequences not checked");
+  }
   if (options.ini_path) {
     // Without a valid config the INI is still checked, its numbers as in mm.
     loaded.limits =
         read_limits(*options.ini_path, loaded.config ? loaded.config->units : Units::mm, err);
-    if (!loaded.limits) ++loaded.problems;
+    if (!loaded.limits) {
+      ++loaded.problems;
+      loaded.not_checked.push_back(fault_of("INI", *options.ini_path) +
+                                   ": soft limits not checked");
+    }
   }
   return loaded;
 }
@@ -123,8 +92,8 @@ std::size_t tools_in_rack(const ToolState& tools) {
 }
 
 /// --check of the state file: what the component would read at start.
-int check_state(const Options& options, const std::optional<Config>& config, std::ostream& out,
-                std::ostream& err) {
+int check_state(const Options& options, Loaded& loaded, std::ostream& out, std::ostream& err) {
+  const std::optional<Config>& config = loaded.config;
   const std::string& path = options.state_path;
   struct stat st;
   if (::stat(path.c_str(), &st) != 0 && errno == ENOENT) {
@@ -136,6 +105,8 @@ int check_state(const Options& options, const std::optional<Config>& config, std
   const ToolStateResult state = config ? load_state_file(path, *config) : load_state_file(path);
   if (!state.state) {
     err << state.error << "\n";
+    loaded.not_checked.push_back(fault_of("state file", path) +
+                                 ": where the tools are not checked");
     return 1;
   }
   const ToolState& tools = *state.state;
@@ -165,12 +136,9 @@ std::string sensors_wired(const Config& config) {
   add(wired.drawbar_closed, "drawbar-closed");
   add(wired.air_pressure, "air-pressure-ok");
   if (!wired.pocket_occupancy.empty()) {
-    pins += std::string(pins.empty() ? "" : ", ") + "pocket-occupied-";
-    bool first = true;
-    for (const int pocket : wired.pocket_occupancy) {
-      pins += (first ? "" : " ") + std::to_string(pocket);
-      first = false;
-    }
+    std::vector<std::string> pockets;
+    for (const int pocket : wired.pocket_occupancy) pockets.push_back(std::to_string(pocket));
+    pins += std::string(pins.empty() ? "" : ", ") + "pocket-occupied-" + listed(pockets, " ");
   }
   if (pins.empty()) return "none";
   std::ostringstream timeout;
@@ -178,9 +146,25 @@ std::string sensors_wired(const Config& config) {
   return pins + " (sensor_timeout_seconds " + timeout.str() + ")";
 }
 
+/// --check's verdict when an input could not be read or is not valid: the
+/// sequences it could still check, and last what it could not.
+int partial_verdict(const Loaded& loaded, std::ostream& out) {
+  if (loaded.config) {
+    const SequencesChecked checked = check_sequences(*loaded.config, loaded.limits);
+    const std::size_t violations = checked.violations.size();
+    out << checked.sequences << " sequences checked against the rack keep-out"
+        << (loaded.limits ? " and the soft limits" : "") << ", " << violations << " violation"
+        << (violations == 1 ? "" : "s") << "\n";
+  }
+  std::string last;
+  for (const std::string& part : loaded.not_checked) last += (last.empty() ? "" : "; ") + part;
+  out << last << "\n";
+  return 1;
+}
+
 int check(const Options& options, std::ostream& out, std::ostream& err) {
-  const Loaded loaded = load(options, err);
-  int problems = loaded.problems + check_state(options, loaded.config, out, err);
+  Loaded loaded = load(options, err);
+  int problems = loaded.problems + check_state(options, loaded, out, err);
   if (options.ini_path) {
     std::string error;
     if (const auto ini = IniFile::read(*options.ini_path, error)) {
@@ -191,7 +175,7 @@ int check(const Options& options, std::ostream& out, std::ostream& err) {
       }
     }
   }
-  if (!loaded.config) return 1;
+  if (!loaded.not_checked.empty()) return partial_verdict(loaded, out);
   const Config& config = *loaded.config;
   out << shown_path(options.config_path) << ": units " << units_name(config.units) << ", "
       << config.pockets.size() << " pockets, keep-out margin " << config.keepout_margin() << "\n";
@@ -273,15 +257,11 @@ int plot(const Options& options, std::ostream& out, std::ostream& err) {
              spindle_words(*options.from_tool) + ", the " +
              (config.path == Path::direct ? "direct" : "prototype") + " path";
   }
-  // Written beside the drawing and renamed over it: a failed write leaves the old one.
-  const std::string written = options.plot_path + ".tmp";
-  std::ofstream file(written, std::ios::trunc);
-  file << rack_svg(config, *rack, change ? &*change : nullptr, title);
-  file.close();
-  if (!file || std::rename(written.c_str(), options.plot_path.c_str()) != 0) {
-    err << shown_path(options.plot_path) << ": cannot write the drawing: " << std::strerror(errno)
-        << "\n";
-    std::remove(written.c_str());
+  try {
+    write_file(options.plot_path, rack_svg(config, *rack, change ? &*change : nullptr, title),
+               kCommandLineWait);
+  } catch (const std::exception& e) {
+    err << e.what() << "\n";
     return 2;
   }
   out << "wrote " << shown_path(options.plot_path) << ": " << config.pockets.size()
@@ -360,188 +340,104 @@ int plan(const Options& options, std::ostream& out, std::ostream& err) {
 
 }  // namespace
 
-std::optional<Options> parse_options(const std::vector<std::string>& args, std::string& error) {
-  using Mode = Options::Mode;
-  Options options;
-  std::optional<std::string> mode_flag;      ///< the one of --check, --plan, --dot, --help given
-  std::map<std::string, std::string> given;  ///< option -> its value, each at most once
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& arg = args[i];
-    static const std::map<std::string, Mode> modes = {
-        {"--check", Mode::check},     {"--plan", Mode::plan},   {"--dot", Mode::dot},
-        {"--confirm", Mode::confirm}, {"--help", Mode::help},   {"-h", Mode::help},
-        {"--lint", Mode::lint},       {"--teach", Mode::teach}, {"--plot", Mode::plot}};
-    if (const auto mode = modes.find(arg); mode != modes.end()) {
-      if (mode_flag) {
-        error = *mode_flag == arg ? arg + " given twice"
-                                  : *mode_flag + " and " + arg + " cannot be combined";
-        return std::nullopt;
-      }
-      mode_flag = arg;
-      options.mode = mode->second;
-      // --lint takes the program as its value, --teach the target, --plot the drawing.
-      if (arg != "--lint" && arg != "--teach" && arg != "--plot") continue;
-    } else if (arg != "--config" && arg != "--state" && arg != "--ini" && arg != "--from" &&
-               arg != "--to" && arg != "--spindle" && arg != "--pocket" && arg != "--tool-table" &&
-               arg != "--subroutine-path" && arg != "--at") {
-      error = "unknown argument " + quote(arg);
-      return std::nullopt;
-    }
-    if (i + 1 >= args.size()) {
-      error = arg + " needs a value";
-      return std::nullopt;
-    }
-    const std::string& text = args[++i];
-    if (const auto before = given.find(arg); before != given.end()) {
-      error = arg + " given twice (" + quote(before->second) + " and " + quote(text) + ")";
-      return std::nullopt;
-    }
-    given[arg] = text;
-    const bool tool = arg == "--from" || arg == "--to" || arg == "--spindle";
-    // --teach and --at say what they expect themselves.
-    if (text.empty() && arg != "--teach" && arg != "--at") {
-      error = arg + ": expected " + (tool ? "a tool number" : "a file path") + ", got nothing";
-      return std::nullopt;
-    }
-    if (text.rfind("--", 0) == 0) {
-      error = arg + " needs a value, got the option " + quote(text);
-      return std::nullopt;
-    }
-    if (tool) {
-      const auto number = tool_argument(text);
-      if (!number) {
-        error = arg + ": expected a tool number (0 for none), got " + quote(text);
-        return std::nullopt;
-      }
-      (arg == "--from" ? options.from_tool
-       : arg == "--to" ? options.to_tool
-                       : options.spindle_tool) = *number;
-    } else if (arg == "--pocket") {
-      if (text != "yes" && text != "no") {
-        error = "--pocket: expected yes or no, got " + quote(text);
-        return std::nullopt;
-      }
-      options.pocket_holds_tool = text == "yes";
-    } else if (arg == "--config") {
-      options.config_path = text;
-    } else if (arg == "--state") {
-      options.state_path = text;
-    } else if (arg == "--lint") {
-      options.program_path = text;
-    } else if (arg == "--plot") {
-      // A name that ends otherwise is likely the config or state given in the wrong place.
-      const std::string tail = text.size() >= 4 ? text.substr(text.size() - 4) : "";
-      if (tail != ".svg" && tail != ".SVG") {
-        error = "--plot: expected a file name ending in .svg, got " + quote(text);
-        return std::nullopt;
-      }
-      options.plot_path = text;
-    } else if (arg == "--tool-table") {
-      options.tool_table_path = text;
-    } else if (arg == "--subroutine-path") {
-      options.subroutine_path = text;
-    } else if (arg == "--teach") {
-      options.teach_target = parse_teach_target(text);
-      if (!options.teach_target) {
-        error = "--teach: expected pocket:N, loading, safe or sensor, got " + quote(text);
-        return std::nullopt;
-      }
-    } else if (arg == "--at") {
-      options.teach_at = position_argument(text);
-      if (!options.teach_at) {
-        error = "--at: expected X,Y,Z (three numbers, machine coordinates), got " + quote(text);
-        return std::nullopt;
-      }
-    } else {
-      options.ini_path = text;
-    }
-  }
-  // An option the mode would not read is refused, not ignored.
-  const std::string mode_name =
-      mode_flag ? *mode_flag : "the component (no --check, --plan, --dot)";
-  const std::map<std::string, std::set<Mode>> used_by = {
-      {"--config",
-       {Mode::component, Mode::check, Mode::plan, Mode::confirm, Mode::lint, Mode::teach,
-        Mode::plot}},
-      {"--state",
-       {Mode::component, Mode::check, Mode::confirm, Mode::lint, Mode::plan, Mode::plot}},
-      {"--spindle", {Mode::confirm}},
-      {"--pocket", {Mode::confirm}},
-      {"--ini", {Mode::check, Mode::plan, Mode::lint, Mode::teach}},
-      {"--at", {Mode::teach}},
-      {"--tool-table", {Mode::lint}},
-      {"--subroutine-path", {Mode::lint}},
-      {"--from", {Mode::plan, Mode::plot}},
-      {"--to", {Mode::plan, Mode::plot}}};
-  for (const auto& [option, modes] : used_by) {
-    if (given.count(option) != 0 && modes.count(options.mode) == 0) {
-      error = option + " is not used by " + mode_name;
-      return std::nullopt;
-    }
-  }
-  const bool needs_config = used_by.at("--config").count(options.mode) != 0;
-  if (needs_config && options.config_path.empty()) {
-    error = "--config FILE is required";
-    return std::nullopt;
-  }
-  if (options.mode == Mode::confirm && !options.spindle_tool) {
-    error = "--confirm needs --spindle N (0: the spindle is empty)";
-    return std::nullopt;
-  }
-  if (options.mode == Mode::teach && !options.teach_at) {
-    error = "--teach needs --at X,Y,Z (the machine position, G53)";
-    return std::nullopt;
-  }
-  if (options.mode == Mode::plan && (!options.from_tool || !options.to_tool)) {
-    error = "--plan needs --from A and --to B";
-    return std::nullopt;
-  }
-  if (options.mode == Mode::plot && options.from_tool.has_value() != options.to_tool.has_value()) {
-    error = "--plot: --from A and --to B go together (the change to draw)";
-    return std::nullopt;
-  }
-  // --plan and --plot read a state file only when given one; the others default to CONFIG.state.
-  if (used_by.at("--state").count(options.mode) != 0 && options.mode != Mode::plan &&
-      options.mode != Mode::plot && options.state_path.empty()) {
-    options.state_path = options.config_path + ".state";
-  }
-  return options;
-}
 
 namespace {
 
 /// --teach: the machine position into config.json, the file as it was kept as PATH.bak.
+/// The config is taken before it is read: a teach at the same time (here or
+/// in the component) waits its turn and then reads what this one wrote.
 int teach_position(const Options& options, std::ostream& out, std::ostream& err) {
-  std::string error;
-  const auto text = read_small_file(options.config_path, error);
-  if (!text) {
-    err << error << "\n";
-    return 2;
-  }
-  std::optional<SoftLimits> limits;
-  if (options.ini_path) {
-    limits = read_limits(*options.ini_path, declared_units(*text), err);
-    if (!limits) return 2;
-  }
-  const TeachResult taught = teach(*text, *options.teach_target, *options.teach_at, limits);
-  if (!taught.text) {
-    err << shown_path(options.config_path) << ": " << taught.error << "\n";
-    return 1;
-  }
   try {
-    save_config_file(options.config_path, *text, *taught.text);
+    const FileWriter config(options.config_path, kCommandLineWait);
+    std::string error;
+    const auto text = read_small_file(options.config_path, error);
+    if (!text) {
+      err << error << "\n";
+      return 2;
+    }
+    std::optional<SoftLimits> limits;
+    if (options.ini_path) {
+      limits = read_limits(*options.ini_path, declared_units(*text), err);
+      if (!limits) return 2;
+    }
+    const TeachResult taught = teach(*text, *options.teach_target, *options.teach_at, limits);
+    if (!taught.text) {
+      err << shown_path(options.config_path) << ": " << taught.error << "\n";
+      return 1;
+    }
+    save_config_file(config, *text, *taught.text, kCommandLineWait);
+    out << taught.change << "\n"
+        << "written (previous file kept as " << shown_path(options.config_path + ".bak") << ")\n";
+    return 0;
   } catch (const std::exception& e) {
     err << e.what() << "\n";
     return 2;
   }
-  out << taught.change << "\n"
-      << "written (previous file kept as " << shown_path(options.config_path + ".bak") << ")\n";
-  return 0;
 }
+
+/// A file given on the command line, as a message names it.
+struct GivenFile {
+  std::string name;  ///< "--plot \"rack.svg\"", "the backup \"config.json.bak\""
+  std::string path;
+};
 
 }  // namespace
 
-int run_tool_mode(const Options& options, std::ostream& out, std::ostream& err) {
+std::string written_onto_input(const Options& options) {
+  std::vector<GivenFile> written;
+  std::vector<GivenFile> inputs;
+  switch (options.mode) {
+    case Options::Mode::plot:
+      written = {{"--plot " + quote(options.plot_path, 200), options.plot_path}};
+      inputs = {{"--config", options.config_path}, {"--state", options.state_path}};
+      break;
+    case Options::Mode::teach: {
+      const std::string backup = options.config_path + ".bak";
+      written = {{"the backup " + quote(backup, 200), backup}};
+      inputs = {{"--ini", options.ini_path.value_or("")}};
+      break;
+    }
+    case Options::Mode::confirm:
+    case Options::Mode::component:
+      written = {{"--state " + quote(options.state_path, 200), options.state_path}};
+      inputs = {{"--config", options.config_path}};
+      break;
+    default:
+      break;
+  }
+  for (const GivenFile& output : written) {
+    for (const GivenFile& input : inputs) {
+      if (input.path.empty() || !same_file(output.path, input.path)) continue;
+      return output.name + " is the file given as " + input.name + ": nothing written";
+    }
+  }
+  return "";
+}
+
+namespace {
+
+/// --check and --lint with --ini and no --state read the state file the
+/// component reads: [FIXED_ATC_PROBE]STATE, from the INI's folder, where
+/// LinuxCNC runs the HAL file that hands it to the component.
+Options with_state_of_ini(Options options) {
+  const bool reads_it = options.mode == Options::Mode::check || options.mode == Options::Mode::lint;
+  if (!reads_it || options.state_given || !options.ini_path) return options;
+  std::string error;
+  const auto ini = IniFile::read(*options.ini_path, error);
+  if (!ini) return options;  // the INI's own check says why
+  if (const auto state = ini->get("FIXED_ATC_PROBE", "STATE"); state && !state->empty()) {
+    options.state_path =
+        (*state)[0] == '/' ? *state : folder_of(*options.ini_path) + "/" + *state;
+  }
+  return options;
+}
+
+int run_mode(const Options& given, std::ostream& out, std::ostream& err) {
+  const Options options = with_state_of_ini(given);
+  if (const std::string refused = written_onto_input(options); !refused.empty()) {
+    err << refused << "\n";
+    return 2;
+  }
   switch (options.mode) {
     case Options::Mode::check:
       return check(options, out, err);
@@ -559,12 +455,27 @@ int run_tool_mode(const Options& options, std::ostream& out, std::ostream& err) 
     case Options::Mode::plot:
       return plot(options, out, err);
     case Options::Mode::help:
-      out << kUsage;
+      out << usage();
       return 0;
     case Options::Mode::component:
       break;
   }
   return 2;
+}
+
+}  // namespace
+
+int run_tool_mode(const Options& options, std::ostream& out, std::ostream& err) {
+  // Graphviz and the usage are ours alone; every other line may hold a file's text.
+  if (options.mode == Options::Mode::dot || options.mode == Options::Mode::help) {
+    return run_mode(options, out, err);
+  }
+  CappedLines out_lines(out), err_lines(err);
+  std::ostream capped_out(&out_lines), capped_err(&err_lines);
+  const int code = run_mode(options, capped_out, capped_err);
+  capped_out.flush();
+  capped_err.flush();
+  return code;
 }
 
 }  // namespace fatc::io

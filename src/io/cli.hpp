@@ -16,6 +16,7 @@ struct Options {
   Mode mode = Mode::component;
   std::string config_path;
   std::string state_path;  ///< component, --check, --lint: CONFIG.state unless --state is given
+  bool state_given = false;  ///< --state was given (not CONFIG.state)
   std::optional<std::string> ini_path;
   std::optional<int> from_tool;
   std::optional<int> to_tool;
@@ -34,7 +35,10 @@ struct Options {
 /// does not use.
 std::optional<Options> parse_options(const std::vector<std::string>& args, std::string& error);
 
-extern const char* const kUsage;
+/// One line when a file the mode writes (--plot's drawing, the config's .bak
+/// on --teach, the state file of --confirm and of the component) is one of the
+/// files it reads, so that it would replace an input; empty otherwise.
+std::string written_onto_input(const Options& options);
 
 /// --confirm: 0 when the state file was rewritten with the operator's word.
 /// --check: 0 when config, state and INI are valid and no planned move breaks

@@ -5,6 +5,28 @@
 #include "files.hpp"
 
 namespace fatc::io {
+namespace {
+
+/// Why the operator's answer cannot be what is in the rack, or empty: a
+/// tool in two places, or a pocket that holds no tool of its own said to hold it.
+/// (The state file was read against the config: the cut-off pocket is one of its.)
+std::string contradiction(const ToolState& tools, int pocket, const Options& options) {
+  if (!options.pocket_holds_tool) return "";
+  if (pocket == 0) return "--pocket: no sequence was cut off at a pocket";
+  if (!*options.pocket_holds_tool) return "";
+  const int own = tools.tool_of(pocket);
+  if (own == 0) {
+    return "--pocket yes: no tool belongs in pocket " + std::to_string(pocket) +
+           ", where the sequence was cut off";
+  }
+  if (*options.spindle_tool == own) {
+    return "--spindle " + std::to_string(own) + " --pocket yes: tool " + std::to_string(own) +
+           " cannot be both in the spindle and in its pocket " + std::to_string(pocket);
+  }
+  return "";
+}
+
+}  // namespace
 
 /// The recovery of a fault without LinuxCNC: the operator's word into the
 /// state file, as the clear-fault pin would record it. Nothing moves.
@@ -21,13 +43,13 @@ int confirm(const Options& options, std::ostream& out, std::ostream& err) {
   }
   ToolState& tools = *state.state;
   const int pocket = tools.in_progress ? tools.in_progress->pocket : 0;
-  if (options.pocket_holds_tool && pocket == 0) {
-    err << shown_path(options.state_path) << ": --pocket: no sequence was cut off at a pocket\n";
+  if (const std::string why = contradiction(tools, pocket, options); !why.empty()) {
+    err << shown_path(options.state_path) << ": " << why << "\n";
     return 1;
   }
   tools.confirm(*options.spindle_tool, options.pocket_holds_tool);
   try {
-    save_state_file(options.state_path, tools);
+    save_state_file(options.state_path, tools, kCommandLineWait);
   } catch (const std::exception& e) {
     err << e.what() << "\n";
     return 1;

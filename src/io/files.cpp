@@ -30,9 +30,7 @@ const char* kind_of(mode_t mode) {
 
 /// One line when `st` is not a regular file, or (`limit_size`) one over kMaxFileBytes.
 std::string refusal(const std::string& path, const struct stat& st, bool limit_size = true) {
-  if (!S_ISREG(st.st_mode)) {
-    return shown_path(path) + ": expected a regular file, got " + kind_of(st.st_mode);
-  }
+  if (std::string refused = not_a_regular_file(path, st.st_mode); !refused.empty()) return refused;
   if (limit_size && static_cast<unsigned long long>(st.st_size) > kMaxFileBytes) {
     return shown_path(path) + ": expected a file of at most 1 MiB, got " +
            std::to_string(st.st_size) + " bytes";
@@ -53,29 +51,22 @@ bool missing(const std::string& path) {
   return !path.empty() && ::stat(path.c_str(), &st) != 0 && errno == ENOENT;
 }
 
+}  // namespace
+
+std::string shown_path(const std::string& path) {
+  return path.empty() ? std::string("\"\" (an empty path)") : escape(path, 200);
+}
+
+std::string not_a_regular_file(const std::string& path, mode_t mode) {
+  if (S_ISREG(mode)) return "";
+  return shown_path(path) + ": expected a regular file, got " + kind_of(mode);
+}
+
 std::string folder_of(const std::string& path) {
   const auto slash = path.rfind('/');
   if (slash == std::string::npos) return ".";
   if (slash == 0) return "/";
   return path.substr(0, slash);
-}
-
-void write_all(int fd, const std::string& text, const std::string& path) {
-  std::size_t written = 0;
-  while (written < text.size()) {
-    const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      throw std::runtime_error(shown_path(path) + ": cannot write " + why(errno));
-    }
-    written += static_cast<std::size_t>(n);
-  }
-}
-
-}  // namespace
-
-std::string shown_path(const std::string& path) {
-  return path.empty() ? std::string("\"\" (an empty path)") : escape(path, 200);
 }
 
 namespace {
@@ -169,7 +160,8 @@ ConfigResult load_config_file(const std::string& path) {
     return result;
   }
   result = parse_config(*text);
-  for (auto& message : result.errors) message = shown_path(path) + ": " + message;
+  // A JSON path deep down repeats many keys: the line is cut, not the message lost.
+  for (auto& message : result.errors) message = capped_lines(shown_path(path) + ": " + message);
   return result;
 }
 
@@ -178,7 +170,7 @@ ToolStateResult load_state_file(const std::string& path) {
   const auto text = read_small_file(path, error);
   if (!text) return {std::nullopt, error};
   auto result = tool_state_from_json(*text);
-  if (!result.state) return {std::nullopt, shown_path(path) + ": " + result.error};
+  if (!result.state) return {std::nullopt, capped_lines(shown_path(path) + ": " + result.error)};
   return result;
 }
 
@@ -192,76 +184,16 @@ ToolStateResult load_state_file(const std::string& path, const Config& config) {
   return result;
 }
 
-namespace {
-
-/// Replaces PATH with `text` crash-safe: a fresh temporary file next to it
-/// (PATH.tmp, whatever a killed writer left there removed first, never
-/// followed if a symlink), fsync, rename over PATH, fsync of the folder. A
-/// reader sees the old file or the new one, never a part. `mode`: the new
-/// file's permissions, else 0644 less the umask.
-void replace_file(const std::string& path, const std::string& text,
-                  std::optional<mode_t> mode = std::nullopt) {
-  const std::string temporary = path + ".tmp";
-  // A writer killed between create and rename leaves its temporary file: it
-  // is removed, not reused (it may be a symlink someone put there).
-  if (::unlink(temporary.c_str()) != 0 && errno != ENOENT) {
-    throw std::runtime_error(shown_path(temporary) + ": cannot remove the old temporary file " +
-                             why(errno));
-  }
-  const int fd =
-      ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0644);
-  if (fd < 0) throw std::runtime_error(shown_path(temporary) + ": cannot create " + why(errno));
-  try {
-    if (mode && ::fchmod(fd, *mode) != 0)
-      throw std::runtime_error(shown_path(temporary) + ": cannot set its mode " + why(errno));
-    write_all(fd, text, temporary);
-    if (::fsync(fd) != 0)
-      throw std::runtime_error(shown_path(temporary) + ": fsync failed " + why(errno));
-  } catch (...) {
-    ::close(fd);
-    ::unlink(temporary.c_str());
-    throw;
-  }
-  ::close(fd);
-  if (::rename(temporary.c_str(), path.c_str()) != 0) {
-    const std::string reason = why(errno);
-    ::unlink(temporary.c_str());
-    throw std::runtime_error(shown_path(path) + ": cannot replace " + reason);
-  }
-  // The rename itself must reach the disk before we call the file saved.
-  const int folder = ::open(folder_of(path).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (folder >= 0) {
-    ::fsync(folder);
-    ::close(folder);
-  }
+void save_state_file(const std::string& path, const ToolState& state,
+                     std::chrono::milliseconds wait) {
+  write_file(path, to_json(state), wait);
 }
 
-}  // namespace
-
-void save_state_file(const std::string& path, const ToolState& state) {
-  replace_file(path, to_json(state));
-}
-
-void save_config_file(const std::string& path, const std::string& previous,
-                      const std::string& text) {
-  struct stat st;
-  if (::lstat(path.c_str(), &st) != 0) {
-    throw std::runtime_error(shown_path(path) + ": cannot write " + why(errno));
-  }
-  if (S_ISLNK(st.st_mode)) {
-    std::string target(4096, '\0');
-    const ssize_t n = ::readlink(path.c_str(), &target[0], target.size());
-    target.resize(n > 0 ? static_cast<std::size_t>(n) : 0);
-    throw std::runtime_error(shown_path(path) + ": a symbolic link (to " + shown_path(target) +
-                             "): not written, the link would become a file of its own; " +
-                             "teach the file it points to");
-  }
-  if (std::string refused = refusal(path, st, false); !refused.empty()) {
-    throw std::runtime_error(refused);
-  }
-  const mode_t mode = st.st_mode & 07777;
-  replace_file(path + ".bak", previous, mode);
-  replace_file(path, text, mode);
+void save_config_file(const FileWriter& config, const std::string& previous,
+                      const std::string& text, std::chrono::milliseconds wait) {
+  // The backup holds what the config held: no more open than the config.
+  write_file(config.path() + ".bak", previous, wait, {true, config.mode()});
+  config.replace(text);
 }
 
 }  // namespace fatc::io

@@ -9,6 +9,7 @@
 
 #include "core/config/config.hpp"
 #include "core/rack/tool_state.hpp"
+#include "file_writer.hpp"
 
 namespace fatc::io {
 
@@ -34,6 +35,12 @@ bool read_file_pieces(const std::string& path, std::size_t max_bytes, std::uint6
 /// A file path for a message: control characters escaped, cut short if huge.
 std::string shown_path(const std::string& path);
 
+/// "PATH: expected a regular file, got a FIFO", or empty for a regular file.
+std::string not_a_regular_file(const std::string& path, mode_t mode);
+
+/// The folder of `path`: "." for a bare name, "/" for one at the root.
+std::string folder_of(const std::string& path);
+
 /// Reads and validates a config.json; every message starts with the file's path.
 ConfigResult load_config_file(const std::string& path);
 
@@ -45,20 +52,17 @@ ToolStateResult load_state_file(const std::string& path, const Config& config);
 /// a broken config): everything but the pockets the config must have.
 ToolStateResult load_state_file(const std::string& path);
 
-/// Writes the tool state crash-safe: a fresh temporary file next to it (PATH.tmp,
-/// whatever a killed writer left there removed first, never followed if a
-/// symlink), fsync, rename over PATH, fsync of the folder. A reader sees the
-/// old file or the new one, never a part. Throws std::runtime_error naming
-/// the file on failure.
-void save_state_file(const std::string& path, const ToolState& state);
+/// Writes the tool state crash-safe through FileWriter, waiting at most
+/// `wait` for another writer of it. Throws std::runtime_error naming the file
+/// on failure.
+void save_state_file(const std::string& path, const ToolState& state,
+                     std::chrono::milliseconds wait);
 
-/// Writes a taught config.json: first `previous` (the text it was read as)
-/// to PATH.bak, replacing an older backup, then `text` to PATH, each
-/// crash-safe as save_state_file writes, both with PATH's permissions. A
-/// PATH that is a symbolic link is refused before anything is written: the
-/// rename would turn the link into a file of its own and leave its target
-/// as it was. Throws std::runtime_error naming the file on failure.
-void save_config_file(const std::string& path, const std::string& previous,
-                      const std::string& text);
+/// Writes a taught config.json, taken by `config` before it was read: first
+/// `previous` (the text it was read as) to PATH.bak, replacing an older
+/// backup, then `text` to PATH, each through FileWriter, both with PATH's
+/// permissions. Throws std::runtime_error naming the file on failure.
+void save_config_file(const FileWriter& config, const std::string& previous,
+                      const std::string& text, std::chrono::milliseconds wait);
 
 }  // namespace fatc::io

@@ -207,8 +207,8 @@ std::optional<SoftLimits> soft_limits(const IniFile& ini, Units units, std::stri
     }
     if (found[0] > found[1]) {
       error = ini.path() + ": " + key_name(names[i], "MIN_LIMIT", lines[0]) +
-              ": must not be above MAX_LIMIT (" + *ini.get(names[i], "MAX_LIMIT") + "), got " +
-              *ini.get(names[i], "MIN_LIMIT");
+              ": must not be above MAX_LIMIT (" + escape(*ini.get(names[i], "MAX_LIMIT")) +
+              "), got " + escape(*ini.get(names[i], "MIN_LIMIT"));
       return std::nullopt;
     }
     axes[i]->min = found[0] * to_config;
@@ -314,7 +314,7 @@ std::vector<std::string> executor_problems(const IniFile& ini, const Config* con
       const auto first = ini.get(section, analog[a]);
       const auto second = ini.get(section, analog[b]);
       if (first && second && *first == *second) {
-        problems.push_back(where(analog[b]) + ": motion.analog-out-" + *second + " is " +
+        problems.push_back(where(analog[b]) + ": motion.analog-out-" + escape(*second) + " is " +
                            analog[a] + "'s too; each needs its own");
       }
     }

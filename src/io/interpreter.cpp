@@ -14,7 +14,6 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <vector>
 
 #include "core/program/interpreter_inputs.hpp"
@@ -28,13 +27,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using program::finding;
-
-std::string folder_of(const std::string& path) {
-  const auto slash = path.rfind('/');
-  if (slash == std::string::npos) return ".";
-  if (slash == 0) return "/";
-  return path.substr(0, slash);
-}
 
 /// `path` as seen from `base` (the INI's folder, where LinuxCNC runs).
 std::string from_folder(const std::string& path, const std::string& base) {
@@ -92,17 +84,28 @@ class ScratchFolder {
   ScratchFolder(const ScratchFolder&) = delete;
   ScratchFolder& operator=(const ScratchFolder&) = delete;
 
+  /// Makes `name` in the folder for a text written piece by piece (the
+  /// program's numbered copy: FileWriter takes a whole text, and this one is
+  /// never whole in memory), created exclusively, never through a link, in a
+  /// folder only this user can write in. Its descriptor, or -1 and `error`.
+  int create(const std::string& name, std::string& error) const {
+    const std::string path = path_ + "/" + name;
+    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+    if (fd < 0) error = "cannot write " + path + " for the interpreter (" + std::strerror(errno) + ")";
+    return fd;
+  }
+
   bool made() const { return !path_.empty(); }
   const std::string& path() const { return path_; }
   /// Writes `name` in the folder; its path, or nullopt and `error`.
   std::optional<std::string> write(const std::string& name, const std::string& text,
                                    std::string& error) const {
     const std::string path = path_ + "/" + name;
-    std::ofstream out(path, std::ios::binary);
-    out << text;
-    out.close();
-    if (!out) {
-      error = "cannot write " + path + " for the interpreter";
+    try {
+      // Scratch, removed after the run: no fsync.
+      write_file(path, text, std::chrono::milliseconds(0), {false, std::nullopt});
+    } catch (const std::exception& e) {
+      error = std::string(e.what()) + " (a file for the interpreter)";
       return std::nullopt;
     }
     return path;
@@ -317,22 +320,34 @@ std::optional<program::InterpreterRun> run_interpreter(const InterpreterInput& i
   if (!scratch.made()) return std::nullopt;
   // The program numbered as it is read, straight into the interpreter's copy.
   const std::string program_copy = scratch.path() + "/program.ngc";
-  std::ofstream copy(program_copy, std::ios::binary);
+  const int copy = scratch.create("program.ngc", error);
+  if (copy < 0) return std::nullopt;
+  int write_error = 0;
+  auto write_out = [&](const std::string& text) {
+    for (std::size_t done = 0; write_error == 0 && done < text.size();) {
+      const ssize_t n = ::write(copy, text.data() + done, text.size() - done);
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0) write_error = errno;
+      done += n > 0 ? static_cast<std::size_t>(n) : 0;
+    }
+  };
   program::LineNumberer numberer;
   std::uint64_t file_bytes = 0;
-  if (!read_file_pieces(input.program_path, input.max_program_bytes, file_bytes, error,
-                        [&](std::string_view piece) {
-                          numberer.add(piece);
-                          if (numberer.text_size() >= 64 * 1024) copy << numberer.take_text();
-                        })) {
-    return std::nullopt;
-  }
+  const bool read = read_file_pieces(input.program_path, input.max_program_bytes, file_bytes,
+                                     error, [&](std::string_view piece) {
+                                       numberer.add(piece);
+                                       if (numberer.text_size() >= 64 * 1024) {
+                                         write_out(numberer.take_text());
+                                       }
+                                     });
   const bool cut = file_bytes > input.max_program_bytes;
   numberer.finish(cut);
-  copy << numberer.take_text();
-  copy.close();
-  if (!copy) {
-    error = "cannot write " + program_copy + " for the interpreter";
+  write_out(numberer.take_text());
+  if (::close(copy) != 0 && write_error == 0) write_error = errno;
+  if (!read) return std::nullopt;
+  if (write_error != 0) {
+    error = "cannot write " + program_copy + " for the interpreter (" + std::strerror(write_error) +
+            ")";
     return std::nullopt;
   }
   program::InterpreterRun run;
@@ -388,13 +403,7 @@ std::optional<program::InterpreterRun> run_interpreter(const InterpreterInput& i
       return std::nullopt;
     }
     for (const std::string& sub : undefined) {
-      const std::string path = stub_folder + "/" + sub + ".ngc";
-      const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
-      if (fd < 0) {
-        error = "cannot write " + path + " for the interpreter (" + std::strerror(errno) + ")";
-        return std::nullopt;
-      }
-      ::close(fd);
+      if (!scratch.write("undefined/" + sub + ".ngc", "", error)) return std::nullopt;
     }
   }
   std::string folders = input.subroutine_path ? absolute_folders(*input.subroutine_path) : "";

@@ -25,13 +25,6 @@ namespace {
 constexpr std::size_t kMaxRows = 200;
 constexpr std::size_t kMaxFindings = 50;
 
-std::string folder_of(const std::string& path) {
-  const auto slash = path.rfind('/');
-  if (slash == std::string::npos) return ".";
-  if (slash == 0) return "/";
-  return path.substr(0, slash);
-}
-
 /// What the INI adds: rapid speed, and whether M6 runs this changer's remap.
 struct MachineIni {
   double rapid_per_minute = 0.0;

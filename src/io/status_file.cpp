@@ -1,8 +1,8 @@
 #include "status_file.hpp"
 
-#include <cstdio>
-#include <fstream>
 #include <nlohmann/json.hpp>
+
+#include "file_writer.hpp"
 
 namespace fatc::io {
 namespace {
@@ -80,13 +80,14 @@ void StatusFile::write(const Status& status, const std::optional<InProgress>& cu
   // Messages may hold any bytes a user typed: never fail on them.
   std::string text = root.dump(1, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
   if (text == written_) return;
-  const std::string temporary = path_ + ".tmp";
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    out << text;
-    if (!out) return;  // a display aid: the panel keeps the last one it read
+  try {
+    // Not fsynced: rewritten at every step, and losing it loses nothing. Not
+    // waited for: the poll loop must not stall on a display aid.
+    write_file(path_, text, std::chrono::milliseconds(0), {false, std::nullopt});
+    written_ = std::move(text);
+  } catch (const std::exception&) {
+    // A display aid: the panel keeps the last one it read; the next change writes again.
   }
-  if (std::rename(temporary.c_str(), path_.c_str()) == 0) written_ = std::move(text);
 }
 
 }  // namespace fatc::io

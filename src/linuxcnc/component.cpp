@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <iostream>
 
+#include "core/config/quote.hpp"
 #include "core/machine/measure_which.hpp"
 #include "hal_pins_detail.hpp"
 #include "hal_pins_view.hpp"
@@ -171,7 +172,9 @@ void Component::start_timer(double seconds) {
       now_ + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
 }
 
-void Component::tell(MessageKind kind, const std::string& text) {
+void Component::tell(MessageKind kind, const std::string& said) {
+  // A message may name what a file held (a pocket list of a big rack, a path).
+  const std::string text = capped_lines(said);
   const char* tag = kind == MessageKind::error    ? "error"
                     : kind == MessageKind::prompt ? "operator"
                                                   : "info";
@@ -182,7 +185,9 @@ void Component::tell(MessageKind kind, const std::string& text) {
 
 void Component::ask(const Prompt& prompt) { tell(MessageKind::prompt, words(prompt)); }
 
-void Component::save(const ToolState& state) { io::save_state_file(state_path_, state); }
+void Component::save(const ToolState& state) {
+  io::save_state_file(state_path_, state, io::kComponentWait);
+}
 
 void Component::unexpected(const std::string& state, const std::string& event) {
   std::cerr << "fixed_atc_probe: internal error: event " << event << " in " << state << std::endl;

@@ -12,6 +12,15 @@ void ConfigTeacher::teach(Changer& changer, const TeachTarget& target, bool linu
     ports_.tell(MessageKind::error, refused + *why);
     return;
   }
+  // Taken before it is read: a --teach at the same time waits its turn, and
+  // this one reads what it wrote. Held briefly: the poll loop waits on it.
+  std::optional<io::FileWriter> file;
+  try {
+    file.emplace(config_path_, io::kComponentWait);
+  } catch (const std::exception& e) {
+    ports_.tell(MessageKind::error, refused + e.what());
+    return;
+  }
   std::string error;
   const auto text = io::read_small_file(config_path_, error);
   if (!text) {
@@ -28,7 +37,7 @@ void ConfigTeacher::teach(Changer& changer, const TeachTarget& target, bool linu
   const Config before = changer.config();
   if (!changer.reconfigure(*parse_config(*taught.text).config, request)) return;
   try {
-    io::save_config_file(config_path_, *text, *taught.text);
+    io::save_config_file(*file, *text, *taught.text, io::kComponentWait);
   } catch (const std::exception& e) {
     // Still idle: nothing ran since it was taken, so the old one goes back in.
     changer.reconfigure(before, request);

@@ -46,7 +46,10 @@ for want in /usr/bin/fixed_atc_probe /usr/lib/linuxcnc/modules/fatc_chuck_guard.
             /usr/share/fixed_atc_probe/config/config.json \
             /usr/share/fixed_atc_probe/config/sim/fixed_atc_sim.ini \
             /usr/share/doc/fixed-atc-probe/README.md \
-            /usr/share/doc/fixed-atc-probe/gmoccapy.md; do
+            /usr/share/doc/fixed-atc-probe/docs/setup.md \
+            /usr/share/doc/fixed-atc-probe/docs/reference.md \
+            /usr/share/doc/fixed-atc-probe/docs/panel.png \
+            /usr/share/doc/fixed-atc-probe/docs/gmoccapy.md; do
   grep -qx "$want" <<< "$files" || { echo "FAIL: the package has no $want"; exit 1; }
 done
 man -w fixed_atc_probe >/dev/null || { echo "FAIL: man fixed_atc_probe finds no page"; exit 1; }

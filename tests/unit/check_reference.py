@@ -1,21 +1,13 @@
 #!/usr/bin/env python3
-"""README.md's reference tables against the sources they describe.
+"""docs/reference.md's table of the panel's pins against the panel.
 
-Every config.json key that src/core/config/config.cpp accepts must have a row in
-the table of "## config.json reference" (a key with keys below it, such as
-`loading`, counts as there when one of its own keys is), and every row there
-must name a key the reader accepts. Every pin src/linuxcnc/hal_pins.cpp
-creates must be in the first table of "## HAL pins" with its type and
-direction, and every pin hal/fixed_atc_probe_panel.py creates in the second;
-no row may name a pin that is not created.
-
-The names are read from the sources as written: config.cpp's
-reject_unknown_keys lists (the keys it does not refuse), their paths
-followed through join_path, local variables and call sites; hal_pins.cpp's
-make(...) calls and the member types of hal_pins_detail.hpp; the panel's
-newpin calls through its module constants and for loops. A source this
-script cannot follow fails it with the place, so it never passes by reading
-less.
+Every pin hal/fixed_atc_probe_panel.py creates must be in the table of
+"## HAL pins" with its type and direction; no row may name a pin that is not
+created. The names are read from the panel as written: its newpin calls
+through its module constants and for loops. A source this script cannot
+follow fails it with the place, so it never passes by reading less. (The
+component's pins and config.json's keys are declared once in the code and
+their references generated: references_are_current.)
 
 usage: check_reference.py PROJECT_ROOT    (exit 0: complete, 1: not, with one
 line per problem naming what is missing and where)
@@ -34,206 +26,6 @@ def problem(text):
 
 def line_of(text, offset):
     return text.count("\n", 0, offset) + 1
-
-
-# ---------------------------------------------------------------- C++ reading
-
-DEFINITION = re.compile(
-    r"^( {0,2})(?!(?:if|for|while|switch|return|else|case|do|throw)\b)"
-    r"[A-Za-z_][\w:<>,*& ]*?[\s*&>](\w+)\(([^;{}]*?)\)\s*(?:const\s*)?\{",
-    re.MULTILINE)
-STRING = re.compile(r'^"((?:[^"\\]|\\.)*)"$')
-
-
-def split_arguments(text):
-    """Top-level comma-separated arguments of a call's argument text."""
-    parts, depth, current, quoted = [], 0, "", False
-    for i, c in enumerate(text):
-        if quoted:
-            current += c
-            if c == '"' and text[i - 1] != "\\":
-                quoted = False
-            continue
-        if c == '"':
-            quoted = True
-        elif c in "([{":
-            depth += 1
-        elif c in ")]}":
-            depth -= 1
-        elif c == "," and depth == 0:
-            parts.append(current.strip())
-            current = ""
-            continue
-        current += c
-    if current.strip():
-        parts.append(current.strip())
-    return parts
-
-
-def closing(text, start, opener, closer):
-    """Where the `closer` matching the `opener` at `start` is, skipping string
-    literals; None when it never comes."""
-    depth, quoted = 0, False
-    for i in range(start, len(text)):
-        c = text[i]
-        if quoted:
-            if c == '"' and text[i - 1] != "\\":
-                quoted = False
-            continue
-        if c == '"':
-            quoted = True
-        elif c == opener:
-            depth += 1
-        elif c == closer:
-            depth -= 1
-            if depth == 0:
-                return i
-    return None
-
-
-def call_arguments(text, open_paren):
-    """The argument text of the call whose '(' is at open_paren, and its end."""
-    end = closing(text, open_paren, "(", ")")
-    if end is None:
-        raise ValueError("unbalanced parentheses")
-    return text[open_paren + 1:end], end
-
-
-class CppFile:
-    def __init__(self, path, *more):
-        """`more`: files read as one with `path` (the reader the config's calls go through)."""
-        self.path = path
-        self.text = "\n".join(p.read_text() for p in (*more, path))
-        # Function definitions: name, parameter names, body start and end.
-        self.functions = []
-        for m in DEFINITION.finditer(self.text):
-            params = []
-            for p in split_arguments(m.group(3)):
-                p = p.split("=")[0].strip()
-                names = re.findall(r"(\w+)\s*$", p)
-                params.append(names[0] if names else "")
-            start = m.end() - 1
-            end = self.matching_brace(start)
-            self.functions.append({"name": m.group(2), "params": params, "start": start,
-                                   "end": end})
-
-    def matching_brace(self, start):
-        end = closing(self.text, start, "{", "}")
-        return len(self.text) if end is None else end
-
-    def function_at(self, offset):
-        """The innermost definition holding offset."""
-        holding = [f for f in self.functions if f["start"] <= offset <= f["end"]]
-        return min(holding, key=lambda f: f["end"] - f["start"]) if holding else None
-
-    def where(self, offset):
-        return "%s:%d" % (self.path.name, line_of(self.text, offset))
-
-    def resolve(self, expr, offset, depth=0):
-        """Every text `expr` can be at offset: literals, join_path, item.key()
-        (a pocket number: N), locals and parameters (through call sites)."""
-        expr = expr.strip()
-        if depth > 10:
-            raise LookupError("%s: %s: followed too deep" % (self.where(offset), expr))
-        literal = STRING.match(expr)
-        if literal:
-            return {literal.group(1)}
-        if expr.endswith(".key()"):
-            return {"N"}
-        join = re.match(r"^join_path\((.*)\)$", expr, re.DOTALL)
-        if join:
-            a, b = split_arguments(join.group(1))
-            return {x + "." + y if x else y
-                    for x in self.resolve(a, offset, depth + 1)
-                    for y in self.resolve(b, offset, depth + 1)}
-        if re.match(r"^\w+$", expr):
-            function = self.function_at(offset)
-            if function is None:
-                raise LookupError("%s: %s: not inside a function" % (self.where(offset), expr))
-            body = self.text[function["start"]:offset]
-            assigned = list(re.finditer(r"\b%s\s*=\s*([^;]+);" % expr, body))
-            if assigned:
-                return self.resolve(assigned[-1].group(1),
-                                    function["start"] + assigned[-1].start(), depth + 1)
-            if expr in function["params"]:
-                index = function["params"].index(expr)
-                values = set()
-                for call in re.finditer(r"(?<![\w:])%s\(" % function["name"], self.text):
-                    if self.function_at(call.start()) is None:
-                        continue  # a definition or declaration, not a call
-                    arguments, _ = call_arguments(self.text, call.end() - 1)
-                    arguments = split_arguments(arguments)
-                    if len(arguments) <= index:
-                        continue
-                    values |= self.resolve(arguments[index], call.start(), depth + 1)
-                if not values:
-                    raise LookupError("%s: parameter %s of %s: no call site found" %
-                                      (self.where(offset), expr, function["name"]))
-                return values
-        raise LookupError("%s: cannot follow %r" % (self.where(offset), expr))
-
-
-def accepted_config_keys(root):
-    cpp = CppFile(root / "src/core/config/config.cpp", root / "src/core/config/reader.hpp")
-    keys = set()
-    calls = list(re.finditer(r"reject_unknown_keys\(", cpp.text))
-    for call in calls:
-        if cpp.function_at(call.start()) is None:
-            continue
-        arguments, _ = call_arguments(cpp.text, call.end() - 1)
-        arguments = split_arguments(arguments)
-        if len(arguments) != 3 or not arguments[2].startswith("{"):
-            problem("%s: reject_unknown_keys without a {list} of keys: teach %s to read it" %
-                    (cpp.where(call.start()), Path(__file__).name))
-            continue
-        listed = re.findall(r'"(\w+)"', arguments[2])
-        try:
-            parents = cpp.resolve(arguments[1], call.start())
-        except LookupError as e:
-            problem("%s (teach %s to follow it)" % (e, Path(__file__).name))
-            continue
-        for parent in parents:
-            for key in listed:
-                keys.add(parent + "." + key if parent else key)
-    if not keys:
-        problem("src/core/config/config.cpp: no reject_unknown_keys lists found")
-    return keys
-
-
-def component_pins(root):
-    pins_cpp = (root / "src/linuxcnc/hal_pins.cpp").read_text()
-    detail = (root / "src/linuxcnc/hal_pins_detail.hpp").read_text()
-    types = {m.group(2): m.group(1) for m in
-             re.finditer(r"hal_(bit|s32|u32|float)_t\s*\*+\s*(\w+);", detail)}
-    pins = {}
-    creations = list(re.finditer(r"\bmake\(id,", pins_cpp))
-    for creation in creations:
-        arguments, _ = call_arguments(pins_cpp, creation.end() - 4)
-        arguments = split_arguments(arguments)
-        where = "hal_pins.cpp:%d" % line_of(pins_cpp, creation.start())
-        direction = re.match(r"^HAL_(IN|OUT|IO)$", arguments[1])
-        member = re.match(r"^&p->(\w+)(\[\w+\])?$", arguments[2])
-        if not direction or not member or member.group(1) not in types:
-            problem("%s: cannot read this pin's direction or type (teach %s)" %
-                    (where, Path(__file__).name))
-            continue
-        name = STRING.match(arguments[4])
-        if name:
-            names = [name.group(1)]
-        else:
-            variable = re.match(r"^(\w+)\.c_str\(\)$", arguments[4])
-            built = variable and re.search(
-                r'\b%s\s*=\s*"([\w-]+)"\s*\+\s*std::to_string' % variable.group(1), pins_cpp)
-            if not built:
-                problem("%s: cannot read this pin's name (teach %s)" %
-                        (where, Path(__file__).name))
-                continue
-            names = [built.group(1) + "N"]
-        for n in names:
-            pins[n] = (types[member.group(1)], direction.group(1).lower())
-    if not pins:
-        problem("src/linuxcnc/hal_pins.cpp: no pins found")
-    return pins
 
 
 def panel_pins(root):
@@ -305,15 +97,18 @@ def panel_pins(root):
     return pins
 
 
-# ---------------------------------------------------------------- README reading
+# ---------------------------------------------------------------- reference reading
 
-def section(readme, title):
-    start = readme.find("\n## " + title + "\n")
+REFERENCE = "docs/reference.md"
+
+
+def section(reference, title):
+    start = reference.find("\n## " + title + "\n")
     if start < 0:
-        problem('README.md: no section "## %s"' % title)
+        problem('%s: no section "## %s"' % (REFERENCE, title))
         return ""
-    end = readme.find("\n## ", start + 1)
-    return readme[start:end if end >= 0 else len(readme)]
+    end = reference.find("\n## ", start + 1)
+    return reference[start:end if end >= 0 else len(reference)]
 
 
 def tables(text):
@@ -346,52 +141,35 @@ def main():
     if len(sys.argv) != 2:
         sys.exit("usage: check_reference.py PROJECT_ROOT")
     root = Path(sys.argv[1])
-    readme = (root / "README.md").read_text()
-
-    # config.json keys
-    keys = accepted_config_keys(root)
-    config_tables = tables(section(readme, "config.json reference"))
-    rows = {name for name, _ in first_cell_names(config_tables[0])} if config_tables else set()
-    if not config_tables:
-        problem('README.md: "## config.json reference" has no table')
-    for key in sorted(keys):
-        children = [k for k in rows if k.startswith(key + ".")]
-        if key not in rows and not children:
-            problem("README.md: config key %s (accepted by src/core/config/config.cpp) is missing from "
-                    'the table of "## config.json reference"' % key)
-    for row in sorted(rows):
-        if row not in keys and not any(k.startswith(row + ".") for k in keys):
-            problem("README.md: config key %s in the table of \"## config.json reference\" is "
-                    "not accepted by src/core/config/config.cpp" % row)
+    reference = (root / REFERENCE).read_text()
 
     # pins
-    pin_tables = tables(section(readme, "HAL pins"))
+    pin_tables = tables(section(reference, "HAL pins"))
     for index, (who, source, pins) in enumerate(
-            [("component fixed_atc_probe", "src/linuxcnc/hal_pins.cpp", component_pins(root)),
-             ("panel fatc-panel", "hal/fixed_atc_probe_panel.py", panel_pins(root))]):
+            [("panel fatc-panel", "hal/fixed_atc_probe_panel.py", panel_pins(root))]):
         if len(pin_tables) <= index:
-            problem('README.md: "## HAL pins" has no table %d (the %s\'s pins)' % (index + 1, who))
+            problem('%s: "## HAL pins" has no table %d (the %s\'s pins)' % (REFERENCE, index + 1, who))
             continue
         shown = {}
         for name, cells in first_cell_names(pin_tables[index]):
             shown[name] = (cells[1] if len(cells) > 1 else "", cells[2] if len(cells) > 2 else "")
         for name, (kind, direction) in sorted(pins.items()):
             if name not in shown:
-                problem('README.md: pin %s of the %s (%s, %s %s) is missing from table %d of '
-                        '"## HAL pins"' % (name, who, source, kind, direction, index + 1))
+                problem('%s: pin %s of the %s (%s, %s %s) is missing from table %d of '
+                        '"## HAL pins"' % (REFERENCE, name, who, source, kind, direction, index + 1))
             elif shown[name] != (kind, direction):
-                problem('README.md: pin %s of the %s is %s %s in %s, the table says %s %s' %
-                        (name, who, kind, direction, source, *shown[name]))
+                problem('%s: pin %s of the %s is %s %s in %s, the table says %s %s' %
+                        (REFERENCE, name, who, kind, direction, source, *shown[name]))
         for name in sorted(set(shown) - set(pins)):
-            problem('README.md: pin %s in table %d of "## HAL pins" is not created by %s' %
-                    (name, index + 1, source))
+            problem('%s: pin %s in table %d of "## HAL pins" is not created by %s' %
+                    (REFERENCE, name, index + 1, source))
 
     for line in PROBLEMS:
         print(line)
     if PROBLEMS:
         return 1
-    print("README.md: %d config keys and %d pins, all in the reference tables" %
-          (len(keys), len(component_pins(root)) + len(panel_pins(root))))
+    print("%s: %d panel pins, all in the reference table" %
+          (REFERENCE, len(panel_pins(root))))
     return 0
 
 

@@ -50,6 +50,19 @@ MIN_LIMIT = -120
 MAX_LIMIT = 0
 """
 
+EXECUTOR_INI = INI + """[FIXED_ATC_PROBE]
+CONFIG = config.json
+STATE = config.json.state
+RETURN_TO_XY = 1
+MACHINE_ON_SIGNAL = machine-on
+STEP_READY_IN = 00
+STEP_REQUEST_OUT = 00
+PROBE_Z_OUT = 00
+PROBE_RESULT_OUT = 01
+EXECUTOR_CALL_OUT = 02
+STEP_TIMEOUT = 30
+"""
+
 
 def text(value):
     return json.dumps(value, indent=2, ensure_ascii=False) + "\n"
@@ -105,6 +118,11 @@ def configs():
         "clearance_offset_huge.json": spoil(CONFIG, lambda j: j.update(pocket_above_clearance_offset_z=1e308)),
         "tolerance_tiny.json": spoil(CONFIG, lambda j: j.update(probe_check_tolerance=1e-300)),
         "margin_huge.json": spoil(CONFIG, lambda j: j.update(rack_keepout_margin=1e300)),
+        # a keep-out too narrow to catch a move through a holder
+        "margin_zero.json": spoil(CONFIG, lambda j: j.update(rack_keepout_margin=0)),
+        "margin_tiny.json": spoil(CONFIG, lambda j: j.update(rack_keepout_margin=1e-9)),
+        "margin_default_below_floor.json": spoil(CONFIG, lambda j: j.update(
+            pocket_side_offset={"x": 0.0, "y": 1.5})),
         "retract_denormal.json": spoil(CONFIG, lambda j: j.update(probe_retract_offset_z=5e-324)),
         "backoff_huge.json": spoil(CONFIG, lambda j: j.update(probe_backoff=1e6)),
         "length_offset_huge.json": spoil(CONFIG, lambda j: j.update(probe_length_compensation_offset=-1e200)),
@@ -116,6 +134,12 @@ def configs():
         "escape_sequence_key.json": spoil(CONFIG, lambda j: j.update({"\u001b[31mred\u001b[0m": 1})),
         "escape_sequence_value.json": spoil(CONFIG, lambda j: j.update(units="\u001b]0;pwned\u0007mm")),
         "bidi_override_value.json": spoil(CONFIG, lambda j: j.update(units="\u202emm")),
+        "bidi_isolate_key.json": spoil(CONFIG, lambda j: j.update({"\u2067safe\u2069": 1})),
+        "tag_characters_value.json": spoil(CONFIG, lambda j: j.update(units="mm\U000e0041\U000e007f")),
+        "soft_hyphen_value.json": spoil(CONFIG, lambda j: j.update(probe_after_change="mea\u00adsure")),
+        "zero_width_key.json": spoil(CONFIG, lambda j: j.update({"chuck_seconds\u200b": 0.5})),
+        "deep_duplicate_long_keys.json": "".join('{"%s%02d": ' % ("k" * 58, n) for n in range(60))
+                                         + '{"x": 1, "x": 2}' + "}" * 60,
         "newline_in_pocket_key.json": spoil(CONFIG, lambda j: j["pockets"].update({"1\n2": {"x": 400.0}})),
         "long_string_value.json": spoil(CONFIG, lambda j: j.update(probe_after_change="x" * 20000)),
         "long_unterminated_string.json": '{"units": "' + "m" * 20000,
@@ -181,6 +205,13 @@ def states():
         "escape_sequence_key.json": spoil(STATE, lambda j: j.update({"\u001b]0;x\u0007": 1})),
         "version_text.json": spoil(STATE, lambda j: j.update(version="1")),
         "pocket_not_in_config.json": spoil(STATE, lambda j: j.update(in_pocket=[1, 2, 99])),
+        "in_progress_pocket_not_in_config.json": spoil(STATE, lambda j: j.update(
+            uncertain=True, in_progress={"sequence": "M6 T4", "step": "returning tool 3 to pocket 99",
+                                         "pocket": 99})),
+        "in_progress_bidi.json": spoil(STATE, lambda j: j.update(
+            in_progress={"sequence": "M6 T4", "step": "returning tool 3 \u202eto pocket 3", "pocket": 3})),
+        "in_progress_tag.json": spoil(STATE, lambda j: j.update(
+            in_progress={"sequence": "M6 T4\U000e0001", "step": "returning", "pocket": 3})),
         "length_key_padded.json": spoil(STATE, lambda j: j["lengths"].update({"01": 3.0})),
         "empty.json": "",
         "torn_write.json": s[: len(s) * 2 // 3],
@@ -212,6 +243,12 @@ def inis():
         "linear_units_nan.ini": replace_once(i, "LINEAR_UNITS = mm", "LINEAR_UNITS = nan"),
         "linear_units_with_junk.ini": replace_once(i, "LINEAR_UNITS = mm", "LINEAR_UNITS = 1.0 mm"),
         "empty_value.ini": replace_once(i, "MAX_LIMIT = 300", "MAX_LIMIT ="),
+        # [FIXED_ATC_PROBE] values echoed back
+        "return_to_xy_bidi.ini": replace_once(EXECUTOR_INI, "RETURN_TO_XY = 1", "RETURN_TO_XY = \u202e1"),
+        "step_timeout_soft_hyphen.ini": replace_once(EXECUTOR_INI, "STEP_TIMEOUT = 30", "STEP_TIMEOUT = 3\u00ad0"),
+        "analog_out_twice_escape.ini": replace_once(
+            replace_once(EXECUTOR_INI, "PROBE_Z_OUT = 00", "PROBE_Z_OUT = \u001b[8m"),
+            "PROBE_RESULT_OUT = 01", "PROBE_RESULT_OUT = \u001b[8m"),
     }
     for name, content in cases.items():
         write("bad_inis", name, content)

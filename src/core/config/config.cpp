@@ -33,6 +33,8 @@ struct PocketExtras {
 
 PocketExtras pocket_extras(Reader& reader, const Json& entry, const std::string& here) {
   PocketExtras extras;
+  // Both x and y, each within pocket_side_offset's bounds.
+  const Range side_bounds = bounds_in(key("pocket_side_offset.x"), reader.units);
   if (const auto approach = entry.find("approach"); approach != entry.end()) {
     if (*approach == "side") {
       extras.approach = Approach::side;
@@ -47,9 +49,9 @@ PocketExtras pocket_extras(Reader& reader, const Json& entry, const std::string&
   if (entry.contains("side_offset")) {
     const Json* side = reader.object(entry, here, "side_offset", true);
     const std::string at = join_path(here, "side_offset");
-    if (side) reader.reject_unknown_keys(*side, at, {"x", "y"});
-    const auto x = side ? reader.ranged(*side, at, "x", kSideComponent, true) : std::nullopt;
-    const auto y = side ? reader.ranged(*side, at, "y", kSideComponent, true) : std::nullopt;
+    if (side) reader.reject_unknown_keys(*side, at);
+    const auto x = side ? reader.ranged(*side, at, "x", side_bounds, true) : std::nullopt;
+    const auto y = side ? reader.ranged(*side, at, "y", side_bounds, true) : std::nullopt;
     if (x && y) {
       extras.side_offset = PlanarOffset{*x, *y};
     } else {
@@ -78,8 +80,7 @@ void read_pockets(Reader& reader, const Json& root, Config& config) {
   Reader::PartialPoint fallback;
   PocketExtras common;
   if (const Json* defaults = reader.object(root, "", "pocket_default", false)) {
-    reader.reject_unknown_keys(*defaults, "pocket_default",
-                               {"x", "y", "z", "approach", "side_offset"});
+    reader.reject_unknown_keys(*defaults, "pocket_default");
     fallback = reader.partial_point(*defaults, "pocket_default");
     common = pocket_extras(reader, *defaults, "pocket_default");
   }
@@ -110,8 +111,7 @@ void read_pockets(Reader& reader, const Json& root, Config& config) {
       reader.error(here, "expected an object, got " + describe(item.value()));
       continue;
     }
-    reader.reject_unknown_keys(item.value(), here,
-                               {"x", "y", "z", "tool", "approach", "side_offset"});
+    reader.reject_unknown_keys(item.value(), here);
     const auto own = reader.partial_point(item.value(), here);
     const PocketExtras extras = pocket_extras(reader, item.value(), here);
     const auto tool = first_tool(reader, item.value(), here, *number);
@@ -151,17 +151,19 @@ void read_pockets(Reader& reader, const Json& root, Config& config) {
 void read_flush(Reader& reader, const Json& root, Config& config) {
   const Json* flush = reader.object(root, "", "flush", false);
   if (!flush) return;
-  reader.reject_unknown_keys(*flush, "flush", {"pulses", "pulse_seconds", "pause_seconds"});
+  reader.reject_unknown_keys(*flush, "flush");
   if (const auto pulses = reader.number(*flush, "flush", "pulses", false)) {
-    if (*pulses < 0 || *pulses > 20 || std::floor(*pulses) != *pulses) {
-      reader.error("flush.pulses",
-                   "must be a whole number from 0 to 20, got " + format_number(*pulses));
+    const Range bounds = *key("flush.pulses").bounds;
+    if (*pulses < bounds.min || *pulses > bounds.max || std::floor(*pulses) != *pulses) {
+      reader.error("flush.pulses", "must be a whole number from " + format_number(bounds.min) +
+                                       " to " + format_number(bounds.max) + ", got " +
+                                       format_number(*pulses));
     } else {
       config.flush.pulses = static_cast<int>(*pulses);
     }
   }
-  reader.read(*flush, "flush", "pulse_seconds", config.flush.pulse_seconds, kPulse, false);
-  reader.read(*flush, "flush", "pause_seconds", config.flush.pause_seconds, kPulse, false);
+  reader.read(*flush, "flush", "pulse_seconds", config.flush.pulse_seconds);
+  reader.read(*flush, "flush", "pause_seconds", config.flush.pause_seconds);
 }
 
 /// A top-level key naming one of a few words: `target` takes the value of the
@@ -192,7 +194,7 @@ void read_probe_after_change(Reader& reader, const Json& root, Config& config) {
        std::pair{"check", ProbeAfterChange::check}},
       config.probe_after_change);
   config.probe_check_tolerance =
-      reader.ranged(root, "", "probe_check_tolerance", kTolerance, false);
+      reader.declared(root, "", "probe_check_tolerance");
 }
 
 /// `true` or `false`, one message otherwise.
@@ -246,9 +248,7 @@ void read_pocket_occupancy(Reader& reader, const Json& root, const Json& value, 
 void read_sensors(Reader& reader, const Json& root, Config& config) {
   const Json* sensors = reader.object(root, "", "sensors", false);
   if (!sensors) return;
-  reader.reject_unknown_keys(*sensors, "sensors",
-                             {"tool_present", "drawbar_open", "drawbar_closed", "air_pressure",
-                              "pocket_occupancy", "zero_speed"});
+  reader.reject_unknown_keys(*sensors, "sensors");
   const std::pair<const char*, bool*> flags[] = {{"tool_present", &config.sensors.tool_present},
                                                  {"drawbar_open", &config.sensors.drawbar_open},
                                                  {"drawbar_closed", &config.sensors.drawbar_closed},
@@ -268,8 +268,7 @@ void read_sensors(Reader& reader, const Json& root, Config& config) {
 void read_rack_cover(Reader& reader, const Json& root, Config& config) {
   const Json* cover = reader.object(root, "", "rack_cover", false);
   if (!cover) return;
-  reader.reject_unknown_keys(*cover, "rack_cover",
-                             {"opened_sensor", "closed_sensor", "seconds", "timeout_seconds"});
+  reader.reject_unknown_keys(*cover, "rack_cover");
   RackCoverConfig rack_cover;
   const std::pair<const char*, bool*> sensors[] = {{"opened_sensor", &rack_cover.opened_sensor},
                                                    {"closed_sensor", &rack_cover.closed_sensor}};
@@ -279,8 +278,8 @@ void read_rack_cover(Reader& reader, const Json& root, Config& config) {
         *target = *value;
     }
   }
-  reader.read(*cover, "rack_cover", "seconds", rack_cover.seconds, kTimeout, false);
-  reader.read(*cover, "rack_cover", "timeout_seconds", rack_cover.timeout_seconds, kTimeout, false);
+  reader.read(*cover, "rack_cover", "seconds", rack_cover.seconds);
+  reader.read(*cover, "rack_cover", "timeout_seconds", rack_cover.timeout_seconds);
   config.rack_cover = rack_cover;
 }
 
@@ -338,6 +337,14 @@ void check_geometry(Reader& reader, Config& config) {
     reader.error("probe_limit.z", "must not be above loading.z (" +
                                       format_number(config.loading.z) + "), got " +
                                       format_number(config.probe_limit.z));
+  }
+  if (const double floor = bounds_in(key("rack_keepout_margin"), config.units).min;
+      !config.rack_keepout_margin && config.keepout_margin() < floor) {
+    reader.error("rack_keepout_margin", "missing, and its default, half the side offset (" +
+                                            format_number(config.keepout_margin()) +
+                                            "), is below " + format_number(floor) + " " +
+                                            units_name(config.units) +
+                                            ": give the tool holder's half-width");
   }
   if (config.rack_keepout_margin && *config.rack_keepout_margin >= side && side > 0.0) {
     reader.error("rack_keepout_margin", "must be smaller than the side offset (" +
@@ -405,55 +412,23 @@ ConfigResult parse_config(const std::string& json_text) {
     return result;
   }
   Reader reader;
-  reader.reject_unknown_keys(root, "",
-                             {"units",
-                              "probe_length_compensation_offset",
-                              "probe_retract_offset_z",
-                              "pocket_side_offset",
-                              "pocket_above_chuck_offset_z",
-                              "pocket_above_clearance_offset_z",
-                              "chuck_seconds",
-                              "loading",
-                              "probe_limit",
-                              "safe",
-                              "pocket_default",
-                              "pockets",
-                              "pocket_feed",
-                              "probe_seek_feed",
-                              "probe_latch_feed",
-                              "probe_backoff",
-                              "flush",
-                              "spindle_stop_timeout_seconds",
-                              "rack_keepout_margin",
-                              "probe_after_change",
-                              "probe_check_tolerance",
-                              "manual_tools",
-                              "sensors",
-                              "sensor_timeout_seconds",
-                              "probe_window",
-                              "rack_cover",
-                              "air_blast",
-                              "verify_feed",
-                              "path"});
+  reader.reject_unknown_keys(root, "");
 
   Config config;
   read_choice(reader, root, "units", {std::pair{"mm", Units::mm}, std::pair{"inch", Units::inch}},
               config.units);
   reader.units = config.units;
-  reader.read(root, "", "probe_length_compensation_offset", config.probe_length_compensation_offset,
-              kCoordinate, true);
-  reader.read(root, "", "probe_retract_offset_z", config.probe_retract_offset_z, kOffset, true);
+  reader.read(root, "", "probe_length_compensation_offset", config.probe_length_compensation_offset);
+  reader.read(root, "", "probe_retract_offset_z", config.probe_retract_offset_z);
   if (const Json* side = reader.object(root, "", "pocket_side_offset", true)) {
-    reader.reject_unknown_keys(*side, "pocket_side_offset", {"x", "y"});
-    const auto x = reader.ranged(*side, "pocket_side_offset", "x", kSideComponent, true);
-    const auto y = reader.ranged(*side, "pocket_side_offset", "y", kSideComponent, true);
+    reader.reject_unknown_keys(*side, "pocket_side_offset");
+    const auto x = reader.declared(*side, "pocket_side_offset", "x");
+    const auto y = reader.declared(*side, "pocket_side_offset", "y");
     if (x && y) config.pocket_side_offset = {*x, *y};
   }
-  reader.read(root, "", "pocket_above_chuck_offset_z", config.pocket_above_chuck_offset_z, kOffset,
-              true);
-  reader.read(root, "", "pocket_above_clearance_offset_z", config.pocket_above_clearance_offset_z,
-              kOffset, true);
-  reader.read(root, "", "chuck_seconds", config.chuck_seconds, kPulse, true);
+  reader.read(root, "", "pocket_above_chuck_offset_z", config.pocket_above_chuck_offset_z);
+  reader.read(root, "", "pocket_above_clearance_offset_z", config.pocket_above_clearance_offset_z);
+  reader.read(root, "", "chuck_seconds", config.chuck_seconds);
   const auto loading = reader.point(root, "", "loading");
   const auto probe_limit = reader.point(root, "", "probe_limit");
   const auto safe = reader.point(root, "", "safe");
@@ -462,15 +437,14 @@ ConfigResult parse_config(const std::string& json_text) {
   if (safe) config.safe = *safe;
   read_pockets(reader, root, config);
 
-  reader.read(root, "", "pocket_feed", config.pocket_feed, kFeed, false);
-  reader.read(root, "", "probe_seek_feed", config.probe_seek_feed, kFeed, false);
-  reader.read(root, "", "probe_latch_feed", config.probe_latch_feed, kFeed, false);
-  config.verify_feed = reader.ranged(root, "", "verify_feed", kFeed, false);
-  reader.read(root, "", "probe_backoff", config.probe_backoff, kOffset, false);
+  reader.read(root, "", "pocket_feed", config.pocket_feed);
+  reader.read(root, "", "probe_seek_feed", config.probe_seek_feed);
+  reader.read(root, "", "probe_latch_feed", config.probe_latch_feed);
+  config.verify_feed = reader.declared(root, "", "verify_feed");
+  reader.read(root, "", "probe_backoff", config.probe_backoff);
   read_flush(reader, root, config);
-  reader.read(root, "", "spindle_stop_timeout_seconds", config.spindle_stop_timeout_seconds,
-              kTimeout, false);
-  config.rack_keepout_margin = reader.ranged(root, "", "rack_keepout_margin", kMargin, false);
+  reader.read(root, "", "spindle_stop_timeout_seconds", config.spindle_stop_timeout_seconds);
+  config.rack_keepout_margin = reader.declared(root, "", "rack_keepout_margin");
 
   read_probe_after_change(reader, root, config);
   read_choice(reader, root, "path",
@@ -480,9 +454,8 @@ ConfigResult parse_config(const std::string& json_text) {
     if (const auto value = boolean(reader, *manual, "manual_tools")) config.manual_tools = *value;
   }
   read_sensors(reader, root, config);
-  reader.read(root, "", "sensor_timeout_seconds", config.sensor_timeout_seconds, kSensorTimeout,
-              false);
-  config.probe_window = reader.ranged(root, "", "probe_window", kOffset, false);
+  reader.read(root, "", "sensor_timeout_seconds", config.sensor_timeout_seconds);
+  config.probe_window = reader.declared(root, "", "probe_window");
   read_rack_cover(reader, root, config);
   if (const auto blast = root.find("air_blast"); blast != root.end()) {
     if (const auto value = boolean(reader, *blast, "air_blast")) config.air_blast = *value;

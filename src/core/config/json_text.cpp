@@ -9,6 +9,16 @@
 namespace fatc {
 namespace {
 
+/// The end of a long JSON path, "…" before it: deep down the path repeats
+/// every key on the way, and its end says where.
+std::string path_end(const std::string& path) {
+  constexpr std::size_t kLongest = 200;
+  if (path.size() <= kLongest) return path;
+  std::size_t start = path.size() - kLongest;
+  while (start < path.size() && (static_cast<unsigned char>(path[start]) & 0xC0) == 0x80) ++start;
+  return "\u2026" + path.substr(start);
+}
+
 using Json = nlohmann::json;
 
 /// Most duplicate keys named; the rest are only counted.
@@ -90,7 +100,7 @@ class StrictBuilder {
     Frame& frame = open_.back();
     if (!frame.keys.insert(key).second) {
       if (duplicates.size() < kMaxDuplicatesNamed) {
-        duplicates.push_back(join_path(path(), key) + ": appears twice");
+        duplicates.push_back(path_end(join_path(path(), key)) + ": appears twice");
       } else {
         ++more_duplicates;
       }

@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace fatc {
 
@@ -10,8 +11,9 @@ namespace fatc {
 constexpr std::size_t kQuotedLength = 60;
 
 /// User text made safe to print inside a message: control characters, escape
-/// sequences, invalid UTF-8 and direction overrides become visible escapes
-/// (\n, \x1b, \u{202e}), a backslash is doubled, and anything past
+/// sequences, invalid UTF-8 and the characters that show as nothing or
+/// reorder text (bidirectional marks, zero-width characters, the soft hyphen,
+/// tags) become visible escapes (\n, \x1b, \u{202e}), a backslash is doubled, and anything past
 /// `max_chars` characters is cut off with "…". No quotes around it: for JSON
 /// paths and file paths.
 std::string escape(std::string_view text, std::size_t max_chars = kQuotedLength);
@@ -19,6 +21,21 @@ std::string escape(std::string_view text, std::size_t max_chars = kQuotedLength)
 /// escape() in double quotes, a double quote inside escaped: every piece of user text a message
 /// repeats (values, arguments, INI values) goes through here.
 std::string quote(std::string_view text, std::size_t max_chars = kQuotedLength);
+
+/// Whether `text` holds a character escape() shows as \u{...}: one that shows
+/// as nothing, hides or reorders text (bidirectional marks, tags ...).
+bool has_invisible_characters(std::string_view text);
+
+/// The longest line of a message, in characters: a list longer than fits
+/// ends "… and N more", anything else is cut with "…".
+constexpr std::size_t kMaxMessageLine = 400;
+
+/// `text` cut to kMaxMessageLine characters (the last one "…"), each of its lines.
+std::string capped_lines(std::string_view text);
+
+/// `items` joined by `separator`, at most `max_items` of them, then "… and N more".
+std::string listed(const std::vector<std::string>& items, const char* separator = ", ",
+                   std::size_t max_items = 20);
 
 /// Line and column (both from 1, the column counted in bytes) of `offset` in `text`.
 struct TextPosition {

@@ -1,7 +1,7 @@
 #pragma once
 
-// Reading config.json: the bounds each key declares where it is read, and
-// the reader that checks them and collects every problem with its JSON path.
+// Reading config.json: the reader that checks each key against its
+// declaration (keys.cpp) and collects every problem with its JSON path.
 
 #include <algorithm>
 #include <cmath>
@@ -14,6 +14,7 @@
 
 #include "config.hpp"
 #include "json_text.hpp"
+#include "keys.hpp"
 
 namespace fatc::reading {
 
@@ -30,27 +31,6 @@ inline std::string format_number(double value) {
 constexpr std::size_t kMaxErrors = 20;
 /// Unknown keys longer than this get no "did you mean".
 constexpr std::size_t kMaxSuggestedKeyLength = 64;
-
-/// What a number may be, declared where the key is read.
-struct Range {
-  double min;
-  double max;
-  const char* unit;  ///< "length" (the config's unit), "seconds", "feed" (units/min), or ""
-};
-
-// Same bounds in mm and inch: wide enough for any machine in either, narrow
-// enough that nothing overflows (a coordinate plus an offset) or means nothing
-// (a side offset of 1e-300, a feed of 5e-324, a timeout whose deadline
-// overflows std::chrono).
-constexpr Range kCoordinate{-100000.0, 100000.0, "length"};
-constexpr Range kOffset{0.001, 1000.0, "length"};
-constexpr Range kSideComponent{-1000.0, 1000.0, "length"};
-constexpr Range kMargin{0.0, 1000.0, "length"};
-constexpr Range kTolerance{0.0001, 100.0, "length"};
-constexpr Range kFeed{0.01, 100000.0, "feed"};
-constexpr Range kPulse{0.01, 60.0, "seconds"};
-constexpr Range kTimeout{0.01, 3600.0, "seconds"};
-constexpr Range kSensorTimeout{0.01, 60.0, "seconds"};
 
 /// How many single-character edits turn `a` into `b`: for "did you mean".
 std::size_t edit_distance(const std::string& a, const std::string& b);
@@ -72,19 +52,19 @@ class Reader {
   bool full() const { return errors.size() >= kMaxErrors; }
   std::size_t count() const { return errors.size() + unlisted; }
 
-  void reject_unknown_keys(const Json& object, const std::string& path,
-                           std::initializer_list<const char*> known) {
+  /// One message for each key the object at `path` holds that keys.cpp does not declare there.
+  void reject_unknown_keys(const Json& object, const std::string& path) {
+    const std::vector<std::string> known = keys_below(path);
     for (const auto& item : object.items()) {
       const std::string& key = item.key();
-      if (std::any_of(known.begin(), known.end(), [&](const char* k) { return key == k; }))
-        continue;
+      if (std::find(known.begin(), known.end(), key) != known.end()) continue;
       if (full()) {
         ++unlisted;
         continue;
       }
       std::string best;
       std::size_t best_distance = std::numeric_limits<std::size_t>::max();
-      for (const char* candidate : known) {
+      for (const std::string& candidate : known) {
         if (key.size() > kMaxSuggestedKeyLength) break;
         const std::size_t d = edit_distance(key, candidate);
         if (d < best_distance) {
@@ -144,10 +124,17 @@ class Reader {
     return value;
   }
 
-  /// ranged() into `target`, left as it was when absent or refused.
-  void read(const Json& object, const std::string& path, const char* key, double& target,
-            const Range& range, bool required) {
-    if (const auto value = ranged(object, path, key, range, required)) target = *value;
+  /// The number at object[key] within the bounds keys.cpp declares for it,
+  /// required when declared so.
+  std::optional<double> declared(const Json& object, const std::string& path, const char* key) {
+    const KeyDeclaration& declaration = fatc::key(join_path(path, key));
+    return ranged(object, path, key, bounds_in(declaration, units),
+                  std::string(declaration.fallback) == "required");
+  }
+
+  /// declared() into `target`, left as it was (its default) when absent or refused.
+  void read(const Json& object, const std::string& path, const char* key, double& target) {
+    if (const auto value = declared(object, path, key)) target = *value;
   }
 
   const Json* object(const Json& parent, const std::string& path, const char* key, bool required) {
@@ -170,19 +157,17 @@ class Reader {
 
   /// The caller rejects the keys it does not know (pocket entries have more).
   PartialPoint partial_point(const Json& object, const std::string& path) {
-    return {ranged(object, path, "x", kCoordinate, false),
-            ranged(object, path, "y", kCoordinate, false),
-            ranged(object, path, "z", kCoordinate, false)};
+    return {declared(object, path, "x"), declared(object, path, "y"), declared(object, path, "z")};
   }
 
   std::optional<Point> point(const Json& parent, const std::string& path, const char* key) {
     const Json* object = this->object(parent, path, key, true);
     if (!object) return std::nullopt;
     const std::string here = join_path(path, key);
-    reject_unknown_keys(*object, here, {"x", "y", "z"});
-    const auto x = ranged(*object, here, "x", kCoordinate, true);
-    const auto y = ranged(*object, here, "y", kCoordinate, true);
-    const auto z = ranged(*object, here, "z", kCoordinate, true);
+    reject_unknown_keys(*object, here);
+    const auto x = declared(*object, here, "x");
+    const auto y = declared(*object, here, "y");
+    const auto z = declared(*object, here, "z");
     if (!x || !y || !z) return std::nullopt;
     return Point{*x, *y, *z};
   }

@@ -42,6 +42,21 @@ struct LoadFlow_ : Flow<LoadFlow_> {
     }
   };
 
+  /// "tool 3 measured 29.998 mm, in pocket 3": a finished load says what it did.
+  struct SayLoaded {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      const Context& c = *fsm.ctx;
+      char length[64] = "";
+      if (c.last_length) {
+        std::snprintf(length, sizeof length, " measured %.3f %s,", *c.last_length,
+                      units_name(c.config.units));
+      }
+      fsm.ctx->tell(MessageKind::info, "tool " + std::to_string(c.requested_tool) + length +
+                                           " in pocket " + std::to_string(fsm.load_pocket));
+    }
+  };
+
   using Returning = ReturnLeg<Before>;
   using Inserting = InsertLeg;
   using Probe = ProbingLeg;
@@ -66,7 +81,7 @@ struct LoadFlow_ : Flow<LoadFlow_> {
   Row < AwaitingProbe                    , OperatorCancel  , ReportingFinalTool, SayCancelled, none                        >,
   Row < Probe::exit_pt<Finished>         , LegDone         , PuttingAway       , none        , none                        >,
   Row < Probe::exit_pt<Probe::NotMeasured>, LegDone        , ReportingFinalTool, none        , none                        >,
-  Row < PuttingAway::exit_pt<Finished>   , LegDone         , ReportingFinalTool, none        , none                        >,
+  Row < PuttingAway::exit_pt<Finished>   , LegDone         , ReportingFinalTool, SayLoaded   , none                        >,
   Row < ReportingFinalTool               , CommandDone     , Finished          , none        , none                        >
   >;
   // clang-format on

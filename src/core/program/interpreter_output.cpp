@@ -6,10 +6,14 @@
 #include <iterator>
 #include <utility>
 
+#include "../config/quote.hpp"
 #include "numbered_program.hpp"
 
 namespace fatc::program {
 namespace {
+
+/// How much of the interpreter's own message a finding repeats.
+constexpr std::size_t kMessageText = 300;
 
 bool starts_with(std::string_view text, std::string_view start) {
   return text.substr(0, start.size()) == start;
@@ -160,7 +164,8 @@ void InterpreterOutput::error(int line, const std::string& message, std::string_
   if (program_.lines > 0 && line > program_.lines) line = program_.lines;
   past_the_end_ = starts_with(message, "File ended with no percent sign or program end");
   if (message.find("#<_hal[") != std::string::npos) {
-    unknown(line, message + ": a HAL pin, read only when the program runs on the machine: " +
+    unknown(line, escape(message, kMessageText) +
+                      ": a HAL pin, read only when the program runs on the machine: " +
                       "what the line does is not known");
     if (holds_m6(text) && run_.uses.size() + unknown_changes_.size() >= kMaxToolUses) {
       ++run_.uses_not_kept;
@@ -175,12 +180,14 @@ void InterpreterOutput::error(int line, const std::string& message, std::string_
     stopped_at_ = line;
     return;
   }
-  std::string said = "LinuxCNC stops the program here: " + message_of(message, line);
+  // The interpreter's words hold the program's own text: escaped as any file's.
+  std::string said =
+      "LinuxCNC stops the program here: " + escape(message_of(message, line), kMessageText);
   if (line == 0 && !text.empty()) {
     // No number of ours on the line: one of a subroutine file, or too long to number.
-    std::string shown(text.substr(0, 60));
-    while (!shown.empty() && (shown.back() == '\r' || shown.back() == ' ')) shown.pop_back();
-    said += " (at \"" + shown + (text.size() > 60 ? "...\")" : "\")");
+    std::string_view shown = text;
+    while (!shown.empty() && (shown.back() == '\r' || shown.back() == ' ')) shown.remove_suffix(1);
+    said += " (at " + quote(shown) + ")";
   }
   run_.problems.push_back(finding(program_.name, line, said));
 }

@@ -39,6 +39,10 @@ std::string text_problem(const Json& value) {
       return "expected one line of text without control characters, got " + quote(text);
     }
   }
+  // The text is shown to the operator after a crash: it must read as it is.
+  if (has_invisible_characters(text)) {
+    return "expected text without invisible or direction-changing characters, got " + quote(text);
+  }
   return "";
 }
 
@@ -180,11 +184,9 @@ std::optional<int> return_pocket(const ToolState& tools, const Config& config, i
 
 std::string pocket_list(const std::vector<int>& numbers) {
   if (numbers.empty()) return "no pocket";
-  std::string text = numbers.size() == 1 ? "pocket " : "pockets ";
-  for (std::size_t i = 0; i < numbers.size(); ++i) {
-    text += (i == 0 ? "" : ", ") + std::to_string(numbers[i]);
-  }
-  return text;
+  std::vector<std::string> names;
+  for (const int number : numbers) names.push_back(std::to_string(number));
+  return (numbers.size() == 1 ? "pocket " : "pockets ") + listed(names);
 }
 
 std::string to_json(const ToolState& state) {
@@ -208,6 +210,12 @@ std::string to_json(const ToolState& state) {
 }
 
 std::string fit_to_config(ToolState& state, const Config& config, int version) {
+  // Recovery asks whether that pocket holds its tool: it must be one the rack has.
+  if (const int cut_off = state.in_progress ? state.in_progress->pocket : 0;
+      cut_off != 0 && !config.has_pocket(cut_off)) {
+    return "in_progress.pocket: the sequence was cut off at pocket " + std::to_string(cut_off) +
+           ", which config.json does not have";
+  }
   for (const auto& [number, pocket] : state.pockets) {
     // A pocket taken out of the config may go if its tool is not sitting in it.
     if (config.has_pocket(number) || !pocket.holds) continue;

@@ -292,7 +292,7 @@ TEST_F(TeachCli, shouldRefuseASymlinkedConfigWritingNothing) {
   const CliRun r = run({"--teach", "safe", "--at", "130,80,-5", "--config", link});
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(r.err, link + ": a symbolic link (to " + config_ +
-                       "): not written, the link would become a file of its own; teach the file "
+                       "): not written, the link would become a file of its own; give the file "
                        "it points to\n");
   EXPECT_TRUE(std::filesystem::is_symlink(link));
   EXPECT_EQ(read_text(config_), before);
@@ -323,7 +323,7 @@ TEST_F(TeachCli, shouldExitTwoOnBadArgumentsAndUnreadableFiles) {
   EXPECT_EQ(missing.err, folder_ + "/none: cannot open (No such file or directory)\n");
   const CliRun folder = run({"--teach", "safe", "--at", "1,2,3", "--config", folder_});
   EXPECT_EQ(folder.code, 2);
-  EXPECT_EQ(folder.err, folder_ + ": expected a regular file, got a directory\n");
+  EXPECT_EQ(folder.err, folder_ + ": expected a regular file, got a directory: not written\n");
   const CliRun ini = run(
       {"--teach", "safe", "--at", "1,2,3", "--config", config_, "--ini", folder_ + "/none.ini"});
   EXPECT_EQ(ini.code, 2);

@@ -1,6 +1,8 @@
 #include "io/cli.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -9,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_run.hpp"
+#include "test_config.hpp"
 
 namespace fatc {
 namespace {
@@ -250,12 +253,22 @@ TEST_F(CheckRun, shouldReadTheStateAndSayWhatItHolds) {
       << r.out;
 }
 
-TEST_F(CheckRun, shouldFailOnABadStateEvenWhenTheConfigIsGood) {
+TEST_F(CheckRun, shouldFailOnABadOrUnreadableStateEvenWhenTheConfigIsGood) {
   const std::string state = file("state.json", R"({"version": 1, "spindle": 1e309})");
-  const CliRun r = run({"--check", "--config", kConfig, "--state", state});
-  EXPECT_EQ(r.code, 1);
-  EXPECT_EQ(r.err, state + ": line 1, column 31: invalid JSON: number overflow parsing '1e309'\n");
-  EXPECT_NE(r.out.find("24 sequences checked, 0 violations"), std::string::npos) << r.out;
+  const CliRun bad = run({"--check", "--config", kConfig, "--state", state});
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_EQ(bad.err,
+            state + ": line 1, column 31: invalid JSON: number overflow parsing '1e309'\n");
+  EXPECT_EQ(bad.out,
+            "24 sequences checked against the rack keep-out, 0 violations\n"
+            "state file not valid: where the tools are not checked\n");
+  ASSERT_EQ(::mkfifo((folder_ + "/fifo").c_str(), 0600), 0);
+  const CliRun fifo = run({"--check", "--config", kConfig, "--state", folder_ + "/fifo"});
+  EXPECT_EQ(fifo.code, 1);
+  EXPECT_EQ(fifo.err, folder_ + "/fifo: expected a regular file, got a FIFO\n");
+  EXPECT_EQ(fifo.out,
+            "24 sequences checked against the rack keep-out, 0 violations\n"
+            "state file unreadable: where the tools are not checked\n");
 }
 
 TEST_F(CheckRun, shouldSayWhatIsWrongInEachOfTheThreeFiles) {
@@ -343,10 +356,165 @@ TEST_F(CheckRun, shouldNameEachMissingOrMalformedExecutorKey) {
   }
 }
 
+// ---- what --check says when an input cannot be read ----
+
+TEST_F(CheckRun, shouldSayTheSoftLimitsWereNotCheckedWhenTheIniIsUnreadable) {
+  const CliRun r = run({"--check", "--config", kConfig, "--ini", folder_ + "/none.ini", "--state",
+                        folder_ + "/none.state"});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.err, folder_ + "/none.ini: cannot open (No such file or directory)\n");
+  EXPECT_EQ(r.out, folder_ +
+                       "/none.state: no state saved yet: the component starts with each pocket "
+                       "holding its first-start tool\n"
+                       "24 sequences checked against the rack keep-out, 0 violations\n"
+                       "INI unreadable: soft limits not checked\n");
+}
+
+TEST_F(CheckRun, shouldSayTheSoftLimitsWereNotCheckedWhenTheIniIsNotValid) {
+  const std::string ini = file("machine.ini", "[TRAJ]\nLINEAR_UNITS = furlong\n");
+  const CliRun r = run({"--check", "--config", kConfig, "--ini", ini});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.out.substr(r.out.find('\n') + 1),
+            "24 sequences checked against the rack keep-out, 0 violations\n"
+            "INI not valid: soft limits not checked\n");
+}
+
+TEST_F(CheckRun, shouldSayNothingWasCheckedAgainstTheRackWhenTheConfigIsUnreadable) {
+  ASSERT_EQ(::mkfifo((folder_ + "/config.json").c_str(), 0600), 0);
+  const CliRun r = run({"--check", "--config", folder_ + "/config.json", "--state",
+                        folder_ + "/none.state", "--ini", folder_ + "/none.ini"});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.err, folder_ + "/config.json: expected a regular file, got a FIFO\n" + folder_ +
+                       "/none.ini: cannot open (No such file or directory)\n");
+  const std::string last = r.out.substr(r.out.rfind('\n', r.out.size() - 2) + 1);
+  EXPECT_EQ(last,
+            "config unreadable: the rack and its sequences not checked; INI unreadable: soft "
+            "limits not checked\n");
+  EXPECT_EQ(r.out.find("violations"), std::string::npos) << r.out;
+}
+
+TEST_F(CheckRun, shouldEscapeADuplicatedAnalogPinOfTheExecutor) {
+  std::string text = sim_ini_with("PROBE_Z_OUT = 02", "PROBE_Z_OUT = 0\u202e1");
+  text.replace(text.find("EXECUTOR_CALL_OUT = 01"), 22, "EXECUTOR_CALL_OUT = 0\u202e1");
+  const std::string ini = file("sim.ini", text);
+  const CliRun r = run({"--check", "--config", kConfig, "--ini", ini});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("): motion.analog-out-0\\u{202e}1 is PROBE_Z_OUT's too; each needs its "
+                       "own\n"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("\u202e"), std::string::npos) << "no raw direction override";
+}
+
+TEST_F(CheckRun, shouldListAtMostTwentyPocketSensorsInTheCheck) {
+  nlohmann::json config = nlohmann::json::parse(test::kValidConfig);
+  config["pockets"] = nlohmann::json::object();
+  config["sensors"]["pocket_occupancy"] = nlohmann::json::array();
+  for (int pocket = 1; pocket <= 30; ++pocket) {
+    config["pockets"][std::to_string(pocket)] = {{"x", 50.0 * pocket}};
+    config["sensors"]["pocket_occupancy"].push_back(pocket);
+  }
+  const CliRun r = run(
+      {"--check", "--config", file("config.json", config.dump()), "--state", folder_ + "/none"});
+  EXPECT_NE(r.out.find("sensors wired: pocket-occupied-1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 "
+                       "17 18 19 20 \u2026 and 10 more (sensor_timeout_seconds"),
+            std::string::npos)
+      << r.out;
+}
+
+TEST_F(CheckRun, shouldCutEveryLineItPrintsAtFourHundredCharacters) {
+  // An INI whose path is as long as a path may be shown, and whose refusal
+  // is long: the line stops at 400 characters, "…" the last.
+  std::string folder = folder_;
+  while (folder.size() < 190) {
+    folder += "/" + std::string(40, 'd');
+    ::mkdir(folder.c_str(), 0700);
+  }
+  const std::string ini = folder + "/sim.ini";
+  std::ofstream(ini) << sim_ini_with("STEP_TIMEOUT = 30", "STEP_TIMEOUT = 1");
+  const CliRun r =
+      run({"--check", "--config", kConfig, "--ini", ini, "--state", folder_ + "/none"});
+  EXPECT_NE(r.err.find("STEP_TIMEOUT (line "), std::string::npos) << r.err;
+  std::size_t start = 0;
+  for (std::size_t end = r.err.find('\n'); end != std::string::npos;
+       start = end + 1, end = r.err.find('\n', start)) {
+    const std::string line = r.err.substr(start, end - start);
+    std::size_t chars = 0;
+    for (const char c : line) chars += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
+    EXPECT_LE(chars, 400u) << line;
+  }
+  EXPECT_NE(r.err.find("\u2026\n"), std::string::npos) << r.err;
+}
+
+/// The program itself run with `args` (a shell line): its exit status and
+/// what it printed on stdout and stderr.
+CliRun run_program(const std::string& args) {
+  const std::string command = std::string(FATC_PROGRAM) + " " + args + " 2>&1";
+  std::FILE* pipe = ::popen(command.c_str(), "r");
+  if (pipe == nullptr) return {-1, "", "popen failed"};
+  std::string said;
+  char buffer[4096];
+  while (const std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) said.append(buffer, n);
+  return {WEXITSTATUS(::pclose(pipe)), said, ""};
+}
+
+TEST(Usage, shouldBeOneLineThatPointsToHelp) {
+  const CliRun twice = run_program("--plan --config c.json --check");
+  EXPECT_EQ(twice.code, 2);
+  EXPECT_EQ(twice.out, "fixed_atc_probe: --plan and --check cannot be combined (see --help)\n");
+  const CliRun unknown = run_program("--bogus");
+  EXPECT_EQ(unknown.code, 2);
+  EXPECT_EQ(unknown.out, "fixed_atc_probe: unknown argument \"--bogus\" (see --help)\n");
+  const CliRun bare = run_program("--check");
+  EXPECT_EQ(bare.code, 2);
+  EXPECT_EQ(bare.out, "fixed_atc_probe: --config FILE is required (see --help)\n");
+  EXPECT_NE(run_program("--help").out.find("usage: fixed_atc_probe"), std::string::npos);
+}
+
+TEST_F(CheckRun, shouldNotStartTheComponentOnAStateThatIsItsConfig) {
+  const std::string config = file("config.json", test::kValidConfig);
+  const CliRun r = run_program("--config " + config + " --state " + config);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.out, "fixed_atc_probe: --state \"" + config +
+                       "\" is the file given as --config: nothing written\n");
+}
+
+TEST_F(CheckRun, shouldNotStartTheComponentOnACutOffPocketTheConfigDoesNotHave) {
+  const std::string config = file("config.json", test::kValidConfig);
+  ToolState tools = ToolState::fresh(test::valid_config());
+  tools.uncertain = true;
+  tools.in_progress = InProgress{"M6 T4", "returning tool 3 to pocket 9", 9};
+  const std::string state = file("config.json.state", to_json(tools));
+  const CliRun r = run_program("--config " + config);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.out, "fixed_atc_probe: " + state +
+                       ": in_progress.pocket: the sequence was cut off at pocket 9, which "
+                       "config.json does not have\n");
+}
+
 TEST(Cli, shouldPrintTheDiagram) {
   const CliRun r = run({"--dot"});
   EXPECT_EQ(r.code, 0);
   EXPECT_EQ(r.out.rfind("digraph", 0), 0u);
+}
+
+}  // namespace
+}  // namespace fatc
+
+namespace fatc {
+namespace {
+
+TEST_F(CheckRun, shouldReadTheStateFileTheIniNamesWhenNoStateIsGiven) {
+  // The component gets [FIXED_ATC_PROBE]STATE from the HAL file LinuxCNC runs
+  // in the INI's folder: --check with --ini reads that one, not CONFIG.state.
+  const std::string ini = file("sim.ini", sim_ini_with("STATE = fixed_atc_state.json",
+                                                       "STATE = the_machines_state.json"));
+  const std::string state = file("the_machines_state.json", "{");
+  const CliRun r = run({"--check", "--config", kConfig, "--ini", ini});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find(state), std::string::npos) << r.err;
+  const CliRun given = run({"--check", "--config", kConfig, "--ini", ini, "--state", state + "x"});
+  EXPECT_EQ(given.err.find(state + ":"), std::string::npos) << "--state wins: " << given.err;
 }
 
 }  // namespace

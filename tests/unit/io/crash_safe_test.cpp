@@ -48,7 +48,14 @@ class CrashSafeSave : public ::testing::Test {
     return state;
   }
 
-  bool temporary_left() const { return std::filesystem::exists(path_ + ".tmp"); }
+  /// A temporary file of the state's writer (".state.json.XXXXXXXXXXXX.tmp") is in the folder.
+  bool temporary_left() const {
+    for (const auto& entry : std::filesystem::directory_iterator(folder_)) {
+      const std::string name = entry.path().filename().string();
+      if (name.rfind(".state.json.", 0) == 0 && name.size() == 28) return true;
+    }
+    return false;
+  }
 
   std::string folder_;
   std::string path_;
@@ -57,7 +64,7 @@ class CrashSafeSave : public ::testing::Test {
 TEST_F(CrashSafeSave, shouldLeaveTheOldOrTheNewStateWhenKilledAtAnyMoment) {
   const ToolState a = small();
   const ToolState b = large();
-  io::save_state_file(path_, a);
+  io::save_state_file(path_, a, io::kCommandLineWait);
   std::mt19937 random(20240611);
   std::uniform_int_distribution<int> pause_us(0, 4000);
   int found_a = 0, found_b = 0, temporary_files = 0;
@@ -71,8 +78,8 @@ TEST_F(CrashSafeSave, shouldLeaveTheOldOrTheNewStateWhenKilledAtAnyMoment) {
       ::close(saved[0]);
       try {
         for (;;) {
-          io::save_state_file(path_, b);
-          io::save_state_file(path_, a);
+          io::save_state_file(path_, b, io::kCommandLineWait);
+          io::save_state_file(path_, a, io::kCommandLineWait);
           // At work: however slow the disk, the kill below comes after this.
           if (saved[1] >= 0 && ::write(saved[1], "s", 1) == 1) {
             ::close(saved[1]);
@@ -102,7 +109,7 @@ TEST_F(CrashSafeSave, shouldLeaveTheOldOrTheNewStateWhenKilledAtAnyMoment) {
     if (temporary_left()) ++temporary_files;
 
     // Whatever the killed writer left, the next save works and cleans up.
-    io::save_state_file(path_, a);
+    io::save_state_file(path_, a, io::kCommandLineWait);
     ASSERT_FALSE(temporary_left()) << "after kill " << kill;
   }
   std::cout << "[ figures  ] " << kKills << " kills: old or new state each time (" << found_a
@@ -116,21 +123,28 @@ TEST_F(CrashSafeSave, shouldLeaveTheOldOrTheNewStateWhenKilledAtAnyMoment) {
   EXPECT_GT(found_a, 10);
 }
 
-TEST_F(CrashSafeSave, shouldNotFollowASymlinkLeftAsTheTemporaryFile) {
+TEST_F(CrashSafeSave, shouldNotFollowASymlinkAtTheOldOrALeftoverTemporaryName) {
   const std::string target = folder_ + "/precious";
   std::ofstream(target) << "keep me";
+  io::save_state_file(path_, small(), io::kCommandLineWait);
+  // The name the old writer used, and one shaped as this writer's own.
   std::filesystem::create_symlink(target, path_ + ".tmp");
-  io::save_state_file(path_, small());
+  std::filesystem::create_symlink(target, folder_ + "/.state.json.AAAAAAAAAAAA.tmp");
+  io::save_state_file(path_, large(), io::kCommandLineWait);
   std::ifstream in(target);
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   EXPECT_EQ(text, "keep me");
-  EXPECT_TRUE(io::load_state_file(path_, test::valid_config()).state);
+  EXPECT_EQ(*io::load_state_file(path_, test::valid_config()).state, large());
+  EXPECT_FALSE(temporary_left()) << "a leftover of this writer's shape is removed, not followed";
+  EXPECT_TRUE(std::filesystem::is_symlink(path_ + ".tmp")) << "another name is left alone";
 }
 
-TEST_F(CrashSafeSave, shouldReplaceAReadOnlyTemporaryFileLeftBehind) {
-  std::ofstream(path_ + ".tmp") << "{\"version\": 1, \"spi";
-  ::chmod((path_ + ".tmp").c_str(), 0444);
-  io::save_state_file(path_, large());
+TEST_F(CrashSafeSave, shouldRemoveAReadOnlyTemporaryFileLeftBehind) {
+  io::save_state_file(path_, small(), io::kCommandLineWait);
+  const std::string left = folder_ + "/.state.json.BBBBBBBBBBBB.tmp";
+  std::ofstream(left) << "{\"version\": 1, \"spi";
+  ::chmod(left.c_str(), 0444);
+  io::save_state_file(path_, large(), io::kCommandLineWait);
   const auto loaded = io::load_state_file(path_, test::valid_config());
   ASSERT_TRUE(loaded.state) << loaded.error;
   EXPECT_EQ(*loaded.state, large());

@@ -63,7 +63,7 @@ std::vector<std::string> read_state(const std::string& path) {
 std::vector<std::string> read_ini(const std::string& path) {
   std::string error;
   const auto ini = io::IniFile::read(path, error);
-  if (ini && io::soft_limits(*ini, Units::mm, error)) return {};
+  if (ini && io::soft_limits(*ini, Units::mm, error)) return io::executor_problems(*ini, nullptr);
   return {error};
 }
 
@@ -98,6 +98,9 @@ void expect_refused(const std::vector<std::string>& messages, const std::string&
 
 // ---------------------------------------------------------------- the corpus
 
+/// Fifty-eight k's, a key of deep_duplicate_long_keys.json without its number.
+#define K58 "kkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkkk"
+
 // clang-format off
 const Hostile kBadConfigs[] = {
   // numbers beyond a double
@@ -127,7 +130,11 @@ const Hostile kBadConfigs[] = {
   {"pocket_plus_offset_overflows.json", "pocket_above_clearance_offset_z: must be from 0.001 to 1000 mm, got 1.7e+308"},
   {"clearance_offset_huge.json", "pocket_above_clearance_offset_z: must be from 0.001 to 1000 mm, got 1e+308"},
   {"tolerance_tiny.json", "probe_check_tolerance: must be from 0.0001 to 100 mm, got 1e-300"},
-  {"margin_huge.json", "rack_keepout_margin: must be from 0 to 1000 mm, got 1e+300"},
+  {"margin_huge.json", "rack_keepout_margin: must be from 1 to 1000 mm, got 1e+300"},
+  // a keep-out too narrow to catch a move through a holder
+  {"margin_zero.json", "rack_keepout_margin: must be from 1 to 1000 mm, got 0"},
+  {"margin_tiny.json", "rack_keepout_margin: must be from 1 to 1000 mm, got 1e-09"},
+  {"margin_default_below_floor.json", "rack_keepout_margin: missing, and its default, half the side offset (0.75), is below 1 mm: give the tool holder's half-width"},
   {"retract_denormal.json", "probe_retract_offset_z: must be from 0.001 to 1000 mm, got 4.94066e-324"},
   {"backoff_huge.json", "probe_backoff: must be from 0.001 to 1000 mm, got 1e+06"},
   {"length_offset_huge.json", "probe_length_compensation_offset: must be from -100000 to 100000 mm, got -1e+200"},
@@ -139,6 +146,11 @@ const Hostile kBadConfigs[] = {
   {"escape_sequence_key.json", "\\x1b[31mred\\x1b[0m: unknown key"},
   {"escape_sequence_value.json", "units: expected \"mm\" or \"inch\", got \"\\x1b]0;pwned\\x07mm\""},
   {"bidi_override_value.json", "units: expected \"mm\" or \"inch\", got \"\\u{202e}mm\""},
+  {"bidi_isolate_key.json", "\\u{2067}safe\\u{2069}: unknown key"},
+  {"tag_characters_value.json", "units: expected \"mm\" or \"inch\", got \"mm\\u{e0041}\\u{e007f}\""},
+  {"soft_hyphen_value.json", "probe_after_change: expected \"off\", \"measure\" or \"check\", got \"mea\\u{00ad}sure\""},
+  {"zero_width_key.json", "chuck_seconds\\u{200b}: unknown key, did you mean \"chuck_seconds\"?"},
+  {"deep_duplicate_long_keys.json", "\u2026kkkkkkkkkkkkk56." K58 "57." K58 "58." K58 "59.x: appears twice"},
   {"newline_in_pocket_key.json", "pockets.1\\n2: the key must be a pocket number"},
   {"long_string_value.json", "probe_after_change: expected \"off\", \"measure\" or \"check\", got \"xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx\u2026\""},
   {"long_unterminated_string.json", "line 1, column 20012: invalid JSON: syntax error while parsing value - invalid string: missing closing quote; last read: '\"mmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmm\u2026'"},
@@ -198,6 +210,9 @@ const Hostile kBadStates[] = {
   {"empty.json", "line 1, column 1: invalid JSON: syntax error while parsing value - unexpected end of input"},
   {"torn_write.json", "line 11, column 3: invalid JSON: syntax error while parsing array - unexpected end of input"},
   {"top_level_array.json", "state: expected a JSON object, got an array"},
+  {"in_progress_pocket_not_in_config.json", "in_progress.pocket: the sequence was cut off at pocket 99, which config.json does not have"},
+  {"in_progress_bidi.json", "in_progress.step: expected text without invisible or direction-changing characters, got \"returning tool 3 \\u{202e}to pocket 3\""},
+  {"in_progress_tag.json", "in_progress.sequence: expected text without invisible or direction-changing characters, got \"M6 T4\\u{e0001}\""},
 };
 
 const Hostile kBadInis[] = {
@@ -220,6 +235,9 @@ const Hostile kBadInis[] = {
   {"linear_units_nan.ini", "[TRAJ]LINEAR_UNITS (line 4): expected machine units per mm from 0.001 to 1000, got \"nan\""},
   {"linear_units_with_junk.ini", "[TRAJ]LINEAR_UNITS (line 4): expected mm, metric, in, inch, imperial or machine units per mm, got \"1.0 mm\""},
   {"empty_value.ini", "[AXIS_Y]MAX_LIMIT: missing or empty"},
+  {"return_to_xy_bidi.ini", "[FIXED_ATC_PROBE]RETURN_TO_XY (line 17): expected 0 or 1 (halcmd setp of a bit), got \"\\u{202e}1\""},
+  {"step_timeout_soft_hyphen.ini", "[FIXED_ATC_PROBE]STEP_TIMEOUT (line 24): expected seconds, 1 or more, got \"3\\u{00ad}0\""},
+  {"analog_out_twice_escape.ini", "[FIXED_ATC_PROBE]PROBE_Z_OUT (line 21): expected two digits as in the motion pin names (03), got \"\\x1b[8m\""},
 };
 // clang-format on
 
@@ -521,6 +539,68 @@ TEST(Quote, shouldKeepUtf8AndEscapeWhatIsNot) {
   EXPECT_EQ(quote("\u202emm"), "\"\\u{202e}mm\"") << "right-to-left override";
   EXPECT_EQ(quote("\xed\xa0\x80"), "\"\\xed\\xa0\\x80\"") << "an encoded surrogate";
   EXPECT_EQ(quote("\xe0\x80\xaf"), "\"\\xe0\\x80\\xaf\"") << "an overlong encoding";
+}
+
+/// A character that shows as nothing, hides or reorders text, and how quote() shows it.
+struct Invisible {
+  const char* name;
+  const char* text;
+  const char* shown;
+};
+std::ostream& operator<<(std::ostream& out, const Invisible& c) { return out << c.name; }
+
+class InvisibleCharacter : public ::testing::TestWithParam<Invisible> {};
+
+TEST_P(InvisibleCharacter, shouldBeShownAsAnEscape) {
+  EXPECT_EQ(quote(std::string("a") + GetParam().text + "b"),
+            std::string("\"a") + GetParam().shown + "b\"");
+  EXPECT_TRUE(has_invisible_characters(GetParam().text));
+}
+
+// clang-format off
+INSTANTIATE_TEST_SUITE_P(Quote, InvisibleCharacter, ::testing::Values(
+    Invisible{"left_to_right_embedding", "\u202a", "\\u{202a}"},
+    Invisible{"right_to_left_override", "\u202e", "\\u{202e}"},
+    Invisible{"left_to_right_isolate", "\u2066", "\\u{2066}"},
+    Invisible{"pop_directional_isolate", "\u2069", "\\u{2069}"},
+    Invisible{"left_to_right_mark", "\u200e", "\\u{200e}"},
+    Invisible{"right_to_left_mark", "\u200f", "\\u{200f}"},
+    Invisible{"arabic_letter_mark", "\u061c", "\\u{061c}"},
+    Invisible{"zero_width_space", "\u200b", "\\u{200b}"},
+    Invisible{"zero_width_joiner", "\u200d", "\\u{200d}"},
+    Invisible{"word_joiner", "\u2060", "\\u{2060}"},
+    Invisible{"byte_order_mark", "\ufeff", "\\u{feff}"},
+    Invisible{"soft_hyphen", "\u00ad", "\\u{00ad}"},
+    Invisible{"tag_begin", "\U000e0001", "\\u{e0001}"},
+    Invisible{"tag_latin_a", "\U000e0041", "\\u{e0041}"},
+    Invisible{"cancel_tag", "\U000e007f", "\\u{e007f}"},
+    Invisible{"variation_selector", "\ufe0f", "\\u{fe0f}"},
+    Invisible{"hangul_filler", "\u3164", "\\u{3164}"}),
+    [](const ::testing::TestParamInfo<Invisible>& info) { return std::string(info.param.name); });
+// clang-format on
+
+TEST(Quote, shouldKeepVisibleTextAsItIs) {
+  EXPECT_FALSE(has_invisible_characters("Fräser ø6 → T3, 日本"));
+  EXPECT_EQ(quote("Fräser ø6 → T3"), "\"Fräser ø6 → T3\"");
+}
+
+TEST(MessageLines, shouldCutALineOverFourHundredCharactersAndKeepTheOthers) {
+  const std::string fits(400, 'a');
+  EXPECT_EQ(capped_lines(fits), fits);
+  EXPECT_EQ(capped_lines(std::string(401, 'a') + "\nshort\n"),
+            std::string(399, 'a') + "\u2026\nshort\n");
+  std::string umlauts;
+  for (int i = 0; i < 500; ++i) umlauts += "\u00e4";
+  std::string kept;
+  for (int i = 0; i < 399; ++i) kept += "\u00e4";
+  EXPECT_EQ(capped_lines(umlauts), kept + "\u2026") << "characters, not bytes";
+}
+
+TEST(MessageLines, shouldEndALongListWithHowManyMore) {
+  using Items = std::vector<std::string>;
+  EXPECT_EQ(fatc::listed(Items{"1", "2", "3"}, ", ", 2), "1, 2 \u2026 and 1 more");
+  EXPECT_EQ(fatc::listed(Items{"1", "2"}, " ", 2), "1 2");
+  EXPECT_EQ(fatc::listed(Items{}), "");
 }
 
 TEST(Quote, shouldCutLongTextAtSixtyCharacters) {

@@ -108,7 +108,7 @@ class Lint : public ::testing::Test {
     Config config = *io::load_config_file(kConfig).config;
     ToolState tools = ToolState::fresh(config);
     for (const int tool : measured) tools.lengths[tool] = 20.0 + tool;
-    io::save_state_file(path("tools.state"), tools);
+    io::save_state_file(path("tools.state"), tools, io::kCommandLineWait);
     return path("tools.state");
   }
   /// The sample config with one key changed.
@@ -249,7 +249,7 @@ TEST_F(Lint, shouldReportAStateFileThatRecordsACutOffSequence) {
   ToolState tools = ToolState::fresh(*io::load_config_file(kConfig).config);
   tools.uncertain = true;
   tools.lengths = {{1, 21.0}, {2, 22.0}};
-  io::save_state_file(path("cut_off.state"), tools);
+  io::save_state_file(path("cut_off.state"), tools, io::kCommandLineWait);
   const LintRun r =
       lint(write("after_fault.ngc", "T1 M6\nT2 M6\nM2\n"), {"--state", path("cut_off.state")});
   EXPECT_EQ(r.code, 1);
@@ -321,8 +321,9 @@ TEST_F(Lint, shouldReportEveryLineLinuxCncRefuses) {
   EXPECT_LINE(r,
               "bad_words.ngc: line 5: LinuxCNC stops the program here: Need non-negative Q-word "
               "to specify tool number with M61\n");
-  EXPECT_LINE(r, "bad_words.ngc: line 7: LinuxCNC stops the program here: Bad character '\\173' "
-                 "used\n");
+  EXPECT_LINE(r, "bad_words.ngc: line 7: LinuxCNC stops the program here: Bad character '\\\\173' "
+                 "used\n")
+      << "the interpreter's words escaped as any file's text: its backslash doubled";
   EXPECT_LINE(r, "bad_words.ngc: 0 tool changes (M6), 0 M61, 6 problems, 0 not known\n");
 }
 

@@ -3,13 +3,17 @@
 #include "io/plot.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
 #include "cli_run.hpp"
 #include "core/plan/simulator.hpp"
+#include "temp_folder.hpp"
 #include "test_config.hpp"
 
 namespace fatc {
@@ -85,13 +89,78 @@ TEST(Plot, shouldRefuseWhatItCannotDrawInOneLine) {
   EXPECT_EQ(r.err, "--plot: --from A and --to B go together (the change to draw)");
   r = test::run_cli({"--plot", "/nonexistent/dir/x.svg", "--config", config});
   EXPECT_EQ(r.code, 2);
-  EXPECT_NE(
-      r.err.find("/nonexistent/dir/x.svg: cannot write the drawing: No such file or directory"),
-      std::string::npos)
-      << r.err;
+  EXPECT_EQ(r.err,
+            "/nonexistent/dir/x.svg: cannot create a temporary file in /nonexistent/dir (No such "
+            "file or directory): not written\n");
   r = test::run_cli({"--plot", "x.svg", "--config", config, "--ini", "sim.ini"});
   EXPECT_EQ(r.code, 2);
   EXPECT_NE(r.err.find("--ini is not used by --plot"), std::string::npos) << r.err;
+}
+
+/// A folder with a config and a state file, where --plot draws.
+class PlotFiles : public test::TempFolder {
+ protected:
+  void SetUp() override {
+    TempFolder::SetUp();
+    config_ = folder_ + "/config.json";
+    state_ = folder_ + "/state.svg";  // named like a drawing: the mistake to catch
+    std::ofstream(config_) << test::kValidConfig;
+    std::ofstream(state_) << to_json(ToolState::fresh(valid_config()));
+  }
+  static std::string text(const std::string& path) { return test::text_of(path); }
+  test::CliRun plot(const std::string& svg) {
+    return test::run_cli({"--plot", svg, "--config", config_, "--state", state_});
+  }
+  std::string config_, state_;
+};
+
+TEST_F(PlotFiles, shouldRefuseToDrawOverItsOwnStateFile) {
+  const std::string before = text(state_);
+  const auto r = plot(state_);
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err, "--plot \"" + state_ + "\" is the file given as --state: nothing written\n");
+  EXPECT_EQ(text(state_), before);
+}
+
+TEST_F(PlotFiles, shouldRefuseToDrawOverItsConfigThroughALinkOrASecondName) {
+  const std::string before = text(config_);
+  std::filesystem::create_symlink(config_, folder_ + "/soft.svg");
+  ASSERT_EQ(::link(config_.c_str(), (folder_ + "/hard.svg").c_str()), 0);
+  for (const char* name : {"/soft.svg", "/hard.svg"}) {
+    const auto r = plot(folder_ + name);
+    EXPECT_EQ(r.code, 2) << name;
+    EXPECT_EQ(r.err,
+              "--plot \"" + folder_ + name + "\" is the file given as --config: nothing written\n");
+  }
+  EXPECT_EQ(text(config_), before);
+}
+
+TEST_F(PlotFiles, shouldNotFollowALinkToTheConfigPlantedAtTheOldTemporaryName) {
+  const std::string before = text(config_);
+  std::filesystem::create_symlink(config_, folder_ + "/rack.svg.tmp");
+  const auto r = plot(folder_ + "/rack.svg");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(text(config_), before);
+  EXPECT_EQ(text(folder_ + "/rack.svg").rfind("<?xml", 0), 0u);
+}
+
+TEST_F(PlotFiles, shouldRefuseAFifoAtTheDrawingsNameWithoutWaiting) {
+  ASSERT_EQ(::mkfifo((folder_ + "/rack.svg").c_str(), 0600), 0);
+  const auto r = plot(folder_ + "/rack.svg");  // a blocked open would hang the test here
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err, folder_ + "/rack.svg: expected a regular file, got a FIFO: not written\n");
+}
+
+TEST_F(PlotFiles, shouldRefuseADrawingLinkedElsewhere) {
+  const std::string elsewhere = folder_ + "/elsewhere.txt";
+  std::ofstream(elsewhere) << "someone else's";
+  std::filesystem::create_symlink(elsewhere, folder_ + "/rack.svg");
+  const auto r = plot(folder_ + "/rack.svg");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err, folder_ + "/rack.svg: a symbolic link (to " + elsewhere +
+                       "): not written, the link would become a file of its own; give the file it "
+                       "points to\n");
+  EXPECT_EQ(text(elsewhere), "someone else's");
 }
 
 }  // namespace

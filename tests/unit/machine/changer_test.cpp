@@ -295,6 +295,7 @@ TEST(Load, shouldLoadProbeAndPutAwayWithAnEmptySpindle) {
   EXPECT_EQ(rig.changer->tools().spindle, 0);
   EXPECT_TRUE(rig.changer->tools().holds(4));
   EXPECT_EQ(rig.changer->status().phase, Phase::idle);
+  EXPECT_EQ(rig.sim.messages(MessageKind::info).back(), "tool 4 measured 25.000 mm, in pocket 4");
 }
 
 TEST(Load, shouldWriteTheLengthItMeasuredIntoTheToolTableStep) {

@@ -180,7 +180,7 @@ struct ConfirmFiles {
     config = folder + "/config.json";
     state = folder + "/state.json";
     std::ofstream(config) << test::kValidConfig;
-    io::save_state_file(state, cut_off_while_returning(test::valid_config()));
+    io::save_state_file(state, cut_off_while_returning(test::valid_config()), io::kCommandLineWait);
   }
   ~ConfirmFiles() { std::system(("rm -rf " + folder).c_str()); }
   int run(std::vector<std::string> args, std::string& said) {

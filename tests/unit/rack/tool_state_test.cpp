@@ -28,6 +28,15 @@ TEST(ToolState, shouldStartWithEveryPocketFullAndTheSpindleEmpty) {
   EXPECT_FALSE(fresh.uncertain);
 }
 
+TEST(ToolState, shouldNameTwentyPocketsAndCountTheRest) {
+  std::vector<int> numbers;
+  for (int n = 1; n <= 30; ++n) numbers.push_back(n);
+  EXPECT_EQ(pocket_list(numbers),
+            "pockets 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18, 19, 20 "
+            "\u2026 and 10 more");
+  EXPECT_EQ(pocket_list({4}), "pocket 4");
+}
+
 TEST(ToolState, shouldRoundTripThroughJson) {
   ToolState state = sample();
   state.uncertain = true;
@@ -100,7 +109,7 @@ TEST_F(StateFile, shouldBeAFreshStateWhenMissing) {
 }
 
 TEST_F(StateFile, shouldSaveAndLoadTheSameState) {
-  io::save_state_file(path_, sample());
+  io::save_state_file(path_, sample(), io::kCommandLineWait);
   const auto result = io::load_state_file(path_, test::valid_config());
   ASSERT_TRUE(result.state) << result.error;
   EXPECT_EQ(*result.state, sample());
@@ -118,7 +127,7 @@ TEST_F(StateFile, shouldNameTheFileWhenCorruptNeverReset) {
 TEST_F(StateFile, shouldRefuseAPocketTheConfigDoesNotHave) {
   ToolState state = sample();
   state.pockets[9] = {9, true};
-  io::save_state_file(path_, state);
+  io::save_state_file(path_, state, io::kCommandLineWait);
   const auto result = io::load_state_file(path_, test::valid_config());
   ASSERT_FALSE(result.state);
   EXPECT_EQ(result.error,
@@ -126,7 +135,9 @@ TEST_F(StateFile, shouldRefuseAPocketTheConfigDoesNotHave) {
 }
 
 TEST_F(StateFile, shouldKeepTheOldFileWhenTheFolderIsGone) {
-  EXPECT_THROW(io::save_state_file("/nonexistent/folder/state.json", sample()), std::runtime_error);
+  EXPECT_THROW(
+      io::save_state_file("/nonexistent/folder/state.json", sample(), io::kCommandLineWait),
+      std::runtime_error);
 }
 
 }  // namespace

@@ -1,0 +1,240 @@
+#include "keys.hpp"
+
+#include <stdexcept>
+
+namespace fatc {
+namespace {
+
+// Same bounds in mm and inch: wide enough for any machine in either, narrow
+// enough that nothing overflows (a coordinate plus an offset) or means nothing
+// (a side offset of 1e-300, a feed of 5e-324, a timeout whose deadline
+// overflows std::chrono).
+constexpr Range kCoordinate{-100000.0, 100000.0, "length"};
+constexpr Range kOffset{0.001, 1000.0, "length"};
+constexpr Range kSideComponent{-1000.0, 1000.0, "length"};
+constexpr Range kMargin{1.0, 1000.0, "length"};
+constexpr Range kTolerance{0.0001, 100.0, "length"};
+constexpr Range kFeed{0.01, 100000.0, "feed"};
+constexpr Range kPulse{0.01, 60.0, "seconds"};
+constexpr Range kTimeout{0.01, 3600.0, "seconds"};
+constexpr Range kSensorTimeout{0.01, 60.0, "seconds"};
+constexpr Range kPulses{0.0, 20.0, ""};
+constexpr const char* kBoolean = "`true`, `false`";
+constexpr const char* kRequired = "required";
+
+// clang-format off
+const std::vector<KeyDeclaration> kKeys = {
+  {"units", "`\"mm\"`", {}, "`\"mm\"`, `\"inch\"`",
+   "the unit of every length and feed in the file; the executor works in G21 or G20 accordingly"},
+  {"probe_length_compensation_offset", kRequired, kCoordinate, "",
+   "subtracted from the machine Z where the latch touches, to give the tool length: the Z at "
+   "which the bare spindle nose would touch the sensor"},
+  {"probe_retract_offset_z", kRequired, kOffset, "",
+   "how far up the spindle goes after the latch touch"},
+  {"pocket_side_offset", kRequired, {}, "an object of the keys below",
+   "from a pocket to its *side*, outside the fork, where the slow move in starts and the slow "
+   "move out ends. Pockets closer to each other than its length are refused"},
+  {"pocket_side_offset.{x,y}", kRequired, kSideComponent,
+   "together at least 0.1 long, and longer than `rack_keepout_margin`",
+   "the side offset's X and Y"},
+  {"pocket_above_chuck_offset_z", kRequired, kOffset, "",
+   "above a pocket's Z: the spindle nose clear of the holder; the chuck opens there before a "
+   "fetch and closes there after a return"},
+  {"pocket_above_clearance_offset_z", kRequired, kOffset, "above `pocket_above_chuck_offset_z`",
+   "above a pocket's Z: clear of every holder; a top pocket's approach starts here"},
+  {"chuck_seconds", kRequired, kPulse, "",
+   "each dwell of the chuck at a pocket: after it opens and after it closes, before the spindle "
+   "moves on"},
+  {"loading", kRequired, {}, "an object of the keys below",
+   "where the operator hands tools in and out; a probe starts from `loading.z`"},
+  {"loading.{x,y,z}", kRequired, kCoordinate, "", "the loading position"},
+  {"probe_limit", kRequired, {}, "an object of the keys below",
+   "over the touch-off sensor, and how low the probe may go"},
+  {"probe_limit.{x,y,z}", kRequired, kCoordinate, "z not above `loading.z`",
+   "x, y: over the touch-off sensor; z: the lowest the probe may go (no touch by then: the "
+   "probe fails)"},
+  {"safe", kRequired, {}, "an object of the keys below",
+   "near the rack, above everything; sequences start and end there (`\"direct\"`: at safe Z)"},
+  {"safe.{x,y,z}", kRequired, kCoordinate, "", "the safe position"},
+  {"pockets", kRequired, {}, "1 to 200 pockets",
+   "the rack: one entry per pocket, keyed by its number. Which tool sits in a pocket is tool "
+   "state, not config"},
+  {"pockets.N", "", {}, "N a whole number 1 to 999999999, as a string: `\"7\"`",
+   "pocket N, a place in the rack"},
+  {"pockets.N.{x,y,z}", "from `pocket_default`; one of the two must say it", kCoordinate, "",
+   "where the tool holder sits: the spindle nose with a holder gripped and seated in the fork"},
+  {"pockets.N.tool", "N", {}, "0, or a tool 1 to 999999999 in no other pocket",
+   "the tool pocket N holds at first start (no state file yet); 0: it starts empty"},
+  {"pockets.N.approach", "`pocket_default.approach`, else `\"side\"`", {},
+   "`\"side\"`, `\"top\"`",
+   "`\"side\"`: in from the side to return, out the side after fetching; `\"top\"`: straight "
+   "down into the pocket and straight up out of it"},
+  {"pockets.N.side_offset", "`pocket_default.side_offset`, else `pocket_side_offset`", {},
+   "an object of x and y, as `pocket_side_offset`; must lead out of the pocket's keep-out",
+   "this pocket's own side, for racks with pockets facing different ways"},
+  {"pockets.N.side_offset.{x,y}", "", kSideComponent, "", "this pocket's side offset"},
+  {"pocket_default", "`{}`", {}, "an object of the keys below",
+   "merged under every pocket: a key the pocket gives wins"},
+  {"pocket_default.{x,y,z}", "none", kCoordinate, "",
+   "the coordinate every pocket shares unless it gives its own"},
+  {"pocket_default.approach", "`\"side\"`", {}, "`\"side\"`, `\"top\"`",
+   "every pocket's approach unless it gives its own"},
+  {"pocket_default.side_offset", "`pocket_side_offset`", {}, "as `pocket_side_offset`",
+   "every pocket's side unless it gives its own"},
+  {"pocket_default.side_offset.{x,y}", "", kSideComponent, "", "the default side offset"},
+  {"path", "`\"prototype\"`", {}, "`\"prototype\"`, `\"direct\"`",
+   "`\"prototype\"`: through safe XY before and after each leg; `\"direct\"`: over the rack at "
+   "safe Z, safe XY only where the program or the operator comes next, only the keep-out column "
+   "crossed slowly (docs/sequences.md, the direct path)"},
+  {"pocket_feed", "500", kFeed, "", "the slow moves into and out of a pocket"},
+  {"verify_feed", "`pocket_feed`", kFeed, "",
+   "every move of a dry run through a pocket (verifying a pocket); into and out of the pocket "
+   "never faster than `pocket_feed`"},
+  {"probe_seek_feed", "300 (sample: 3000)", kFeed, "",
+   "the first, fast probing stage, and the back-off"},
+  {"probe_latch_feed", "25 (sample: 60)", kFeed, "not above `probe_seek_feed`",
+   "the second, slow probing stage: it sets the accuracy"},
+  {"probe_backoff", "2 (sample: 0.5)", kOffset, "",
+   "lift above the first touch before the slow stage"},
+  {"probe_after_change", "`\"off\"`", {}, "`\"off\"`, `\"measure\"`, `\"check\"`",
+   "after M6: nothing, measure the new tool and write its length, or measure it and fault when "
+   "it differs from the stored length (measuring after M6)"},
+  {"probe_check_tolerance", "0.1 mm, 0.004 inch", kTolerance, "below `probe_window`",
+   "how far a checked length may be from the stored one"},
+  {"probe_window", "10 mm, 0.4 inch", kOffset, "above `probe_check_tolerance`",
+   "a probe after M6 of a tool with a stored length must first touch within this of where that "
+   "length puts the touch"},
+  {"manual_tools", "`true`", {}, kBoolean,
+   "M6 to a tool with no pocket hands it over at `loading`; `false`: refused"},
+  {"flush", "1 pulse of 0.2 s, 0.2 s pause", {}, "an object of the keys below",
+   "chuck pulses that drop whatever the spindle holds before it takes a tool"},
+  {"flush.pulses", "1", kPulses, "a whole number", "how many times the chuck opens; 0: no flush"},
+  {"flush.pulse_seconds", "0.2", kPulse, "", "how long it stays open each time"},
+  {"flush.pause_seconds", "0.2", kPulse, "", "how long it stays closed between pulses"},
+  {"spindle_stop_timeout_seconds", "10", kTimeout, "",
+   "how long M6 (and a chuck about to open) waits for the spindle to stop"},
+  {"rack_keepout_margin", "half the side offset's length", kMargin,
+   "from 0.04 in inch; below the side offset's length",
+   "half-width of each pocket's keep-out column: no move may cross it except the pocket's own "
+   "approach. A holder is not zero wide: a column of nothing would let every move through the "
+   "rack", 0.04},
+  {"sensors", "all `false`", {}, "an object of the keys below",
+   "which optional sensors are wired; one not wired is never read"},
+  {"sensors.tool_present", "`false`", {}, kBoolean,
+   "`tool-present`: a tool is clamped in the spindle"},
+  {"sensors.drawbar_open", "`false`", {}, kBoolean, "`drawbar-open`: the drawbar is released"},
+  {"sensors.drawbar_closed", "`false`", {}, kBoolean, "`drawbar-closed`: the drawbar is clamped"},
+  {"sensors.air_pressure", "`false`", {}, kBoolean, "`air-pressure-ok`: the drawbar has its air"},
+  {"sensors.zero_speed", "`false`", {}, kBoolean,
+   "`zero-speed`: the spindle's zero-speed feedback"},
+  {"sensors.pocket_occupancy", "`false`", {},
+   "`true` (every pocket), `false`, or a list of pockets of `pockets`, each once: `[1, 2, 5]`",
+   "`pocket-occupied-N`: pocket N holds a tool"},
+  {"sensor_timeout_seconds", "1", kSensorTimeout, "",
+   "how long a wired sensor may take to confirm a change"},
+  {"rack_cover", "absent: no cover", {},
+   "an object of the keys below; `{}` turns the cover on with their defaults",
+   "the rack has a dust cover on `rack-cover-open`"},
+  {"rack_cover.opened_sensor", "`false`", {}, kBoolean, "`rack-cover-opened` is wired"},
+  {"rack_cover.closed_sensor", "`false`", {}, kBoolean, "`rack-cover-closed` is wired"},
+  {"rack_cover.seconds", "1", kTimeout, "", "how long the cover takes to open where no sensor says"},
+  {"rack_cover.timeout_seconds", "5", kTimeout, "", "how long a wired cover sensor may take"},
+  {"air_blast", "`false`", {}, kBoolean,
+   "drive `air-blast` while the chuck is open at a pocket with the spindle empty"},
+};
+// clang-format on
+
+/// "loading.{x,y,z}" -> loading.x, loading.y, loading.z.
+std::vector<std::string> expand(const std::string& path) {
+  const auto open = path.find('{');
+  if (open == std::string::npos) return {path};
+  std::vector<std::string> paths;
+  const std::string head = path.substr(0, open);
+  const std::string names = path.substr(open + 1, path.size() - open - 2);
+  std::size_t at = 0;
+  while (at <= names.size()) {
+    const auto comma = names.find(',', at);
+    const auto end = comma == std::string::npos ? names.size() : comma;
+    paths.push_back(head + names.substr(at, end - at));
+    at = end + 1;
+  }
+  return paths;
+}
+
+/// "pockets.7.x" as declared: "pockets.N.x".
+std::string pattern_of(const std::string& path) {
+  const std::string prefix = "pockets.";
+  if (path.rfind(prefix, 0) != 0) return path;
+  const auto dot = path.find('.', prefix.size());
+  return prefix + "N" + (dot == std::string::npos ? "" : path.substr(dot));
+}
+
+std::string unit_words(const Range& range) {
+  const std::string unit = range.unit;
+  if (unit == "seconds") return "s";
+  return unit;
+}
+
+std::string number_words(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%g", value);
+  return buffer;
+}
+
+}  // namespace
+
+const std::vector<KeyDeclaration>& config_keys() { return kKeys; }
+
+const KeyDeclaration& key(const std::string& path) {
+  const std::string wanted = pattern_of(path);
+  for (const KeyDeclaration& declared : kKeys) {
+    for (const std::string& one : expand(declared.path)) {
+      if (one == wanted) return declared;
+    }
+  }
+  throw std::logic_error("config key " + path + " is not declared in keys.cpp");
+}
+
+std::vector<std::string> keys_below(const std::string& path) {
+  const std::string parent = pattern_of(path);
+  std::vector<std::string> names;
+  for (const KeyDeclaration& declared : kKeys) {
+    for (const std::string& one : expand(declared.path)) {
+      const auto dot = one.rfind('.');
+      const std::string above = dot == std::string::npos ? "" : one.substr(0, dot);
+      if (above == parent && one.substr(dot + 1) != "N") {
+        names.push_back(dot == std::string::npos ? one : one.substr(dot + 1));
+      }
+    }
+  }
+  return names;
+}
+
+Range bounds_in(const KeyDeclaration& key, Units units) {
+  Range range = key.bounds.value();
+  if (units == Units::inch && key.inch_min) range.min = *key.inch_min;
+  return range;
+}
+
+std::string config_markdown() {
+  std::string out =
+      "| key | unit | default | range | meaning |\n"
+      "| --- | --- | --- | --- | --- |\n";
+  for (const KeyDeclaration& declared : kKeys) {
+    std::string paths;
+    for (const std::string& one : expand(declared.path)) {
+      paths += (paths.empty() ? "`" : ", `") + one + "`";
+    }
+    std::string range;
+    if (declared.bounds) {
+      range = number_words(declared.bounds->min) + " to " + number_words(declared.bounds->max);
+    }
+    if (*declared.range) range += (range.empty() ? "" : "; ") + std::string(declared.range);
+    const std::string unit = declared.bounds ? unit_words(*declared.bounds) : "";
+    out += "| " + paths + " | " + unit + " | " + declared.fallback + " | " + range + " | " +
+           declared.doc + " |\n";
+  }
+  return out;
+}
+
+}  // namespace fatc

@@ -1,0 +1,207 @@
+#pragma once
+
+// The component's HAL pins, declared once. create_pins makes them from this
+// list; the pin references (the man page's PINS, docs/pins.md) and
+// tests/integration/pins.golden are generated from it (fatc_docs), and a
+// test fails when a generated file is stale.
+
+#include "hal_pins_detail.hpp"
+
+namespace fatc::linuxcnc {
+
+/// `pocket-occupied-N`: one pin for each pocket of config.json.
+struct PerPocket {};
+
+struct PinDeclaration {
+  enum class Type { bit, s32, real, bit_per_pocket };
+  constexpr PinDeclaration(const char* name, hal_bit_t* HalPins::*member, hal_pin_dir_t dir,
+                           const char* doc, int start = 0)
+      : name(name), type(Type::bit), dir(dir), doc(doc), start(start), bit(member) {}
+  constexpr PinDeclaration(const char* name, hal_s32_t* HalPins::*member, hal_pin_dir_t dir,
+                           const char* doc, int start = 0)
+      : name(name), type(Type::s32), dir(dir), doc(doc), start(start), s32(member) {}
+  constexpr PinDeclaration(const char* name, hal_float_t* HalPins::*member, hal_pin_dir_t dir,
+                           const char* doc, int start = 0)
+      : name(name), type(Type::real), dir(dir), doc(doc), start(start), real(member) {}
+  constexpr PinDeclaration(const char* name, PerPocket, hal_pin_dir_t dir, const char* doc)
+      : name(name), type(Type::bit_per_pocket), dir(dir), doc(doc) {}
+
+  const char* name;  ///< after `fixed_atc_probe.`
+  Type type;
+  hal_pin_dir_t dir;
+  /// One line for the reference; `backticks` name a pin, a key or a signal.
+  const char* doc;
+  int start = 0;  ///< its value from the start, before anything writes it
+  hal_bit_t* HalPins::*bit = nullptr;
+  hal_s32_t* HalPins::*s32 = nullptr;
+  hal_float_t* HalPins::*real = nullptr;
+};
+
+/// HAL's word for a pin's type: bit, s32 or float.
+const char* type_name(const PinDeclaration& pin);
+/// in or out.
+const char* dir_name(const PinDeclaration& pin);
+
+// clang-format off
+inline const PinDeclaration kPins[] = {
+  // iocontrol's tool handshake, mirrored.
+  {"number", &HalPins::number, HAL_IN, "tool being prepared (`iocontrol.0.tool-prep-number`)"},
+  {"tool-prepare", &HalPins::tool_prepare, HAL_IN, "`iocontrol.0.tool-prepare`"},
+  {"prepared", &HalPins::prepared, HAL_OUT, "`iocontrol.0.tool-prepared`; follows `tool-prepare`"},
+  {"tool-change", &HalPins::tool_change, HAL_IN, "`iocontrol.0.tool-change`"},
+  {"changed", &HalPins::changed, HAL_OUT,
+   "`iocontrol.0.tool-changed`; high until `tool-change` drops, only when idle"},
+  {"linuxcnc-tool", &HalPins::linuxcnc_tool, HAL_IN,
+   "`iocontrol.0.tool-number`: LinuxCNC's tool in the spindle; brought in line with the "
+   "changer's (M61) once idle after a start or a cleared fault"},
+  // The rack.
+  {"chuck", &HalPins::chuck, HAL_OUT,
+   "true opens the chuck; the HAL snippet passes it through `fatc-chuck-guard` to the signal "
+   "`fatc-chuck`, which the drawbar valve takes"},
+  {"chuck-held", &HalPins::chuck_held, HAL_OUT,
+   "a G-code release holds the chuck open until its clamp; the snippet nets it to "
+   "`motion.feed-inhibit` and `spindle.0.inhibit` (the chuck atoms)"},
+  {"heartbeat", &HalPins::heartbeat, HAL_OUT,
+   "toggles every poll; `fatc-chuck-guard` closes the chuck when it stops for 0.5 s"},
+  {"probe", &HalPins::probe, HAL_IN,
+   "the touch-off sensor, netted together with `motion.probe-input` (G38.3 reads that one); "
+   "the executor does not probe when it is already on"},
+  {"spindle-stopped", &HalPins::spindle_stopped, HAL_IN,
+   "LinuxCNC has the spindle off (the snippet nets `not spindle.0.on`); M6 waits for it up to "
+   "`spindle_stop_timeout_seconds`"},
+  // The optional sensors: read only where config.json's `sensors` says they are wired.
+  {"zero-speed", &HalPins::zero_speed, HAL_IN,
+   "sensor (`sensors.zero_speed`): the spindle's zero-speed feedback; the chuck opens only "
+   "with it on"},
+  {"tool-present", &HalPins::tool_present, HAL_IN,
+   "sensor (`sensors.tool_present`): a tool is clamped in the spindle"},
+  {"drawbar-open", &HalPins::drawbar_open, HAL_IN,
+   "sensor (`sensors.drawbar_open`): the drawbar is released"},
+  {"drawbar-closed", &HalPins::drawbar_closed, HAL_IN,
+   "sensor (`sensors.drawbar_closed`): the drawbar is clamped"},
+  {"air-pressure-ok", &HalPins::air_pressure_ok, HAL_IN,
+   "sensor (`sensors.air_pressure`): the drawbar has its air"},
+  {"pocket-occupied-N", PerPocket{}, HAL_IN,
+   "sensor (`sensors.pocket_occupancy`): pocket N holds a tool; one pin per pocket of "
+   "`pockets`, N the pocket's number (not its tool's)"},
+  // What the rack may need around it: each driven only where config.json names it.
+  {"rack-cover-open", &HalPins::rack_cover_open, HAL_OUT,
+   "`rack_cover`: true opens the rack's dust cover (before the first move into the rack; "
+   "closed when the changer is done with it; left as it is at a fault)"},
+  {"rack-cover-opened", &HalPins::rack_cover_opened, HAL_IN,
+   "sensor (`rack_cover.opened_sensor`): the cover is open"},
+  {"rack-cover-closed", &HalPins::rack_cover_closed, HAL_IN,
+   "sensor (`rack_cover.closed_sensor`): the cover is closed"},
+  {"air-blast", &HalPins::air_blast, HAL_OUT,
+   "`air_blast`: on while the chuck is open at a pocket with the spindle empty (never at "
+   "`loading`); off at a fault"},
+  // The machine, and the operator's word after a fault.
+  {"machine-on", &HalPins::machine_on, HAL_IN,
+   "machine on and out of estop (`motion.motion-enabled`)"},
+  {"all-homed", &HalPins::all_homed, HAL_IN, "every joint homed (`motion.is-all-homed`)"},
+  {"clear-fault", &HalPins::clear_fault, HAL_IN,
+   "rising edge: the operator checked the spindle and the rack; clears a fault with "
+   "`confirm-tool` and `confirm-pocket`; nothing moves"},
+  {"confirm-tool", &HalPins::confirm_tool, HAL_IN,
+   "what the spindle holds, as the operator found it (0 empty); -1 (the default): LinuxCNC's "
+   "tool", -1},
+  {"confirm-pocket", &HalPins::confirm_pocket, HAL_IN,
+   "the pocket of `cut-off-pocket` holds its tool: 1 yes, 0 no, -1 (the default) not said", -1},
+  {"cut-off-pocket", &HalPins::cut_off_pocket, HAL_OUT,
+   "in fault after a sequence was cut off: the pocket it involved (0 none)"},
+  // What the changer is doing.
+  {"state", &HalPins::state, HAL_OUT,
+   "0 not ready, 1 idle, 2 changing, 3 loading, 4 unloading, 5 fault, 6 measuring (measure "
+   "all), 7 verifying (a dry run through a pocket), 8 chuck (a chuck atom)"},
+  {"ready", &HalPins::ready, HAL_OUT,
+   "idle, able to change tools (not while a release holds the chuck open)"},
+  {"busy", &HalPins::busy, HAL_OUT, "a sequence runs"},
+  {"fault", &HalPins::fault, HAL_OUT, "in fault: M6 is refused until `clear-fault`"},
+  {"tool-in-spindle", &HalPins::tool_in_spindle, HAL_OUT,
+   "what the changer knows is in the spindle"},
+  // The step executor's handshake.
+  {"step-request", &HalPins::step_request, HAL_IN,
+   "executor: asks for its next step (`motion.digital-out-NN`)"},
+  {"executor-call", &HalPins::executor_call, HAL_IN,
+   "executor: how it was called, 1 M6, 2 an operator flow over MDI, 3 a chuck release, 4 a "
+   "chuck clamp; read at its first request (`motion.analog-out-NN`)"},
+  {"abort", &HalPins::abort, HAL_IN,
+   "rising edge aborts a running sequence (aborts of the program are seen without it)"},
+  {"step-ready", &HalPins::step_ready, HAL_OUT,
+   "executor: a step is on the step pins (`motion.digital-in-NN`)"},
+  {"step-kind", &HalPins::step_kind, HAL_OUT,
+   "0 none, 1 rapid, 2 feed, 3 probe, 4 set length, 5 set tool, 6 wait, 7 done, 8 fail"},
+  {"step-axes", &HalPins::step_axes, HAL_OUT, "3 XY, 4 Z, 7 XYZ"},
+  {"step-x", &HalPins::step_x, HAL_OUT, "machine X of the move"},
+  {"step-y", &HalPins::step_y, HAL_OUT, "machine Y of the move"},
+  {"step-z", &HalPins::step_z, HAL_OUT, "machine Z of the move"},
+  {"step-feed", &HalPins::step_feed, HAL_OUT, "units per minute"},
+  {"step-tool", &HalPins::step_tool, HAL_OUT, "tool of set-length, set-tool and done"},
+  {"step-value", &HalPins::step_value, HAL_OUT, "length of set-length"},
+  {"units-inch", &HalPins::units_inch, HAL_OUT,
+   "the config is in inches (the executor uses G20)"},
+  {"return-to-xy", &HalPins::return_to_xy, HAL_IN,
+   "after M6, go back over the XY where it was called"},
+  {"probe-z", &HalPins::probe_z, HAL_IN,
+   "executor: machine Z where the probe move stopped (`motion.analog-out-NN`)"},
+  {"probe-result", &HalPins::probe_result, HAL_IN,
+   "executor: 1 touched, 0 missed, -1 sensor already tripped (`motion.analog-out-NN`)"},
+  // The operator's buttons, from the GUI panel or any HAL source.
+  {"tool-number", &HalPins::tool_number, HAL_IN, "the tool the operator buttons are about"},
+  {"load", &HalPins::load, HAL_IN,
+   "rising edge: load `tool-number` by hand, measure it, put it in its pocket"},
+  {"unload", &HalPins::unload, HAL_IN,
+   "rising edge: fetch `tool-number` and hand it to the operator at `loading`"},
+  {"pocket-number", &HalPins::pocket_number, HAL_IN,
+   "the pocket `load` puts `tool-number` in; 0: the changer chooses (the tool's own pocket, its "
+   "first-start pocket, else the nearest free one). Also the pocket `teach-pocket` teaches and "
+   "`verify-pocket` drives through"},
+  {"teach-pocket", &HalPins::teach_pocket, HAL_IN,
+   "rising edge: the machine position becomes pocket `pocket-number`'s in config.json, only "
+   "while idle"},
+  {"teach-loading", &HalPins::teach_loading, HAL_IN,
+   "rising edge: the machine position becomes `loading` in config.json, only while idle"},
+  {"teach-safe", &HalPins::teach_safe, HAL_IN,
+   "rising edge: the machine position becomes `safe` in config.json, only while idle"},
+  {"teach-sensor", &HalPins::teach_sensor, HAL_IN,
+   "rising edge: the machine XY becomes the touch-off sensor's in config.json, only while idle"},
+  {"verify-pocket", &HalPins::verify_pocket, HAL_IN,
+   "rising edge: a dry run through the approach of the empty pocket `pocket-number`, held at "
+   "each waypoint until `continue`; accepted when `load` would be"},
+  {"pocket-served", &HalPins::pocket_served, HAL_OUT,
+   "the pocket the sequence under way serves (0 none)"},
+  {"measure-all", &HalPins::measure_all, HAL_IN,
+   "rising edge: fetch, measure and put back each tool `measure-which` names, one after "
+   "another; accepted when `load` would be"},
+  {"measure-which", &HalPins::measure_which, HAL_IN,
+   "the tools `measure-all` measures: 0 every tool in the rack, 1 those never measured, 2 those "
+   "of the program loaded in LinuxCNC (the others are skipped with a message)"},
+  {"batch-done", &HalPins::batch_done, HAL_OUT,
+   "measure all's progress: tools measured so far; `state` is 6 meanwhile"},
+  {"batch-total", &HalPins::batch_total, HAL_OUT,
+   "measure all's progress: of how many tools (0 when no batch runs)"},
+  {"continue", &HalPins::continue_, HAL_IN,
+   "rising edge: the operator has done what the prompt asked"},
+  {"cancel", &HalPins::cancel, HAL_IN,
+   "rising edge: stop at this prompt; the message says where the tools are. During measure "
+   "all: stop once the tool under way is back in its pocket (during its probe the probe stops "
+   "too)"},
+  {"waiting-for-operator", &HalPins::waiting_for_operator, HAL_OUT,
+   "a prompt waits for Continue or Cancel: in the load and unload flows once the executor has "
+   "ended its run (jogging and the GUI are free); inside M6 (manual tools) while the program "
+   "holds"},
+  {"last-length", &HalPins::last_length, HAL_OUT, "the last tool length measured"},
+  // What a panel needs to show and to enable only the buttons that can act.
+  {"awaiting", &HalPins::awaiting, HAL_OUT,
+   "what the changer waits for: 0 nothing, 1 motion, 2 probe, 3 timer, 4 spindle, 5 operator, "
+   "6 a sensor"},
+  {"step-number", &HalPins::step_number, HAL_OUT,
+   "the step of the sequence under way, numbered as `--plan` prints it (0 between sequences)"},
+  {"accepting", &HalPins::accepting, HAL_OUT,
+   "`load` and `unload` would be accepted now (idle, no program or MDI running)"},
+  {"can-cancel", &HalPins::can_cancel, HAL_OUT,
+   "`cancel` would act now: a prompt, a probe of the load flow, or measure all"},
+};
+// clang-format on
+
+}  // namespace fatc::linuxcnc
