@@ -110,8 +110,9 @@ bool read_regular(const std::string& path, std::size_t max_bytes, bool limit_siz
   const std::uint64_t wanted = static_cast<std::uint64_t>(max_bytes) + 1;
   std::vector<char> buffer(static_cast<std::size_t>(std::min<std::uint64_t>(wanted, 64 * 1024)));
   for (std::uint64_t size = 0; size < wanted;) {
-    const ssize_t n = ::read(file.fd, buffer.data(),
-                             static_cast<std::size_t>(std::min<std::uint64_t>(buffer.size(), wanted - size)));
+    const ssize_t n =
+        ::read(file.fd, buffer.data(),
+               static_cast<std::size_t>(std::min<std::uint64_t>(buffer.size(), wanted - size)));
     if (n < 0 && errno == EINTR) continue;
     if (n < 0) {
       error = shown_path(path) + ": cannot read " + why(errno);
@@ -143,10 +144,11 @@ std::optional<std::string> read_small_file(const std::string& path, std::string&
 bool read_file_pieces(const std::string& path, std::size_t max_bytes, std::uint64_t& file_bytes,
                       std::string& error, const Take& take) {
   std::uint64_t seen = 0;
-  const bool read = read_regular(path, max_bytes, false, file_bytes, error, [&](std::string_view piece) {
-    if (seen < max_bytes) take(piece.substr(0, static_cast<std::size_t>(max_bytes - seen)));
-    seen += piece.size();
-  });
+  const bool read =
+      read_regular(path, max_bytes, false, file_bytes, error, [&](std::string_view piece) {
+        if (seen < max_bytes) take(piece.substr(0, static_cast<std::size_t>(max_bytes - seen)));
+        seen += piece.size();
+      });
   file_bytes = std::max(file_bytes, seen);
   return read;
 }

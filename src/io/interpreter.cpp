@@ -10,8 +10,8 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <vector>
@@ -91,7 +91,8 @@ class ScratchFolder {
   int create(const std::string& name, std::string& error) const {
     const std::string path = path_ + "/" + name;
     const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
-    if (fd < 0) error = "cannot write " + path + " for the interpreter (" + std::strerror(errno) + ")";
+    if (fd < 0)
+      error = "cannot write " + path + " for the interpreter (" + std::strerror(errno) + ")";
     return fd;
   }
 
@@ -333,8 +334,8 @@ std::optional<program::InterpreterRun> run_interpreter(const InterpreterInput& i
   };
   program::LineNumberer numberer;
   std::uint64_t file_bytes = 0;
-  const bool read = read_file_pieces(input.program_path, input.max_program_bytes, file_bytes,
-                                     error, [&](std::string_view piece) {
+  const bool read = read_file_pieces(input.program_path, input.max_program_bytes, file_bytes, error,
+                                     [&](std::string_view piece) {
                                        numberer.add(piece);
                                        if (numberer.text_size() >= 64 * 1024) {
                                          write_out(numberer.take_text());
@@ -357,12 +358,12 @@ std::optional<program::InterpreterRun> run_interpreter(const InterpreterInput& i
   }
   if (cut) {
     // A cut file ends at its last whole line: half a line could read as another word.
-    run.problems.push_back(finding(
-        name, 0,
-        "only the first " + std::to_string(numberer.bytes()) + " of its " +
-            std::to_string(file_bytes) + " bytes read (the lint reads at most " +
-            amount(input.max_program_bytes) + " of G-code): tool changes after line " +
-            std::to_string(numberer.lines()) + " are not known"));
+    run.problems.push_back(
+        finding(name, 0,
+                "only the first " + std::to_string(numberer.bytes()) + " of its " +
+                    std::to_string(file_bytes) + " bytes read (the lint reads at most " +
+                    amount(input.max_program_bytes) + " of G-code): tool changes after line " +
+                    std::to_string(numberer.lines()) + " are not known"));
   }
 
   std::optional<IniFile> ini;
@@ -430,9 +431,9 @@ std::optional<program::InterpreterRun> run_interpreter(const InterpreterInput& i
   const auto written =
       scratch.write("machine.ini", program::ini_for_preflight(ini_text, folders), error);
   if (!written) return std::nullopt;
-  const std::vector<std::string> argv = {input.rs274, "-i", *written, "-t", *table_copy,
-                                         "-v", *parameter_copy, "-g", "-n", "0", program_copy,
-                                         "/dev/fd/" + std::to_string(kCallsFd)};
+  const std::vector<std::string> argv = {
+      input.rs274,     "-i", *written, "-t", *table_copy,  "-v",
+      *parameter_copy, "-g", "-n",     "0",  program_copy, "/dev/fd/" + std::to_string(kCallsFd)};
 
   program::ProgramGiven given;
   given.name = name;

@@ -36,19 +36,22 @@ void check_numbering(std::string_view text, std::size_t piece) {
   const std::string again = numbered(text, piece, pieces);
   if (once != again || whole.lines() != pieces.lines() || whole.bytes() != pieces.bytes() ||
       whole.nul().has_value() != pieces.nul().has_value()) {
-    fatc::fuzz::broken("the numbering is the same whatever the pieces", std::string(text.substr(0, 200)));
+    fatc::fuzz::broken("the numbering is the same whatever the pieces",
+                       std::string(text.substr(0, 200)));
   }
   if (whole.nul()) {
     fatc::fuzz::check_messages({whole.nul()->text});
     return;
   }
-  if (whole.bytes() != text.size()) fatc::fuzz::broken("every byte read", std::to_string(whole.bytes()));
+  if (whole.bytes() != text.size())
+    fatc::fuzz::broken("every byte read", std::to_string(whole.bytes()));
   // Each line as rs274 is given it: the program's own or its number added, then the M2.
   std::size_t start = 0;
   int line = 0;
   while (start < once.size()) {
     const std::size_t end = once.find('\n', start);
-    if (end == std::string::npos) fatc::fuzz::broken("the copy ends with a line end", once.substr(start, 200));
+    if (end == std::string::npos)
+      fatc::fuzz::broken("the copy ends with a line end", once.substr(start, 200));
     const std::string_view got(once.data() + start, end - start);
     ++line;
     const int number = line_of(got);
@@ -60,7 +63,8 @@ void check_numbering(std::string_view text, std::size_t piece) {
     }
     start = end + 1;
   }
-  if (line != whole.lines() + 1) fatc::fuzz::broken("one line more than the program: the M2", std::to_string(line));
+  if (line != whole.lines() + 1)
+    fatc::fuzz::broken("one line more than the program: the M2", std::to_string(line));
   for (const std::string& name : whole.undefined_calls()) {
     if (name.empty() || name.find('/') != std::string::npos || name[0] == '.') {
       fatc::fuzz::broken("an undefined call is a file name", name);
@@ -89,7 +93,8 @@ void check_output(std::string_view text) {
   const InterpreterRun run = output.finish();
   if (run.uses.size() > kMaxToolUses || run.problems.size() > kMaxErrors + 1 ||
       run.unknowns.size() > kMaxErrors) {
-    fatc::fuzz::broken("what rs274 prints is kept within its bounds", std::to_string(run.uses.size()));
+    fatc::fuzz::broken("what rs274 prints is kept within its bounds",
+                       std::to_string(run.uses.size()));
   }
 }
 

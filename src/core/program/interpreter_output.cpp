@@ -74,7 +74,8 @@ bool InterpreterOutput::reads_input(int line) const {
 }
 
 void InterpreterOutput::unknown(int line, const std::string& text) {
-  if (run_.unknowns.size() < kMaxErrors) run_.unknowns.push_back(finding(program_.name, line, text));
+  if (run_.unknowns.size() < kMaxErrors)
+    run_.unknowns.push_back(finding(program_.name, line, text));
 }
 
 void InterpreterOutput::canonical_call(std::string_view line) {
@@ -198,8 +199,7 @@ std::string InterpreterOutput::message_of(const std::string& message, int line) 
   // said as LinuxCNC says it of the program.
   const std::string stub = "EOF in file:" + program_.stub_folder + "/";
   const auto seeking = message.find(" seeking o-word: ");
-  if (program_.stub_folder.empty() || message.rfind(stub, 0) != 0 ||
-      seeking == std::string::npos) {
+  if (program_.stub_folder.empty() || message.rfind(stub, 0) != 0 || seeking == std::string::npos) {
     return message;
   }
   const auto from = message.find(" from line: ", seeking);
@@ -213,11 +213,11 @@ InterpreterRun InterpreterOutput::finish() {
   pending_message_.reset();
   if (stopped_at_) {
     // Said of the program as a whole: a report lists it first, not after a thousand lines.
-    run_.problems.push_back(finding(program_.name, 0,
-                                    "more than " + std::to_string(kMaxErrors) +
-                                        " errors: LinuxCNC's interpreter (rs274) was stopped at "
-                                        "line " + std::to_string(*stopped_at_) +
-                                        "; tool changes after that are not known"));
+    const std::string stopped = "more than " + std::to_string(kMaxErrors) +
+                                " errors: LinuxCNC's interpreter (rs274) was stopped at line " +
+                                std::to_string(*stopped_at_);
+    run_.problems.push_back(
+        finding(program_.name, 0, stopped + "; tool changes after that are not known"));
   }
   // The interpreter never ran these lines: each goes before the first use
   // from a later line, where a program without loops would have it.

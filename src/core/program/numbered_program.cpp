@@ -147,7 +147,9 @@ void LineNumberer::note_subroutine(std::string_view line) {
   std::size_t at = words.rfind('/', 0) == 0 ? 1 : 0;
   if (at < words.size() && words[at] == 'n') {
     ++at;
-    while (at < words.size() && (words[at] == '.' || std::isdigit(static_cast<unsigned char>(words[at])))) ++at;
+    while (at < words.size() &&
+           (words[at] == '.' || std::isdigit(static_cast<unsigned char>(words[at]))))
+      ++at;
   }
   if (at >= words.size() || words[at] != 'o') return;
   ++at;

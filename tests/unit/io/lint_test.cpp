@@ -65,16 +65,17 @@ LintRun run(std::vector<std::string> args) {
   std::ostringstream out, err;
   const int code = io::run_tool_mode(*options, out, err);
   const double cpu = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
-  return {code, out.str(), err.str(), std::chrono::duration<double>(Clock::now() - start).count(),
-          cpu, cpu + children_cpu_seconds() - children_start};
+  return {code,      out.str(),
+          err.str(), std::chrono::duration<double>(Clock::now() - start).count(),
+          cpu,       cpu + children_cpu_seconds() - children_start};
 }
 
 /// Linear time, judged on the CPU the lint and rs274 took (the wall clock of
 /// a shared machine says little); the wall clock only guards against a hang.
-#define EXPECT_CPU_BELOW(run, limit)          \
-  do {                                        \
-    EXPECT_LT((run).all_cpu_seconds, limit);  \
-    EXPECT_LT((run).seconds, 60.0);           \
+#define EXPECT_CPU_BELOW(run, limit)         \
+  do {                                       \
+    EXPECT_LT((run).all_cpu_seconds, limit); \
+    EXPECT_LT((run).seconds, 60.0);          \
   } while (false)
 
 /// Within a second of the lint's own time; the wall clock, shared with
@@ -814,7 +815,9 @@ TEST_F(Lint, shouldNumberA64MiBProgramInSmallMemory) {
   ASSERT_TRUE(run) << error;
   EXPECT_LT(grown, 16 * 1024) << "KiB more resident while reading 64 MiB";
   ASSERT_EQ(run->problems.size(), 1u);
-  EXPECT_EQ(run->problems[0].text.rfind("LinuxCNC's interpreter (rs274) still ran after 0.5 s, at line ", 0), 0u)
+  EXPECT_EQ(run->problems[0].text.rfind(
+                "LinuxCNC's interpreter (rs274) still ran after 0.5 s, at line ", 0),
+            0u)
       << run->problems[0].text;
   EXPECT_NE(run->problems[0].text.find(" of 3050404 (a loop without end, or a program longer than "
                                        "it reads in that time): stopped; tool changes after that "
@@ -845,9 +848,11 @@ TEST_F(Lint, shouldNumberLinesAcrossThePiecesTheFileIsReadIn) {
   std::string text;
   int line = 0;
   while (text.size() < 300000) {
-    text += (++line % 1000 == 0 ? "T" + std::to_string(line / 1000 % 6 + 1) + " M6\n" : "G0 X1 (move " + std::to_string(line) + ")\n");
+    text += (++line % 1000 == 0 ? "T" + std::to_string(line / 1000 % 6 + 1) + " M6\n"
+                                : "G0 X1 (move " + std::to_string(line) + ")\n");
   }
-  const LintRun r = lint(write("pieces.ngc", text + "M2\n"), {"--state", state_with_lengths({1, 2, 3, 4, 5, 6})});
+  const LintRun r =
+      lint(write("pieces.ngc", text + "M2\n"), {"--state", state_with_lengths({1, 2, 3, 4, 5, 6})});
   EXPECT_EQ(r.code, 0) << r.out << r.err;
   EXPECT_LINE(r, "  1  1000      M6 T2 ");
   EXPECT_LINE(r, "  9  9000      M6 T4 ");
@@ -879,8 +884,8 @@ TEST_F(Lint, shouldFindManyUndefinedSubroutinesInManyFoldersInLinearTime) {
   EXPECT_EQ(r.code, 1);
   EXPECT_LINE(r, "undefined.ngc: line 1: LinuxCNC stops the program here: EOF in file:" + program +
                      " seeking o-word: o<nosuch0> from line: 1\n");
-  EXPECT_LINE(r, "undefined.ngc: line 49: LinuxCNC stops the program here: EOF in file:" +
-                     program + " seeking o-word: o<nosuch48> from line: 49\n");
+  EXPECT_LINE(r, "undefined.ngc: line 49: LinuxCNC stops the program here: EOF in file:" + program +
+                     " seeking o-word: o<nosuch48> from line: 49\n");
   EXPECT_LINE(r,
               "undefined.ngc: more than 1000 errors: LinuxCNC's interpreter (rs274) was stopped "
               "at line 1001; tool changes after that are not known\n");
@@ -899,7 +904,8 @@ TEST_F(Lint, shouldFindASubroutineOfTheFoldersBeforeAnyEmptyFile) {
   // A name the program does not define may be a file of the subroutine path: found there.
   write("subs/found_there.ngc", "");
   fs::create_directories(path("subs"));
-  std::ofstream(path("subs/found_there.ngc")) << "o<found_there> sub\nT3 M6\no<found_there> endsub\nM2\n";
+  std::ofstream(path("subs/found_there.ngc"))
+      << "o<found_there> sub\nT3 M6\no<found_there> endsub\nM2\n";
   const LintRun r = lint(write("found.ngc", "o<found_there> call\no<not_there> call\nM2\n"),
                          {"--subroutine-path", path("subs"), "--state", state_with_lengths({3})});
   EXPECT_EQ(r.code, 1);
@@ -925,15 +931,17 @@ TEST_F(Lint, shouldLintTenThousandChangesOnATwoHundredPocketRackInLinearTime) {
     seed = seed * 1103515245u + 12345u;
     text += "T" + std::to_string(seed / 65536 % 200 + 1) + " M6\n";
   }
-  const LintRun r = run({"--lint", write("changes.ngc", text + "M2\n"), "--config", rack, "--state", no_state()});
+  const LintRun r =
+      run({"--lint", write("changes.ngc", text + "M2\n"), "--config", rack, "--state", no_state()});
   EXPECT_EQ(r.code, 1) << r.err;  // never measured
   EXPECT_LINE(r, "changes.ngc: 10000 tool changes (M6), 0 M61, 200 problems, 0 not known\n");
   EXPECT_CPU_BELOW(r, 10.0);
 }
 
 TEST_F(Lint, shouldRefuseASubroutineDefinedTwice) {
-  const std::string program = write(
-      "twice.ngc", "o<twice> sub\nG0 X1\no<twice> endsub\no<twice> sub\nG0 X2\no<twice> endsub\nM2\n");
+  const std::string program =
+      write("twice.ngc",
+            "o<twice> sub\nG0 X1\no<twice> endsub\no<twice> sub\nG0 X2\no<twice> endsub\nM2\n");
   const LintRun r = lint(program);
   EXPECT_EQ(r.code, 1);
   EXPECT_LINE(r, "twice.ngc: line 4: LinuxCNC stops the program here: File:" + program +
@@ -942,7 +950,8 @@ TEST_F(Lint, shouldRefuseASubroutineDefinedTwice) {
 
 TEST_F(Lint, shouldRefuseAnM61QBeyondTheToolRange) {
   // 20 digits: LinuxCNC's own verdict, never a tool of a wrapped number.
-  const LintRun r = lint(write("m61.ngc", "M61 Q12345678901234567890\nM61 Q2147483648\nM61 Q5000\nM2\n"));
+  const LintRun r =
+      lint(write("m61.ngc", "M61 Q12345678901234567890\nM61 Q2147483648\nM61 Q5000\nM2\n"));
   EXPECT_EQ(r.code, 1);
   EXPECT_LINE(r,
               "m61.ngc: line 1: LinuxCNC stops the program here: Need non-negative Q-word to "
@@ -994,7 +1003,8 @@ TEST(ToolTable, shouldLeaveOutEveryLineWhoseNumbersMeanNothing) {
   };
   // clang-format on
   for (const BadTableLine& bad : kLines) {
-    const ToolTable table = parse_tool_table(std::string("T1 P1 Z30\n") + bad.line + "\nT3 P3 Z100000\n");
+    const ToolTable table =
+        parse_tool_table(std::string("T1 P1 Z30\n") + bad.line + "\nT3 P3 Z100000\n");
     EXPECT_EQ(table.tools.size(), 2u) << bad.line;
     EXPECT_EQ(table.tools.count(2), 0u) << bad.line;
     ASSERT_EQ(table.problems.size(), 1u) << bad.line;
@@ -1005,15 +1015,19 @@ TEST(ToolTable, shouldLeaveOutEveryLineWhoseNumbersMeanNothing) {
 
 TEST_F(Lint, shouldReportTheProblemsOfTheIniToolTable) {
   // Not only of --tool-table: the table rs274 is given is the INI's.
-  const std::string ini = write("machine.ini", "[EMCIO]\nTOOL_TABLE = tools.tbl\n[TRAJ]\nLINEAR_UNITS = mm\n");
+  const std::string ini =
+      write("machine.ini", "[EMCIO]\nTOOL_TABLE = tools.tbl\n[TRAJ]\nLINEAR_UNITS = mm\n");
   write("tools.tbl", "T1 P1 Z30\nT2 P2 Znan\n");
   const LintRun r = lint(write("p.ngc", "T1 M6\nT2 M6\nM2\n"), {"--ini", ini});
   EXPECT_EQ(r.code, 1);
-  EXPECT_LINE(r, path("tools.tbl") + ": line 2: \"Znan\" is no number a tool can have (NaN, "
-                 "infinite, or over 100000 either way), which LinuxCNC would read as it is; the "
-                 "line is left out of the table here\n");
-  EXPECT_LINE(r, "p.ngc: line 2: LinuxCNC stops the program here: Requested tool 2 not found in "
-                 "the tool table\n");
+  EXPECT_LINE(r,
+              path("tools.tbl") +
+                  ": line 2: \"Znan\" is no number a tool can have (NaN, "
+                  "infinite, or over 100000 either way), which LinuxCNC would read as it is; the "
+                  "line is left out of the table here\n");
+  EXPECT_LINE(r,
+              "p.ngc: line 2: LinuxCNC stops the program here: Requested tool 2 not found in "
+              "the tool table\n");
 }
 
 }  // namespace

@@ -325,7 +325,8 @@ TEST(LineNumberer, shouldListTheSubroutinesTheProgramCallsAndNeverDefines) {
       "o100 call\no200 sub\no200 endsub\no200 call\n"
       "o<../../etc/passwd> call\no<$(reboot)> call\no<.hidden> call\no<later> call\n"
       "o<later> sub\no<later> endsub\nM2\n");
-  EXPECT_EQ(numbered.numberer.undefined_calls(), (std::vector<std::string>{"100", "nosuch", "two"}));
+  EXPECT_EQ(numbered.numberer.undefined_calls(),
+            (std::vector<std::string>{"100", "nosuch", "two"}));
 }
 
 TEST(LineSet, shouldHoldTheLinesInsertedOnly) {
@@ -352,10 +353,11 @@ TEST(InterpreterTable, shouldListEachToolOnceWithItsDiameterInInches) {
 }
 
 TEST(InterpreterIni, shouldPutHalPinsOffAndTheSubroutineFoldersFirstInTheSectionOneALine) {
-  EXPECT_EQ(ini_for_preflight("[EMC]\nA = 1\n[RS274NGC]\nHAL_PIN_VARS = 1\nSUBROUTINE_PATH = b\n",
-                              "/a:b"),
-            "[EMC]\nA = 1\n[RS274NGC]\nHAL_PIN_VARS = 0\nSUBROUTINE_PATH = /a:\\\nb\nHAL_PIN_VARS = "
-            "1\nSUBROUTINE_PATH = b\n");
+  EXPECT_EQ(
+      ini_for_preflight("[EMC]\nA = 1\n[RS274NGC]\nHAL_PIN_VARS = 1\nSUBROUTINE_PATH = b\n",
+                        "/a:b"),
+      "[EMC]\nA = 1\n[RS274NGC]\nHAL_PIN_VARS = 0\nSUBROUTINE_PATH = /a:\\\nb\nHAL_PIN_VARS = "
+      "1\nSUBROUTINE_PATH = b\n");
   EXPECT_EQ(ini_for_preflight("[EMC]\nA = 1", "/a"),
             "[EMC]\nA = 1\n[RS274NGC]\nHAL_PIN_VARS = 0\nSUBROUTINE_PATH = /a\n");
   EXPECT_EQ(ini_for_preflight("[RS274NGC]\n", ""), "[RS274NGC]\nHAL_PIN_VARS = 0\n");
