@@ -82,8 +82,8 @@ const std::vector<ModeDeclaration> kModes = {
    "[EMCIO]TOOL_TABLE; without either tools 1 to 1000). Prints every M6 and M61 in the order "
    "LinuxCNC runs them with the tool's pocket, manual tools, lengths, what only the running "
    "machine knows (HAL pins, a tool read from an M66 input), the problems, and the change "
-   "time estimated from the --plan steps of each change. rs274 is stopped after 15 s, 256 "
-   "MiB of output or the error after 1000 (a problem); it is given at most 64 MiB of G-code. "
+   "time estimated from the --plan steps of each change. rs274 is stopped after 15 s, 1 GiB of "
+   "output or the error after 1000 (a problem); it is given at most 64 MiB of G-code. "
    "Exit 0 clean, 1 problems found, 2 usage, an input it cannot read "
    "(program, config, state, tool table, INI) or rs274 not installed"},
   {Mode::teach, "--teach", "pocket:N|loading|safe|sensor", {"--config", "--at"}, {"--ini"},

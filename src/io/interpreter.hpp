@@ -13,9 +13,10 @@ constexpr std::size_t kMaxProgramBytes = 64 * 1024 * 1024;
 /// How long rs274 may run: a program that loops without end must not hang
 /// --lint or the panel (which gives up on --lint after 20 s).
 constexpr double kInterpreterSeconds = 15.0;
-/// What rs274 may print (about four bytes for each byte of a program of
-/// moves); read as it comes, never kept.
-constexpr std::size_t kMaxInterpreterOutput = 256u * 1024 * 1024;
+/// What rs274 may print: read as it comes and never kept, so only a bound
+/// on the work behind the time limit, far above the four bytes it prints for
+/// each byte of kMaxProgramBytes of moves.
+constexpr std::size_t kMaxInterpreterOutput = 1024u * 1024 * 1024;
 
 struct InterpreterInput {
   std::string rs274;  ///< the binary, from find_rs274()
