@@ -32,10 +32,9 @@ std::string folder_of(const std::string& path) {
   return path.substr(0, slash);
 }
 
-/// What the INI adds: rapid speed, and whether M6 runs this changer's remap.
+/// What the INI adds: the motion limits, and whether M6 runs this changer's remap.
 struct MachineIni {
-  double rapid_per_minute = 0.0;
-  std::string rapid_source;  ///< how the rapid speed was found, for the estimate's line
+  MachineMotion motion;   ///< the limits for the estimate, and where they came from
   bool remaps_m6 = true;     ///< false: the INI has no REMAP=M6 ... ngc=fixed_atc_probe_m6
   std::optional<std::string> tool_table;  ///< [EMCIO]TOOL_TABLE, from the INI's folder
 };
@@ -51,33 +50,45 @@ bool is_own_m6_remap(const std::string& remap) {
 
 }  // namespace
 
-std::optional<RapidSpeed> rapid_speed(const std::optional<std::string>& ini_path,
-                                      const Config& config, std::string& error) {
-  const char* unit = config.units == Units::inch ? "inch/min" : "mm/min";
-  const double assumed = config.units == Units::inch ? kAssumedRapidInch : kAssumedRapidMm;
-  char buffer[160];
+std::optional<MachineMotion> machine_motion(const std::optional<std::string>& ini_path,
+                                            const Config& config, std::string& error) {
+  const bool inch = config.units == Units::inch;
+  MachineMotion assumed;
+  const double velocity = inch ? kAssumedVelocityInch : kAssumedVelocityMm;
+  const double acceleration = inch ? kAssumedAccelerationInch : kAssumedAccelerationMm;
+  assumed.limits.velocity = {velocity, velocity, velocity};
+  assumed.limits.acceleration = {acceleration, acceleration, acceleration};
+  assumed.limits.linear_velocity = velocity;
+  assumed.limits.linear_acceleration = acceleration;
+  char buffer[120];
+  std::snprintf(buffer, sizeof buffer, "the moves at %.0f %s and %.0f %s, assumed (",
+                velocity * 60.0, inch ? "inch/min" : "mm/min", acceleration,
+                inch ? "inch/s²" : "mm/s²");
   if (!ini_path) {
-    std::snprintf(buffer, sizeof buffer,
-                  "rapids at %.0f %s, assumed (--ini gives the machine's "
-                  "[TRAJ]MAX_LINEAR_VELOCITY)",
-                  assumed, unit);
-    return RapidSpeed{assumed, buffer};
+    assumed.source = buffer + std::string("--ini gives the machine's [AXIS_*] and [TRAJ] limits)");
+    return assumed;
   }
   const auto ini = IniFile::read(*ini_path, error);
   if (!ini) return std::nullopt;
-  const auto velocity = ini->number("TRAJ", "MAX_LINEAR_VELOCITY");
-  const auto per_mm = ini->linear_units();
-  if (velocity && per_mm && std::isfinite(*velocity) && *velocity > 0.0 && std::isfinite(*per_mm) &&
-      *per_mm > 0.0) {
-    const double mm_per_minute = *velocity / *per_mm * 60.0;
-    const double per_minute = config.units == Units::inch ? mm_per_minute / 25.4 : mm_per_minute;
-    std::snprintf(buffer, sizeof buffer, "rapids at %.0f %s ([TRAJ]MAX_LINEAR_VELOCITY of ",
-                  per_minute, unit);
-    return RapidSpeed{per_minute, buffer + shown_path(*ini_path) + ")"};
+  std::string why;
+  if (const auto limits = motion_limits(*ini, config.units, why)) {
+    return MachineMotion{*limits, "the moves at the velocities and accelerations of " +
+                                      shown_path(*ini_path)};
   }
-  std::snprintf(buffer, sizeof buffer, "rapids at %.0f %s, assumed (", assumed, unit);
-  return RapidSpeed{assumed, buffer + shown_path(*ini_path) +
-                                 " has no usable [TRAJ]MAX_LINEAR_VELOCITY and LINEAR_UNITS)"};
+  assumed.source = buffer + shown_path(*ini_path) +
+                   " has no usable MAX_VELOCITY and MAX_ACCELERATION of [AXIS_X], [AXIS_Y] "
+                   "and [AXIS_Z]: --plan --ini says why)";
+  return assumed;
+}
+
+std::string estimate_costs_text() {
+  char buffer[200];
+  std::snprintf(buffer, sizeof buffer,
+                "each an exact stop at half the acceleration as LinuxCNC plans it, plus the "
+                "dwells, %.0f ms a step (the executor's handshake) and %.2f s a change (T and "
+                "M6 through iocontrol, the remap)",
+                kStepSeconds * 1000.0, kChangeSeconds);
+  return buffer;
 }
 
 namespace {
@@ -85,10 +96,9 @@ namespace {
 /// Reads what --lint uses of the INI; false and one line in `error` when it cannot be read.
 bool read_ini(const Options& options, const Config& config, MachineIni& machine,
               std::string& error) {
-  const auto rapid = rapid_speed(options.ini_path, config, error);
-  if (!rapid) return false;
-  machine.rapid_per_minute = rapid->per_minute;
-  machine.rapid_source = rapid->source;
+  const auto motion = machine_motion(options.ini_path, config, error);
+  if (!motion) return false;
+  machine.motion = *motion;
   if (!options.ini_path) return true;
   const auto ini = IniFile::read(*options.ini_path, error);
   if (!ini) return false;
@@ -168,8 +178,8 @@ void print_estimate(const Preflight& checked, const MachineIni& machine, std::os
   }
   out << "\nestimated tool-change time: " << seconds_text(checked.seconds) << " for "
       << plural(static_cast<std::size_t>(estimated), "change", "changes")
-      << ", from the steps --plan prints for each: moves at their feed, " << machine.rapid_source
-      << ", plus the dwells; from safe to safe (the way between the work and safe, acceleration"
+      << ", from the steps --plan prints for each: " << machine.motion.source << ", "
+      << estimate_costs_text() << "; from safe to safe (the way between the work and safe"
       << (checked.operator_waits > 0
               ? " and the operator at " + plural(checked.operator_waits, "prompt", "prompts")
               : std::string())
@@ -269,7 +279,7 @@ int lint(const Options& options, std::ostream& out, std::ostream& err) {
   input.state_name = shown_path(options.state_path);
   input.table = table ? &*table : nullptr;
   input.table_name = table_name;
-  input.rapid_per_minute = machine.rapid_per_minute;
+  input.limits = machine.motion.limits;
   const Preflight checked = preflight(run->uses, input);
 
   std::vector<program::Finding> problems = run->problems;
