@@ -300,8 +300,8 @@ void print_estimate(const Options& options, const Config& config, const ToolStat
   Config other = config;
   other.path = config.path == Path::direct ? Path::prototype : Path::direct;
   const Simulator other_sim = plan_change(other, tools, to, config.probe_limit.z);
-  const ChangeTime time = change_time(sim, config.safe, motion->limits);
-  const ChangeTime other_time = change_time(other_sim, config.safe, motion->limits);
+  const ChangeTime time = change_time(sim, config.safe, motion->timing);
+  const ChangeTime other_time = change_time(other_sim, config.safe, motion->timing);
   const char* name = config.path == Path::direct ? "direct" : "prototype";
   const char* other_name = config.path == Path::direct ? "prototype" : "direct";
   char parts[96];
@@ -309,7 +309,7 @@ void print_estimate(const Options& options, const Config& config, const ToolStat
                 time.dwells, time.steps);
   out << "estimated " << seconds_text(time.seconds()) << " on the " << name << " path ("
       << seconds_text(other_time.seconds()) << " on the " << other_name
-      << " path): from safe, " << motion->source << ", " << estimate_costs_text()
+      << " path): from safe, " << motion->source << ", " << estimate_costs_text(motion->timing)
       << "; the operator not counted " << parts << "\n";
   if (!options.ini_path) {
     out << "bound: --ini gives it (the machine's velocities and accelerations)\n";

@@ -53,41 +53,50 @@ bool is_own_m6_remap(const std::string& remap) {
 std::optional<MachineMotion> machine_motion(const std::optional<std::string>& ini_path,
                                             const Config& config, std::string& error) {
   const bool inch = config.units == Units::inch;
-  MachineMotion assumed;
+  MachineMotion machine;
+  MotionLimits& limits = machine.timing.limits;
   const double velocity = inch ? kAssumedVelocityInch : kAssumedVelocityMm;
   const double acceleration = inch ? kAssumedAccelerationInch : kAssumedAccelerationMm;
-  assumed.limits.velocity = {velocity, velocity, velocity};
-  assumed.limits.acceleration = {acceleration, acceleration, acceleration};
-  assumed.limits.linear_velocity = velocity;
-  assumed.limits.linear_acceleration = acceleration;
+  limits.velocity = {velocity, velocity, velocity};
+  limits.acceleration = {acceleration, acceleration, acceleration};
+  limits.linear_velocity = velocity;
+  limits.linear_acceleration = acceleration;
   char buffer[120];
   std::snprintf(buffer, sizeof buffer, "the moves at %.0f %s and %.0f %s, assumed (",
                 velocity * 60.0, inch ? "inch/min" : "mm/min", acceleration,
                 inch ? "inch/s²" : "mm/s²");
   if (!ini_path) {
-    assumed.source = buffer + std::string("--ini gives the machine's [AXIS_*] and [TRAJ] limits)");
-    return assumed;
+    machine.source = buffer + std::string("--ini gives the machine's [AXIS_*] and [TRAJ] limits)");
+    return machine;
   }
   const auto ini = IniFile::read(*ini_path, error);
   if (!ini) return std::nullopt;
-  std::string why;
-  if (const auto limits = motion_limits(*ini, config.units, why)) {
-    return MachineMotion{*limits, "the moves at the velocities and accelerations of " +
-                                      shown_path(*ini_path)};
+  // iocontrol's cycle as LinuxCNC reads it; its default where it is none.
+  const auto cycle = ini->number("EMCIO", "CYCLE_TIME");
+  if (cycle && std::isfinite(*cycle) && *cycle > 0.0 && *cycle <= 10.0) {
+    machine.timing.iocontrol_cycle_seconds = *cycle;
   }
-  assumed.source = buffer + shown_path(*ini_path) +
+  std::string why;
+  if (const auto found = motion_limits(*ini, config.units, why)) {
+    limits = *found;
+    machine.source = "the moves at the velocities and accelerations of " + shown_path(*ini_path);
+    return machine;
+  }
+  machine.source = buffer + shown_path(*ini_path) +
                    " has no usable MAX_VELOCITY and MAX_ACCELERATION of [AXIS_X], [AXIS_Y] "
                    "and [AXIS_Z]: --plan --ini says why)";
-  return assumed;
+  return machine;
 }
 
-std::string estimate_costs_text() {
-  char buffer[200];
+std::string estimate_costs_text(const MachineTiming& timing) {
+  char buffer[240];
   std::snprintf(buffer, sizeof buffer,
                 "each an exact stop at half the acceleration as LinuxCNC plans it, plus the "
-                "dwells, %.0f ms a step (the executor's handshake) and %.2f s a change (T and "
-                "M6 through iocontrol, the remap)",
-                kStepSeconds * 1000.0, kChangeSeconds);
+                "dwells, %.0f ms a step (the executor's handshake) and %.2f s a change (%g of "
+                "iocontrol's %g s cycles for T and M6, %.0f ms for the remap)",
+                kStepSeconds * 1000.0,
+                kIocontrolCycles * timing.iocontrol_cycle_seconds + kChangeSeconds,
+                kIocontrolCycles, timing.iocontrol_cycle_seconds, kChangeSeconds * 1000.0);
   return buffer;
 }
 
@@ -179,7 +188,7 @@ void print_estimate(const Preflight& checked, const MachineIni& machine, std::os
   out << "\nestimated tool-change time: " << seconds_text(checked.seconds) << " for "
       << plural(static_cast<std::size_t>(estimated), "change", "changes")
       << ", from the steps --plan prints for each: " << machine.motion.source << ", "
-      << estimate_costs_text() << "; from safe to safe (the way between the work and safe"
+      << estimate_costs_text(machine.motion.timing) << "; from safe to safe (the way between the work and safe"
       << (checked.operator_waits > 0
               ? " and the operator at " + plural(checked.operator_waits, "prompt", "prompts")
               : std::string())
@@ -279,7 +288,7 @@ int lint(const Options& options, std::ostream& out, std::ostream& err) {
   input.state_name = shown_path(options.state_path);
   input.table = table ? &*table : nullptr;
   input.table_name = table_name;
-  input.limits = machine.motion.limits;
+  input.machine = machine.motion.timing;
   const Preflight checked = preflight(run->uses, input);
 
   std::vector<program::Finding> problems = run->problems;

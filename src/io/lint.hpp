@@ -19,19 +19,20 @@ constexpr double kAssumedAccelerationMm = 500.0;
 constexpr double kAssumedVelocityInch = 2.0;
 constexpr double kAssumedAccelerationInch = 20.0;
 
-/// The machine's motion for an estimate (change_time), in the config's
-/// units, and where it came from, in words ("the velocities and accelerations
-/// of sim.ini"); assumed without an INI or when the INI lacks them. nullopt
-/// and `error` when the INI cannot be read.
+/// The machine for an estimate (change_time), in the config's units: its
+/// motion limits and [EMCIO]CYCLE_TIME, and where the limits came from, in
+/// words ("the velocities and accelerations of sim.ini"); assumed without an
+/// INI or when the INI lacks them. nullopt and `error` when the INI cannot be
+/// read.
 struct MachineMotion {
-  MotionLimits limits;
+  MachineTiming timing;
   std::string source;
 };
 std::optional<MachineMotion> machine_motion(const std::optional<std::string>& ini_path,
                                             const Config& config, std::string& error);
 
 /// What an estimate counts besides the moves, in words, for --lint and --plan.
-std::string estimate_costs_text();
+std::string estimate_costs_text(const MachineTiming& timing);
 
 /// "12.3 s", or "2 min 05 s" from a minute on.
 std::string seconds_text(double seconds);

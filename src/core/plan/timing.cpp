@@ -132,9 +132,10 @@ double limits_seconds(const Simulator& plan, const Point& start, const MotionLim
   return moves + dwells;
 }
 
-ChangeTime change_time(const Simulator& plan, const Point& start, const MotionLimits& limits) {
+ChangeTime change_time(const Simulator& plan, const Point& start, const MachineTiming& machine) {
   ChangeTime time;
-  const MotionLimits planned = planner_limits(limits);
+  const MotionLimits planned = planner_limits(machine.limits);
+  time.iocontrol = kIocontrolCycles * machine.iocontrol_cycle_seconds;
   time.dwells = walk_moves(plan, start, [&](const Point& from, const Point& to, const Step& step) {
     time.moves += move_seconds(from, to, feed_of(step), planned);
   });

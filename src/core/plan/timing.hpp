@@ -16,25 +16,34 @@ struct MotionLimits {
   double linear_acceleration = 0.0;
 };
 
+// What the changer and LinuxCNC add to a change besides its moves and dwells,
+// measured on the real LinuxCNC (linuxcnc-uspace 2.9, [TASK]CYCLE_TIME 1 ms)
+// by four runs of scripts/bench_estimate.sh: tests/bench/changes.ngc, chip to
+// chip, on the simulated mill on both paths, slowed to the gantry sample's
+// limits, and with [EMCIO]CYCLE_TIME 0.01 s; 60 changes, 746 steps.
+
 /// What the changer adds to each step its executor performs, in seconds: the
 /// handshake (request, step published, taken back) and LinuxCNC's queue
-/// running dry before it (M66 waits for motion to end). Measured on the real
-/// LinuxCNC (linuxcnc-uspace 2.9, [TASK]CYCLE_TIME 1 ms) as the machine's
-/// standing still between two moves with nothing between them: median 16.4 ms
-/// over 350 steps of two runs of scripts/bench_estimate.sh (the simulated
-/// mill on both paths and slowed to the gantry's limits); scripts/bench_changes.sh
-/// measured 16 ms.
-constexpr double kStepSeconds = 0.016;
+/// running dry before it (M66 waits for motion to end). Measured as the
+/// machine's standing still between two moves with nothing between them:
+/// median 16.8 ms over the 746 steps (scripts/bench_changes.sh: 16 ms).
+constexpr double kStepSeconds = 0.017;
 
-/// What a change costs besides its steps, in seconds: LinuxCNC's T and M6
-/// through iocontrol (its [EMCIO]CYCLE_TIME of 0.1 s, a cycle for each and
-/// for its answer), the remap's entry (M5, M70, the sync, the executor's
-/// call) and exit (M72, G43). Measured on the real LinuxCNC as what each
-/// change of scripts/bench_estimate.sh took chip to chip beyond its moves
-/// (planner_limits), dwells and kStepSeconds a step: median 0.54 s over the 25
-/// changes of two runs (0.39 to 0.66 s), of it about 0.25 s from the end of
-/// one change to the first motion of the next.
-constexpr double kChangeSeconds = 0.54;
+/// iocontrol's cycles in a change, each [EMCIO]CYCLE_TIME long: T's prepare
+/// and M6's change, each waiting for iocontrol to take it and to answer.
+/// Measured: the changes took 0.41 s less each with CYCLE_TIME 0.01 s than
+/// with 0.1 s (the medians of what they took beyond their moves, dwells and
+/// steps: 0.12 s over 5 changes, 0.53 s over 55), 4.5 cycles of 0.09 s.
+constexpr double kIocontrolCycles = 4.5;
+
+/// [EMCIO]CYCLE_TIME where the INI gives none: LinuxCNC's default, in seconds.
+constexpr double kIocontrolCycleSeconds = 0.1;
+
+/// What else a change costs, in seconds: the remap's entry (M5, M70, the
+/// sync, the executor's call) and exit (M72, G43). Measured: what the changes
+/// took beyond their moves, dwells, steps and iocontrol's cycles, 0.074 s at
+/// CYCLE_TIME 0.01 s and 0.076 s at 0.1 s (medians as above).
+constexpr double kChangeSeconds = 0.075;
 
 /// Standing still to standing still over `distance`: accelerate, cruise,
 /// decelerate; a triangle when it never reaches `velocity`. 0 for no
@@ -72,18 +81,28 @@ double limits_seconds(const Simulator& plan, const Point& start, const MotionLim
 /// so what blending is worth at most.
 double blended_seconds(const Simulator& plan, const Point& start, const MotionLimits& limits);
 
-/// How long a change takes on the machine, by parts, in seconds.
-struct ChangeTime {
-  double moves = 0.0;   ///< every move at planner_limits
-  double dwells = 0.0;  ///< the changer's own waits (chuck, flush)
-  int steps = 0;        ///< the steps the executor performs, kStepSeconds each
-  int operator_waits = 0;  ///< prompts: the operator's time, not counted
-  double seconds() const { return moves + dwells + steps * kStepSeconds + kChangeSeconds; }
+/// What an estimate needs of the machine: its motion limits and
+/// [EMCIO]CYCLE_TIME, in seconds.
+struct MachineTiming {
+  MotionLimits limits;
+  double iocontrol_cycle_seconds = kIocontrolCycleSeconds;
 };
 
-/// The estimate of a change planned from `start` (plan_change) on a machine
-/// with `limits`: its moves as LinuxCNC plans them, its dwells, and what the
-/// changer adds per step and per change. What --plan and --lint print.
-ChangeTime change_time(const Simulator& plan, const Point& start, const MotionLimits& limits);
+/// How long a change takes on the machine, by parts, in seconds.
+struct ChangeTime {
+  double moves = 0.0;      ///< every move at planner_limits
+  double dwells = 0.0;     ///< the changer's own waits (chuck, flush)
+  int steps = 0;           ///< the steps the executor performs, kStepSeconds each
+  double iocontrol = 0.0;  ///< kIocontrolCycles of [EMCIO]CYCLE_TIME
+  int operator_waits = 0;  ///< prompts: the operator's time, not counted
+  double seconds() const {
+    return moves + dwells + steps * kStepSeconds + iocontrol + kChangeSeconds;
+  }
+};
+
+/// The estimate of a change planned from `start` (plan_change) on `machine`:
+/// its moves as LinuxCNC plans them, its dwells, and what the changer and
+/// LinuxCNC add per step and per change. What --plan and --lint print.
+ChangeTime change_time(const Simulator& plan, const Point& start, const MachineTiming& machine);
 
 }  // namespace fatc

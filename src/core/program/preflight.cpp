@@ -214,7 +214,7 @@ class Checker {
     for (const Step& step : sim.steps()) {
       if (step.kind == StepKind::fail) planned.refused = step.label;
     }
-    const ChangeTime time = change_time(sim, config_.safe, in_.limits);
+    const ChangeTime time = change_time(sim, config_.safe, in_.machine);
     planned.seconds = time.seconds();
     planned.operator_waits = time.operator_waits;
     return plans_.emplace(key, planned).first->second;

@@ -35,7 +35,7 @@ TEST(Cli, shouldEstimateThePlannedChangeOnBothPaths) {
   EXPECT_NE(line.find(" on the direct path): from safe, the moves at 3000 mm/min and 500 "
                       "mm/s², assumed (--ini gives the machine's [AXIS_*] and [TRAJ] limits), "
                       "each an exact stop at half the acceleration as LinuxCNC plans it, plus "
-                      "the dwells, 16 ms a step"),
+                      "the dwells, 17 ms a step"),
             std::string::npos)
       << line;
   double prototype = 0.0, direct = 0.0;
@@ -115,6 +115,30 @@ TEST(Cli, shouldEstimateTheSameChangeOnAnInchIniAsOnItsMmTwin) {
     parts[i++] = r.out.substr(at, r.out.find('\n', at) - at);
   }
   EXPECT_EQ(parts[0], parts[1]);
+}
+
+TEST(Cli, shouldCountIocontrolsCyclesAtTheInisCycleTime) {
+  const std::string ini = ::testing::TempDir() + "fatc_quick_io.ini";
+  std::ifstream in(FATC_SOURCE_DIR "/config/sim/fixed_atc_sim.ini");
+  std::ofstream out(ini);
+  bool in_emcio = false;
+  for (std::string line; std::getline(in, line);) {
+    if (!line.empty() && line[0] == '[') in_emcio = line == "[EMCIO]";
+    out << (in_emcio && line.rfind("CYCLE_TIME", 0) == 0 ? "CYCLE_TIME = 0.010" : line) << "\n";
+  }
+  out.close();
+  const CliRun quick =
+      run({"--plan", "--config", kConfig, "--from", "2", "--to", "5", "--ini", ini});
+  std::remove(ini.c_str());
+  EXPECT_NE(quick.out.find("0.12 s a change (4.5 of iocontrol's 0.01 s cycles for T and M6, 75 "
+                           "ms for the remap)"),
+            std::string::npos)
+      << quick.out;
+  // The sim's own: 0.1 s, as LinuxCNC's default is.
+  const CliRun sim = run({"--plan", "--config", kConfig, "--from", "2", "--to", "5", "--ini",
+                          FATC_SOURCE_DIR "/config/sim/fixed_atc_sim.ini"});
+  EXPECT_NE(sim.out.find("0.53 s a change (4.5 of iocontrol's 0.1 s cycles"), std::string::npos)
+      << sim.out;
 }
 
 TEST(Cli, shouldSayWhyThereIsNoBoundWhenTheIniLacksAVelocity) {

@@ -43,7 +43,7 @@ double seconds(const Config& config, const Simulator& sim) {
   limits.acceleration = {500.0, 500.0, 500.0};
   limits.linear_velocity = 50.0;
   limits.linear_acceleration = 500.0;
-  return change_time(sim, config.safe, limits).seconds();
+  return change_time(sim, config.safe, MachineTiming{limits}).seconds();
 }
 
 TEST(PathConfig, shouldKeepThePrototypePathUnlessTold) {

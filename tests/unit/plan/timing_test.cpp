@@ -157,12 +157,15 @@ TEST(ChangeTime, shouldAddThePlannedMovesTheDwellsAndTheCostsPerStepAndPerChange
                                                                     // 4 s + 0.5 s
   plan.tell(MessageKind::prompt, "insert tool 7");                  // the operator's: not counted
   publish_done(plan);
-  const ChangeTime time = change_time(plan, {0, 0, 0}, limits_of(10, 20));
+  MachineTiming machine{limits_of(10, 20), 0.05};  // iocontrol's cycle 50 ms
+  const ChangeTime time = change_time(plan, {0, 0, 0}, machine);
   EXPECT_NEAR(time.moves, 11.0 + 50.1 + 4.5, 1e-9);
   EXPECT_NEAR(time.dwells, 0.5, 1e-9);
   EXPECT_EQ(time.steps, 4);  // three moves and done: each one handshake
+  EXPECT_NEAR(time.iocontrol, kIocontrolCycles * 0.05, 1e-9);
   EXPECT_EQ(time.operator_waits, 1);
-  EXPECT_NEAR(time.seconds(), 65.6 + 0.5 + 4 * kStepSeconds + kChangeSeconds, 1e-9);
+  EXPECT_NEAR(time.seconds(),
+              65.6 + 0.5 + 4 * kStepSeconds + kIocontrolCycles * 0.05 + kChangeSeconds, 1e-9);
 }
 
 TEST(ChangeTime, shouldNeverEstimateAChangeBelowItsBound) {
@@ -177,7 +180,7 @@ TEST(ChangeTime, shouldNeverEstimateAChangeBelowItsBound) {
     for (const auto& [from, to] : changes) {
       const Simulator plan = plan_change(config, from, to, -70.0);
       for (const MotionLimits& limits : {gantry, simulated_mill()}) {
-        EXPECT_GT(change_time(plan, config.safe, limits).seconds(),
+        EXPECT_GT(change_time(plan, config.safe, MachineTiming{limits}).seconds(),
                   limits_seconds(plan, config.safe, limits))
             << from << " -> " << to;
       }
