@@ -305,11 +305,11 @@ void print_estimate(const Options& options, const Config& config, const ToolStat
   const char* name = config.path == Path::direct ? "direct" : "prototype";
   const char* other_name = config.path == Path::direct ? "prototype" : "direct";
   char parts[96];
-  std::snprintf(parts, sizeof parts, "(moves %.2f s, dwells %.2f s, %d steps)", time.moves,
-                time.dwells, time.steps);
+  std::snprintf(parts, sizeof parts, "(moves %.2f s, dwells %.2f s, %d step%s)", time.moves,
+                time.dwells, time.steps, time.steps == 1 ? "" : "s");
   out << "estimated " << seconds_text(time.seconds()) << " on the " << name << " path ("
-      << seconds_text(other_time.seconds()) << " on the " << other_name
-      << " path): from safe, " << motion->source << ", " << estimate_costs_text(motion->timing)
+      << seconds_text(other_time.seconds()) << " on the " << other_name << " path): from safe, "
+      << motion->source << ", " << estimate_costs_text(motion->timing)
       << "; the operator not counted " << parts << "\n";
   if (!options.ini_path) {
     out << "bound: --ini gives it (the machine's velocities and accelerations)\n";

@@ -188,7 +188,8 @@ void print_estimate(const Preflight& checked, const MachineIni& machine, std::os
   out << "\nestimated tool-change time: " << seconds_text(checked.seconds) << " for "
       << plural(static_cast<std::size_t>(estimated), "change", "changes")
       << ", from the steps --plan prints for each: " << machine.motion.source << ", "
-      << estimate_costs_text(machine.motion.timing) << "; from safe to safe (the way between the work and safe"
+      << estimate_costs_text(machine.motion.timing)
+      << "; from safe to safe (the way between the work and safe"
       << (checked.operator_waits > 0
               ? " and the operator at " + plural(checked.operator_waits, "prompt", "prompts")
               : std::string())

@@ -20,7 +20,7 @@ struct PreflightInput {
   std::string state_name;            ///< the state file, as messages show it
   const ToolTable* table = nullptr;  ///< LinuxCNC's tool table, when given
   std::string table_name;
-  MachineTiming machine;             ///< for the estimate (change_time)
+  MachineTiming machine;  ///< for the estimate (change_time)
 };
 
 /// One M6 or M61 of the program, as the changer would meet it.

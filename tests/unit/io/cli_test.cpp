@@ -107,8 +107,7 @@ TEST(Cli, shouldEstimateTheSameChangeOnAnInchIniAsOnItsMmTwin) {
   int i = 0;
   for (const char* units : {"mm", "inch"}) {
     const std::string ini = sim_ini_in(units);
-    const CliRun r =
-        run({"--plan", "--config", kConfig, "--from", "2", "--to", "5", "--ini", ini});
+    const CliRun r = run({"--plan", "--config", kConfig, "--from", "2", "--to", "5", "--ini", ini});
     std::remove(ini.c_str());
     const auto at = r.out.find("(moves ");
     ASSERT_NE(at, std::string::npos) << r.out;

@@ -149,13 +149,13 @@ TEST(ChangeTime, shouldAddThePlannedMovesTheDwellsAndTheCostsPerStepAndPerChange
   Simulator plan;
   plan.sensor_z = -20.0;
   // At 10/s with 20/s², planned with 10/s²: a move of d ≥ 10 takes d/v + v/10.
-  publish_move(plan, StepKind::rapid, axis_x, {100, 0, 0}, 0);      // 10 s + 1 s
-  publish_move(plan, StepKind::feed, axis_xy, {100, 50, 0}, 60);    // 50 at 1/s: 50 s + 0.1 s
-  plan.set_chuck_open(true);                                        // no time of its own
-  plan.start_timer(0.5);                                            // a dwell
+  publish_move(plan, StepKind::rapid, axis_x, {100, 0, 0}, 0);     // 10 s + 1 s
+  publish_move(plan, StepKind::feed, axis_xy, {100, 50, 0}, 60);   // 50 at 1/s: 50 s + 0.1 s
+  plan.set_chuck_open(true);                                       // no time of its own
+  plan.start_timer(0.5);                                           // a dwell
   publish_move(plan, StepKind::probe, axis_z, {0, 0, -100}, 300);  // to the sensor: 20 at 5/s:
-                                                                    // 4 s + 0.5 s
-  plan.tell(MessageKind::prompt, "insert tool 7");                  // the operator's: not counted
+                                                                   // 4 s + 0.5 s
+  plan.tell(MessageKind::prompt, "insert tool 7");                 // the operator's: not counted
   publish_done(plan);
   MachineTiming machine{limits_of(10, 20), 0.05};  // iocontrol's cycle 50 ms
   const ChangeTime time = change_time(plan, {0, 0, 0}, machine);
