@@ -287,10 +287,11 @@ void print_estimate(const Options& options, const Config& config, const ToolStat
   char parts[96];
   std::snprintf(parts, sizeof parts, "(moves %.2f s, dwells %.2f s, %d step%s)", time.moves,
                 time.dwells, time.steps, time.steps == 1 ? "" : "s");
+  // Two lines: the figures, then how they were worked out (a line stays under 400 characters).
   out << "estimated " << seconds_text(time.seconds()) << " on the " << name << " path ("
-      << seconds_text(other_time.seconds()) << " on the " << other_name << " path): from safe, "
-      << motion->source << ", " << estimate_costs_text(motion->timing)
-      << "; the operator not counted " << parts << "\n";
+      << seconds_text(other_time.seconds()) << " on the " << other_name << " path) " << parts
+      << ", the operator not counted\n"
+      << "  from safe: " << motion->source << ", " << estimate_costs_text(motion->timing) << "\n";
   if (!options.ini_path) {
     out << "bound: --ini gives it (the machine's velocities and accelerations)\n";
     return;

@@ -178,11 +178,10 @@ void print_estimate(const Preflight& checked, const MachineIni& machine, std::os
            "not known\n";
     return;
   }
+  // The figure, then how it was worked out, each line under 400 characters.
   out << "\nestimated tool-change time: " << seconds_text(checked.seconds) << " for "
       << plural(static_cast<std::size_t>(estimated), "change", "changes")
-      << ", from the steps --plan prints for each: " << machine.motion.source << ", "
-      << estimate_costs_text(machine.motion.timing)
-      << "; from safe to safe (the way between the work and safe"
+      << ", from safe to safe (the way between the work and safe"
       << (checked.operator_waits > 0
               ? " and the operator at " + plural(checked.operator_waits, "prompt", "prompts")
               : std::string())
@@ -191,7 +190,8 @@ void print_estimate(const Preflight& checked, const MachineIni& machine, std::os
     out << "; " << plural(checked.not_estimated, "change", "changes")
         << " not estimated: the tool or the spindle is not known";
   }
-  out << "\n";
+  out << "\n  from the steps --plan prints for each: " << machine.motion.source << ", "
+      << estimate_costs_text(machine.motion.timing) << "\n";
 }
 
 /// Findings in the order of the program's lines.

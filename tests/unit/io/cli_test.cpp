@@ -35,7 +35,8 @@ TEST(Cli, shouldEstimateThePlannedChangeOnBothPaths) {
   ASSERT_NE(at, std::string::npos) << r.out;
   const std::string line = r.out.substr(at, r.out.find('\n', at) - at);
   EXPECT_NE(line.find(" on the prototype path ("), std::string::npos) << line;
-  EXPECT_NE(line.find(" on the direct path): from safe, the moves at 3000 mm/min and 500 "
+  EXPECT_NE(line.find(" on the direct path) (moves "), std::string::npos) << line;
+  EXPECT_NE(r.out.find("\n  from safe: the moves at 3000 mm/min and 500 "
                       "mm/s², assumed (--ini gives the machine's [AXIS_*] and [TRAJ] limits), "
                       "each an exact stop at half the acceleration as LinuxCNC plans it, plus "
                       "the dwells, 17 ms a step"),

@@ -443,12 +443,12 @@ TEST_F(Lint, shouldEstimateTheChangeTimeFromThePlannedSteps) {
       lint(write("two.ngc", "T1 M6\nT2 M6\nM2\n"), {"--state", state_with_lengths({1, 2})});
   EXPECT_LINE(r, "\nestimated tool-change time: ");
   EXPECT_LINE(r,
-              " for 2 changes, from the steps --plan prints for each: the moves at 3000 mm/min "
+              " for 2 changes, from safe to safe (the way between the work and safe not "
+              "counted)\n  from the steps --plan prints for each: the moves at 3000 mm/min "
               "and 500 mm/s², assumed (--ini gives the machine's [AXIS_*] and [TRAJ] limits), "
               "each an exact stop at half the acceleration as LinuxCNC plans it, plus the "
               "dwells, 17 ms a step (the executor's handshake) and 0.53 s a change (4.5 of "
-              "iocontrol's 0.1 s cycles for T and M6, 75 ms for the remap); from safe to safe "
-              "(the way between the work and safe not counted)\n");
+              "iocontrol's 0.1 s cycles for T and M6, 75 ms for the remap)\n");
 }
 
 // ---- usage and unreadable input: exit 2 ----
