@@ -5,9 +5,12 @@
 
 #include <chrono>
 #include <csignal>
+#include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <iostream>
 #include <memory>
+#include <new>
 #include <optional>
 #include <string>
 #include <thread>
@@ -24,6 +27,32 @@
 #include "linuxcnc/nml_link.hpp"
 
 namespace {
+
+/// The last resort behind main's own catch: what escapes it - a throw while
+/// the program starts, before main (the memory left by a low `ulimit -v`),
+/// or out of a noexcept function - ends on one line and exit 2, never on
+/// abort()'s signal.
+[[noreturn]] void one_line_terminate() {
+  const char* what = "stopped on an error it did not expect";
+  try {
+    if (const auto thrown = std::current_exception()) std::rethrow_exception(thrown);
+  } catch (const std::bad_alloc&) {
+    what = "out of memory";
+  } catch (const std::exception& e) {
+    what = e.what();
+  } catch (...) {
+  }
+  std::fputs("fixed_atc_probe: ", stderr);
+  std::fputs(what, stderr);
+  std::fputs("\n", stderr);
+  std::_Exit(2);
+}
+
+/// Before every other initializer of the program (101: the first priority
+/// after the implementation's own).
+__attribute__((constructor(101))) void install_terminate() {
+  std::set_terminate(one_line_terminate);
+}
 
 volatile std::sig_atomic_t stop_requested = 0;
 
@@ -94,28 +123,30 @@ int run_component(const fatc::io::Options& options) {
   std::signal(SIGTERM, request_stop);
   std::signal(SIGINT, request_stop);
 
-  fatc::linuxcnc::Component component(pins, config, options.config_path, state_path, nml.get());
-  component.soft_limits(limits);
-  fatc::Changer changer(config, component, *tools.state);
-  changer.soft_limits(limits);
-  component.attach(&changer);
-  auto interpreter_idle = [&]() -> std::optional<bool> {
-    if (!nml || !nml->poll()) return std::nullopt;
-    return nml->interpreter_idle();
-  };
-  component.poll(std::chrono::steady_clock::now(), interpreter_idle());
-  hal_ready(id);
-
+  // From here on, whatever fails leaves HAL as it found it.
   try {
+    fatc::linuxcnc::Component component(pins, config, options.config_path, state_path, nml.get());
+    component.soft_limits(limits);
+    fatc::Changer changer(config, component, *tools.state);
+    changer.soft_limits(limits);
+    component.attach(&changer);
+    auto interpreter_idle = [&]() -> std::optional<bool> {
+      if (!nml || !nml->poll()) return std::nullopt;
+      return nml->interpreter_idle();
+    };
+    component.poll(std::chrono::steady_clock::now(), interpreter_idle());
+    hal_ready(id);
     while (!stop_requested) {
       component.poll(std::chrono::steady_clock::now(), interpreter_idle());
       // Quick turns while a handshake is open; otherwise sleep, don't spin.
       std::this_thread::sleep_for(std::chrono::milliseconds(component.active() ? 1 : 20));
     }
-  } catch (const std::exception& e) {
-    std::cerr << "fixed_atc_probe: " << e.what() << std::endl;
+  } catch (const std::bad_alloc&) {
     hal_exit(id);
-    return 1;
+    return fail("out of memory");
+  } catch (const std::exception& e) {
+    hal_exit(id);
+    return fail(e.what());
   }
   hal_exit(id);
   return 0;
@@ -124,14 +155,23 @@ int run_component(const fatc::io::Options& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string error;
-  const auto options =
-      fatc::io::parse_options(std::vector<std::string>(argv + 1, argv + argc), error);
-  if (!options) {
-    // One line: the mistake stays in sight, the usage is a --help away.
-    std::cerr << "fixed_atc_probe: " << fatc::capped_lines(error) << " (see --help)\n";
-    return 2;
+  // Every mode ends in one line, whatever fails (memory included): never on
+  // std::terminate's abort.
+  try {
+    std::string error;
+    const auto options =
+        fatc::io::parse_options(std::vector<std::string>(argv + 1, argv + argc), error);
+    if (!options) {
+      // One line: the mistake stays in sight, the usage is a --help away.
+      std::cerr << "fixed_atc_probe: " << fatc::capped_lines(error) << " (see --help)\n";
+      return 2;
+    }
+    if (options->mode == fatc::io::Options::Mode::component) return run_component(*options);
+    return fatc::io::run_tool_mode(*options, std::cout, std::cerr);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "fixed_atc_probe: out of memory" << std::endl;
+  } catch (const std::exception& e) {
+    std::cerr << "fixed_atc_probe: " << fatc::capped_lines(e.what()) << std::endl;
   }
-  if (options->mode == fatc::io::Options::Mode::component) return run_component(*options);
-  return fatc::io::run_tool_mode(*options, std::cout, std::cerr);
+  return 2;
 }

@@ -85,8 +85,9 @@ const std::vector<ModeDeclaration> kModes = {
    "LinuxCNC runs them with the tool's pocket, manual tools, lengths, what only the running "
    "machine knows (HAL pins, a tool read from an M66 input), the problems, and the change "
    "time estimated as --plan estimates each change (the INI's limits with --ini, else assumed "
-   "ones). rs274 is stopped after 15 s or 256 "
-   "MiB of output (a problem). Exit 0 clean, 1 problems found, 2 usage, an input it cannot read "
+   "ones). rs274 is stopped after 15 s, 256 MiB of output or the error after 1000 (a "
+   "problem); it is given at most 64 MiB of G-code. Exit 0 clean, 1 problems found, 2 usage, "
+   "an input it cannot read "
    "(program, config, state, tool table, INI) or rs274 not installed"},
   {Mode::teach, "--teach", "pocket:N|loading|safe|sensor", {"--config", "--at"}, {"--ini"},
    "write a jogged-to machine position (G53) into config.json",

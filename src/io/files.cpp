@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <cstring>
 #include <stdexcept>
+#include <vector>
 
 #include "core/config/quote.hpp"
 
@@ -70,79 +71,86 @@ std::string folder_of(const std::string& path) {
 
 namespace {
 
-/// Reads up to `max_bytes` + 1 bytes of a regular file, refusing anything else
-/// before a read; `limit_size`: a file over kMaxFileBytes is refused by its size.
-std::optional<std::string> read_regular(const std::string& path, std::size_t max_bytes,
-                                        bool limit_size, std::uint64_t& file_bytes,
-                                        std::string& error) {
+/// Hands a regular file to `take` piece by piece, at most `max_bytes` + 1
+/// bytes in all, refusing anything else before a read; `limit_size`: a file
+/// over kMaxFileBytes is refused by its size.
+bool read_regular(const std::string& path, std::size_t max_bytes, bool limit_size,
+                  std::uint64_t& file_bytes, std::string& error, const Take& take) {
   if (path.empty()) {
     error = shown_path(path) + ": expected a file path, got nothing";
-    return std::nullopt;
+    return false;
   }
   // Refuse devices and FIFOs before opening them at all (opening some devices
   // does something), then again on what was opened, in case it changed.
   struct stat st;
   if (::stat(path.c_str(), &st) != 0) {
     error = shown_path(path) + ": cannot open " + why(errno);
-    return std::nullopt;
+    return false;
   }
   if (std::string refused = refusal(path, st, limit_size); !refused.empty()) {
     error = refused;
-    return std::nullopt;
+    return false;
   }
   // O_NONBLOCK: a FIFO swapped in after the stat cannot make open() wait.
   const Descriptor file{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC)};
   if (file.fd < 0) {
     error = shown_path(path) + ": cannot open " + why(errno);
-    return std::nullopt;
+    return false;
   }
   if (::fstat(file.fd, &st) != 0) {
     error = shown_path(path) + ": cannot read " + why(errno);
-    return std::nullopt;
+    return false;
   }
   if (std::string refused = refusal(path, st, limit_size); !refused.empty()) {
     error = refused;
-    return std::nullopt;
+    return false;
   }
   file_bytes = static_cast<std::uint64_t>(st.st_size);
-  std::string text(std::min<std::uint64_t>(max_bytes, file_bytes) + 1, '\0');
-  std::size_t size = 0;
-  while (size < text.size()) {
-    const ssize_t n = ::read(file.fd, &text[size], text.size() - size);
+  // One more than the limit tells a file that grew while we read.
+  const std::uint64_t wanted = static_cast<std::uint64_t>(max_bytes) + 1;
+  std::vector<char> buffer(static_cast<std::size_t>(std::min<std::uint64_t>(wanted, 64 * 1024)));
+  for (std::uint64_t size = 0; size < wanted;) {
+    const ssize_t n =
+        ::read(file.fd, buffer.data(),
+               static_cast<std::size_t>(std::min<std::uint64_t>(buffer.size(), wanted - size)));
     if (n < 0 && errno == EINTR) continue;
     if (n < 0) {
       error = shown_path(path) + ": cannot read " + why(errno);
-      return std::nullopt;
+      return false;
     }
     if (n == 0) break;
-    size += static_cast<std::size_t>(n);
-    // It grew while we read: make room up to the limit.
-    if (size == text.size() && text.size() <= max_bytes) text.resize(max_bytes + 1);
+    size += static_cast<std::uint64_t>(n);
+    take(std::string_view(buffer.data(), static_cast<std::size_t>(n)));
   }
-  text.resize(size);
-  return text;
+  return true;
 }
 
 }  // namespace
 
 std::optional<std::string> read_small_file(const std::string& path, std::string& error) {
   std::uint64_t file_bytes = 0;
-  auto text = read_regular(path, kMaxFileBytes, true, file_bytes, error);
-  if (text && text->size() > kMaxFileBytes) {  // it grew while we read
+  std::string text;
+  if (!read_regular(path, kMaxFileBytes, true, file_bytes, error,
+                    [&](std::string_view piece) { text.append(piece); })) {
+    return std::nullopt;
+  }
+  if (text.size() > kMaxFileBytes) {  // it grew while we read
     error = shown_path(path) + ": expected a file of at most 1 MiB, got more";
     return std::nullopt;
   }
   return text;
 }
 
-std::optional<std::string> read_file_start(const std::string& path, std::size_t max_bytes,
-                                           std::uint64_t& file_bytes, std::string& error) {
-  auto text = read_regular(path, max_bytes, false, file_bytes, error);
-  if (text && text->size() > max_bytes) {
-    file_bytes = std::max<std::uint64_t>(file_bytes, text->size());
-    text->resize(max_bytes);
-  }
-  return text;
+bool read_file_pieces(const std::string& path, std::size_t max_bytes, std::uint64_t& file_bytes,
+                      std::string& error, const Take& take) {
+  std::uint64_t seen = 0;
+  const bool read =
+      read_regular(path, max_bytes, false, file_bytes, error, [&](std::string_view piece) {
+        if (seen < max_bytes) take(piece.substr(0, static_cast<std::size_t>(max_bytes - seen)));
+        seen += piece.size();
+      });
+  file_bytes = std::max(file_bytes, seen);
+  return read;
 }
 
 ConfigResult load_config_file(const std::string& path) {

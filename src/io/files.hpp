@@ -1,8 +1,10 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/config/config.hpp"
@@ -19,11 +21,16 @@ constexpr std::size_t kMaxFileBytes = 1024 * 1024;
 /// Never blocks: a FIFO is opened non-blocking and refused before any read.
 std::optional<std::string> read_small_file(const std::string& path, std::string& error);
 
-/// The first `max_bytes` of a regular file of any size, and (`file_bytes`)
+/// Takes one piece of a file as it is read.
+using Take = std::function<void(std::string_view piece)>;
+
+/// Hands the first `max_bytes` of a regular file of any size to `take`, piece
+/// by piece (never more than 64 KiB of it in memory), and says (`file_bytes`)
 /// how big it is; refuses, never blocking, what read_small_file refuses but
-/// its size. Fewer than `file_bytes` read: the file was cut.
-std::optional<std::string> read_file_start(const std::string& path, std::size_t max_bytes,
-                                           std::uint64_t& file_bytes, std::string& error);
+/// its size: false and one line in `error`. Fewer than `file_bytes` given:
+/// the file was cut.
+bool read_file_pieces(const std::string& path, std::size_t max_bytes, std::uint64_t& file_bytes,
+                      std::string& error, const Take& take);
 
 /// A file path for a message: control characters escaped, cut short if huge.
 std::string shown_path(const std::string& path);

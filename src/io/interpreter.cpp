@@ -10,11 +10,10 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <vector>
 
 #include "core/program/interpreter_inputs.hpp"
@@ -85,6 +84,18 @@ class ScratchFolder {
   ScratchFolder(const ScratchFolder&) = delete;
   ScratchFolder& operator=(const ScratchFolder&) = delete;
 
+  /// Makes `name` in the folder for a text written piece by piece (the
+  /// program's numbered copy: FileWriter takes a whole text, and this one is
+  /// never whole in memory), created exclusively, never through a link, in a
+  /// folder only this user can write in. Its descriptor, or -1 and `error`.
+  int create(const std::string& name, std::string& error) const {
+    const std::string path = path_ + "/" + name;
+    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+    if (fd < 0)
+      error = "cannot write " + path + " for the interpreter (" + std::strerror(errno) + ")";
+    return fd;
+  }
+
   bool made() const { return !path_.empty(); }
   const std::string& path() const { return path_; }
   /// Writes `name` in the folder; its path, or nullopt and `error`.
@@ -138,16 +149,45 @@ struct Ending {
   int status = 0;
 };
 
-/// Runs `argv` in `folder`, which writes its canonical calls to `calls_path`
-/// (a file: rs274 buffers it, where on a pipe it writes every few
-/// characters, four times slower), and feeds its standard error to `output`.
+/// Where rs274's output file is in the child: /dev/fd/3.
+constexpr int kCallsFd = 3;
+
+/// Reads what is there on `fd` (made non-blocking) into `lines`, at most 16
+/// buffers at a time; false once it is closed.
+template <class Lines>
+bool drain(int fd, std::vector<char>& buffer, Lines& lines, std::size_t& bytes) {
+  for (int reads = 0; reads < 16;) {
+    const ssize_t got = ::read(fd, buffer.data(), buffer.size());
+    if (got > 0) {
+      ++reads;
+      bytes += static_cast<std::size_t>(got);
+      lines.add(buffer.data(), static_cast<std::size_t>(got));
+      continue;
+    }
+    if (got < 0 && errno == EINTR) continue;
+    return got < 0 && (errno == EAGAIN || errno == EWOULDBLOCK);
+  }
+  return true;
+}
+
+/// Runs `argv` in `folder` and feeds `output` as it goes: the canonical
+/// calls rs274 writes to its output file, here /dev/fd/3, a pipe (a file
+/// given by name, rs274 buffers it, where on its standard output it writes
+/// every few characters, four times slower), and its standard error. Nothing
+/// of either is kept beyond the line under way.
 std::optional<Ending> run_child(const std::vector<std::string>& argv, const std::string& folder,
-                                const std::string& home, const std::string& calls_path,
-                                const InterpreterInput& input, program::InterpreterOutput& output,
-                                std::string& error) {
+                                const std::string& home, const InterpreterInput& input,
+                                program::InterpreterOutput& output, std::string& error) {
   int err_pipe[2];
+  int calls_pipe[2];
   if (::pipe2(err_pipe, O_CLOEXEC) != 0) {
     error = std::string("cannot start rs274: ") + std::strerror(errno);
+    return std::nullopt;
+  }
+  if (::pipe2(calls_pipe, O_CLOEXEC) != 0) {
+    error = std::string("cannot start rs274: ") + std::strerror(errno);
+    ::close(err_pipe[0]);
+    ::close(err_pipe[1]);
     return std::nullopt;
   }
   // Everything the child needs is made before fork: only exec-safe calls after.
@@ -174,69 +214,71 @@ std::optional<Ending> run_child(const std::vector<std::string>& argv, const std:
       ::dup2(nothing, STDOUT_FILENO);
     }
     ::dup2(err_pipe[1], STDERR_FILENO);
+    // dup2 onto itself would leave close-on-exec set.
+    if (calls_pipe[1] == kCallsFd) {
+      ::fcntl(kCallsFd, F_SETFD, 0);
+    } else {
+      ::dup2(calls_pipe[1], kCallsFd);
+    }
     if (::chdir(folder.c_str()) != 0) ::_exit(126);
     ::execve(args[0], args.data(), env.data());
     ::_exit(127);
   }
   ::close(err_pipe[1]);
+  ::close(calls_pipe[1]);
   if (child < 0) {
     error = std::string("cannot start rs274: ") + std::strerror(errno);
     ::close(err_pipe[0]);
+    ::close(calls_pipe[0]);
     return std::nullopt;
   }
   ::setpgid(child, child);  // also here: whichever of the two runs first
 
   auto errors = [&](std::string_view line) { output.error_line(line); };
   LineSplitter<decltype(errors)> err_lines(errors);
+  auto calls = [&](std::string_view line) { output.canonical_call(line); };
+  LineSplitter<decltype(calls)> call_lines(calls);
   Ending ending;
-  std::size_t error_bytes = 0;
+  std::size_t printed = 0;
   const auto deadline = std::chrono::steady_clock::now() +
                         std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                             std::chrono::duration<double>(input.seconds));
-  pollfd err_fd = {err_pipe[0], POLLIN, 0};
+  pollfd fds[2] = {{err_pipe[0], POLLIN, 0}, {calls_pipe[0], POLLIN, 0}};
+  for (pollfd& fd : fds) ::fcntl(fd.fd, F_SETFL, O_NONBLOCK);
   std::vector<char> buffer(64 * 1024);
-  // The standard error closes when rs274 ends; meanwhile the file's size is
-  // watched every tenth of a second.
-  while (err_fd.fd >= 0) {
+  // Both close when rs274 ends.
+  while (fds[0].fd >= 0 || fds[1].fd >= 0) {
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
         deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0) {
       ending.timed_out = true;
       break;
     }
-    const int ready = ::poll(&err_fd, 1, static_cast<int>(std::min<long long>(left.count() + 1, 100)));
+    const int ready = ::poll(fds, 2, static_cast<int>(std::min<long long>(left.count() + 1, 100)));
     if (ready < 0 && errno != EINTR) break;
-    if (ready > 0) {
-      const ssize_t got = ::read(err_fd.fd, buffer.data(), buffer.size());
-      if (got < 0 && errno != EINTR) break;
-      if (got == 0) {
-        ::close(err_fd.fd);
-        err_fd.fd = -1;
-      } else if (got > 0) {
-        error_bytes += static_cast<std::size_t>(got);
-        err_lines.add(buffer.data(), static_cast<std::size_t>(got));
-      }
+    // An error is written at once, the calls before it only when their buffer
+    // fills: the errors read first keep the order in which rs274 met them.
+    if (fds[0].fd >= 0 && !drain(fds[0].fd, buffer, err_lines, printed)) {
+      ::close(fds[0].fd);
+      fds[0].fd = -1;
     }
-    if (output.past_the_end()) break;
-    struct stat st;
-    if (error_bytes > input.max_output_bytes ||
-        (::stat(calls_path.c_str(), &st) == 0 &&
-         static_cast<std::uint64_t>(st.st_size) > input.max_output_bytes)) {
+    if (fds[1].fd >= 0 && !drain(fds[1].fd, buffer, call_lines, printed)) {
+      ::close(fds[1].fd);
+      fds[1].fd = -1;
+    }
+    if (output.done()) break;
+    if (printed > input.max_output_bytes) {
       ending.too_much_output = true;
       break;
     }
   }
-  if (ending.timed_out || ending.too_much_output || output.past_the_end()) ::kill(-child, SIGKILL);
-  if (err_fd.fd >= 0) ::close(err_fd.fd);
-  err_lines.end();
-  while (::waitpid(child, &ending.status, 0) < 0 && errno == EINTR) {
+  if (ending.timed_out || ending.too_much_output || output.done()) ::kill(-child, SIGKILL);
+  for (const pollfd& fd : fds) {
+    if (fd.fd >= 0) ::close(fd.fd);
   }
-  // The calls, up to the limit: what was written before rs274 was stopped counts.
-  std::ifstream calls(calls_path, std::ios::binary);
-  std::size_t read_bytes = 0;
-  for (std::string line; read_bytes <= input.max_output_bytes && std::getline(calls, line);) {
-    read_bytes += line.size() + 1;
-    output.canonical_call(line);
+  err_lines.end();
+  call_lines.end();
+  while (::waitpid(child, &ending.status, 0) < 0 && errno == EINTR) {
   }
   return ending;
 }
@@ -275,26 +317,53 @@ std::optional<std::string> find_rs274(std::string& error) {
 std::optional<program::InterpreterRun> run_interpreter(const InterpreterInput& input,
                                                        std::string& error) {
   const std::string name = shown_path(input.program_path);
+  ScratchFolder scratch(error);
+  if (!scratch.made()) return std::nullopt;
+  // The program numbered as it is read, straight into the interpreter's copy.
+  const std::string program_copy = scratch.path() + "/program.ngc";
+  const int copy = scratch.create("program.ngc", error);
+  if (copy < 0) return std::nullopt;
+  int write_error = 0;
+  auto write_out = [&](const std::string& text) {
+    for (std::size_t done = 0; write_error == 0 && done < text.size();) {
+      const ssize_t n = ::write(copy, text.data() + done, text.size() - done);
+      if (n < 0 && errno == EINTR) continue;
+      if (n < 0) write_error = errno;
+      done += n > 0 ? static_cast<std::size_t>(n) : 0;
+    }
+  };
+  program::LineNumberer numberer;
   std::uint64_t file_bytes = 0;
-  auto text = read_file_start(input.program_path, input.max_program_bytes, file_bytes, error);
-  if (!text) return std::nullopt;
-  const bool cut = text->size() < file_bytes;
-  // A cut file ends at its last whole line: half a line could read as another word.
-  if (cut) text->resize(text->rfind('\n') == std::string::npos ? 0 : text->rfind('\n') + 1);
-  program::NumberedProgram numbered = program::number_lines(*text);
-  program::InterpreterRun run;
-  if (cut) {
-    run.problems.push_back(finding(
-        name, 0,
-         "only the first " + std::to_string(text->size()) + " of its " +
-             std::to_string(file_bytes) + " bytes read (the lint reads at most " +
-             amount(input.max_program_bytes) + " of G-code): tool changes after line " +
-             std::to_string(std::count(text->begin(), text->end(), '\n')) + " are not known"));
+  const bool read = read_file_pieces(input.program_path, input.max_program_bytes, file_bytes, error,
+                                     [&](std::string_view piece) {
+                                       numberer.add(piece);
+                                       if (numberer.text_size() >= 64 * 1024) {
+                                         write_out(numberer.take_text());
+                                       }
+                                     });
+  const bool cut = file_bytes > input.max_program_bytes;
+  numberer.finish(cut);
+  write_out(numberer.take_text());
+  if (::close(copy) != 0 && write_error == 0) write_error = errno;
+  if (!read) return std::nullopt;
+  if (write_error != 0) {
+    error = "cannot write " + program_copy + " for the interpreter (" + std::strerror(write_error) +
+            ")";
+    return std::nullopt;
   }
-  text.reset();
-  if (!numbered.problems.empty()) {
-    for (const LineNote& note : numbered.problems) run.problems.push_back(finding(name, note.line, note.text));
+  program::InterpreterRun run;
+  if (const auto& nul = numberer.nul()) {
+    run.problems.push_back(finding(name, nul->line, nul->text));
     return run;
+  }
+  if (cut) {
+    // A cut file ends at its last whole line: half a line could read as another word.
+    run.problems.push_back(
+        finding(name, 0,
+                "only the first " + std::to_string(numberer.bytes()) + " of its " +
+                    std::to_string(file_bytes) + " bytes read (the lint reads at most " +
+                    amount(input.max_program_bytes) + " of G-code): tool changes after line " +
+                    std::to_string(numberer.lines()) + " are not known"));
   }
 
   std::optional<IniFile> ini;
@@ -312,13 +381,8 @@ std::optional<program::InterpreterRun> run_interpreter(const InterpreterInput& i
     if (!table_text) return std::nullopt;
     table = program::interpreter_table(parse_tool_table(*table_text), 1.0 / (units_per_mm * 25.4));
   }
-
-  ScratchFolder scratch(error);
-  if (!scratch.made()) return std::nullopt;
-  const auto program_copy = scratch.write("program.ngc", numbered.text, error);
-  numbered.text = std::string();
   const auto table_copy = scratch.write("tools.tbl", table.text, error);
-  if (!program_copy || !table_copy) return std::nullopt;
+  if (!table_copy) return std::nullopt;
   std::string parameters;
   if (ini) {
     if (const auto file = ini->get("RS274NGC", "PARAMETER_FILE")) {
@@ -329,56 +393,79 @@ std::optional<program::InterpreterRun> run_interpreter(const InterpreterInput& i
   const auto parameter_copy = scratch.write("parameters.var", parameters, error);
   if (!parameter_copy) return std::nullopt;
 
-  std::vector<std::string> argv = {input.rs274};
-  if (input.ini_path) {
-    const auto ini_text = read_small_file(*input.ini_path, error);
-    if (!ini_text) return std::nullopt;
-    std::string folders;
-    if (input.subroutine_path) {
-      folders = absolute_folders(*input.subroutine_path);
-      if (const auto own = ini->get("RS274NGC", "SUBROUTINE_PATH")) folders += ":" + *own;
+  // A call of a subroutine the program does not define finds, after every
+  // folder of the machine's, an empty file: rs274 stops there at once, where
+  // it would read the rest of the program looking for it, once for each call.
+  std::string stub_folder;
+  if (const auto undefined = numberer.undefined_calls(); !undefined.empty()) {
+    stub_folder = scratch.path() + "/undefined";
+    if (::mkdir(stub_folder.c_str(), 0700) != 0) {
+      error = "cannot make " + stub_folder + " for the interpreter (" + std::strerror(errno) + ")";
+      return std::nullopt;
     }
-    const auto written =
-        scratch.write("machine.ini", program::ini_for_preflight(*ini_text, folders), error);
-    if (!written) return std::nullopt;
-    argv.insert(argv.end(), {"-i", *written});
-  } else {
-    const auto written = scratch.write(
-        "machine.ini",
-        program::ini_for_preflight(
-            "", input.subroutine_path ? absolute_folders(*input.subroutine_path) : ""),
-        error);
-    if (!written) return std::nullopt;
-    argv.insert(argv.end(), {"-i", *written});
+    for (const std::string& sub : undefined) {
+      if (!scratch.write("undefined/" + sub + ".ngc", "", error)) return std::nullopt;
+    }
   }
-  const std::string calls_path = *program_copy + ".calls";
-  argv.insert(argv.end(),
-              {"-t", *table_copy, "-v", *parameter_copy, "-g", "-n", "0", *program_copy, calls_path});
+  std::string folders = input.subroutine_path ? absolute_folders(*input.subroutine_path) : "";
+  for (const std::string& folder : folders_of(folders)) {
+    if (folder.size() > program::kMaxFolderLength) {
+      error = "--subroutine-path: " + shown_path(folder) + ": over the " +
+              std::to_string(program::kMaxFolderLength) +
+              " characters LinuxCNC reads of a folder in its INI";
+      return std::nullopt;
+    }
+  }
+  if (ini) {
+    if (const auto own = ini->get("RS274NGC", "SUBROUTINE_PATH")) {
+      folders += (folders.empty() ? "" : ":") + *own;
+    }
+  }
+  if (!stub_folder.empty()) folders += (folders.empty() ? "" : ":") + stub_folder;
+  std::string ini_text;
+  if (input.ini_path) {
+    const auto text = read_small_file(*input.ini_path, error);
+    if (!text) return std::nullopt;
+    ini_text = *text;
+  }
+  const auto written =
+      scratch.write("machine.ini", program::ini_for_preflight(ini_text, folders), error);
+  if (!written) return std::nullopt;
+  const std::vector<std::string> argv = {
+      input.rs274,     "-i", *written, "-t", *table_copy,  "-v",
+      *parameter_copy, "-g", "-n",     "0",  program_copy, "/dev/fd/" + std::to_string(kCallsFd)};
 
-  program::InterpreterOutput output(name, *program_copy, table.tool_of_row, numbered.input_lines,
-                                    numbered.lines);
-  const auto ending =
-      run_child(argv, machine_folder, scratch.path(), calls_path, input, output, error);
+  program::ProgramGiven given;
+  given.name = name;
+  given.numbered_path = program_copy;
+  given.stub_folder = stub_folder;
+  given.input_lines = numberer.input_lines();
+  given.lines = numberer.lines();
+  program::InterpreterOutput output(std::move(given), table.tool_of_row);
+  const auto ending = run_child(argv, machine_folder, scratch.path(), input, output, error);
   if (!ending) return std::nullopt;
   if (WIFEXITED(ending->status) && WEXITSTATUS(ending->status) >= 126) {
     error = shown_path(input.rs274) + ": cannot run it" +
             (WEXITSTATUS(ending->status) == 126 ? " in " + shown_path(machine_folder) : "");
     return std::nullopt;
   }
+  const int reached = output.line();
   program::InterpreterRun ran = output.finish();
   ran.problems.insert(ran.problems.begin(), run.problems.begin(), run.problems.end());
   if (ending->timed_out) {
     char seconds[32];
     std::snprintf(seconds, sizeof seconds, "%g", input.seconds);
-    ran.problems.push_back(finding(name, 0, std::string("LinuxCNC's interpreter (rs274) still ran after ") +
-                                           seconds +
-                                           " s (a loop without end?): stopped; tool changes "
-                                           "after that are not known"));
+    ran.problems.push_back(finding(
+        name, 0,
+        std::string("LinuxCNC's interpreter (rs274) still ran after ") + seconds + " s, at line " +
+            std::to_string(reached) + " of " + std::to_string(numberer.lines()) +
+            " (a loop without end, or a program longer than it reads in that time): stopped; "
+            "tool changes after that are not known"));
   } else if (ending->too_much_output) {
     ran.problems.push_back(finding(name, 0, "LinuxCNC's interpreter (rs274) printed over " +
                                            amount(input.max_output_bytes) +
                                            ": stopped; tool changes after that are not known"));
-  } else if (!WIFEXITED(ending->status) && !output.past_the_end()) {
+  } else if (!WIFEXITED(ending->status) && !output.done()) {
     ran.problems.push_back(finding(name, 0, "LinuxCNC's interpreter (rs274) ended on signal " +
                                            std::to_string(WTERMSIG(ending->status)) +
                                            ": tool changes after that are not known"));

@@ -13,8 +13,8 @@ constexpr std::size_t kMaxProgramBytes = 64 * 1024 * 1024;
 /// How long rs274 may run: a program that loops without end must not hang
 /// --lint or the panel (which gives up on --lint after 20 s).
 constexpr double kInterpreterSeconds = 15.0;
-/// What rs274 may write (about three bytes for each byte of a program of
-/// moves), into a file in the temporary folder.
+/// What rs274 may print (about four bytes for each byte of a program of
+/// moves); read as it comes, never kept.
 constexpr std::size_t kMaxInterpreterOutput = 256u * 1024 * 1024;
 
 struct InterpreterInput {
@@ -36,10 +36,12 @@ std::optional<std::string> find_rs274(std::string& error);
 /// Runs the program through rs274 (LinuxCNC's interpreter) as the machine
 /// would: in the INI's folder with its INI, its tool table and a copy of its
 /// parameter file (rs274 writes the parameters back on exit: never the
-/// machine's own), the program's lines numbered (program::number_lines). No
-/// shell; stopped after `seconds` or `max_output_bytes` written, which is
-/// then a problem. nullopt and one line in `error` when an input cannot be read or
-/// rs274 cannot be started.
+/// machine's own), the program's lines numbered (program::LineNumberer). No
+/// shell; stopped after `seconds` or `max_output_bytes` printed, which is
+/// then a problem. Memory stays small whatever the program: it is numbered
+/// and rs274's output read piece by piece, nothing of either kept but the
+/// bounded findings. nullopt and one line in `error` when an input cannot be
+/// read or rs274 cannot be started.
 std::optional<program::InterpreterRun> run_interpreter(const InterpreterInput& input,
                                                        std::string& error);
 

@@ -252,24 +252,26 @@ int lint(const Options& options, std::ostream& out, std::ostream& err) {
     return 2;
   }
   std::string error;
-  std::optional<ToolTable> table;
-  std::string table_name;
-  if (options.tool_table_path) {
-    const auto text = read_small_file(*options.tool_table_path, error);
-    if (!text) {
-      err << error << "\n";
-      return 2;
-    }
-    table = parse_tool_table(*text);
-    table_name = shown_path(*options.tool_table_path);
-  }
   MachineIni machine;
   if (!read_ini(options, config, machine, error)) {
     err << error << "\n";
     return 2;
   }
-  auto run = interpret(options, config,
-                       options.tool_table_path ? options.tool_table_path : machine.tool_table, error);
+  // The table rs274 is given: --tool-table, else the INI's. Its problems are
+  // the program's; its lengths stand for the state file's only when given.
+  const auto table_path = options.tool_table_path ? options.tool_table_path : machine.tool_table;
+  std::optional<ToolTable> table;
+  std::string table_name;
+  if (table_path) {
+    const auto text = read_small_file(*table_path, error);
+    if (!text) {
+      err << error << "\n";
+      return 2;
+    }
+    table = parse_tool_table(*text);
+    table_name = shown_path(*table_path);
+  }
+  auto run = interpret(options, config, table_path, error);
   if (!run) {
     err << error << "\n";
     return 2;
@@ -280,7 +282,7 @@ int lint(const Options& options, std::ostream& out, std::ostream& err) {
   input.config = &config;
   input.tools = *state.state;
   input.state_name = shown_path(options.state_path);
-  input.table = table ? &*table : nullptr;
+  input.table = table && options.tool_table_path ? &*table : nullptr;
   input.table_name = table_name;
   input.machine = machine.motion.timing;
   const Preflight checked = preflight(run->uses, input);

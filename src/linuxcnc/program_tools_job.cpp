@@ -1,5 +1,7 @@
 #include "program_tools_job.hpp"
 
+#include <new>
+
 #include "io/lint.hpp"
 
 namespace fatc::linuxcnc {
@@ -14,7 +16,14 @@ bool ProgramToolsJob::start(const std::string& program, const std::string& ini_p
   done_ = false;
   thread_ = std::thread([this, program, ini_path, config] {
     Result result;
-    result.tools = io::program_tools(program, ini_path, config, result.error);
+    // An exception would end the component (std::terminate): it is the job's error.
+    try {
+      result.tools = io::program_tools(program, ini_path, config, result.error);
+    } catch (const std::bad_alloc&) {
+      result.error = "out of memory reading the program";
+    } catch (const std::exception& e) {
+      result.error = e.what();
+    }
     result_ = std::move(result);
     done_ = true;
   });

@@ -52,6 +52,8 @@ def main():
     safe, dwell = config["safe"], config["chuck_seconds"]
     ini = re.sub(r"^SUBROUTINE_PATH = .*$", "SUBROUTINE_PATH = %s/nc_subroutines:%s/common_nc_subs"
                  % (EXAMPLE, STDGLUE), ini, flags=re.M)
+    # The example's abort handler instead of ours (LinuxCNC takes one).
+    ini = re.sub(r"^ON_ABORT_COMMAND = .*fixed_atc_probe.*\n", "", ini, flags=re.M)
     ini = re.sub(r"^REMAP = M6 .*$", "REMAP = M6 modalgroup=6 prolog=change_prolog ngc=rack_change "
                  "epilog=change_epilog\nON_ABORT_COMMAND = O <on_abort> call", ini, flags=re.M)
     # Our component, its panel, its wiring and touch-off sensor out: basic_sim.tcl's own loops

@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
-# Fuzzes the three readers of hostile files (config.json, the saved tool
-# state, the machine INI) with libFuzzer, AddressSanitizer and UBSan.
+# Fuzzes the readers of hostile files (config.json, the saved tool state, the
+# machine INI, and what reads a program: its numbering, rs274's output, the
+# tool table) with libFuzzer, AddressSanitizer and UBSan, each under a memory
+# limit: 2 GB resident for the others; the program reader, which must stay
+# small whatever it is fed, 256 MB, and no single allocation over 32 MB.
 # Configures a clang build of its own, builds the three targets, seeds each
 # with the hostile corpus of tests/unit and the valid files, and runs each for
 # SECONDS (default 60). Fails on any finding: a crash, a leak, undefined
@@ -19,7 +22,7 @@ command -v clang++ >/dev/null || { echo "run.sh: clang++ not found (scripts/setu
 echo "run.sh: building the fuzz targets in $build"
 CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DFATC_FUZZ=ON \
   -DBUILD_TESTING=OFF >/dev/null
-cmake --build "$build" --target fuzz_config fuzz_state fuzz_ini -j"$(nproc)" >/dev/null
+cmake --build "$build" --target fuzz_config fuzz_state fuzz_ini fuzz_program -j"$(nproc)" >/dev/null
 
 work=$build/fuzz_run
 findings=$build/findings
@@ -28,7 +31,7 @@ mkdir -p "$work" "$findings"
 unit=$root/tests/unit
 
 # Seeds: every hostile file, and the valid ones they were spoiled from.
-mkdir -p "$work/config" "$work/state" "$work/ini"
+mkdir -p "$work/config" "$work/state" "$work/ini" "$work/program"
 cp "$unit"/bad_configs/*.json "$root"/config/config.json "$work/config/"
 cp "$unit"/bad_states/*.json "$work/state/"
 printf '%s\n' '{"version": 1, "spindle": 3, "uncertain": false, "in_pocket": [1, 2, 4, 5, 6], "lengths": {"1": 42.125, "3": 17.5}}' \
@@ -36,15 +39,24 @@ printf '%s\n' '{"version": 1, "spindle": 3, "uncertain": false, "in_pocket": [1,
 printf '%s\n' '{"version": 1, "spindle": 0, "uncertain": true, "in_pocket": [1], "lengths": {}, "in_progress": {"sequence": "M6 T3", "step": "returning tool 1 to pocket 1", "pocket": 1}}' \
   > "$work/state/valid_in_progress.json"
 cp "$unit"/bad_inis/*.ini "$unit"/bad_configs/narrow_limits.ini "$root"/config/sim/*.ini "$work/ini/"
+# The program reader: programs and tool tables, each behind
+# the byte that chooses the size of the pieces it is read in.
+for seed in "$unit"/lint_programs/*.ngc "$unit"/lint_programs/*.tbl "$root"/config/sim/sim.tbl \
+            "$root"/nc_files/*.ngc; do
+  { printf '\x07'; head -c 60000 "$seed"; } > "$work/program/$(basename "$seed")"
+done
 
 status=0
-for reader in config state ini; do
+for reader in config state ini program; do
   dict=$here/json.dict
   [ "$reader" = ini ] && dict=$here/ini.dict
+  [ "$reader" = program ] && dict=$here/program.dict
+  memory="-rss_limit_mb=2048"
+  [ "$reader" = program ] && memory="-rss_limit_mb=256 -malloc_limit_mb=32"
   log=$work/$reader.log
   echo "run.sh: fuzz_$reader for ${seconds} s"
   if "$build/tests/fuzz/fuzz_$reader" "$work/$reader" -dict="$dict" -max_total_time="$seconds" \
-      -timeout=2 -rss_limit_mb=2048 -max_len=65536 -print_final_stats=1 \
+      -timeout=2 $memory -max_len=65536 -print_final_stats=1 \
       -artifact_prefix="$findings/$reader-" >"$log" 2>&1; then
     runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")
     echo "run.sh: fuzz_$reader: no findings in $runs runs ($(grep -c . < <(ls "$work/$reader")) inputs in its corpus)"

@@ -334,6 +334,78 @@ def check_abort(r, rack):
     ok("after abort: fault set, not busy, chuck closed")
 
 
+def program_modes(modes):
+    """The modes of abort_modes.ngc and cut_off_modes.ngc, the interpreter's own:
+    G20 G91 G18 G95 F0.01, not the executor's G21 G90 G17 G94 and feed."""
+    codes = set(modes["gcodes"])
+    for code, name in ((200, "G20"), (910, "G91"), (180, "G18"), (950, "G95")):
+        if code not in codes:
+            fail("%s not in force after the abort (G codes: %s)" %
+                 (name, sorted(c / 10 for c in codes if c > 0)))
+    if abs(modes["feed"] - 0.01) > 1e-9:
+        fail("feed rate F%s after the abort, expected the program's F0.01" % modes["feed"])
+    ok("G20 G91 G18 G95 F0.01 in force %.2f s into the scenario, after the abort" % modes["t"])
+
+
+def modes_restored(r, tool):
+    """After an M6 cut off: the program's modes are back, as LinuxCNC reports
+    them, with its overrides (feed on, spindle off) and G43 with the length of
+    `tool`, which LinuxCNC has in the spindle; motion applies both."""
+    modes = r.get("modes", {}).get("after_abort")
+    if not modes:
+        fail("no modes read after the abort: %s" % r.get("messages"))
+    program_modes(modes)
+    if 430 not in modes["gcodes"]:
+        fail("G43 not in force after the abort (messages %s)" % r["messages"])
+    if modes["tool_in_spindle"] != tool:
+        fail("LinuxCNC has tool %s in the spindle, expected %d" % (modes["tool_in_spindle"], tool))
+    # stat.tool_offset and the table's Z are both in machine units (mm).
+    if modes["tool_z"] is None or modes["tool_z"] == 0.0 or \
+            abs(modes["tool_offset"][2] - modes["tool_z"]) > 1e-6:
+        fail("tool length offset %s, expected tool %d's Z %s" %
+             (modes["tool_offset"][2], tool, modes["tool_z"]))
+    ok("G43: motion applies tool %d's length %.4f" % (tool, modes["tool_offset"][2]))
+    if not modes["feed_override_enabled"] or modes["spindle_override_enabled"]:
+        fail("overrides after the abort: feed %s spindle %s, expected the program's on and off" %
+             (modes["feed_override_enabled"], modes["spindle_override_enabled"]))
+    ok("feed override on and spindle override off, as the program had them")
+
+
+def check_abort_modes(r, rack):
+    if "aborted_at" not in r:
+        fail("the program was not aborted")
+    modes_restored(r, 1)
+
+
+def check_stopped_answering_modes(r, rack):
+    if "stopped_at" not in r:
+        fail("the component was not stopped")
+    said(r, "fixed_atc_probe stopped answering")
+    if not r.get("decoy_ran"):
+        fail("the other fixed_atc_probe (a --lint) did not run beside the component")
+    ok("the component's pid %d taken from HAL, another fixed_atc_probe running beside it" %
+       r["stopped_pid"])
+    modes_restored(r, 1)
+
+
+def check_estop_modes(r, rack):
+    """Motion takes no command in estop: the interpreter's own modes come back,
+    and it says what motion has, G49 and the overrides off, on again too."""
+    if "estop_at" not in r:
+        fail("no estop")
+    for name in ("after_abort", "machine_on"):
+        modes = r.get("modes", {}).get(name)
+        if not modes:
+            fail("no modes read %s" % name)
+        program_modes(modes)
+        if 490 not in modes["gcodes"] or modes["tool_offset"][2] != 0.0:
+            fail("%s: the interpreter says %s, motion applies a tool length of %s" %
+                 (name, "G49" if 490 in modes["gcodes"] else "G43", modes["tool_offset"][2]))
+        if modes["feed_override_enabled"]:
+            fail("%s: motion's feed override on, where the executor had it off" % name)
+        ok("%s: G49 and no tool length, as motion has it; feed override off in both" % name)
+
+
 def check_after_abort(r, rack):
     if not any("M6 T1 refused" in m and "fault" in m for m in r["messages"]):
         fail("M6 was not refused with a message while faulted: %s" % r["messages"])

@@ -160,20 +160,14 @@ def pin_links(prefix=COMPONENT + "."):
 
 
 def component_pids():
-    """Processes whose command line is the component's: `fixed_atc_probe --config ...`.
-    (Not a halcmd loading it, not a zombie: a zombie's command line is empty.)"""
-    pids = []
-    for entry in os.listdir("/proc"):
-        if not entry.isdigit():
-            continue
-        try:
-            with open("/proc/%s/cmdline" % entry, "rb") as f:
-                argv = f.read().split(b"\0")
-        except OSError:
-            continue
-        if os.path.basename(argv[0]).decode(errors="replace") == COMPONENT and b"--config" in argv:
-            pids.append(int(entry))
-    return pids
+    """The component's process as HAL registered it (`halcmd show comp` gives its
+    PID): [pid] while that process lives, [] when none is registered or it died.
+    Never by name across the machine: another fixed_atc_probe (a --check or
+    --lint in another terminal, the panel's preflight) is not the component."""
+    comp = hal_components().get(COMPONENT)
+    if comp is None or comp["pid"] is None or process_gone(comp["pid"]):
+        return []
+    return [comp["pid"]]
 
 
 def component_usage():
@@ -201,15 +195,44 @@ def process_gone(pid):
         return True
 
 
-def kill_component():
-    """SIGKILL: the component gets no chance to close its chuck or save anything."""
+def the_component_pid():
     pids = component_pids()
     if len(pids) != 1:
         raise RuntimeError("expected one %s process, found %s" % (COMPONENT, pids))
-    os.kill(pids[0], signal.SIGKILL)
+    return pids[0]
+
+
+def kill_component():
+    """SIGKILL: the component gets no chance to close its chuck or save anything."""
+    pid = the_component_pid()
+    os.kill(pid, signal.SIGKILL)
     killed = time.monotonic()
-    wait_for(lambda: process_gone(pids[0]), 10, "the killed component to die")
-    return pids[0], killed
+    wait_for(lambda: process_gone(pid), 10, "the killed component to die")
+    return pid, killed
+
+
+def start_decoy():
+    """Another fixed_atc_probe on the machine, as a --lint in another terminal:
+    a program that loops keeps it running for its 15 s."""
+    program = os.path.join(ini_dir(), "decoy_endless.ngc")
+    with open(program, "w") as f:
+        f.write("o100 while [1]\n  G0 X1\n  G0 X2\no100 endwhile\nM2\n")
+    return subprocess.Popen([COMPONENT, "--lint", program, "--config", config_path()],
+                            stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, cwd=ini_dir())
+
+
+def stat_modes():
+    """The modes LinuxCNC reports: the interpreter's G and M codes and settings,
+    and what motion applies (tool offset, override enables)."""
+    stat.poll()
+    table = {t.id: t.zoffset for t in stat.tool_table if t.id >= 0}
+    return {"gcodes": [g for g in stat.gcodes if g >= 0], "mcodes": [m for m in stat.mcodes if m >= 0],
+            "feed": stat.settings[1], "tool_offset": list(stat.tool_offset[:3]),
+            "program_units": stat.program_units, "linear_units": stat.linear_units,
+            "feed_override_enabled": bool(stat.feed_override_enabled),
+            "spindle_override_enabled": bool(stat.spindle[0]["override_enabled"]),
+            "tool_in_spindle": stat.tool_in_spindle,
+            "tool_z": table.get(stat.tool_in_spindle), "interp": stat.interp_state}
 
 
 _reapers = []
@@ -341,6 +364,7 @@ def run_scenario(scenario):
         command.mdi(line)
         command.wait_complete(60)
     result["usage_before"] = component_usage()
+    decoy = start_decoy() if scenario.get("decoy") else None
     start_program(scenario["program"])
     start = time.monotonic()
     wait_for(lambda: stat.interp_state != linuxcnc.INTERP_IDLE or stat.exec_state != 0, 30,
@@ -378,6 +402,14 @@ def run_scenario(scenario):
                 result["killed_pid"], killed = kill_component()
                 result["killed_at"] = killed - start
                 result["kill_sample"] = s
+            elif action["do"] == "stop":
+                # The component hangs: SIGSTOP, SIGCONT in an after step.
+                result["stopped_pid"] = the_component_pid()
+                os.kill(result["stopped_pid"], signal.SIGSTOP)
+                result["stopped_at"] = s["t"]
+            elif action["do"] == "estop":
+                command.state(linuxcnc.STATE_ESTOP)
+                result["estop_at"] = s["t"]
             elif action["do"] in ("restart", "confirm", "snapshot"):
                 perform(action, result, start)
             elif action["do"] == "snapshot_abort":
@@ -395,6 +427,10 @@ def run_scenario(scenario):
             wait_for(lambda: hal.get_value(pin) == value, 10, pin)
         except TimeoutError:
             pass  # the checker reports what it finds
+    if decoy:
+        result["decoy_ran"] = decoy.poll() is None  # still there when the component was wanted
+        decoy.kill()
+        decoy.wait()
     # Let the level handshakes fall back before the last sample.
     wait_for(lambda: not hal.get_value("iocontrol.0.tool-change") and
              not hal.get_value("iocontrol.0.tool-changed"), 10, "the change handshake to end")
@@ -463,6 +499,31 @@ def perform(step, result, start):
         hal.set_p(COMPONENT + ".confirm-pocket", "-1")
     elif step["do"] == "snapshot":
         result.setdefault("snapshots", {})[step["name"]] = snapshot(start)
+    elif step["do"] == "modes":
+        # After an abort: once the interpreter is idle, until the G code
+        # `until` (G43: 430) shows, an abort handler's commands running after
+        # the abort, or 20 s; the checker judges.
+        until = step.get("until", 430)
+
+        def restored():
+            return stat.interp_state == linuxcnc.INTERP_IDLE and until in stat.gcodes
+        try:
+            wait(restored, 20, "G%g after the abort" % (until / 10.0))
+        except TimeoutError:
+            pass
+        modes = stat_modes()
+        modes["t"] = now()
+        result.setdefault("modes", {})[step["name"]] = modes
+    elif step["do"] == "continue":
+        if "stopped_pid" not in result:
+            return  # never stopped: the checker says so
+        os.kill(result["stopped_pid"], signal.SIGCONT)
+        result["continued_at"] = now()
+        wait(lambda: hal.get_value(COMPONENT + ".fault"), 30, "the component to fault")
+    elif step["do"] == "machine_on":
+        command.state(linuxcnc.STATE_ESTOP_RESET)
+        command.state(linuxcnc.STATE_ON)
+        wait(lambda: stat.task_state == linuxcnc.STATE_ON, 30, "the machine on")
     elif step["do"] == "files":
         # config.json and its backup as they are on disk now (teaching writes them).
         stat.poll()

@@ -15,6 +15,8 @@ id "$user" >/dev/null 2>&1 || useradd -m -s /bin/bash "$user"
 # (two at once share LinuxCNC's IPC keys and both fail).
 exec 9>>/tmp/fixed_atc_probe-linuxcnc.lock
 flock -w 3600 9 || { echo "run_sim.sh: another LinuxCNC run held the machine for an hour" >&2; exit 1; }
+# Under the lock: what LinuxCNC's IPC is there now was left by one that died.
+"$(dirname "$0")/stale_ipc.sh" "$user"
 mkdir -p "$work"
 rm -f "$work/results.json"
 if [ -z "${FATC_KEEP_STATE:-}" ] || [ ! -e "$work/sim.tbl" ]; then

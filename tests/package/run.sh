@@ -39,6 +39,8 @@ for want in /usr/bin/fixed_atc_probe /usr/lib/linuxcnc/modules/fatc_chuck_guard.
             /usr/share/fixed_atc_probe/nc_files/fixed_atc_probe_chuck_release.ngc \
             /usr/share/fixed_atc_probe/nc_files/fixed_atc_probe_chuck_clamp.ngc \
             /usr/share/fixed_atc_probe/nc_files/fixed_atc_probe_chuck_eject.ngc \
+            /usr/share/fixed_atc_probe/nc_files/fixed_atc_probe_save_modes.ngc \
+            /usr/share/fixed_atc_probe/nc_files/fixed_atc_probe_on_abort.ngc \
             /usr/share/fixed_atc_probe/hal/fixed_atc_probe.hal \
             /usr/share/fixed_atc_probe/hal/fixed_atc_probe_panel.ui \
             /usr/share/fixed_atc_probe/config/config.json \

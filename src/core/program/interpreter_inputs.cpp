@@ -43,8 +43,12 @@ InterpreterTable any_tool_table() {
 }
 
 std::string ini_for_preflight(std::string_view ini_text, const std::string& folders) {
+  // One folder a line: LinuxCNC reads at most LINELEN (255) characters of
+  // one, and joins a line ending in a backslash with the next.
+  std::string path;
+  for (const char c : folders) path += c == ':' ? std::string(":\\\n") : std::string(1, c);
   const std::string line =
-      "HAL_PIN_VARS = 0\n" + (folders.empty() ? "" : "SUBROUTINE_PATH = " + folders + "\n");
+      "HAL_PIN_VARS = 0\n" + (folders.empty() ? "" : "SUBROUTINE_PATH = " + path + "\n");
   std::size_t start = 0;
   while (start < ini_text.size()) {
     std::size_t end = ini_text.find('\n', start);

@@ -32,7 +32,12 @@ InterpreterTable any_tool_table();
 /// pins, and a tool from a pin is known only when the program runs), and, when
 /// given, `folders` (':' between) as its SUBROUTINE_PATH. LinuxCNC takes the
 /// first of a key, so the lines go first in [RS274NGC] (a new section when
-/// there is none). `folders` ends with the INI's own.
+/// there is none), one folder a line (a line ending in a backslash goes on in
+/// the next: LinuxCNC reads at most 255 characters of a line). `folders` ends
+/// with the INI's own.
 std::string ini_for_preflight(std::string_view ini_text, const std::string& folders);
+
+/// The longest folder ini_for_preflight can give rs274 on a line of its own.
+constexpr std::size_t kMaxFolderLength = 250;
 
 }  // namespace fatc::program

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
+#include <iterator>
 #include <utility>
 
 #include "../config/quote.hpp"
@@ -65,23 +66,16 @@ bool holds_m6(std::string_view line) {
   return false;
 }
 
-InterpreterOutput::InterpreterOutput(std::string program, std::string numbered_path,
-                                     std::vector<int> tool_of_row, std::vector<int> input_lines,
-                                     int lines)
-    : program_(std::move(program)),
-      numbered_path_(std::move(numbered_path)),
-      tool_of_row_(std::move(tool_of_row)),
-      input_lines_(std::move(input_lines)),
-      lines_(lines) {
-  std::sort(input_lines_.begin(), input_lines_.end());
-}
+InterpreterOutput::InterpreterOutput(ProgramGiven program, std::vector<int> tool_of_row)
+    : program_(std::move(program)), tool_of_row_(std::move(tool_of_row)) {}
 
 bool InterpreterOutput::reads_input(int line) const {
-  return line > 0 && std::binary_search(input_lines_.begin(), input_lines_.end(), line);
+  return line > 0 && program_.input_lines.contains(line);
 }
 
 void InterpreterOutput::unknown(int line, const std::string& text) {
-  if (run_.unknowns.size() < kMaxErrors) run_.unknowns.push_back(finding(program_, line, text));
+  if (run_.unknowns.size() < kMaxErrors)
+    run_.unknowns.push_back(finding(program_.name, line, text));
 }
 
 void InterpreterOutput::canonical_call(std::string_view line) {
@@ -90,11 +84,11 @@ void InterpreterOutput::canonical_call(std::string_view line) {
   if (at == std::string_view::npos) return;
   const std::string_view from_n = line.substr(at);
   const int number = line_of(from_n);
-  if (number > lines_ && lines_ > 0) {
-    // The M2 number_lines put after the last line: the program has no end of its own.
+  if (number > program_.lines && program_.lines > 0) {
+    // The M2 LineNumberer put after the last line: the program has no end of its own.
     if (!said_no_end_) {
       said_no_end_ = true;
-      error(lines_, "File ended with no percent sign or program end", "");
+      error(program_.lines, "File ended with no percent sign or program end", "");
     }
     return;
   }
@@ -114,8 +108,7 @@ void InterpreterOutput::canonical_call(std::string_view line) {
     selected_line_ = numbered ? line_ : 0;
     if (reads_input(line_)) {
       selected_.reset();
-      if (std::find(inputs_said_.begin(), inputs_said_.end(), line_) == inputs_said_.end()) {
-        inputs_said_.push_back(line_);
+      if (run_.unknowns.size() < kMaxErrors && inputs_said_.insert(line_).second) {
         unknown(line_,
                 "the tool number reads #5399, the input M66 waited for: known only when the "
                 "program runs on the machine (rs274 reads 0)");
@@ -125,7 +118,8 @@ void InterpreterOutput::canonical_call(std::string_view line) {
     if (!any_selected_ && !said_no_t_) {
       said_no_t_ = true;
       if (run_.problems.size() < kMaxErrors) {
-        run_.problems.push_back(finding(program_, line_, "M6 without a T word since the start"));
+        run_.problems.push_back(
+            finding(program_.name, line_, "M6 without a T word since the start"));
       }
     }
     use(ToolUse::Kind::change, any_selected_ ? selected_ : std::nullopt,
@@ -140,14 +134,14 @@ void InterpreterOutput::canonical_call(std::string_view line) {
 }
 
 void InterpreterOutput::use(ToolUse::Kind kind, std::optional<int> tool, int line) {
-  if (run_.uses.size() >= kMaxToolUses) {
+  if (run_.uses.size() + unknown_changes_.size() >= kMaxToolUses) {
     ++run_.uses_not_kept;
     return;
   }
   ToolUse use;
   use.kind = kind;
   use.tool = tool;
-  use.where = {program_, line};
+  use.where = {program_.name, line};
   run_.uses.push_back(use);
 }
 
@@ -161,57 +155,89 @@ void InterpreterOutput::error_line(std::string_view line) {
     error(0, *pending_message_, line);
     pending_message_.reset();
   } else {
-    pending_message_ = replaced(std::string(line), numbered_path_, program_);
+    pending_message_ = replaced(std::string(line), program_.numbered_path, program_.name);
   }
 }
 
 void InterpreterOutput::error(int line, const std::string& message, std::string_view text) {
-  if (past_the_end_) return;
-  // The M2 number_lines added is no line of the program.
-  if (lines_ > 0 && line > lines_) line = lines_;
+  if (done()) return;
+  // The M2 LineNumberer added is no line of the program.
+  if (program_.lines > 0 && line > program_.lines) line = program_.lines;
   past_the_end_ = starts_with(message, "File ended with no percent sign or program end");
   if (message.find("#<_hal[") != std::string::npos) {
     unknown(line, escape(message, kMessageText) +
                       ": a HAL pin, read only when the program runs on the machine: " +
                       "what the line does is not known");
-    if (holds_m6(text)) {
+    if (holds_m6(text) && run_.uses.size() + unknown_changes_.size() >= kMaxToolUses) {
+      ++run_.uses_not_kept;
+    } else if (holds_m6(text)) {
       ToolUse change;
-      change.where = {program_, line};
+      change.where = {program_.name, line};
       unknown_changes_.push_back(change);
     }
     return;
   }
   if (run_.problems.size() >= kMaxErrors) {
-    ++errors_not_kept_;
+    stopped_at_ = line;
     return;
   }
   // The interpreter's words hold the program's own text: escaped as any file's.
-  std::string said = "LinuxCNC stops the program here: " + escape(message, kMessageText);
+  std::string said =
+      "LinuxCNC stops the program here: " + escape(message_of(message, line), kMessageText);
   if (line == 0 && !text.empty()) {
     // No number of ours on the line: one of a subroutine file, or too long to number.
     std::string_view shown = text;
     while (!shown.empty() && (shown.back() == '\r' || shown.back() == ' ')) shown.remove_suffix(1);
     said += " (at " + quote(shown) + ")";
   }
-  run_.problems.push_back(finding(program_, line, said));
+  run_.problems.push_back(finding(program_.name, line, said));
+}
+
+std::string InterpreterOutput::message_of(const std::string& message, int line) const {
+  // An undefined call found its empty file in the stub folder, where it
+  // stopped at once (rs274 would read the program to its end for each):
+  // said as LinuxCNC says it of the program.
+  const std::string stub = "EOF in file:" + program_.stub_folder + "/";
+  const auto seeking = message.find(" seeking o-word: ");
+  if (program_.stub_folder.empty() || message.rfind(stub, 0) != 0 || seeking == std::string::npos) {
+    return message;
+  }
+  const auto from = message.find(" from line: ", seeking);
+  const std::string oword = message.substr(seeking, from - seeking);
+  return line > 0 ? "EOF in file:" + program_.name + oword + " from line: " + std::to_string(line)
+                  : "EOF" + oword;
 }
 
 InterpreterRun InterpreterOutput::finish() {
   if (pending_message_) error(0, *pending_message_, "");
   pending_message_.reset();
-  if (errors_not_kept_ > 0) {
-    Finding more;
-    more.where.file = program_;
-    more.text = std::to_string(errors_not_kept_) + " more errors of the interpreter, not listed";
-    run_.problems.push_back(std::move(more));
+  if (stopped_at_) {
+    // Said of the program as a whole: a report lists it first, not after a thousand lines.
+    const std::string stopped = "more than " + std::to_string(kMaxErrors) +
+                                " errors: LinuxCNC's interpreter (rs274) was stopped at line " +
+                                std::to_string(*stopped_at_);
+    run_.problems.push_back(
+        finding(program_.name, 0, stopped + "; tool changes after that are not known"));
   }
   // The interpreter never ran these lines: each goes before the first use
   // from a later line, where a program without loops would have it.
-  for (const ToolUse& change : unknown_changes_) {
-    const auto later = std::find_if(run_.uses.begin(), run_.uses.end(), [&](const ToolUse& u) {
-      return u.where.line > change.where.line;
-    });
-    run_.uses.insert(later, change);
+  if (!unknown_changes_.empty()) {
+    std::stable_sort(
+        unknown_changes_.begin(), unknown_changes_.end(),
+        [](const ToolUse& a, const ToolUse& b) { return a.where.line < b.where.line; });
+    std::vector<ToolUse> merged;
+    merged.reserve(run_.uses.size() + unknown_changes_.size());
+    auto change = unknown_changes_.begin();
+    int highest = 0;  // of the uses so far: a change below it goes before this use
+    for (ToolUse& use : run_.uses) {
+      highest = std::max(highest, use.where.line);
+      for (; change != unknown_changes_.end() && change->where.line < highest; ++change) {
+        merged.push_back(std::move(*change));
+      }
+      merged.push_back(std::move(use));
+    }
+    std::move(change, unknown_changes_.end(), std::back_inserter(merged));
+    run_.uses = std::move(merged);
   }
   unknown_changes_.clear();
   return std::move(run_);

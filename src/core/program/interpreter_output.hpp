@@ -1,28 +1,42 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "numbered_program.hpp"
 #include "tool_use.hpp"
 
 namespace fatc::program {
 
-/// Interpreter errors kept; the rest are counted.
+/// Interpreter errors kept: the next one stops the run (LinuxCNC stops at
+/// the first; what rs274 -n 0 reads after a thousand is worth less than the
+/// time it may take).
 constexpr std::size_t kMaxErrors = 1000;
 
-/// Reads what rs274 prints of a program numbered by number_lines: the
+/// What InterpreterOutput needs to know of the program rs274 was given.
+struct ProgramGiven {
+  std::string name;           ///< as messages show it
+  std::string numbered_path;  ///< the numbered copy rs274 read, shown as `name` in a message
+  /// The folder of the empty subroutine files the program's undefined calls
+  /// find (LineNumberer::undefined_calls); empty when there is none.
+  std::string stub_folder;
+  LineSet input_lines;  ///< LineNumberer's
+  int lines = 0;        ///< LineNumberer's
+};
+
+/// Reads what rs274 prints of a program numbered by LineNumberer: the
 /// canonical calls on its standard output, one a line
 /// (`   12 N1000000004 SELECT_TOOL(3)`), and on its standard error each
-/// error's message followed by the text of its line.
+/// error's message followed by the text of its line. Keeps at most
+/// kMaxToolUses uses and kMaxErrors errors and unknowns, whatever it is fed.
 class InterpreterOutput {
  public:
-  /// `program`: the name messages give the program; `numbered_path`: the
-  /// file rs274 read, shown as `program` where a message names it;
-  /// `tool_of_row`: InterpreterTable's; `input_lines` and `lines`: NumberedProgram's.
-  InterpreterOutput(std::string program, std::string numbered_path, std::vector<int> tool_of_row,
-                    std::vector<int> input_lines, int lines);
+  /// `tool_of_row`: InterpreterTable's.
+  InterpreterOutput(ProgramGiven program, std::vector<int> tool_of_row);
 
   /// One line of the standard output, without its line end.
   void canonical_call(std::string_view line);
@@ -30,9 +44,12 @@ class InterpreterOutput {
   void error_line(std::string_view line);
   /// What was read, once both streams have ended.
   InterpreterRun finish();
-  /// Whether rs274 met the end of a program without M2, M30 or %: with -n 0
-  /// it then repeats that error for ever, and is stopped.
-  bool past_the_end() const { return past_the_end_; }
+  /// Whether nothing more of rs274 is wanted, and it is stopped: it met the
+  /// end of a program without M2, M30 or % (with -n 0 it then repeats that
+  /// error for ever), or one error more than kMaxErrors.
+  bool done() const { return past_the_end_ || stopped_at_.has_value(); }
+  /// The line of the last canonical call that named one (0: none yet).
+  int line() const { return line_; }
 
  private:
   void use(ToolUse::Kind kind, std::optional<int> tool, int line);
@@ -40,22 +57,22 @@ class InterpreterOutput {
   bool reads_input(int line) const;
   void unknown(int line, const std::string& text);
 
-  std::string program_;
-  std::string numbered_path_;
+  std::string message_of(const std::string& message, int line) const;
+
+  ProgramGiven program_;
   std::vector<int> tool_of_row_;
-  std::vector<int> input_lines_;  ///< sorted
   InterpreterRun run_;
   int line_ = 0;                   ///< of the last call that named one
   std::optional<int> selected_;    ///< the last T, nullopt when it is not known
   int selected_line_ = 0;          ///< its line, 0 in a subroutine file
   bool any_selected_ = false;
   bool said_no_t_ = false;
-  std::vector<int> inputs_said_;
+  std::set<int> inputs_said_;  ///< at most kMaxErrors
   std::optional<std::string> pending_message_;
-  std::vector<ToolUse> unknown_changes_;  ///< M6 on lines the interpreter could not run
-  std::size_t errors_not_kept_ = 0;
+  /// M6 on lines the interpreter could not run; with run_.uses at most kMaxToolUses.
+  std::vector<ToolUse> unknown_changes_;
+  std::optional<int> stopped_at_;  ///< the line of the error beyond kMaxErrors
   bool past_the_end_ = false;
-  int lines_ = 0;
   bool said_no_end_ = false;
 };
 

@@ -1,93 +1,203 @@
 #include "numbered_program.hpp"
 
+#include <algorithm>
 #include <cctype>
+#include <iterator>
 
 namespace fatc::program {
 namespace {
 
 bool blank(char c) { return c == ' ' || c == '\t'; }
 
+/// The line as LinuxCNC reads its words: lower case, no blanks, no comments.
+std::string packed(std::string_view line) {
+  std::string result;
+  bool in_comment = false;
+  for (const char c : line) {
+    if (in_comment) {
+      in_comment = c != ')';
+    } else if (c == '(') {
+      in_comment = true;
+    } else if (c == ';') {
+      break;
+    } else if (!blank(c) && c != '\r') {
+      result.push_back(static_cast<char>(std::tolower(static_cast<unsigned char>(c))));
+    }
+  }
+  return result;
+}
+
 /// Whether the line reads #5399: LinuxCNC drops spaces inside words, so
 /// "# 5399" is the same parameter.
 bool reads_m66_input(std::string_view line) {
   if (line.find('9') == std::string_view::npos) return false;
-  std::string packed;
+  std::string packed_line;
   for (const char c : line) {
-    if (!blank(c)) packed.push_back(c);
+    if (!blank(c)) packed_line.push_back(c);
   }
-  for (std::size_t at = packed.find("#5399"); at != std::string::npos;
-       at = packed.find("#5399", at + 1)) {
+  for (std::size_t at = packed_line.find("#5399"); at != std::string::npos;
+       at = packed_line.find("#5399", at + 1)) {
     const std::size_t after = at + 5;
-    if (after == packed.size() ||
-        (!std::isdigit(static_cast<unsigned char>(packed[after])) && packed[after] != '.')) {
+    if (after == packed_line.size() ||
+        (!std::isdigit(static_cast<unsigned char>(packed_line[after])) &&
+         packed_line[after] != '.')) {
       return true;
     }
   }
   return false;
 }
 
+/// A name a subroutine file can have in a folder of our own: no path, no
+/// hidden file, nothing a shell or a file system reads otherwise.
+bool file_name(std::string_view name) {
+  if (name.empty() || name.size() > 200 || name[0] == '.') return false;
+  return std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+  });
+}
+
 }  // namespace
 
-NumberedProgram number_lines(std::string_view text) {
-  NumberedProgram numbered;
-  if (const auto nul = text.find('\0'); nul != std::string_view::npos) {
-    const std::string_view before = text.substr(0, nul);
-    int line = 1;
-    std::size_t line_start = 0;
-    for (std::size_t i = 0; i < before.size(); ++i) {
-      if (before[i] == '\n') {
-        ++line;
-        line_start = i + 1;
-      }
+void LineSet::insert(int line) {
+  if (line < 0) return;
+  const auto at = static_cast<std::size_t>(line);
+  if (bits_.size() <= at) bits_.resize(at + 1);
+  bits_[at] = true;
+}
+
+bool LineSet::contains(int line) const {
+  return line >= 0 && static_cast<std::size_t>(line) < bits_.size() &&
+         bits_[static_cast<std::size_t>(line)];
+}
+
+void LineNumberer::add(std::string_view piece) {
+  if (ended_) return;
+  if (const auto nul = piece.find('\0'); nul != std::string_view::npos) {
+    int line = lines_ + 1;
+    std::size_t column = column_;
+    for (std::size_t i = 0; i < nul; ++i) {
+      column = piece[i] == '\n' ? 0 : column + 1;
+      if (piece[i] == '\n') ++line;
     }
-    numbered.problems.push_back(
-        {line, "NUL byte at column " + std::to_string(nul - line_start + 1) +
-                   ": not a G-code text file (LinuxCNC stops reading a line at a NUL); "
-                   "nothing of it read"});
-    return numbered;
+    nul_ = LineNote{line, "NUL byte at column " + std::to_string(column + 1) +
+                              ": not a G-code text file (LinuxCNC stops reading a line at a "
+                              "NUL); nothing of it read"};
+    ended_ = true;
+    text_.clear();
+    return;
   }
-  numbered.text.reserve(text.size() + text.size() / 4);
-  int number = 0;
-  std::size_t start = 0;
-  while (start < text.size() && number < kMaxLines) {
-    std::size_t end = text.find('\n', start);
-    const bool last = end == std::string_view::npos;
-    if (last) end = text.size();
-    const std::string_view line = text.substr(start, end - start);
-    start = end + 1;
-    ++number;
-    if (reads_m66_input(line)) numbered.input_lines.push_back(number);
-    std::size_t at = 0;
-    while (at < line.size() && blank(line[at])) ++at;
-    // '%' marks the program's ends; a blank line holds nothing to number.
-    const bool code = at < line.size() && line[at] != '%' && line[at] != '\r';
-    const std::size_t size_before = numbered.text.size();
-    if (code) {
-      if (line[at] == '/') ++at;  // block delete comes first, before any N word
-      numbered.text.append(line.substr(0, at));
-      numbered.text += "N" + std::to_string(kFirstLineNumber + number) + " ";
-      if (at < line.size() && (line[at] == 'n' || line[at] == 'N')) {
-        ++at;
-        // LinuxCNC reads "N50.5" as a line number too.
-        while (at < line.size() && (blank(line[at]) || line[at] == '.' ||
-                                    std::isdigit(static_cast<unsigned char>(line[at])))) {
-          ++at;
-        }
-      }
-      numbered.text.append(line.substr(at));
-      if (numbered.text.size() - size_before > kMaxLineLength) {
-        numbered.text.resize(size_before);
-        numbered.text.append(line);
-      }
-    } else {
-      numbered.text.append(line);
+  while (!piece.empty() && !ended_) {
+    const std::size_t newline = piece.find('\n');
+    const std::string_view part = piece.substr(0, newline);
+    column_ += part.size();
+    if (!passing_ && line_.size() + part.size() > kMaxLineLength) {
+      text_ += line_;
+      line_.clear();
+      passing_ = true;
     }
-    if (!last) numbered.text.push_back('\n');
+    (passing_ ? text_ : line_).append(part);
+    if (newline == std::string_view::npos) break;
+    piece.remove_prefix(newline + 1);
+    whole_bytes_ += column_ + 1;
+    end_line();
   }
-  numbered.lines = number;
-  if (!numbered.text.empty() && numbered.text.back() != '\n') numbered.text.push_back('\n');
-  numbered.text += "N" + std::to_string(kFirstLineNumber + number + 1) + " M2\n";
-  return numbered;
+}
+
+void LineNumberer::end_line() {
+  ++lines_;
+  if (!passing_) line_of_code(line_);
+  text_.push_back('\n');
+  line_.clear();
+  passing_ = false;
+  column_ = 0;
+  if (lines_ >= kMaxLines) ended_ = true;
+}
+
+void LineNumberer::line_of_code(std::string_view line) {
+  if (reads_m66_input(line)) input_lines_.insert(lines_);
+  std::size_t at = 0;
+  while (at < line.size() && blank(line[at])) ++at;
+  // '%' marks the program's ends; a blank line holds nothing to number.
+  if (at == line.size() || line[at] == '%' || line[at] == '\r') {
+    text_.append(line);
+    return;
+  }
+  note_subroutine(line);
+  const std::size_t size_before = text_.size();
+  if (line[at] == '/') ++at;  // block delete comes first, before any N word
+  text_.append(line.substr(0, at));
+  text_ += "N" + std::to_string(kFirstLineNumber + lines_) + " ";
+  if (at < line.size() && (line[at] == 'n' || line[at] == 'N')) {
+    ++at;
+    // LinuxCNC reads "N50.5" as a line number too.
+    while (at < line.size() && (blank(line[at]) || line[at] == '.' ||
+                                std::isdigit(static_cast<unsigned char>(line[at])))) {
+      ++at;
+    }
+  }
+  text_.append(line.substr(at));
+  if (text_.size() - size_before > kMaxLineLength) {
+    text_.resize(size_before);
+    text_.append(line);
+  }
+}
+
+void LineNumberer::note_subroutine(std::string_view line) {
+  const std::string words = packed(line);
+  std::size_t at = words.rfind('/', 0) == 0 ? 1 : 0;
+  if (at < words.size() && words[at] == 'n') {
+    ++at;
+    while (at < words.size() &&
+           (words[at] == '.' || std::isdigit(static_cast<unsigned char>(words[at]))))
+      ++at;
+  }
+  if (at >= words.size() || words[at] != 'o') return;
+  ++at;
+  std::string name;
+  if (at < words.size() && words[at] == '<') {
+    const std::size_t close = words.find('>', at);
+    if (close == std::string::npos) return;
+    name = words.substr(at + 1, close - at - 1);
+    at = close + 1;
+  } else {
+    const std::size_t start = at;
+    while (at < words.size() && std::isdigit(static_cast<unsigned char>(words[at]))) ++at;
+    name = words.substr(start, at - start);
+  }
+  if (!file_name(name)) return;
+  const std::string_view rest = std::string_view(words).substr(at);
+  std::set<std::string>* names = rest.rfind("call", 0) == 0  ? &called_
+                                 : rest.rfind("sub", 0) == 0 ? &defined_
+                                                             : nullptr;
+  if (names != nullptr && names->size() < kMaxSubroutineNames) names->insert(std::move(name));
+}
+
+void LineNumberer::finish(bool cut) {
+  if (nul_) return;
+  if (!ended_) {
+    if (!cut && column_ > 0) {
+      whole_bytes_ += column_;
+      end_line();
+    } else if (passing_) {
+      // The start of a line too long to number went out already: it ends here.
+      text_.push_back('\n');
+    }
+  }
+  ended_ = true;
+  text_ += "N" + std::to_string(kFirstLineNumber + lines_ + 1) + " M2\n";
+}
+
+std::string LineNumberer::take_text() {
+  std::string text;
+  text.swap(text_);
+  return text;
+}
+
+std::vector<std::string> LineNumberer::undefined_calls() const {
+  std::vector<std::string> names;
+  std::set_difference(called_.begin(), called_.end(), defined_.begin(), defined_.end(),
+                      std::back_inserter(names));
+  return names;
 }
 
 int line_of(std::string_view numbered_line) {

@@ -1,7 +1,9 @@
 #include "tool_table.hpp"
 
 #include <cctype>
+#include <cerrno>
 #include <climits>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 
@@ -12,12 +14,17 @@ namespace {
 
 /// LinuxCNC reads a table line into 256 bytes (CANON_TOOL_ENTRY_LEN) with fgets.
 constexpr std::size_t kMaxTableLine = 254;
+/// No offset, diameter or angle of a tool reaches this, in mm or inches.
+constexpr double kLargestNumber = 100000.0;
 
-/// sscanf("%d") of a field's number: nullopt when there is none.
-std::optional<long> integer_of(const std::string& number) {
+/// sscanf("%d") of a field's number: nullopt when there is none; `wraps`
+/// when it is beyond an int, which sscanf would read as another number.
+std::optional<long> integer_of(const std::string& number, bool& wraps) {
   char* end = nullptr;
+  errno = 0;
   const long value = std::strtol(number.c_str(), &end, 10);
-  if (end == number.c_str() || value < INT_MIN || value > INT_MAX) return std::nullopt;
+  if (end == number.c_str()) return std::nullopt;
+  wraps = errno == ERANGE || value < INT_MIN || value > INT_MAX;
   return value;
 }
 
@@ -29,13 +36,23 @@ std::optional<double> real_of(const std::string& number) {
   return value;
 }
 
-/// Why LinuxCNC skips `field`, or empty when it reads it.
-std::string field_problem(const std::string& field, ToolTableEntry& entry, bool& has_tool) {
+/// Why `field` makes the line unusable, or empty when it is read as it
+/// means. `skipped`: LinuxCNC itself skips the line; else it would read a
+/// number that means nothing, and the line is left out here.
+std::string field_problem(const std::string& field, ToolTableEntry& entry, bool& has_tool,
+                          bool& skipped) {
   const char letter = static_cast<char>(std::toupper(static_cast<unsigned char>(field[0])));
   const std::string number = field.substr(1);
+  skipped = true;
   if (std::strchr("TPQ", letter) != nullptr) {
-    const auto value = integer_of(number);
+    bool wraps = false;
+    const auto value = integer_of(number, wraps);
     if (!value) return quote(field) + " is not a whole number after " + std::string(1, letter);
+    skipped = false;
+    if (wraps) {
+      return quote(field) + " is beyond the largest whole number LinuxCNC reads (" +
+             std::to_string(INT_MAX) + "): it would read another number";
+    }
     if (letter == 'T') {
       entry.tool = static_cast<int>(*value);
       has_tool = true;
@@ -45,6 +62,13 @@ std::string field_problem(const std::string& field, ToolTableEntry& entry, bool&
   if (std::strchr("DXYZABCUVWIJ", letter) != nullptr) {
     const auto value = real_of(number);
     if (!value) return quote(field) + " is not a number after " + std::string(1, letter);
+    skipped = false;
+    // NaN fails every comparison: written so that it is caught.
+    if (!(std::abs(*value) <= kLargestNumber)) {
+      return quote(field) +
+             " is no number a tool can have (NaN, infinite, or over 100000 either way), which "
+             "LinuxCNC would read as it is";
+    }
     if (letter == 'Z') entry.z = *value;
     return "";
   }
@@ -80,6 +104,7 @@ ToolTable parse_tool_table(std::string_view text) {
     ToolTableEntry entry;
     entry.line = line_number;
     bool has_tool = false;
+    bool skipped = false;
     std::string why;
     std::size_t at = 0;
     while (why.empty() && at < fields.size()) {
@@ -88,11 +113,13 @@ ToolTable parse_tool_table(std::string_view text) {
           fields.substr(at, space == std::string::npos ? std::string::npos : space - at);
       at = space == std::string::npos ? fields.size() : space + 1;
       if (field.empty()) continue;
-      why = field_problem(field, entry, has_tool);
+      why = field_problem(field, entry, has_tool, skipped);
       entry.fields.push_back(field);
     }
     if (!why.empty()) {
-      table.problems.push_back({line_number, "LinuxCNC skips this line: " + why});
+      table.problems.push_back(
+          {line_number, skipped ? "LinuxCNC skips this line: " + why
+                                : why + "; the line is left out of the table here"});
       continue;
     }
     if (!has_tool) continue;

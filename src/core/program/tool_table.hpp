@@ -24,14 +24,16 @@ struct ToolTableEntry {
 
 struct ToolTable {
   std::map<int, ToolTableEntry> tools;  ///< by tool number; the first line of a tool listed twice
-  /// Lines LinuxCNC skips ("Unrecognized line skipped"), tools listed twice.
+  /// Lines LinuxCNC skips ("Unrecognized line skipped"), lines with a number
+  /// LinuxCNC would read but no tool can have (NaN, infinite, over 100000 either way,
+  /// a whole number beyond an int), left out of `tools`; tools listed twice.
   std::vector<LineNote> problems;
 };
 
 /// Reads a tool table as LinuxCNC's tooldata_read_entry does: `;` starts a
 /// comment, fields are separated by spaces, each a letter (T P D X Y Z A B C
 /// U V W I J Q, either case) and a number read with sscanf; a line with a bad
-/// field is skipped whole. Never throws.
+/// field is skipped whole, and so is one whose numbers mean nothing. Never throws.
 ToolTable parse_tool_table(std::string_view text);
 
 }  // namespace fatc

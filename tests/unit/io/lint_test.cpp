@@ -6,11 +6,13 @@
 #include "io/lint.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -42,19 +44,39 @@ struct LintRun {
   std::string err;
   double seconds;      ///< wall time
   double cpu_seconds;  ///< the lint's own work, whatever else the machine runs
+  double all_cpu_seconds;  ///< with rs274's
 };
+
+/// CPU seconds of the processes this one waited for.
+double children_cpu_seconds() {
+  rusage usage;
+  ::getrusage(RUSAGE_CHILDREN, &usage);
+  return usage.ru_utime.tv_sec + usage.ru_stime.tv_sec +
+         (usage.ru_utime.tv_usec + usage.ru_stime.tv_usec) / 1e6;
+}
 
 LintRun run(std::vector<std::string> args) {
   const auto start = Clock::now();
   const std::clock_t cpu_start = std::clock();
+  const double children_start = children_cpu_seconds();
   std::string error;
   const auto options = io::parse_options(args, error);
-  if (!options) return {2, "", error, 0.0, 0.0};
+  if (!options) return {2, "", error, 0.0, 0.0, 0.0};
   std::ostringstream out, err;
   const int code = io::run_tool_mode(*options, out, err);
-  return {code, out.str(), err.str(), std::chrono::duration<double>(Clock::now() - start).count(),
-          static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC};
+  const double cpu = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
+  return {code,      out.str(),
+          err.str(), std::chrono::duration<double>(Clock::now() - start).count(),
+          cpu,       cpu + children_cpu_seconds() - children_start};
 }
+
+/// Linear time, judged on the CPU the lint and rs274 took (the wall clock of
+/// a shared machine says little); the wall clock only guards against a hang.
+#define EXPECT_CPU_BELOW(run, limit)         \
+  do {                                       \
+    EXPECT_LT((run).all_cpu_seconds, limit); \
+    EXPECT_LT((run).seconds, 60.0);          \
+  } while (false)
 
 /// Within a second of the lint's own time; the wall clock, shared with
 /// whatever else the machine runs (ctest -j, builds), only guards against a hang.
@@ -323,7 +345,8 @@ TEST_F(Lint, shouldFollowSubroutinesDefinedBeforeTheCallAndInTheSubroutinePath) 
   EXPECT_LINE(r, "  2  3         M6 T2         pocket 2 ");
   // In a subroutine file: no line of the program.
   EXPECT_LINE(r, "  3  -         M6 T3         pocket 3 ");
-  EXPECT_LINE(r, "calls.ngc: line 9: LinuxCNC stops the program here: EOF in file:" +
+  // On the call's line, as LinuxCNC says it (rs274 alone says it on the last line).
+  EXPECT_LINE(r, "calls.ngc: line 8: LinuxCNC stops the program here: EOF in file:" +
                      program("calls.ngc") + " seeking o-word: o<missingsub> from line: 8\n");
 }
 
@@ -534,9 +557,16 @@ TEST_F(Lint, shouldStopAnInterpreterThatRunsWithoutEnd) {
   EXPECT_LT(std::chrono::duration<double>(Clock::now() - start).count(), 3.0);
   ASSERT_EQ(run->uses.size(), 1u);
   ASSERT_EQ(run->problems.size(), 1u);
-  EXPECT_EQ(run->problems[0].text,
-            "LinuxCNC's interpreter (rs274) still ran after 1 s (a loop without end?): stopped; "
-            "tool changes after that are not known");
+  // Where it was, from the calls it printed: in the loop.
+  EXPECT_TRUE(run->problems[0].text ==
+                  "LinuxCNC's interpreter (rs274) still ran after 1 s, at line 3 of 6 (a loop "
+                  "without end, or a program longer than it reads in that time): stopped; tool "
+                  "changes after that are not known" ||
+              run->problems[0].text ==
+                  "LinuxCNC's interpreter (rs274) still ran after 1 s, at line 4 of 6 (a loop "
+                  "without end, or a program longer than it reads in that time): stopped; tool "
+                  "changes after that are not known")
+      << run->problems[0].text;
 }
 
 TEST_F(Lint, shouldStopReadingAnInterpreterThatPrintsTooMuch) {
@@ -613,13 +643,14 @@ TEST_F(Lint, shouldRefuseAVeryLongLine) {
   EXPECT_WITHIN_A_SECOND(r);
 }
 
-TEST_F(Lint, shouldKeepAThousandErrorsAndCountTheRest) {
+TEST_F(Lint, shouldKeepAThousandErrorsAndStopAtTheNext) {
   std::string text;
   for (int i = 0; i < 3000; ++i) text += "G0 X1 {\n";
-  const LintRun r = lint(write("garbage.ngc", text));
+  const LintRun r = lint(write("garbage.ngc", text + "T1 M6\nM2\n"));
   EXPECT_EQ(r.code, 1);
-  // 2000 more, and the end of the file without M2.
-  EXPECT_LINE(r, "garbage.ngc: 2001 more errors of the interpreter, not listed\n");
+  EXPECT_LINE(r,
+              "garbage.ngc: more than 1000 errors: LinuxCNC's interpreter (rs274) was stopped at "
+              "line 1001; tool changes after that are not known\n");
   EXPECT_LINE(r, "garbage.ngc: 0 tool changes (M6), 0 M61, 1001 problems, 0 not known\n");
   EXPECT_WITHIN_A_SECOND(r);
 }
@@ -656,6 +687,262 @@ TEST_F(Lint, shouldStopCountingAfterTenThousandChanges) {
               "many.ngc: more than 10000 tool changes and M61: the other 2000 are not counted\n");
   EXPECT_LINE(r, "  ... and 9800 more\n");
   EXPECT_LINE(r, "many.ngc: 10000 tool changes (M6), 0 M61, 0 problems, 1 not known\n");
+}
+
+// ---- hostile programs, second round: bounded, and refused as LinuxCNC refuses ----
+
+/// Resident memory now and its peak since reset_peak(), in KiB (/proc/self/status).
+long status_kib(const char* key) {
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);) {
+    if (line.rfind(key, 0) == 0) return std::stol(line.substr(std::strlen(key)));
+  }
+  return -1;
+}
+/// Starts the peak (VmHWM) anew from what is resident now.
+void reset_peak() { std::ofstream("/proc/self/clear_refs") << "5"; }
+
+/// `lines` lines of `line` after `head`, then `end`, written in pieces.
+std::string big_program(const std::string& path, const std::string& head, const std::string& line,
+                        std::size_t lines, const std::string& end) {
+  std::ofstream out(path, std::ios::binary);
+  out << head;
+  std::string block;
+  for (int i = 0; i < 4096; ++i) block += line;
+  for (std::size_t i = 0; i < lines / 4096; ++i) out << block;
+  for (std::size_t i = 0; i < lines % 4096; ++i) out << line;
+  out << end;
+  return path;
+}
+
+TEST_F(Lint, shouldNumberA64MiBProgramInSmallMemory) {
+  // 64 MiB of moves: neither the program nor its numbered copy is ever whole
+  // in memory (it took 4 bytes for each byte read), nor rs274's output (read
+  // as it comes). rs274 itself is stopped after half a second.
+  const std::string huge = big_program(path("huge.ngc"), "T1 M6\n", "G1 X1.000 Y2.000 F100\n",
+                                       (64u << 20) / 22 - 1, "T2 M6\nM2\n");
+  ASSERT_LE(fs::file_size(huge), io::kMaxProgramBytes);
+  reset_peak();
+  const long before = status_kib("VmRSS:");
+  std::string error;
+  const auto run = interpret(huge, 0.5, io::kMaxInterpreterOutput, error);
+  const long grown = status_kib("VmHWM:") - before;
+  ASSERT_TRUE(run) << error;
+  EXPECT_LT(grown, 16 * 1024) << "KiB more resident while reading 64 MiB";
+  ASSERT_EQ(run->problems.size(), 1u);
+  EXPECT_EQ(run->problems[0].text.rfind(
+                "LinuxCNC's interpreter (rs274) still ran after 0.5 s, at line ", 0),
+            0u)
+      << run->problems[0].text;
+  EXPECT_NE(run->problems[0].text.find(" of 3050404 (a loop without end, or a program longer than "
+                                       "it reads in that time): stopped; tool changes after that "
+                                       "are not known"),
+            std::string::npos)
+      << run->problems[0].text;
+}
+
+TEST_F(Lint, shouldSayInOneLineThatAProgramIsBeyondTheLimit) {
+  const std::string huge = big_program(path("huge.ngc"), "T1 M6\n", "G1 X1.000 Y2.000 F100\n",
+                                       (64u << 20) / 22 + 10, "T2 M6\nM2\n");
+  std::string error;
+  io::InterpreterInput input;
+  input.rs274 = *io::find_rs274(error);
+  input.program_path = huge;
+  input.seconds = 0.5;
+  const auto run = io::run_interpreter(input, error);
+  ASSERT_TRUE(run) << error;
+  ASSERT_FALSE(run->problems.empty());
+  EXPECT_EQ(run->problems[0].text,
+            "only the first 67108850 of its " + std::to_string(fs::file_size(huge)) +
+                " bytes read (the lint reads at most 64 MiB of G-code): tool changes after line "
+                "3050403 are not known");
+}
+
+TEST_F(Lint, shouldNumberLinesAcrossThePiecesTheFileIsReadIn) {
+  // Lines of the program cut at every 64 KiB piece: each change on its own line.
+  std::string text;
+  int line = 0;
+  while (text.size() < 300000) {
+    text += (++line % 1000 == 0 ? "T" + std::to_string(line / 1000 % 6 + 1) + " M6\n"
+                                : "G0 X1 (move " + std::to_string(line) + ")\n");
+  }
+  const LintRun r =
+      lint(write("pieces.ngc", text + "M2\n"), {"--state", state_with_lengths({1, 2, 3, 4, 5, 6})});
+  EXPECT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_LINE(r, "  1  1000      M6 T2 ");
+  EXPECT_LINE(r, "  9  9000      M6 T4 ");
+  EXPECT_LINE(r, " 16  16000     M6 T5 ");
+}
+
+TEST_F(Lint, shouldReadAnUnclosedWhileOfAHundredThousandLinesInLinearTime) {
+  // LinuxCNC runs the loop's body once and ends at M2: nothing refused.
+  const std::string program =
+      big_program(path("while.ngc"), "T1 M6\no100 while [1]\n", "G0 X1\n", 100000, "M2\n");
+  const LintRun r = lint(program, {"--state", state_with_lengths({1})});
+  EXPECT_EQ(r.code, 0) << r.out << r.err;
+  EXPECT_LINE(r, "while.ngc: 1 tool change (M6), 0 M61, 0 problems, 0 not known\n");
+  EXPECT_CPU_BELOW(r, 5.0);
+}
+
+TEST_F(Lint, shouldFindManyUndefinedSubroutinesInManyFoldersInLinearTime) {
+  // rs274 alone reads the rest of the program for each undefined call: 20,000
+  // calls took over 15 s. Each finds an empty file after the machine's folders.
+  std::string folders;
+  for (int i = 0; i < 9; ++i) {
+    fs::create_directories(path("subs" + std::to_string(i)));
+    folders += (i ? ":" : "") + path("subs" + std::to_string(i));
+  }
+  std::string text;
+  for (int i = 0; i < 20000; ++i) text += "o<nosuch" + std::to_string(i) + "> call\n";
+  const std::string program = write("undefined.ngc", text + "T1 M6\nM2\n");
+  const LintRun r = lint(program, {"--subroutine-path", folders});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r, "undefined.ngc: line 1: LinuxCNC stops the program here: EOF in file:" + program +
+                     " seeking o-word: o<nosuch0> from line: 1\n");
+  EXPECT_LINE(r, "undefined.ngc: line 49: LinuxCNC stops the program here: EOF in file:" + program +
+                     " seeking o-word: o<nosuch48> from line: 49\n");
+  EXPECT_LINE(r,
+              "undefined.ngc: more than 1000 errors: LinuxCNC's interpreter (rs274) was stopped "
+              "at line 1001; tool changes after that are not known\n");
+  EXPECT_CPU_BELOW(r, 5.0);
+}
+
+TEST_F(Lint, shouldRefuseASubroutineFolderLongerThanLinuxCncReads) {
+  const std::string folder = "/" + std::string(260, 'd');
+  const LintRun r = lint(program("calls.ngc"), {"--subroutine-path", folder});
+  EXPECT_EQ(r.code, 2);
+  EXPECT_EQ(r.err, "--subroutine-path: " + folder.substr(0, 200) +
+                       "\u2026: over the 250 characters LinuxCNC reads of a folder in its INI\n");
+}
+
+TEST_F(Lint, shouldFindASubroutineOfTheFoldersBeforeAnyEmptyFile) {
+  // A name the program does not define may be a file of the subroutine path: found there.
+  write("subs/found_there.ngc", "");
+  fs::create_directories(path("subs"));
+  std::ofstream(path("subs/found_there.ngc"))
+      << "o<found_there> sub\nT3 M6\no<found_there> endsub\nM2\n";
+  const LintRun r = lint(write("found.ngc", "o<found_there> call\no<not_there> call\nM2\n"),
+                         {"--subroutine-path", path("subs"), "--state", state_with_lengths({3})});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r, "tools in the order of the changes: T3\n");
+  EXPECT_LINE(r, "found.ngc: line 2: LinuxCNC stops the program here: EOF in file:" +
+                     path("found.ngc") + " seeking o-word: o<not_there> from line: 2\n");
+}
+
+TEST_F(Lint, shouldLintTenThousandChangesOnATwoHundredPocketRackInLinearTime) {
+  nlohmann::json config = nlohmann::json::parse(std::ifstream(kConfig));
+  config["pockets"] = nlohmann::json::object();
+  for (int i = 0; i < 200; ++i) {
+    config["pockets"][std::to_string(i + 1)] = {{"x", 10.0 + (i % 20) * 45.0},
+                                                {"y", 20.0 + (i / 20) * 100.0}};
+  }
+  config["safe"] = {{"x", 450.0}, {"y", 1050.0}, {"z", -5.0}};
+  config["loading"] = {{"x", 20.0}, {"y", 1100.0}, {"z", -10.0}};
+  config["probe_limit"] = {{"x", 20.0}, {"y", 1100.0}, {"z", -90.0}};
+  const std::string rack = write("rack200.json", config.dump());
+  std::string text;
+  unsigned seed = 1;
+  for (int i = 0; i < 10000; ++i) {
+    seed = seed * 1103515245u + 12345u;
+    text += "T" + std::to_string(seed / 65536 % 200 + 1) + " M6\n";
+  }
+  const LintRun r =
+      run({"--lint", write("changes.ngc", text + "M2\n"), "--config", rack, "--state", no_state()});
+  EXPECT_EQ(r.code, 1) << r.err;  // never measured
+  EXPECT_LINE(r, "changes.ngc: 10000 tool changes (M6), 0 M61, 200 problems, 0 not known\n");
+  EXPECT_CPU_BELOW(r, 10.0);
+}
+
+TEST_F(Lint, shouldRefuseASubroutineDefinedTwice) {
+  const std::string program =
+      write("twice.ngc",
+            "o<twice> sub\nG0 X1\no<twice> endsub\no<twice> sub\nG0 X2\no<twice> endsub\nM2\n");
+  const LintRun r = lint(program);
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r, "twice.ngc: line 4: LinuxCNC stops the program here: File:" + program +
+                     " line:4 redefining sub: o|twice| already defined in file:" + program + "\n");
+}
+
+TEST_F(Lint, shouldRefuseAnM61QBeyondTheToolRange) {
+  // 20 digits: LinuxCNC's own verdict, never a tool of a wrapped number.
+  const LintRun r =
+      lint(write("m61.ngc", "M61 Q12345678901234567890\nM61 Q2147483648\nM61 Q5000\nM2\n"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r,
+              "m61.ngc: line 1: LinuxCNC stops the program here: Need non-negative Q-word to "
+              "specify tool number with M61\n");
+  EXPECT_LINE(r,
+              "m61.ngc: line 2: LinuxCNC stops the program here: Need non-negative Q-word to "
+              "specify tool number with M61\n");
+  EXPECT_LINE(r,
+              "m61.ngc: line 3: LinuxCNC stops the program here: Requested tool 5000 not found "
+              "in the tool table\n");
+  EXPECT_LINE(r, "m61.ngc: 0 tool changes (M6), 0 M61, 3 problems, 0 not known\n");
+}
+
+TEST_F(Lint, shouldRefuseATBeyondTheToolRange) {
+  const LintRun r =
+      lint(write("t.ngc", "T12345678901234567890 M6\nT2147483648 M6\nT1001 M6\nM2\n"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r,
+              "t.ngc: line 1: LinuxCNC stops the program here: Negative tool id (tool not "
+              "found)\n");
+  EXPECT_LINE(r,
+              "t.ngc: line 2: LinuxCNC stops the program here: Negative tool id (tool not "
+              "found)\n");
+  EXPECT_LINE(r,
+              "t.ngc: line 3: LinuxCNC stops the program here: Requested tool 1001 not found in "
+              "the tool table\n");
+  EXPECT_LINE(r, "t.ngc: 0 tool changes (M6), 0 M61, 3 problems, 0 not known\n");
+}
+
+/// A tool table line and the problem it must give.
+struct BadTableLine {
+  const char* line;
+  const char* expected;
+};
+
+TEST(ToolTable, shouldLeaveOutEveryLineWhoseNumbersMeanNothing) {
+  // clang-format off
+  const BadTableLine kLines[] = {
+    {"T2 P2 Znan", "\"Znan\" is no number a tool can have (NaN, infinite, or over 100000 either way), which LinuxCNC would read as it is; the line is left out of the table here"},
+    {"T2 P2 ZNAN(0x7)", "\"ZNAN(0x7)\" is no number a tool can have (NaN, infinite, or over 100000 either way), which LinuxCNC would read as it is; the line is left out of the table here"},
+    {"T2 P2 Zinf", "\"Zinf\" is no number a tool can have (NaN, infinite, or over 100000 either way), which LinuxCNC would read as it is; the line is left out of the table here"},
+    {"T2 P2 Z-Infinity", "\"Z-Infinity\" is no number a tool can have (NaN, infinite, or over 100000 either way), which LinuxCNC would read as it is; the line is left out of the table here"},
+    {"T2 P2 Z1e400", "\"Z1e400\" is no number a tool can have (NaN, infinite, or over 100000 either way), which LinuxCNC would read as it is; the line is left out of the table here"},
+    {"T2 P2 D1e300", "\"D1e300\" is no number a tool can have (NaN, infinite, or over 100000 either way), which LinuxCNC would read as it is; the line is left out of the table here"},
+    {"T2 P2 X-100000.5", "\"X-100000.5\" is no number a tool can have (NaN, infinite, or over 100000 either way), which LinuxCNC would read as it is; the line is left out of the table here"},
+    {"T99999999999 P2", "\"T99999999999\" is beyond the largest whole number LinuxCNC reads (2147483647): it would read another number; the line is left out of the table here"},
+    {"T2 P12345678901234567890", "\"P12345678901234567890\" is beyond the largest whole number LinuxCNC reads (2147483647): it would read another number; the line is left out of the table here"},
+    {"T2 P2 Q-3000000000", "\"Q-3000000000\" is beyond the largest whole number LinuxCNC reads (2147483647): it would read another number; the line is left out of the table here"},
+  };
+  // clang-format on
+  for (const BadTableLine& bad : kLines) {
+    const ToolTable table =
+        parse_tool_table(std::string("T1 P1 Z30\n") + bad.line + "\nT3 P3 Z100000\n");
+    EXPECT_EQ(table.tools.size(), 2u) << bad.line;
+    EXPECT_EQ(table.tools.count(2), 0u) << bad.line;
+    ASSERT_EQ(table.problems.size(), 1u) << bad.line;
+    EXPECT_EQ(table.problems[0].line, 2);
+    EXPECT_EQ(table.problems[0].text, bad.expected);
+  }
+}
+
+TEST_F(Lint, shouldReportTheProblemsOfTheIniToolTable) {
+  // Not only of --tool-table: the table rs274 is given is the INI's.
+  const std::string ini =
+      write("machine.ini", "[EMCIO]\nTOOL_TABLE = tools.tbl\n[TRAJ]\nLINEAR_UNITS = mm\n");
+  write("tools.tbl", "T1 P1 Z30\nT2 P2 Znan\n");
+  const LintRun r = lint(write("p.ngc", "T1 M6\nT2 M6\nM2\n"), {"--ini", ini});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r,
+              path("tools.tbl") +
+                  ": line 2: \"Znan\" is no number a tool can have (NaN, "
+                  "infinite, or over 100000 either way), which LinuxCNC would read as it is; the "
+                  "line is left out of the table here\n");
+  EXPECT_LINE(r,
+              "p.ngc: line 2: LinuxCNC stops the program here: Requested tool 2 not found in "
+              "the tool table\n");
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 // What rs274 prints, read into tool uses, problems and what is not known:
 // each test feeds text captured from rs274 (LinuxCNC 2.9) over a program
-// numbered by number_lines.
+// numbered by LineNumberer; and the numbering itself, piece by piece.
 #include "core/program/interpreter_output.hpp"
 
 #include <gtest/gtest.h>
@@ -16,10 +16,20 @@ namespace {
 /// Rows 1-7 hold tools 1-7, as config/sim/sim.tbl.
 std::vector<int> sim_rows() { return {0, 1, 2, 3, 4, 5, 6, 7}; }
 
+/// p.ngc of `lines` lines, numbered into /tmp/x/program.ngc; `input_lines` read #5399.
+ProgramGiven given(std::vector<int> input_lines = {}, int lines = 1000000) {
+  ProgramGiven program;
+  program.name = "p.ngc";
+  program.numbered_path = "/tmp/x/program.ngc";
+  program.stub_folder = "/tmp/x/undefined";
+  for (const int line : input_lines) program.input_lines.insert(line);
+  program.lines = lines;
+  return program;
+}
+
 InterpreterRun read(const std::string& out, const std::string& err,
                     std::vector<int> input_lines = {}, std::vector<int> rows = sim_rows()) {
-  InterpreterOutput output("p.ngc", "/tmp/x/program.ngc", std::move(rows), std::move(input_lines),
-                           1000000);
+  InterpreterOutput output(given(std::move(input_lines)), std::move(rows));
   std::istringstream calls(out), errors(err);
   for (std::string line; std::getline(calls, line);) output.canonical_call(line);
   for (std::string line; std::getline(errors, line);) output.error_line(line);
@@ -143,22 +153,80 @@ TEST(InterpreterOutput, shouldSayAToolReadFromAnM66InputIsNotKnown) {
 }
 
 TEST(InterpreterOutput, shouldKeepAtMostTheFirstTenThousandUses) {
-  InterpreterOutput output("p.ngc", "", sim_rows(), {}, 1000);
+  InterpreterOutput output(given({}, 1000), sim_rows());
   for (int i = 0; i < 10005; ++i) output.canonical_call("  1 N1000000001 CHANGE_TOOL_NUMBER(1)");
   const auto run = output.finish();
   EXPECT_EQ(run.uses.size(), kMaxToolUses);
   EXPECT_EQ(run.uses_not_kept, 5u);
 }
 
-TEST(InterpreterOutput, shouldCountErrorsBeyondAThousand) {
-  InterpreterOutput output("p.ngc", "", sim_rows(), {}, 1000);
+TEST(InterpreterOutput, shouldStopAtTheErrorAfterAThousand) {
+  InterpreterOutput output(given({}, 1000), sim_rows());
   for (int i = 0; i < 1500; ++i) {
     output.error_line("Bad character '{' used");
-    output.error_line("N1000000001 {");
+    output.error_line("N" + std::to_string(1000000001 + i) + " {");
   }
+  EXPECT_TRUE(output.done());
   const auto run = output.finish();
   ASSERT_EQ(run.problems.size(), kMaxErrors + 1);
-  EXPECT_EQ(run.problems.back().text, "500 more errors of the interpreter, not listed");
+  EXPECT_EQ(run.problems.back().where.line, 0);
+  EXPECT_EQ(run.problems.back().text,
+            "more than 1000 errors: LinuxCNC's interpreter (rs274) was stopped at line 1000; "
+            "tool changes after that are not known");
+}
+
+TEST(InterpreterOutput, shouldSayAnUndefinedSubroutineAsLinuxCncSaysItOfTheProgram) {
+  // The call found its empty file in the stub folder: rs274 stopped at once, on the call's line.
+  const auto run = read("",
+                        "EOF in file:/tmp/x/undefined/nosuch.ngc seeking o-word: o<nosuch> from "
+                        "line: 0\n"
+                        "N1000000012 o<nosuch> call [1]\n"
+                        "EOF in file:/tmp/x/undefined/deeper.ngc seeking o-word: o<deeper> from "
+                        "line: 0\n"
+                        "o<deeper> call\n");
+  ASSERT_EQ(run.problems.size(), 2u);
+  EXPECT_EQ(run.problems[0].where.line, 12);
+  EXPECT_EQ(run.problems[0].text,
+            "LinuxCNC stops the program here: EOF in file:p.ngc seeking o-word: o<nosuch> from "
+            "line: 12");
+  // In a subroutine file of the program's: no line of the program.
+  EXPECT_EQ(run.problems[1].text,
+            "LinuxCNC stops the program here: EOF seeking o-word: o<deeper> (at \"o<deeper> "
+            "call\")");
+}
+
+TEST(InterpreterOutput, shouldKeepAtMostTenThousandUsesWithTheChangesOfLinesNotRun) {
+  InterpreterOutput output(given({}, 100000), sim_rows());
+  for (int i = 1; i <= 6000; ++i) {
+    const std::string n = std::to_string(1000000000 + 2 * i);
+    output.canonical_call("  1 N" + n + " SELECT_TOOL(1)");
+    output.canonical_call("  2 N" + n + " CHANGE_TOOL(1)");
+    output.error_line("Named parameter #<_hal[x]> not defined");
+    output.error_line("N" + std::to_string(1000000000 + 2 * i + 1) + " T#<_hal[x]> M6");
+  }
+  const auto run = output.finish();
+  ASSERT_EQ(run.uses.size(), kMaxToolUses);
+  EXPECT_EQ(run.uses_not_kept, 2000u);
+  // Each change of a line not run between the uses before and after it.
+  for (std::size_t i = 1; i < run.uses.size(); ++i) {
+    ASSERT_LE(run.uses[i - 1].where.line, run.uses[i].where.line) << i;
+  }
+  EXPECT_FALSE(run.uses[1].tool);
+  EXPECT_EQ(run.uses[1].where.line, 3);
+}
+
+TEST(InterpreterOutput, shouldSayAnInputLineOnceWhateverTheLoopsAndKeepAThousand) {
+  std::vector<int> input_lines;
+  for (int line = 1; line <= 2000; ++line) input_lines.push_back(line);
+  InterpreterOutput output(given(input_lines, 2000), sim_rows());
+  for (int pass = 0; pass < 3; ++pass) {
+    for (int line = 1; line <= 2000; ++line) {
+      output.canonical_call("  1 N" + std::to_string(1000000000 + line) + " SELECT_TOOL(0)");
+    }
+  }
+  const auto run = output.finish();
+  EXPECT_EQ(run.unknowns.size(), kMaxErrors);
+  EXPECT_EQ(run.unknowns.back().where.line, 1000);
 }
 
 TEST(HoldsM6, shouldFindAnM6WordOutsideCommentsAndNames) {
@@ -171,35 +239,106 @@ TEST(HoldsM6, shouldFindAnM6WordOutsideCommentsAndNames) {
   EXPECT_FALSE(holds_m6("M6.5"));
 }
 
-TEST(NumberLines, shouldStartEachLineOfCodeWithItsNumber) {
-  const auto numbered = number_lines(
-      "%\n(comment)\n\n  N10 T1 M6\r\n/T2 M6\n n 2 0 . 5 M61 Q4\nT#5399 M6\n#<t> = # 5399.5\n%\n");
-  EXPECT_EQ(numbered.text,
-            "%\nN1000000002 (comment)\n\n  N1000000004 T1 M6\r\n/N1000000005 T2 M6\n"
-            " N1000000006 M61 Q4\nN1000000007 T#5399 M6\nN1000000008 #<t> = # 5399.5\n%\n"
-            "N1000000010 M2\n");
-  EXPECT_EQ(numbered.input_lines, std::vector<int>{7});
-  EXPECT_TRUE(numbered.problems.empty());
+/// What a LineNumberer makes of `text` fed in pieces of `piece` bytes.
+struct Numbered {
+  std::string text;
+  LineNumberer numberer;
+};
+Numbered number(std::string_view text, std::size_t piece = 1000000, bool cut = false) {
+  Numbered numbered;
+  for (std::size_t at = 0; at < text.size(); at += piece) {
+    numbered.numberer.add(text.substr(at, piece));
+    numbered.text += numbered.numberer.take_text();
+  }
+  numbered.numberer.finish(cut);
+  numbered.text += numbered.numberer.take_text();
+  return numbered;
+}
+
+TEST(LineNumberer, shouldStartEachLineOfCodeWithItsNumber) {
+  const std::string program =
+      "%\n(comment)\n\n  N10 T1 M6\r\n/T2 M6\n n 2 0 . 5 M61 Q4\nT#5399 M6\n#<t> = # 5399.5\n%\n";
+  // The same whatever the pieces the file is read in.
+  for (const std::size_t piece : {std::size_t{1}, std::size_t{7}, program.size()}) {
+    const auto numbered = number(program, piece);
+    EXPECT_EQ(numbered.text,
+              "%\nN1000000002 (comment)\n\n  N1000000004 T1 M6\r\n/N1000000005 T2 M6\n"
+              " N1000000006 M61 Q4\nN1000000007 T#5399 M6\nN1000000008 #<t> = # 5399.5\n%\n"
+              "N1000000010 M2\n")
+        << piece;
+    EXPECT_TRUE(numbered.numberer.input_lines().contains(7));
+    EXPECT_FALSE(numbered.numberer.input_lines().contains(8));
+    EXPECT_EQ(numbered.numberer.lines(), 9);
+    EXPECT_EQ(numbered.numberer.bytes(), program.size());
+    EXPECT_FALSE(numbered.numberer.nul());
+  }
   EXPECT_EQ(line_of("/N1000000005 T2 M6"), 5);
   EXPECT_EQ(line_of("N0080 T1 M6"), 0);
   EXPECT_EQ(line_of("G0 X1"), 0);
 }
 
-TEST(NumberLines, shouldLeaveALineTooLongToNumberAsItWas) {
+TEST(LineNumberer, shouldLeaveALineTooLongToNumberAsItWas) {
   const std::string longest(kMaxLineLength - 12, 'X');
   const std::string too_long(kMaxLineLength - 11, 'X');
-  EXPECT_EQ(number_lines(longest).text, "N1000000001 " + longest + "\nN1000000002 M2\n");
-  EXPECT_EQ(number_lines(too_long).text, too_long + "\nN1000000002 M2\n");
+  EXPECT_EQ(number(longest).text, "N1000000001 " + longest + "\nN1000000002 M2\n");
+  EXPECT_EQ(number(too_long).text, too_long + "\nN1000000002 M2\n");
 }
 
-TEST(NumberLines, shouldRefuseATextWithANulByte) {
-  const auto numbered = number_lines(std::string("T1 M6\nG0\0 X2\n", 13));
-  EXPECT_EQ(numbered.text, "");
-  ASSERT_EQ(numbered.problems.size(), 1u);
-  EXPECT_EQ(numbered.problems[0].line, 2);
-  EXPECT_EQ(numbered.problems[0].text,
-            "NUL byte at column 3: not a G-code text file (LinuxCNC stops reading a line at a "
-            "NUL); nothing of it read");
+TEST(LineNumberer, shouldPassOnAHugeLineWithoutKeepingIt) {
+  LineNumberer numberer;
+  numberer.add("T1 M6\nG0 X");
+  std::size_t passed = numberer.take_text().size();
+  for (int i = 0; i < 1000; ++i) {
+    numberer.add(std::string(1000, '1'));
+    EXPECT_LE(numberer.text_size(), 1000u + kMaxLineLength);
+    passed += numberer.take_text().size();
+  }
+  numberer.add("\nM2\n");
+  numberer.finish(false);
+  EXPECT_EQ(numberer.take_text(), "\nN1000000003 M2\nN1000000004 M2\n");
+  EXPECT_EQ(passed, std::string("N1000000001 T1 M6\nG0 X").size() + 1000000);
+  EXPECT_EQ(numberer.lines(), 3);
+}
+
+TEST(LineNumberer, shouldDropTheLastLineOfACutFile) {
+  const auto numbered = number("T1 M6\nT2 M6\nT3", 4, true);
+  EXPECT_EQ(numbered.text, "N1000000001 T1 M6\nN1000000002 T2 M6\nN1000000003 M2\n");
+  EXPECT_EQ(numbered.numberer.bytes(), 12u);
+  EXPECT_EQ(numbered.numberer.lines(), 2);
+}
+
+TEST(LineNumberer, shouldRefuseATextWithANulByteInAnyPiece) {
+  for (const std::size_t piece : {std::size_t{1}, std::size_t{8}, std::size_t{100}}) {
+    const auto numbered = number(std::string("T1 M6\nG0\0 X2\n", 13), piece);
+    ASSERT_TRUE(numbered.numberer.nul()) << piece;
+    EXPECT_EQ(numbered.numberer.nul()->line, 2);
+    EXPECT_EQ(numbered.numberer.nul()->text,
+              "NUL byte at column 3: not a G-code text file (LinuxCNC stops reading a line at a "
+              "NUL); nothing of it read");
+  }
+}
+
+TEST(LineNumberer, shouldListTheSubroutinesTheProgramCallsAndNeverDefines) {
+  const auto numbered = number(
+      "o<Defined> sub\no<defined> endsub\n"
+      "o<defined> call\nO< No Such > CALL [1]\n(o<in_comment> call)\n/N20 o<two> call\n"
+      "o100 call\no200 sub\no200 endsub\no200 call\n"
+      "o<../../etc/passwd> call\no<$(reboot)> call\no<.hidden> call\no<later> call\n"
+      "o<later> sub\no<later> endsub\nM2\n");
+  EXPECT_EQ(numbered.numberer.undefined_calls(),
+            (std::vector<std::string>{"100", "nosuch", "two"}));
+}
+
+TEST(LineSet, shouldHoldTheLinesInsertedOnly) {
+  LineSet lines;
+  lines.insert(5);
+  lines.insert(1000000);
+  lines.insert(-1);
+  EXPECT_TRUE(lines.contains(5));
+  EXPECT_TRUE(lines.contains(1000000));
+  EXPECT_FALSE(lines.contains(6));
+  EXPECT_FALSE(lines.contains(-1));
+  EXPECT_FALSE(lines.contains(2000000));
 }
 
 TEST(InterpreterTable, shouldListEachToolOnceWithItsDiameterInInches) {
@@ -213,11 +352,12 @@ TEST(InterpreterTable, shouldListEachToolOnceWithItsDiameterInInches) {
   EXPECT_EQ(any.tool_of_row[42], 42);
 }
 
-TEST(InterpreterIni, shouldPutHalPinsOffAndTheSubroutineFoldersFirstInTheSection) {
-  EXPECT_EQ(ini_for_preflight("[EMC]\nA = 1\n[RS274NGC]\nHAL_PIN_VARS = 1\nSUBROUTINE_PATH = b\n",
-                              "/a:b"),
-            "[EMC]\nA = 1\n[RS274NGC]\nHAL_PIN_VARS = 0\nSUBROUTINE_PATH = /a:b\nHAL_PIN_VARS = "
-            "1\nSUBROUTINE_PATH = b\n");
+TEST(InterpreterIni, shouldPutHalPinsOffAndTheSubroutineFoldersFirstInTheSectionOneALine) {
+  EXPECT_EQ(
+      ini_for_preflight("[EMC]\nA = 1\n[RS274NGC]\nHAL_PIN_VARS = 1\nSUBROUTINE_PATH = b\n",
+                        "/a:b"),
+      "[EMC]\nA = 1\n[RS274NGC]\nHAL_PIN_VARS = 0\nSUBROUTINE_PATH = /a:\\\nb\nHAL_PIN_VARS = "
+      "1\nSUBROUTINE_PATH = b\n");
   EXPECT_EQ(ini_for_preflight("[EMC]\nA = 1", "/a"),
             "[EMC]\nA = 1\n[RS274NGC]\nHAL_PIN_VARS = 0\nSUBROUTINE_PATH = /a\n");
   EXPECT_EQ(ini_for_preflight("[RS274NGC]\n", ""), "[RS274NGC]\nHAL_PIN_VARS = 0\n");
