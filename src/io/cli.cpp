@@ -271,24 +271,27 @@ int plot(const Options& options, std::ostream& out, std::ostream& err) {
 }
 
 /// The planned change's time on its path and on the other one, as --lint
-/// estimates it: moves at their feed, rapids at the machine's speed, dwells.
+/// estimates it (change_time), and the bound.
 void print_estimate(const Options& options, const Config& config, const ToolState& tools, int to,
                     const Simulator& sim, std::ostream& out) {
   std::string error;
-  const auto rapid = rapid_speed(options.ini_path, config, error);
-  if (!rapid) return;  // the INI was read already: this cannot fail now
+  const auto motion = machine_motion(options.ini_path, config, error);
+  if (!motion) return;  // the INI was read already: this cannot fail now
   Config other = config;
   other.path = config.path == Path::direct ? Path::prototype : Path::direct;
   const Simulator other_sim = plan_change(other, tools, to, config.probe_limit.z);
-  int waits = 0;
-  const double seconds = estimate_seconds(sim, config.safe, rapid->per_minute, waits);
-  const double other_seconds = estimate_seconds(other_sim, config.safe, rapid->per_minute, waits);
+  const ChangeTime time = change_time(sim, config.safe, motion->timing);
+  const ChangeTime other_time = change_time(other_sim, config.safe, motion->timing);
   const char* name = config.path == Path::direct ? "direct" : "prototype";
   const char* other_name = config.path == Path::direct ? "prototype" : "direct";
-  out << "estimated " << seconds_text(seconds) << " on the " << name << " path ("
-      << seconds_text(other_seconds) << " on the " << other_name
-      << " path): from safe, moves at their feed, " << rapid->source
-      << ", plus the dwells (acceleration, latency and the operator not counted)\n";
+  char parts[96];
+  std::snprintf(parts, sizeof parts, "(moves %.2f s, dwells %.2f s, %d step%s)", time.moves,
+                time.dwells, time.steps, time.steps == 1 ? "" : "s");
+  // Two lines: the figures, then how they were worked out (a line stays under 400 characters).
+  out << "estimated " << seconds_text(time.seconds()) << " on the " << name << " path ("
+      << seconds_text(other_time.seconds()) << " on the " << other_name << " path) " << parts
+      << ", the operator not counted\n"
+      << "  from safe: " << motion->source << ", " << estimate_costs_text(motion->timing) << "\n";
   if (!options.ini_path) {
     out << "bound: --ini gives it (the machine's velocities and accelerations)\n";
     return;

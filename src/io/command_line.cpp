@@ -61,7 +61,9 @@ const std::vector<ModeDeclaration> kModes = {
    "print the steps of M6 TB with TA in the spindle",
    "print the steps of M6 TB with TA in the spindle (the tools where --state has them, else "
    "the first-start map), then its estimated time on the config's path and on the other one "
-   "and, with --ini, the bound: the direct path's moves at the INI's velocities and "
+   "(each move an exact stop at the --ini's velocities and half its axes' accelerations, as "
+   "LinuxCNC plans it, else at assumed ones; the dwells; the executor's handshake a step and "
+   "iocontrol's cycles a change) and, with --ini, the bound: the direct path's moves at the INI's velocities and "
    "accelerations, each an exact stop, plus the dwells (and the prototype path's time at the "
    "same limits). Exit 0 printed, 1 refused or invalid, 2 usage"},
   {Mode::confirm, "--confirm", "", {"--config", "--spindle"}, {"--state", "--pocket"},
@@ -82,9 +84,10 @@ const std::vector<ModeDeclaration> kModes = {
    "[EMCIO]TOOL_TABLE; without either tools 1 to 1000). Prints every M6 and M61 in the order "
    "LinuxCNC runs them with the tool's pocket, manual tools, lengths, what only the running "
    "machine knows (HAL pins, a tool read from an M66 input), the problems, and the change "
-   "time estimated from the --plan steps of each change. rs274 is stopped after 15 s, 1 GiB of "
-   "output or the error after 1000 (a problem); it is given at most 64 MiB of G-code. "
-   "Exit 0 clean, 1 problems found, 2 usage, an input it cannot read "
+   "time estimated as --plan estimates each change (the INI's limits with --ini, else assumed "
+   "ones). rs274 is stopped after 15 s, 1 GiB of output or the error after 1000 (a "
+   "problem); it is given at most 64 MiB of G-code. Exit 0 clean, 1 problems found, 2 usage, "
+   "an input it cannot read "
    "(program, config, state, tool table, INI) or rs274 not installed"},
   {Mode::teach, "--teach", "pocket:N|loading|safe|sensor", {"--config", "--at"}, {"--ini"},
    "write a jogged-to machine position (G53) into config.json",

@@ -7,21 +7,17 @@
 namespace fatc::io {
 namespace {
 
-/// Why the operator's answer cannot be what is in the rack, or empty: a
-/// tool in two places, or a pocket that holds no tool of its own said to hold it.
+/// Why the operator's answer cannot be what is in the rack, or empty: the
+/// record's own contradictions (ToolState::contradiction, as the clear-fault
+/// pin refuses them), or --pocket where no sequence was cut off at a pocket.
 /// (The state file was read against the config: the cut-off pocket is one of its.)
 std::string contradiction(const ToolState& tools, int pocket, const Options& options) {
   if (!options.pocket_holds_tool) return "";
-  if (pocket == 0) return "--pocket: no sequence was cut off at a pocket";
-  if (!*options.pocket_holds_tool) return "";
-  const int own = tools.tool_of(pocket);
-  if (own == 0) {
-    return "--pocket yes: no tool belongs in pocket " + std::to_string(pocket) +
-           ", where the sequence was cut off";
-  }
-  if (*options.spindle_tool == own) {
-    return "--spindle " + std::to_string(own) + " --pocket yes: tool " + std::to_string(own) +
-           " cannot be both in the spindle and in its pocket " + std::to_string(pocket);
+  const std::string said = "--spindle " + std::to_string(*options.spindle_tool) + " --pocket " +
+                           (*options.pocket_holds_tool ? "yes" : "no") + ": ";
+  if (pocket == 0) return said + "no sequence was cut off at a pocket";
+  if (const auto why = tools.contradiction(*options.spindle_tool, options.pocket_holds_tool)) {
+    return said + *why;
   }
   return "";
 }

@@ -8,7 +8,7 @@
 
 #include "core/config/config.hpp"
 #include "core/rack/geometry.hpp"
-#include "core/program/preflight.hpp"
+#include "core/plan/timing.hpp"
 
 namespace fatc::io {
 

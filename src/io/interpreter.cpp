@@ -3,6 +3,8 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/prctl.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -204,10 +206,19 @@ std::optional<Ending> run_child(const std::vector<std::string>& argv, const std:
   std::vector<char*> env;
   for (std::string& variable : environment) env.push_back(variable.data());
   env.push_back(nullptr);
+  const pid_t parent = ::getpid();
+  // Its CPU time on its own, should no one be left to stop it at input.seconds.
+  const rlim_t cpu_seconds = static_cast<rlim_t>(input.seconds) + 5;
   const pid_t child = ::fork();
   if (child == 0) {
     // A group of its own: a remap's own children go with it when it is stopped.
     ::setpgid(0, 0);
+    // It goes with the one who started it (a component stopped with LinuxCNC
+    // left rs274 running a program without end, at full CPU, for an hour).
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (::getppid() != parent) ::_exit(126);
+    const struct rlimit cpu = {cpu_seconds, cpu_seconds};
+    ::setrlimit(RLIMIT_CPU, &cpu);
     const int nothing = ::open("/dev/null", O_RDWR);
     if (nothing >= 0) {
       ::dup2(nothing, STDIN_FILENO);

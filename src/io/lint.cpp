@@ -25,10 +25,9 @@ namespace {
 constexpr std::size_t kMaxRows = 200;
 constexpr std::size_t kMaxFindings = 50;
 
-/// What the INI adds: rapid speed, and whether M6 runs this changer's remap.
+/// What the INI adds: the motion limits, and whether M6 runs this changer's remap.
 struct MachineIni {
-  double rapid_per_minute = 0.0;
-  std::string rapid_source;  ///< how the rapid speed was found, for the estimate's line
+  MachineMotion motion;   ///< the limits for the estimate, and where they came from
   bool remaps_m6 = true;     ///< false: the INI has no REMAP=M6 ... ngc=fixed_atc_probe_m6
   std::optional<std::string> tool_table;  ///< [EMCIO]TOOL_TABLE, from the INI's folder
 };
@@ -44,33 +43,54 @@ bool is_own_m6_remap(const std::string& remap) {
 
 }  // namespace
 
-std::optional<RapidSpeed> rapid_speed(const std::optional<std::string>& ini_path,
-                                      const Config& config, std::string& error) {
-  const char* unit = config.units == Units::inch ? "inch/min" : "mm/min";
-  const double assumed = config.units == Units::inch ? kAssumedRapidInch : kAssumedRapidMm;
-  char buffer[160];
+std::optional<MachineMotion> machine_motion(const std::optional<std::string>& ini_path,
+                                            const Config& config, std::string& error) {
+  const bool inch = config.units == Units::inch;
+  MachineMotion machine;
+  MotionLimits& limits = machine.timing.limits;
+  const double velocity = inch ? kAssumedVelocityInch : kAssumedVelocityMm;
+  const double acceleration = inch ? kAssumedAccelerationInch : kAssumedAccelerationMm;
+  limits.velocity = {velocity, velocity, velocity};
+  limits.acceleration = {acceleration, acceleration, acceleration};
+  limits.linear_velocity = velocity;
+  limits.linear_acceleration = acceleration;
+  char buffer[120];
+  std::snprintf(buffer, sizeof buffer, "the moves at %.0f %s and %.0f %s, assumed (",
+                velocity * 60.0, inch ? "inch/min" : "mm/min", acceleration,
+                inch ? "inch/s²" : "mm/s²");
   if (!ini_path) {
-    std::snprintf(buffer, sizeof buffer,
-                  "rapids at %.0f %s, assumed (--ini gives the machine's "
-                  "[TRAJ]MAX_LINEAR_VELOCITY)",
-                  assumed, unit);
-    return RapidSpeed{assumed, buffer};
+    machine.source = buffer + std::string("--ini gives the machine's [AXIS_*] and [TRAJ] limits)");
+    return machine;
   }
   const auto ini = IniFile::read(*ini_path, error);
   if (!ini) return std::nullopt;
-  const auto velocity = ini->number("TRAJ", "MAX_LINEAR_VELOCITY");
-  const auto per_mm = ini->linear_units();
-  if (velocity && per_mm && std::isfinite(*velocity) && *velocity > 0.0 && std::isfinite(*per_mm) &&
-      *per_mm > 0.0) {
-    const double mm_per_minute = *velocity / *per_mm * 60.0;
-    const double per_minute = config.units == Units::inch ? mm_per_minute / 25.4 : mm_per_minute;
-    std::snprintf(buffer, sizeof buffer, "rapids at %.0f %s ([TRAJ]MAX_LINEAR_VELOCITY of ",
-                  per_minute, unit);
-    return RapidSpeed{per_minute, buffer + shown_path(*ini_path) + ")"};
+  // iocontrol's cycle as LinuxCNC reads it; its default where it is none.
+  const auto cycle = ini->number("EMCIO", "CYCLE_TIME");
+  if (cycle && std::isfinite(*cycle) && *cycle > 0.0 && *cycle <= 10.0) {
+    machine.timing.iocontrol_cycle_seconds = *cycle;
   }
-  std::snprintf(buffer, sizeof buffer, "rapids at %.0f %s, assumed (", assumed, unit);
-  return RapidSpeed{assumed, buffer + shown_path(*ini_path) +
-                                 " has no usable [TRAJ]MAX_LINEAR_VELOCITY and LINEAR_UNITS)"};
+  std::string why;
+  if (const auto found = motion_limits(*ini, config.units, why)) {
+    limits = *found;
+    machine.source = "the moves at the velocities and accelerations of " + shown_path(*ini_path);
+    return machine;
+  }
+  machine.source = buffer + shown_path(*ini_path) +
+                   " has no usable MAX_VELOCITY and MAX_ACCELERATION of [AXIS_X], [AXIS_Y] "
+                   "and [AXIS_Z]: --plan --ini says why)";
+  return machine;
+}
+
+std::string estimate_costs_text(const MachineTiming& timing) {
+  char buffer[240];
+  std::snprintf(buffer, sizeof buffer,
+                "each an exact stop at half the acceleration as LinuxCNC plans it, plus the "
+                "dwells, %.0f ms a step (the executor's handshake) and %.2f s a change (%g of "
+                "iocontrol's %g s cycles for T and M6, %.0f ms for the remap)",
+                kStepSeconds * 1000.0,
+                kIocontrolCycles * timing.iocontrol_cycle_seconds + kChangeSeconds,
+                kIocontrolCycles, timing.iocontrol_cycle_seconds, kChangeSeconds * 1000.0);
+  return buffer;
 }
 
 namespace {
@@ -78,10 +98,9 @@ namespace {
 /// Reads what --lint uses of the INI; false and one line in `error` when it cannot be read.
 bool read_ini(const Options& options, const Config& config, MachineIni& machine,
               std::string& error) {
-  const auto rapid = rapid_speed(options.ini_path, config, error);
-  if (!rapid) return false;
-  machine.rapid_per_minute = rapid->per_minute;
-  machine.rapid_source = rapid->source;
+  const auto motion = machine_motion(options.ini_path, config, error);
+  if (!motion) return false;
+  machine.motion = *motion;
   if (!options.ini_path) return true;
   const auto ini = IniFile::read(*options.ini_path, error);
   if (!ini) return false;
@@ -159,10 +178,10 @@ void print_estimate(const Preflight& checked, const MachineIni& machine, std::os
            "not known\n";
     return;
   }
+  // The figure, then how it was worked out, each line under 400 characters.
   out << "\nestimated tool-change time: " << seconds_text(checked.seconds) << " for "
       << plural(static_cast<std::size_t>(estimated), "change", "changes")
-      << ", from the steps --plan prints for each: moves at their feed, " << machine.rapid_source
-      << ", plus the dwells; from safe to safe (the way between the work and safe, acceleration"
+      << ", from safe to safe (the way between the work and safe"
       << (checked.operator_waits > 0
               ? " and the operator at " + plural(checked.operator_waits, "prompt", "prompts")
               : std::string())
@@ -171,7 +190,8 @@ void print_estimate(const Preflight& checked, const MachineIni& machine, std::os
     out << "; " << plural(checked.not_estimated, "change", "changes")
         << " not estimated: the tool or the spindle is not known";
   }
-  out << "\n";
+  out << "\n  from the steps --plan prints for each: " << machine.motion.source << ", "
+      << estimate_costs_text(machine.motion.timing) << "\n";
 }
 
 /// Findings in the order of the program's lines.
@@ -264,7 +284,7 @@ int lint(const Options& options, std::ostream& out, std::ostream& err) {
   input.state_name = shown_path(options.state_path);
   input.table = table && options.tool_table_path ? &*table : nullptr;
   input.table_name = table_name;
-  input.rapid_per_minute = machine.rapid_per_minute;
+  input.machine = machine.motion.timing;
   const Preflight checked = preflight(run->uses, input);
 
   std::vector<program::Finding> problems = run->problems;

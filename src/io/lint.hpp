@@ -7,23 +7,32 @@
 #include <vector>
 
 #include "cli.hpp"
+#include "core/plan/timing.hpp"
 
 namespace fatc::io {
 
-/// Rapid speed assumed without an INI, in mm per minute (and inch per minute).
-constexpr double kAssumedRapidMm = 3000.0;
-constexpr double kAssumedRapidInch = 120.0;
+/// The motion assumed without an INI (or with one that lacks the axes'
+/// limits), per second and per second squared: 3000 mm/min and 500 mm/s²
+/// (120 inch/min and 20 inch/s²) on every axis.
+constexpr double kAssumedVelocityMm = 50.0;
+constexpr double kAssumedAccelerationMm = 500.0;
+constexpr double kAssumedVelocityInch = 2.0;
+constexpr double kAssumedAccelerationInch = 20.0;
 
-/// The machine's rapid speed for an estimate, in the config's units per
-/// minute, and where it came from, in words ("rapids at 12000 mm/min
-/// ([TRAJ]MAX_LINEAR_VELOCITY of sim.ini)"); assumed without an INI. nullopt
-/// and `error` when the INI cannot be read.
-struct RapidSpeed {
-  double per_minute = 0.0;
+/// The machine for an estimate (change_time), in the config's units: its
+/// motion limits and [EMCIO]CYCLE_TIME, and where the limits came from, in
+/// words ("the velocities and accelerations of sim.ini"); assumed without an
+/// INI or when the INI lacks them. nullopt and `error` when the INI cannot be
+/// read.
+struct MachineMotion {
+  MachineTiming timing;
   std::string source;
 };
-std::optional<RapidSpeed> rapid_speed(const std::optional<std::string>& ini_path,
-                                      const Config& config, std::string& error);
+std::optional<MachineMotion> machine_motion(const std::optional<std::string>& ini_path,
+                                            const Config& config, std::string& error);
+
+/// What an estimate counts besides the moves, in words, for --lint and --plan.
+std::string estimate_costs_text(const MachineTiming& timing);
 
 /// "12.3 s", or "2 min 05 s" from a minute on.
 std::string seconds_text(double seconds);

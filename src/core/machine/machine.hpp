@@ -143,6 +143,23 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
       c.tell(MessageKind::info, "fault cleared; " + adopted + c.whereabouts());
     }
   };
+  /// The operator's answer fits the record (ToolState::contradiction).
+  struct AnswerFits {
+    template <class Fsm, class Source, class Target>
+    bool operator()(const ClearFault& e, Fsm& fsm, Source&, Target&) const {
+      return !fsm.ctx->tools.contradiction(e.spindle_tool, e.pocket_holds_tool);
+    }
+  };
+  /// An answer that cannot be is refused; the fault holds, nothing recorded.
+  struct SayAnswerContradicts {
+    template <class Fsm, class Source, class Target>
+    void operator()(const ClearFault& e, Fsm& fsm, Source&, Target&) const {
+      fsm.ctx->tell(MessageKind::error,
+                    "clear fault refused: " +
+                        *fsm.ctx->tools.contradiction(e.spindle_tool, e.pocket_holds_tool) +
+                        "; check confirm-tool and confirm-pocket");
+    }
+  };
   template <class Words>
   struct Say {
     template <class Event, class Fsm, class Source, class Target>
@@ -186,8 +203,9 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
   using after_a_fault = boost::mpl::vector<
   //    Start                        Event           Next              Action            Guard
   // +----------------------------+---------------+-----------------+-----------------+-----------------------+
-  Row < Faulted                    , ClearFault    , Operating       , ClearTheFault   , MachineIsReady        >,
-  Row < Faulted                    , ClearFault    , MachineNotReady , ClearTheFault   , Not<MachineIsReady>   >,
+  Row < Faulted                    , ClearFault    , Operating       , ClearTheFault   , And<AnswerFits, MachineIsReady>      >,
+  Row < Faulted                    , ClearFault    , MachineNotReady , ClearTheFault   , And<AnswerFits, Not<MachineIsReady>> >,
+  Row < Faulted                    , ClearFault    , none            , SayAnswerContradicts, Not<AnswerFits>              >,
   Row < Faulted                    , Ready         , none            , none            , none                  >,
   Row < Faulted                    , NotReady      , none            , none            , none                  >,
   Row < Faulted                    , Abort         , none            , none            , none                  >,

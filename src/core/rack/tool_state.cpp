@@ -175,6 +175,22 @@ void ToolState::confirm(int spindle_tool, std::optional<bool> pocket_holds_tool)
   in_progress.reset();
 }
 
+std::optional<std::string> ToolState::contradiction(int spindle_tool,
+                                                    std::optional<bool> pocket_holds_tool) const {
+  const int cut_off = in_progress ? in_progress->pocket : 0;
+  if (cut_off == 0 || !pocket_holds_tool || !*pocket_holds_tool) return std::nullopt;
+  const int own = tool_of(cut_off);
+  if (own == 0) {
+    return "no tool belongs in pocket " + std::to_string(cut_off) +
+           ", where the sequence was cut off";
+  }
+  if (spindle_tool == own) {
+    return "tool " + std::to_string(own) + " cannot be both in the spindle and in its pocket " +
+           std::to_string(cut_off);
+  }
+  return std::nullopt;
+}
+
 std::optional<int> return_pocket(const ToolState& tools, const Config& config, int tool) {
   if (const auto home = tools.home_of(tool)) return home;
   const auto first = config.first_pocket_of(tool);

@@ -62,6 +62,11 @@ struct ToolState {
   /// holds `spindle_tool` (0 empty) and, when a sequence was cut off at a
   /// pocket, whether that pocket holds its tool. Clears the uncertainty.
   void confirm(int spindle_tool, std::optional<bool> pocket_holds_tool);
+  /// Why that word cannot be what is in the rack, or nothing: the cut-off
+  /// pocket's own tool said to be in the spindle and in its pocket, or a
+  /// pocket no tool belongs in said to hold its tool.
+  std::optional<std::string> contradiction(int spindle_tool,
+                                           std::optional<bool> pocket_holds_tool) const;
 };
 
 /// The pocket `tool` goes to when it leaves the spindle: its own, or, for a

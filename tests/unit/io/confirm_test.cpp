@@ -65,7 +65,8 @@ TEST_F(Confirm, shouldRefusePocketYesWhereNoToolBelongs) {
   EXPECT_EQ(r.code, 1);
   EXPECT_EQ(
       r.err,
-      state_ + ": --pocket yes: no tool belongs in pocket 2, where the sequence was cut off\n");
+      state_ +
+          ": --spindle 0 --pocket yes: no tool belongs in pocket 2, where the sequence was cut off\n");
   EXPECT_EQ(state_text(), before);
 }
 
@@ -75,7 +76,7 @@ TEST_F(Confirm, shouldRefusePocketNoWhenNothingWasCutOffAtAPocket) {
   std::ofstream(state_) << to_json(tools);
   const CliRun r = confirm({"--spindle", "0", "--pocket", "no"});
   EXPECT_EQ(r.code, 1);
-  EXPECT_EQ(r.err, state_ + ": --pocket: no sequence was cut off at a pocket\n");
+  EXPECT_EQ(r.err, state_ + ": --spindle 0 --pocket no: no sequence was cut off at a pocket\n");
 }
 
 TEST_F(Confirm, shouldTakeTheToolInTheSpindleAndNotInItsPocket) {

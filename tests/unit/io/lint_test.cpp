@@ -399,8 +399,10 @@ TEST_F(Lint, shouldRunTheMachinesRemapsAndUserCodes) {
   EXPECT_LINE(r, "tools in the order of the changes: T1 T2\n");
   EXPECT_LINE(r, "codes.ngc: line 2: LinuxCNC stops the program here: Unknown m code used: M101\n");
   EXPECT_LINE(r, "codes.ngc: line 4: LinuxCNC stops the program here: Unknown g code used\n");
-  EXPECT_LINE(r,
-              "rapids at 6000 mm/min ([TRAJ]MAX_LINEAR_VELOCITY of " + kPrograms + "/remap.ini)");
+  // No [AXIS_*] limits in it: the estimate's are assumed, and it says why.
+  EXPECT_LINE(r, "the moves at 3000 mm/min and 500 mm/s², assumed (" + kPrograms +
+                     "/remap.ini has no usable MAX_VELOCITY and MAX_ACCELERATION of [AXIS_X], "
+                     "[AXIS_Y] and [AXIS_Z]: --plan --ini says why)");
 }
 
 TEST_F(Lint, shouldReportAnIniWithoutTheM6Remap) {
@@ -410,8 +412,7 @@ TEST_F(Lint, shouldReportAnIniWithoutTheM6Remap) {
   EXPECT_LINE(r,
               "manual.ngc: line 1: the INI remaps no M6: LinuxCNC's own M6 would run here, "
               "not fixed_atc_probe_m6\n");
-  // 2 inch/s in an inch machine: 3048 mm/min for the mm config.
-  EXPECT_LINE(r, "rapids at 3048 mm/min ([TRAJ]MAX_LINEAR_VELOCITY of ");
+  EXPECT_LINE(r, "/no_m6_remap.ini has no usable MAX_VELOCITY and MAX_ACCELERATION of ");
 }
 
 // ---- with the sample machine's INI: the M6 remap, HAL pins, its tool table ----
@@ -458,105 +459,19 @@ TEST_F(Lint, shouldSayAToolFromAnM66InputIsNotKnown) {
               "only when the program runs on the machine (rs274 reads 0)\n");
 }
 
-// ---- the estimate ----
-
-/// A move as the changer publishes it, into a plan of the test's own.
-void publish_move(Simulator& plan, StepKind kind, unsigned axes, Point target, double feed) {
-  Step step;
-  step.kind = kind;
-  step.axes = axes;
-  step.target = target;
-  step.feed = feed;
-  plan.publish(step);
-}
-
-TEST(Estimate, shouldAddMovesAtTheirFeedAndTheDwells) {
-  Simulator plan;
-  plan.sensor_z = -20.0;
-  publish_move(plan, StepKind::rapid, axis_z, {0, 0, 10}, 0);    // 10 at the rapid 600/min: 1 s
-  publish_move(plan, StepKind::feed, axis_xy, {30, 40, 0}, 60);  // 50 at 60/min: 50 s
-  plan.start_timer(0.5);
-  publish_move(plan, StepKind::probe, axis_z, {0, 0, -100},
-               300);  // to the sensor at -20: 30 at 300: 6 s
-  publish_move(plan, StepKind::feed, axis_z, {0, 0, 40}, 6000);  // 60 above the rapid: at 600: 6 s
-  plan.tell(MessageKind::prompt, "insert tool 7");               // the operator's time: not counted
-  int waits = 0;
-  EXPECT_NEAR(estimate_seconds(plan, {0, 0, 0}, 600.0, waits), 63.5, 1e-9);
-  EXPECT_EQ(waits, 1);
-}
-
-MotionLimits limits_of(double velocity, double acceleration) {
-  MotionLimits limits;
-  limits.velocity = {velocity, velocity, velocity};
-  limits.acceleration = {acceleration, acceleration, acceleration};
-  limits.linear_velocity = std::numeric_limits<double>::infinity();
-  limits.linear_acceleration = std::numeric_limits<double>::infinity();
-  return limits;
-}
-
-TEST(Bound, shouldTakeATrapezoidWhenTheMoveReachesFullSpeed) {
-  // 100 at 10/s with 10/s²: 1 s up, 8 s at speed, 1 s down.
-  EXPECT_NEAR(move_seconds({0, 0, 0}, {100, 0, 0}, 0.0, limits_of(10, 10)), 11.0, 1e-9);
-}
-
-TEST(Bound, shouldTakeATriangleWhenTheMoveIsTooShortForFullSpeed) {
-  // 4 with 1/s²: 2 s up to 2/s, 2 s down, never at 10/s.
-  EXPECT_NEAR(move_seconds({0, 0, 0}, {0, 0, 4}, 0.0, limits_of(10, 1)), 4.0, 1e-9);
-}
-
-TEST(Bound, shouldHoldAFeedBelowTheMachinesSpeed) {
-  // 100 at F600 (10/s) on a 100/s machine with 10/s²: 10 s + 1 s.
-  EXPECT_NEAR(move_seconds({0, 0, 0}, {0, 100, 0}, 600.0, limits_of(100, 10)), 11.0, 1e-9);
-}
-
-TEST(Bound, shouldLetTheSlowestAxisAndTheLinearLimitsDecide) {
-  MotionLimits limits = limits_of(100, 1000);
-  limits.velocity.z = 10;  // a slow Z: along X and Z at once, Z's share decides
-  // 30 along X, 40 along Z: Z has 0.8 of the move, so at most 12.5/s along it.
-  const double diagonal = move_seconds({0, 0, 0}, {30, 0, 40}, 0.0, limits);
-  EXPECT_NEAR(diagonal, 50.0 / 12.5 + 12.5 / (1000 / 0.8), 1e-9);
-  limits.linear_velocity = 5;
-  EXPECT_NEAR(move_seconds({0, 0, 0}, {30, 0, 40}, 0.0, limits), 50.0 / 5 + 5 / 1250.0, 1e-9);
-  EXPECT_EQ(move_seconds({1, 2, 3}, {1, 2, 3}, 0.0, limits), 0.0);
-}
-
-TEST(Bound, shouldAddEveryMoveAsAnExactStopAndTheDwells) {
-  Simulator plan;
-  publish_move(plan, StepKind::rapid, axis_z, {0, 0, 4}, 0);  // 4 with 1/s²: 4 s
-  plan.start_timer(0.5);
-  publish_move(plan, StepKind::feed, axis_xy, {100, 0, 0},
-               600);  // 100 at 10/s: 10 s + 10 s of ramps at 1/s²
-  EXPECT_NEAR(limits_seconds(plan, {0, 0, 0}, limits_of(100, 1)), 4.0 + 0.5 + 20.0, 1e-9);
-}
-
-TEST(Bound, shouldTakeARunOfRapidsAsOneMoveForWhatBlendingIsWorthAtMost) {
-  Simulator plan;
-  publish_move(plan, StepKind::rapid, axis_z, {0, 0, 50}, 0);    // 50 up
-  publish_move(plan, StepKind::rapid, axis_xy, {50, 0, 0}, 0);   // 50 over: one run of 100
-  publish_move(plan, StepKind::feed, axis_xy, {60, 0, 0}, 600);  // 10 at 10/s, on its own
-  publish_move(plan, StepKind::rapid, axis_z, {0, 0, 0}, 0);     // 50 down
-  plan.start_timer(0.5);                                         // a dwell ends the run
-  publish_move(plan, StepKind::rapid, axis_xy, {0, 0, 0}, 0);    // 60 back
-  const MotionLimits limits = limits_of(10, 100);
-  // At 10/s with 100/s²: a move of d stopped at both ends takes d/10 + 0.1 s.
-  // The first run: Z travels 50 and X 50, at once at best.
-  EXPECT_NEAR(blended_seconds(plan, {0, 0, 0}, limits), 5.1 + 1.1 + 5.1 + 0.5 + 6.1, 1e-9);
-  MotionLimits slow_z = limits;
-  slow_z.velocity.z = 1;  // the run's Z travel decides now: 50 at 1/s, + 0.01 s
-  EXPECT_NEAR(blended_seconds(plan, {0, 0, 0}, slow_z), 50.01 + 1.1 + 50.01 + 0.5 + 6.1, 1e-9);
-  EXPECT_LT(blended_seconds(plan, {0, 0, 0}, slow_z), limits_seconds(plan, {0, 0, 0}, slow_z));
-  EXPECT_NEAR(limits_seconds(plan, {0, 0, 0}, limits), 5.1 + 5.1 + 1.1 + 5.1 + 0.5 + 6.1, 1e-9);
-}
+// ---- the estimate (its model: tests/unit/plan/timing_test.cpp) ----
 
 TEST_F(Lint, shouldEstimateTheChangeTimeFromThePlannedSteps) {
   const LintRun r =
       lint(write("two.ngc", "T1 M6\nT2 M6\nM2\n"), {"--state", state_with_lengths({1, 2})});
   EXPECT_LINE(r, "\nestimated tool-change time: ");
   EXPECT_LINE(r,
-              " for 2 changes, from the steps --plan prints for each: moves at their feed, "
-              "rapids at 3000 mm/min, assumed (--ini gives the machine's "
-              "[TRAJ]MAX_LINEAR_VELOCITY), plus the dwells; from safe to safe (the way "
-              "between the work and safe, acceleration not counted)\n");
+              " for 2 changes, from safe to safe (the way between the work and safe not "
+              "counted)\n  from the steps --plan prints for each: the moves at 3000 mm/min "
+              "and 500 mm/s², assumed (--ini gives the machine's [AXIS_*] and [TRAJ] limits), "
+              "each an exact stop at half the acceleration as LinuxCNC plans it, plus the "
+              "dwells, 17 ms a step (the executor's handshake) and 0.53 s a change (4.5 of "
+              "iocontrol's 0.1 s cycles for T and M6, 75 ms for the remap)\n");
 }
 
 // ---- usage and unreadable input: exit 2 ----

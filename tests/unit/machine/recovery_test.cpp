@@ -107,6 +107,24 @@ INSTANTIATE_TEST_SUITE_P(Each, Confirmed,
                                            Confirmation{"another_tool", 7, false, false}),
                          [](const auto& info) { return std::string(info.param.name); });
 
+TEST(Recovery, shouldRefuseAClearFaultThatPutsAToolInTwoPlaces) {
+  // Cut off returning tool 2 to pocket 2: tool 2 cannot be in the spindle
+  // and in pocket 2 at once (the clear-fault pin refuses what --confirm does).
+  const Config config = test::valid_config();
+  Simulator sim;
+  Changer changer(config, sim, cut_off_while_returning(config));
+  changer.ready();
+  const int saves = sim.saves;
+  changer.clear_fault(2, true);
+  EXPECT_EQ(changer.status().phase, Phase::fault);
+  EXPECT_EQ(sim.saves, saves) << "nothing recorded";
+  EXPECT_EQ(sim.messages(MessageKind::error).back(),
+            "clear fault refused: tool 2 cannot be both in the spindle and in its pocket 2; check "
+            "confirm-tool and confirm-pocket");
+  changer.clear_fault(2, false);
+  EXPECT_EQ(changer.status().phase, Phase::idle);
+}
+
 TEST(Recovery, shouldAcceptAChangeAfterTheOperatorConfirmed) {
   const Config config = test::valid_config();
   Simulator sim;
@@ -226,7 +244,7 @@ TEST(ConfirmCommand, shouldRefuseAPocketAnswerWhenNoPocketWasInvolvedAndLeaveThe
                    "--pocket", "no"},
                   said),
             1);
-  EXPECT_NE(said.find("--pocket: no sequence was cut off at a pocket"), std::string::npos) << said;
+  EXPECT_NE(said.find("--pocket no: no sequence was cut off at a pocket"), std::string::npos) << said;
   EXPECT_EQ(io::load_state_file(f.state, test::valid_config()).state->spindle, 2);
 }
 
