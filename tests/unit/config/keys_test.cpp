@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <cstdlib>
 
 #include "core/config/keys.hpp"
 #include "test_config.hpp"
@@ -72,6 +73,34 @@ TEST(ConfigKeys, shouldListEveryDeclaredKeyInTheReference) {
 TEST(ConfigKeys, shouldGiveTheKeepOutMarginAFloorOfItsOwnInInches) {
   EXPECT_DOUBLE_EQ(bounds_in(key("rack_keepout_margin"), Units::mm).min, 1.0);
   EXPECT_DOUBLE_EQ(bounds_in(key("rack_keepout_margin"), Units::inch).min, 0.04);
+}
+
+}  // namespace
+}  // namespace fatc
+
+namespace fatc {
+namespace {
+
+/// The default a declaration states in words, as a number ("300 (sample: 3000)" -> 300).
+double stated(const char* path) {
+  return std::strtod(key(path).fallback, nullptr);
+}
+
+TEST(ConfigKeys, shouldStateTheDefaultsTheReaderGives) {
+  // The valid config leaves these keys out: what it reads is their default.
+  const Config read = test::valid_config();
+  const RackCoverConfig cover;
+  EXPECT_DOUBLE_EQ(read.pocket_feed, stated("pocket_feed"));
+  EXPECT_DOUBLE_EQ(read.probe_seek_feed, stated("probe_seek_feed"));
+  EXPECT_DOUBLE_EQ(read.probe_latch_feed, stated("probe_latch_feed"));
+  EXPECT_DOUBLE_EQ(read.probe_backoff, stated("probe_backoff"));
+  EXPECT_DOUBLE_EQ(read.spindle_stop_timeout_seconds, stated("spindle_stop_timeout_seconds"));
+  EXPECT_DOUBLE_EQ(read.sensor_timeout_seconds, stated("sensor_timeout_seconds"));
+  EXPECT_DOUBLE_EQ(read.flush.pulses, stated("flush.pulses"));
+  EXPECT_DOUBLE_EQ(read.flush.pulse_seconds, stated("flush.pulse_seconds"));
+  EXPECT_DOUBLE_EQ(read.flush.pause_seconds, stated("flush.pause_seconds"));
+  EXPECT_DOUBLE_EQ(cover.seconds, stated("rack_cover.seconds"));
+  EXPECT_DOUBLE_EQ(cover.timeout_seconds, stated("rack_cover.timeout_seconds"));
 }
 
 }  // namespace
