@@ -23,6 +23,14 @@ int usage() {
   return 2;
 }
 
+/// A generated page of docs/: its title, where it comes from, a word on it, the table.
+std::string page(const std::string& title, const std::string& source, const std::string& intro,
+                 const std::string& table) {
+  return "# " + title + "\n\n<!-- Generated from " + source +
+         " by fatc_docs: edit that, then\n     cmake --build build --target references -->\n\n" +
+         intro + "\n" + table;
+}
+
 /// `text` with each line that is only `marker` replaced by `with`.
 std::string fill(const std::string& text, const std::string& marker, const std::string& with) {
   std::istringstream in(text);
@@ -37,33 +45,29 @@ std::string fill(const std::string& text, const std::string& marker, const std::
 int main(int argc, char** argv) {
   const std::vector<std::string> args(argv + 1, argv + argc);
   if (args.size() == 1 && args[0] == "pins-md") {
-    std::cout << "# HAL pins\n\n"
-                 "<!-- Generated from src/linuxcnc/pin_list.hpp by fatc_docs: edit that, then\n"
-                 "     cmake --build build --target references -->\n\n"
-                 "The component's pins, all `fixed_atc_probe.*`, in the order the component\n"
-                 "creates them; `man fixed_atc_probe` lists the same.\n\n"
-              << fatc::linuxcnc::pins_markdown();
+    std::cout << page("HAL pins", "src/linuxcnc/pin_list.hpp",
+                      "The component's pins, all `fixed_atc_probe.*`, in the order the component\n"
+                      "creates them; `man fixed_atc_probe` lists the same.\n",
+                      fatc::linuxcnc::pins_markdown());
     return 0;
   }
   if (args.size() == 1 && args[0] == "cli-md") {
-    std::cout << "# The command line\n\n"
-                 "<!-- Generated from src/io/command_line.cpp by fatc_docs: edit that, then\n"
-                 "     cmake --build build --target references -->\n\n"
-                 "Every mode and option `fixed_atc_probe` accepts (`--help` and the man page say\n"
-                 "the same). A usage mistake (an unknown option, one given twice, two modes, an\n"
-                 "empty value, an option the mode does not read) is one line and exit 2.\n\n"
-              << fatc::io::command_line_markdown();
+    std::cout << page("The command line", "src/io/command_line.cpp",
+                      "Every mode and option `fixed_atc_probe` accepts (`--help` and the man page "
+                      "say\nthe same). A usage mistake (an unknown option, one given twice, two "
+                      "modes, an\nempty value, an option the mode does not read) is one line and "
+                      "exit 2.\n",
+                      fatc::io::command_line_markdown());
     return 0;
   }
   if (args.size() == 1 && args[0] == "config-md") {
-    std::cout << "# config.json keys\n\n"
-                 "<!-- Generated from src/core/config/keys.cpp by fatc_docs: edit that, then\n"
-                 "     cmake --build build --target references -->\n\n"
-                 "Every key config.json may hold; the reader refuses any other and checks each\n"
-                 "number against the range here. All coordinates are machine coordinates (G53).\n"
-                 "*length* is in `units`, *feed* in `units` per minute, *s* in seconds. A range\n"
-                 "holds in mm and in inch alike unless it says otherwise.\n\n"
-              << fatc::config_markdown();
+    std::cout << page("config.json keys", "src/core/config/keys.cpp",
+                      "Every key config.json may hold; the reader refuses any other and checks "
+                      "each\nnumber against the range here. All coordinates are machine "
+                      "coordinates (G53).\n*length* is in `units`, *feed* in `units` per minute, "
+                      "*s* in seconds. A range\nholds in mm and in inch alike unless it says "
+                      "otherwise.\n",
+                      fatc::config_markdown());
     return 0;
   }
   if (args.size() == 2 && args[0] == "pins-golden") {

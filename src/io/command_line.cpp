@@ -231,13 +231,6 @@ std::string synopsis(const ModeDeclaration& mode) {
   return line;
 }
 
-/// `text` for roff: a backslash escaped, and no line starting with a dot or quote.
-std::string roff(const std::string& text) {
-  std::string out;
-  for (const char c : text) out += c == '\\' ? std::string("\\e") : std::string(1, c);
-  return out;
-}
-
 }  // namespace
 
 const std::vector<ModeDeclaration>& modes() { return kModes; }
@@ -401,10 +394,24 @@ std::string options_man() {
   for (const ModeDeclaration& mode : kModes) {
     if (!*mode.flag) continue;
     out += ".TP\n.B " + std::string(mode.flag) + (*mode.value ? std::string(" ") + mode.value : "") +
-           "\n" + roff(mode.doc) + ".\n";
+           "\n" + man_text(mode.doc) + ".\n";
   }
   for (const OptionDeclaration& o : kOptions) {
-    out += ".TP\n.B " + std::string(o.name) + " " + o.value + "\n" + roff(o.doc) + ".\n";
+    out += ".TP\n.B " + std::string(o.name) + " " + o.value + "\n" + man_text(o.doc) + ".\n";
+  }
+  return out;
+}
+
+std::string man_text(const std::string& text) {
+  std::string out;
+  bool bold = false;
+  for (const char c : text) {
+    if (c == '`') {
+      out += bold ? "\\fR" : "\\fB";
+      bold = !bold;
+    } else {
+      out += c == '\\' ? std::string("\\e") : std::string(1, c);
+    }
   }
   return out;
 }

@@ -36,6 +36,8 @@ std::string usage();
 /// The man page's SYNOPSIS and OPTIONS sections' bodies.
 std::string synopsis_man();
 std::string options_man();
+/// `text` for the man page: a backslash escaped, `code` in bold.
+std::string man_text(const std::string& text);
 /// docs/command-line.md's body.
 std::string command_line_markdown();
 

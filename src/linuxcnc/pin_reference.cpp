@@ -2,27 +2,11 @@
 
 #include <algorithm>
 
+#include "io/command_line.hpp"
 #include "pin_list.hpp"
 
 namespace fatc::linuxcnc {
 namespace {
-
-/// `code` as the man page's bold.
-std::string man_text(const std::string& doc) {
-  std::string out;
-  bool bold = false;
-  for (const char c : doc) {
-    if (c == '`') {
-      out += bold ? "\\fR" : "\\fB";
-      bold = !bold;
-    } else if (c == '\\') {
-      out += "\\e";
-    } else {
-      out += c;
-    }
-  }
-  return out;
-}
 
 std::string start_value(const PinDeclaration& pin) {
   if (std::string(pin.name) == "heartbeat") return "*";  // it toggles
@@ -51,7 +35,7 @@ std::string pins_man() {
       name = name.substr(0, n + 1) + "\\fIN\\fB";
     }
     out += ".TP\n.B fixed_atc_probe." + name + " \\fR" + type_name(pin) + " " + dir_name(pin) +
-           "\n" + man_text(pin.doc) + "\n";
+           "\n" + io::man_text(pin.doc) + "\n";
   }
   return out;
 }
