@@ -185,7 +185,8 @@ void InterpreterOutput::error(int line, const std::string& message, std::string_
   std::string said =
       "LinuxCNC stops the program here: " + escape(message_of(message, line), kMessageText);
   if (line == 0 && !text.empty()) {
-    // No number of ours on the line: one of a subroutine file, or too long to number.
+    // No number of ours on the line: one of a subroutine file, or one that fits
+    // LinuxCNC only unnumbered.
     std::string_view shown = text;
     while (!shown.empty() && (shown.back() == '\r' || shown.back() == ' ')) shown.remove_suffix(1);
     said += " (at " + quote(shown) + ")";

@@ -91,11 +91,19 @@ void LineNumberer::add(std::string_view piece) {
     const std::string_view part = piece.substr(0, newline);
     column_ += part.size();
     if (!passing_ && line_.size() + part.size() > kMaxLineLength) {
-      text_ += line_;
+      // Too long for LinuxCNC, which refuses it and prints its start: numbered
+      // all the same, so that the refusal names this line.
+      line_.append(part);
+      if (holds_code(line_)) {
+        append_numbered(line_, lines_ + 1);
+      } else {
+        text_ += line_;
+      }
       line_.clear();
       passing_ = true;
+    } else {
+      (passing_ ? text_ : line_).append(part);
     }
-    (passing_ ? text_ : line_).append(part);
     if (newline == std::string_view::npos) break;
     piece.remove_prefix(newline + 1);
     whole_bytes_ += column_ + 1;
@@ -115,18 +123,34 @@ void LineNumberer::end_line() {
 
 void LineNumberer::line_of_code(std::string_view line) {
   if (reads_m66_input(line)) input_lines_.insert(lines_);
-  std::size_t at = 0;
-  while (at < line.size() && blank(line[at])) ++at;
-  // '%' marks the program's ends; a blank line holds nothing to number.
-  if (at == line.size() || line[at] == '%' || line[at] == '\r') {
+  if (!holds_code(line)) {
     text_.append(line);
     return;
   }
   note_subroutine(line);
   const std::size_t size_before = text_.size();
-  if (line[at] == '/') ++at;  // block delete comes first, before any N word
-  text_.append(line.substr(0, at));
-  text_ += "N" + std::to_string(kFirstLineNumber + lines_) + " ";
+  append_numbered(line, lines_);
+  if (text_.size() - size_before > kMaxLineLength) {
+    // Left unnumbered, and without an N word of its own, which could name another line.
+    text_.resize(size_before);
+    const auto [word, end] = own_line_number(line);
+    text_.append(line.substr(0, word));
+    text_.append(line.substr(end));
+  }
+}
+
+bool LineNumberer::holds_code(std::string_view line) {
+  std::size_t at = 0;
+  while (at < line.size() && blank(line[at])) ++at;
+  // '%' marks the program's ends; a blank line holds nothing to number.
+  return at < line.size() && line[at] != '%' && line[at] != '\r';
+}
+
+std::pair<std::size_t, std::size_t> LineNumberer::own_line_number(std::string_view line) {
+  std::size_t at = 0;
+  while (at < line.size() && blank(line[at])) ++at;
+  if (at < line.size() && line[at] == '/') ++at;  // block delete comes first, before any N word
+  const std::size_t word = at;
   if (at < line.size() && (line[at] == 'n' || line[at] == 'N')) {
     ++at;
     // LinuxCNC reads "N50.5" as a line number too.
@@ -135,11 +159,14 @@ void LineNumberer::line_of_code(std::string_view line) {
       ++at;
     }
   }
-  text_.append(line.substr(at));
-  if (text_.size() - size_before > kMaxLineLength) {
-    text_.resize(size_before);
-    text_.append(line);
-  }
+  return {word, at};
+}
+
+void LineNumberer::append_numbered(std::string_view line, int number) {
+  const auto [word, end] = own_line_number(line);
+  text_.append(line.substr(0, word));
+  text_ += "N" + std::to_string(kFirstLineNumber + number) + " ";
+  text_.append(line.substr(end));
 }
 
 void LineNumberer::note_subroutine(std::string_view line) {

@@ -5,14 +5,14 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "tool_table.hpp"
 
 namespace fatc::program {
 
-/// The longest line LinuxCNC reads (its LINELEN 255, less the line end):
-/// a line numbered beyond it is left as it was.
+/// The longest line LinuxCNC reads (its LINELEN 255, less the line end).
 constexpr std::size_t kMaxLineLength = 252;
 
 /// Line numbers are written as N words from this on, far above what
@@ -43,7 +43,9 @@ class LineSet {
 /// word the line had is replaced; N words change nothing else in LinuxCNC. An
 /// M2 on a line after the last ends a program that has no end of its own
 /// (rs274 -n 0 would repeat its error for ever, and a stopped rs274 loses what
-/// it had not yet written). A line over kMaxLineLength is passed on as it was.
+/// it had not yet written). A line that fits LinuxCNC only unnumbered loses
+/// its own N word instead, which could name another line; a line too long for
+/// LinuxCNC is numbered all the same (LinuxCNC refuses it and prints its start).
 class LineNumberer {
  public:
   /// The next piece of the program.
@@ -72,11 +74,17 @@ class LineNumberer {
  private:
   void end_line();
   void line_of_code(std::string_view line);
+  /// Not blank, not a '%' line: a line to number.
+  static bool holds_code(std::string_view line);
+  /// Where the line's own N word starts and ends (start == end: none).
+  static std::pair<std::size_t, std::size_t> own_line_number(std::string_view line);
+  /// The line with `number` as its N word in place of its own.
+  void append_numbered(std::string_view line, int number);
   void note_subroutine(std::string_view line);
 
   std::string text_;
   std::string line_;        ///< the line under way while it may still be numbered
-  bool passing_ = false;    ///< the line under way is too long: passed on as it was
+  bool passing_ = false;    ///< the line under way is too long: its rest passed on as it is
   std::size_t column_ = 0;  ///< bytes of the line under way
   std::uint64_t whole_bytes_ = 0;
   int lines_ = 0;

@@ -638,8 +638,26 @@ TEST_F(Lint, shouldRefuseAVeryLongLine) {
   const LintRun r =
       lint(write("long.ngc", "T1 M6\nG0 X" + std::string(100'000, '1') + "\nT2 M6\nM2\n"));
   EXPECT_EQ(r.code, 1);
-  EXPECT_LINE(r, "long.ngc: LinuxCNC stops the program here: Command too long (at \"G0 X111");
+  EXPECT_LINE(r, "long.ngc: line 2: LinuxCNC stops the program here: Command too long\n");
   EXPECT_LINE(r, "tools in the order of the changes: T1 T2\n");
+  EXPECT_WITHIN_A_SECOND(r);
+}
+
+TEST_F(Lint, shouldNeverNameAnotherLineForALineNumberedByTheProgram) {
+  // N words the size of the lint's own, naming line 3: on a line too long for
+  // LinuxCNC, and on line 4 that fits only without the lint's number (a
+  // comment fills it to LinuxCNC's longest, 252).
+  const std::string fits = "N1000000003G1 X1 (" + std::string(252 - 19, 'a') + ")";
+  ASSERT_EQ(fits.size(), 252u);
+  const LintRun r = lint(write("numbered.ngc", "T1 M6\nN1000000003 G0 X" +
+                                                   std::string(300, '1') + "\nT2 M6\n" + fits +
+                                                   "\nM2\n"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r, "numbered.ngc: line 2: LinuxCNC stops the program here: Command too long\n");
+  EXPECT_LINE(r, "numbered.ngc: LinuxCNC stops the program here: Cannot do g1 with zero feed "
+                 "rate (at \"G1 X1 (aaa");
+  EXPECT_EQ(r.out.find("line 3: LinuxCNC"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("line 4: LinuxCNC"), std::string::npos) << r.out;
   EXPECT_WITHIN_A_SECOND(r);
 }
 
