@@ -118,6 +118,14 @@ const std::vector<KeyDeclaration> kKeys = {
    "half-width of each pocket's keep-out column: no move may cross it except the pocket's own "
    "approach. A holder is not zero wide: a column of nothing would let every move through the "
    "rack", 0.04},
+  {"rack_keepout_all_motion", "`true`", {}, kBoolean,
+   "the rack's volume is kept out of every motion, programs, MDI and jogs alike, by the "
+   "realtime guard `fatc-rack-guard`; `false` switches that off, and the component and panel "
+   "say it is off (the changer's own moves are checked either way)"},
+  {"rack_keepout_above", "5 mm, 0.2 inch", kMargin, "from 0.04 in inch",
+   "how far above the holders' tops (a pocket's Z plus `pocket_above_chuck_offset_z`) the "
+   "rack's volume reaches: the lowest the tip of the tool in the spindle may pass over a pocket",
+   0.04},
   {"sensors", "all `false`", {}, "an object of the keys below",
    "which optional sensors are wired; one not wired is never read"},
   {"sensors.tool_present", "`false`", {}, kBoolean,
