@@ -94,7 +94,7 @@ struct HalPins {
   hal_float_t* keepout_y_min[kGuardBoxes];
   hal_float_t* keepout_y_max[kGuardBoxes];
   hal_float_t* keepout_z_max[kGuardBoxes];
-  hal_bit_t* rack_keepout_tripped;
+  hal_s32_t* rack_keepout_trips;
   hal_s32_t* rack_keepout_box;
   hal_float_t* rack_keepout_at_x;
   hal_float_t* rack_keepout_at_y;

@@ -237,11 +237,11 @@ inline const PinDeclaration kPins[] = {
   {"rack-keepout-N-z-max", PerBox{&HalPins::keepout_z_max}, HAL_OUT,
    "to `fatc-rack-guard.box.N.z-max`: its top for an empty spindle (the guard adds the tool's "
    "length)"},
-  {"rack-keepout-tripped", &HalPins::rack_keepout_tripped, HAL_IN,
-   "from `fatc-rack-guard.tripped`: a motion was about to enter the rack; the component aborts "
-   "it and says what, where and with which tool"},
+  {"rack-keepout-trips", &HalPins::rack_keepout_trips, HAL_IN,
+   "from `fatc-rack-guard.trips`: it counts the motions held before they entered the rack; at "
+   "each, the component aborts what task runs and says what, where and with which tool"},
   {"rack-keepout-box", &HalPins::rack_keepout_box, HAL_IN,
-   "from `fatc-rack-guard.box`: the box it was about to enter"},
+   "from `fatc-rack-guard.box`: the box the last trip was about to enter"},
   {"rack-keepout-at-x", &HalPins::rack_keepout_at_x, HAL_IN, "from `fatc-rack-guard.at-x`"},
   {"rack-keepout-at-y", &HalPins::rack_keepout_at_y, HAL_IN, "from `fatc-rack-guard.at-y`"},
   {"rack-keepout-at-z", &HalPins::rack_keepout_at_z, HAL_IN, "from `fatc-rack-guard.at-z`"},

@@ -32,9 +32,10 @@ void RackKeepout::poll(HalPins& pins, const Changer& changer, bool machine_ready
   }
   said_off_ = off;
   *pins.rack_keepout_enable = state_ == KeepoutState::armed;
-  const bool tripped = *pins.rack_keepout_tripped != 0;
-  const bool rose = tripped && !tripped_;
-  tripped_ = tripped;
+  // The first count read is where the guard stood when the component started.
+  const int trips = *pins.rack_keepout_trips;
+  const bool tripped = trips_ && trips != *trips_;
+  trips_ = trips;
   if (!per_mm) return;
   // Config units to machine units: the guard compares with axis.L.pos-cmd.
   const double scale = (config.units == Units::inch ? 25.4 : 1.0) * *per_mm;
@@ -50,7 +51,7 @@ void RackKeepout::poll(HalPins& pins, const Changer& changer, bool machine_ready
   }
   *pins.rack_keepout_tool_length = nml->spindle_tool_length();
   const auto k = static_cast<std::size_t>(*pins.rack_keepout_box);
-  if (!rose || k >= parts.size()) return;
+  if (!tripped || k >= parts.size()) return;
   const Point at{*pins.rack_keepout_at_x / scale, *pins.rack_keepout_at_y / scale,
                  *pins.rack_keepout_at_z / scale};
   const std::string what = nml->what_moves();

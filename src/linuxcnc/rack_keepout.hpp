@@ -1,5 +1,6 @@
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include "core/machine/changer.hpp"
@@ -27,7 +28,7 @@ class RackKeepout {
   const std::vector<RackPart>& volume(const Config& config);
 
   KeepoutState state_ = KeepoutState::not_armed;
-  bool tripped_ = false;
+  std::optional<int> trips_;  ///< fatc-rack-guard.trips last read
   bool said_off_ = false;
   std::vector<double> rack_;  ///< what the volume was worked out from
   std::vector<RackPart> volume_;

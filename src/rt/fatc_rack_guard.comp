@@ -34,8 +34,9 @@ pin in bit hold-in "another reason to hold G-code motion, passed on to feed-inhi
 pin out bit feed-inhibit "to motion.feed-inhibit";
 pin out bit jog-stop "to motion.jog-stop";
 pin out bit tripped "a motion was about to enter the rack; held until motion stands with nothing queued";
-pin out s32 box "the box it was about to enter, -1 none";
-pin out float at-x "where the nose was when it tripped";
+pin out s32 trips "counts the trips: a jog's may end before anyone reads tripped";
+pin out s32 box "the box of the last trip";
+pin out float at-x "where the nose was at the last trip";
 pin out float at-y;
 pin out float at-z;
 variable double last_x;
@@ -87,11 +88,9 @@ FUNCTION(_) {
     started = 1;
     if (!enable) {
         tripped = 0;
-        box = -1;
     } else if (tripped) {
         if (v[0] == 0.0 && v[1] == 0.0 && v[2] == 0.0 && in_position && !jog_active) {
             tripped = 0;
-            box = -1;
         }
     } else {
         /* An acceleration not set counts as a slow one: the guard trips early, never late. */
@@ -109,6 +108,7 @@ FUNCTION(_) {
             double stop = distance_to(__comp_inst, k, lift, sx, sy, sz);
             if (stop <= 0.0 && stop < distance_to(__comp_inst, k, lift, pos_x, pos_y, pos_z) - 1e-9) {
                 tripped = 1;
+                trips++;
                 box = k;
                 at_x = pos_x;
                 at_y = pos_y;

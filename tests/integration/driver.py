@@ -25,7 +25,7 @@ PINS = ["fixed_atc_probe.chuck", "fixed_atc_probe.waiting-for-operator", "fixed_
         "fixed_atc_probe.can-cancel", "fixed_atc_probe.rack-cover-open",
         "fixed_atc_probe.rack-cover-opened", "fixed_atc_probe.rack-cover-closed",
         "fixed_atc_probe.air-blast", "fixed_atc_probe.chuck-held", "motion.feed-inhibit",
-        "spindle.0.inhibit", "fixed_atc_probe.rack-keepout", "fatc-rack-guard.tripped",
+        "spindle.0.inhibit", "fixed_atc_probe.rack-keepout", "fatc-rack-guard.tripped", "fatc-rack-guard.trips",
         "motion.jog-is-active",
         "motion.digital-out-02"]  # the benchmark programs' mark between two changes
 COMPONENT = "fixed_atc_probe"
@@ -350,7 +350,7 @@ def snapshot(start):
     """What the component and LinuxCNC say at one moment: pins, files, tool."""
     stat.poll()
     return {"t": time.monotonic() - start, "pins": {p: pin_value(p) for p in PINS},
-            "tool_in_spindle": stat.tool_in_spindle,
+            "tool_in_spindle": stat.tool_in_spindle, "pos": list(stat.actual_position[:3]),
             "state_file": read_json(state_path()), "status_file": read_json(state_path() + ".status")}
 
 
