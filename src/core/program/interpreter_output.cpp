@@ -100,6 +100,7 @@ void InterpreterOutput::canonical_call(std::string_view line) {
   }
   while (at < line.size() && line[at] == ' ') ++at;
   const std::string_view call = line.substr(at);
+  if (listener_) listener_->call(line_, numbered, call);
   if (const auto tool = argument_of(call, "SELECT_TOOL")) {
     any_selected_ = true;
     selected_ = static_cast<int>(*tool);
@@ -134,14 +135,15 @@ void InterpreterOutput::canonical_call(std::string_view line) {
 }
 
 void InterpreterOutput::use(ToolUse::Kind kind, std::optional<int> tool, int line) {
-  if (run_.uses.size() + unknown_changes_.size() >= kMaxToolUses) {
-    ++run_.uses_not_kept;
-    return;
-  }
   ToolUse use;
   use.kind = kind;
   use.tool = tool;
   use.where = {program_.name, line};
+  if (listener_) listener_->tool_use(use);
+  if (run_.uses.size() + unknown_changes_.size() >= kMaxToolUses) {
+    ++run_.uses_not_kept;
+    return;
+  }
   run_.uses.push_back(use);
 }
 

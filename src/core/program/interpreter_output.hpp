@@ -28,6 +28,19 @@ struct ProgramGiven {
   int lines = 0;        ///< LineNumberer's
 };
 
+/// What else reads the canonical calls as rs274 prints them (the rack
+/// keep-out check), told of each as InterpreterOutput reads it.
+class CallListener {
+ public:
+  virtual ~CallListener() = default;
+  /// A call without its line number and count (`STRAIGHT_TRAVERSE(1.0000, ...)`),
+  /// on `line`: its own, or, for a call of a subroutine file (`numbered`
+  /// false), the program's line that called it (0 before any).
+  virtual void call(int line, bool numbered, std::string_view call) = 0;
+  /// An M6 or M61 as InterpreterOutput reads it, kept or not.
+  virtual void tool_use(const ToolUse& use) = 0;
+};
+
 /// Reads what rs274 prints of a program numbered by LineNumberer: the
 /// canonical calls on its standard output, one a line
 /// (`   12 N1000000004 SELECT_TOOL(3)`), and on its standard error each
@@ -50,6 +63,8 @@ class InterpreterOutput {
   bool done() const { return past_the_end_ || stopped_at_.has_value(); }
   /// The line of the last canonical call that named one (0: none yet).
   int line() const { return line_; }
+  /// Tells `listener` (which outlives this) of every call and tool use from now on.
+  void listen(CallListener* listener) { listener_ = listener; }
 
  private:
   void use(ToolUse::Kind kind, std::optional<int> tool, int line);
@@ -74,6 +89,7 @@ class InterpreterOutput {
   std::optional<int> stopped_at_;  ///< the line of the error beyond kMaxErrors
   bool past_the_end_ = false;
   bool said_no_end_ = false;
+  CallListener* listener_ = nullptr;
 };
 
 /// Whether a line's text holds an M6 word (M6, m06, outside comments and
