@@ -84,7 +84,7 @@ void KeepoutCheck::call(int line, bool numbered, std::string_view call) {
   // spindle, comments) change nothing here.
   if (starts_with(call, "STRAIGHT_TRAVERSE(") || starts_with(call, "STRAIGHT_FEED(")) {
     if (const auto to = point_of(numbers_of(call))) {
-      move(line, numbered, call[9] == 'T' ? "G0" : "G1", *to);
+      move(line, numbered, starts_with(call, "STRAIGHT_TRAVERSE(") ? "G0" : "G1", *to);
     }
   } else if (starts_with(call, "ARC_FEED(")) {
     arc(line, numbered, numbers_of(call));
@@ -95,6 +95,7 @@ void KeepoutCheck::call(int line, bool numbered, std::string_view call) {
   } else if (starts_with(call, "NURBS_FEED(") || starts_with(call, "SPLINE_FEED(")) {
     // rs274 prints neither a spline's points nor its end: its way is not
     // known, and where it ends only from the next move's X and Y.
+    settle();
     known_ &= ~(kX | kY);
     out_of_step_ &= ~(kX | kY);
     if (!said_spline_) {
@@ -154,6 +155,7 @@ std::pair<Point, unsigned> KeepoutCheck::target(const Point& program_to) {
 }
 
 void KeepoutCheck::move(int line, bool numbered, const char* code, const Point& program_to) {
+  settle();
   const auto [to, known] = target(program_to);
   if (known_ == kAll && known == kAll) {
     check(line, numbered, code, nose_, to);
@@ -165,6 +167,7 @@ void KeepoutCheck::move(int line, bool numbered, const char* code, const Point& 
 }
 
 void KeepoutCheck::probe(int line, bool numbered, const Point& program_to) {
+  settle();
   const Point from = nose_;
   move(line, numbered, "G38", program_to);
   // It stops where it touches, which only the machine knows; the
@@ -178,6 +181,7 @@ void KeepoutCheck::probe(int line, bool numbered, const Point& program_to) {
 }
 
 void KeepoutCheck::rigid_tap(int line, bool numbered, const Point& program_to) {
+  settle();
   // Down to the hole's bottom and back out to where it started.
   const Point from = nose_, said = rs274_at_;
   const unsigned known = known_;
@@ -192,6 +196,7 @@ void KeepoutCheck::arc(int line, bool numbered, const std::vector<double>& args)
   // axis end, ...): G17 first X second Y; G18 first Z second X; G19 first Y
   // second Z. Turns: > 0 counterclockwise from first to second, < 0
   // clockwise; |turns| - 1 full turns more.
+  settle();
   if (args.size() < 6) return;
   for (std::size_t i = 0; i < 6; ++i) {
     if (!std::isfinite(args[i])) return;
@@ -370,27 +375,33 @@ void KeepoutCheck::tool_use(const program::ToolUse& use) {
 }
 
 void KeepoutCheck::change(const program::ToolUse& use) {
-  const int line = line_;  // the M6's own (use.where is its T word's)
-  const Point called_at = nose_;
-  const bool xy_known = (known_ & (kX | kY)) == (kX | kY);
-  if (!use.tool || !spindle_) {
-    // Nothing is known of the change: where it ends neither.
+  const bool moves = !use.tool || !spindle_ || *use.tool != *spindle_;
+  if (moves) {
+    // Where the change ends is worked out when a move needs it (a program of
+    // changes alone plans none); a change that follows before any move
+    // replaces it, and the first one's way back with RETURN_TO_XY goes unchecked.
+    pending_ = PendingChange{line_, spindle_, use.tool, nose_, known_};
     known_ = 0;
-  } else if (*use.tool != *spindle_) {
-    const auto end = change_end(*spindle_, *use.tool);
-    nose_ = end.value_or(Point{});
-    known_ = end ? kAll : 0;
+    out_of_step_ = kAll;
   }
-  const bool moved = !use.tool || !spindle_ || *use.tool != *spindle_;
   spindle_ = use.tool;
   // The remap ends in G43: the new tool's length is in force.
   machine_.tool_offset = {0.0, 0.0, use.tool ? table_length(*use.tool).value_or(0.0) : 0.0};
-  if (!moved) return;
-  out_of_step_ = kAll;
-  if (in_.return_to_xy && xy_known && known_ == kAll) {
+}
+
+void KeepoutCheck::settle() {
+  if (!pending_) return;
+  const PendingChange change = *pending_;
+  pending_.reset();
+  if (!change.from || !change.to) return;  // nothing is known of the change, nor where it ends
+  const auto end = change_end(*change.from, *change.to);
+  if (!end) return;
+  nose_ = *end;
+  known_ = kAll;
+  if (in_.return_to_xy && (change.known & (kX | kY)) == (kX | kY)) {
     // fixed_atc_probe_m6.ngc: back over the XY it was called at, at the Z the change ended.
-    const Point back{called_at.x, called_at.y, nose_.z};
-    check(line, true, "M6's way back over where it was called (RETURN_TO_XY)", nose_, back);
+    const Point back{change.called_at.x, change.called_at.y, nose_.z};
+    check(change.line, true, "M6's way back over where it was called (RETURN_TO_XY)", nose_, back);
     nose_ = back;
   }
 }

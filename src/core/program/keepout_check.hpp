@@ -53,6 +53,8 @@ class KeepoutCheck : public program::CallListener {
   void probe(int line, bool numbered, const Point& program_to);
   void rigid_tap(int line, bool numbered, const Point& program_to);
   void change(const program::ToolUse& use);
+  /// Puts the nose where the last change ends, once a move needs it.
+  void settle();
   /// Checks the nose's straight way `from` → `to`; false once the line is named.
   bool check(int line, bool numbered, const char* code, const Point& from, const Point& to);
   /// The nose's machine position for the program's `to`, and which of its axes are known.
@@ -77,6 +79,14 @@ class KeepoutCheck : public program::CallListener {
   int plane_ = 17;           ///< G17, G18, G19
   int line_ = 0;             ///< of the last call
   std::optional<int> spindle_;  ///< the tool in the spindle; nullopt: not known
+  /// An M6 whose end no move has needed yet.
+  struct PendingChange {
+    int line = 0;  ///< the M6's own (a ToolUse's is its T word's)
+    std::optional<int> from, to;
+    Point called_at;  ///< the nose when it was called, on the axes of `known`
+    unsigned known = 0;
+  };
+  std::optional<PendingChange> pending_;
   std::map<std::pair<int, int>, std::optional<Point>> change_ends_;
   std::set<int> named_;  ///< lines named, at most program::kMaxErrors
   std::size_t more_ = 0; ///< lines beyond those

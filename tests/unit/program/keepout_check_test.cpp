@@ -60,11 +60,14 @@ struct Checked {
   }
 };
 
-Checked checked(const std::string& calls, KeepoutCheckInput in = input()) {
+/// `calls` through InterpreterOutput; `call_lines`: the lines that call a subroutine.
+Checked checked(const std::string& calls, KeepoutCheckInput in = input(),
+                std::vector<int> call_lines = {}) {
   KeepoutCheck keepout(std::move(in));
   program::ProgramGiven given;
   given.name = "p.ngc";
   given.lines = 1000;
+  for (const int line : call_lines) given.call_lines.insert(line);
   program::InterpreterOutput output(given, {0, 1, 2, 3, 4, 5, 6, 7, 9});
   output.listen(&keepout);
   std::istringstream lines(calls);
@@ -83,12 +86,22 @@ TEST(KeepoutCheck, shouldNameAMoveDownOverAPocketAndNotOneBesideTheRack) {
 }
 
 TEST(KeepoutCheck, shouldRaiseTheRackByTheLengthOfTheToolInTheSpindle) {
-  // From safe (X120 Y80 Z-5), where the change ends, over pocket 3 at Z-25.
-  const std::string moves = traverse(2, 150, 20, -25);
+  // G49, then from safe (X120 Y80 Z-5), where the change ends, over pocket 3 at Z-25.
+  const std::string moves = on(2, "USE_TOOL_LENGTH_OFFSET(0.0000 0.0000 0.0000, 0.0000 0.0000 "
+                                  "0.0000, 0.0000 0.0000 0.0000)") +
+                            traverse(3, 150, 20, -25);
   EXPECT_EQ(checked(change(1, 4) + moves).text(), "");  // T4, 25 long: its tip at Z-50
   EXPECT_EQ(checked(change(1, 6) + moves).text(),
-            "line 2: G0 would enter the rack at pocket 3 with T6 (length 50.0000 mm), the nose "
+            "line 3: G0 would enter the rack at pocket 3 with T6 (length 50.0000 mm), the nose "
             "at machine X140.000 Y40.000 Z-18.333\n");
+}
+
+TEST(KeepoutCheck, shouldTakeTheProgramsZAsTheTipOfTheNewToolAfterM6) {
+  // The remap ends in G43 (rs274's preview branch does not): T1's 30 mm in force.
+  const Checked run = checked(change(1, 1) + traverse(2, 150, 20, -50) + traverse(3, 150, 20, -60));
+  EXPECT_EQ(run.text(),
+            "line 3: G0 would enter the rack at pocket 3 with T1 (length 30.0000 mm), the nose "
+            "at machine X150.000 Y20.000 Z-25.000\n");
 }
 
 TEST(KeepoutCheck, shouldCheckAnArcAlongItsWayNotOnlyItsEnds) {
@@ -97,9 +110,10 @@ TEST(KeepoutCheck, shouldCheckAnArcAlongItsWayNotOnlyItsEnds) {
   const Checked down = checked(start + on(2, "ARC_FEED(200.0000, 60.0000, 150.0000, 60.0000, 1, "
                                              "-70.0000, 0.0000, 0.0000, 0.0000)"));
   ASSERT_EQ(down.problems.size(), 1u) << down.text();
-  EXPECT_EQ(down.text().substr(0, 97),
-            "line 2: G3 would enter the rack at pocket 2 with an empty spindle, the nose at "
-            "machine X104.17");
+  const std::string expected =
+      "line 2: G3 would enter the rack at pocket 2 with an empty spindle, the nose at machine "
+      "X104.17";  // the circle meets Y40 at X104.174, the chords within 0.001 of it
+  EXPECT_EQ(down.text().substr(0, expected.size()), expected);
   // Clockwise it rises to Y110, away from it.
   EXPECT_EQ(checked(start + on(2, "ARC_FEED(200.0000, 60.0000, 150.0000, 60.0000, -1, "
                                   "-70.0000, 0.0000, 0.0000, 0.0000)"))
@@ -128,10 +142,11 @@ TEST(KeepoutCheck, shouldGoOnFromWhereTheChangeEnds) {
 }
 
 TEST(KeepoutCheck, shouldNameAMoveOfASubroutineFileWithTheLineThatCallsIt) {
-  const Checked run = checked(traverse(1, 150, 20, -5) + on(2, "COMMENT(\"call dip\")") +
-                              traverse(0, 150, 20, -70));
+  // Line 2 sets a parameter (nothing printed), line 3 calls dip.ngc.
+  const Checked run =
+      checked(traverse(1, 150, 20, -5) + traverse(0, 150, 20, -70), input(), {3, 7});
   EXPECT_EQ(run.text(),
-            "line 2: G0 would enter the rack at pocket 3 with an empty spindle, the nose at "
+            "line 3: G0 would enter the rack at pocket 3 with an empty spindle, the nose at "
             "machine X150.000 Y20.000 Z-55.000 (in a subroutine this line calls)\n");
 }
 
