@@ -1,5 +1,7 @@
 #include "geometry.hpp"
 
+#include "keepout.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -7,13 +9,9 @@
 namespace fatc {
 namespace {
 
-struct Box {
-  Point low, high;
-};
-
 Box column_of(const Config& config, const Point& pocket) {
   const double m = config.keepout_margin();
-  // Tools hang below their holder down to the table: the column has no floor.
+  // Tools hang below their holders down to the table: the column has no floor.
   return {{pocket.x - m, pocket.y - m, -1e12},
           {pocket.x + m, pocket.y + m, pocket.z + config.pocket_above_clearance_offset_z}};
 }
@@ -21,26 +19,7 @@ Box column_of(const Config& config, const Point& pocket) {
 /// Whether the segment a→b passes through the open interior of the box
 /// (touching a face, as at above_clearance, is allowed).
 bool passes_through(const Point& a, const Point& b, const Box& box) {
-  constexpr double kTouch = 1e-6;
-  const double start[] = {a.x, a.y, a.z};
-  const double delta[] = {b.x - a.x, b.y - a.y, b.z - a.z};
-  const double low[] = {box.low.x + kTouch, box.low.y + kTouch, box.low.z + kTouch};
-  const double high[] = {box.high.x - kTouch, box.high.y - kTouch, box.high.z - kTouch};
-  double enter = 0.0;
-  double leave = 1.0;
-  for (int axis = 0; axis < 3; ++axis) {
-    if (delta[axis] == 0.0) {
-      if (start[axis] <= low[axis] || start[axis] >= high[axis]) return false;
-      continue;
-    }
-    double t1 = (low[axis] - start[axis]) / delta[axis];
-    double t2 = (high[axis] - start[axis]) / delta[axis];
-    if (t1 > t2) std::swap(t1, t2);
-    enter = std::max(enter, t1);
-    leave = std::min(leave, t2);
-    if (enter >= leave) return false;
-  }
-  return true;
+  return entry_along(a, b, box).has_value();
 }
 
 std::string format(const char* pattern, double value) {

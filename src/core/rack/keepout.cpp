@@ -59,8 +59,10 @@ std::vector<RackPart> rack_volume(const Config& config) {
   for (const auto& [number, pocket] : config.pockets) {
     parts.push_back({{{number, pocket.at}}, column_of(config, pocket)});
   }
-  // Join parts within a column's width of each other until none are.
-  const double gap = 2.0 * config.keepout_margin();
+  // Join parts less than twice the side offset apart until none are: a
+  // spindle has no business between two holders of a rack.
+  const double gap =
+      2.0 * std::hypot(config.pocket_side_offset.x, config.pocket_side_offset.y);
   for (bool joined_any = true; joined_any;) {
     joined_any = false;
     for (std::size_t i = 0; i < parts.size() && !joined_any; ++i) {
@@ -89,7 +91,10 @@ std::optional<RackEntry> rack_entry(const std::vector<RackPart>& volume, const P
     Box raised = part.box;
     raised.high.z += std::max(tool_length, 0.0);
     const auto along = entry_along(from, to, raised);
-    if (along && (!first || *along < *first)) {
+    // A move that starts inside entered before (a spindle left in a pocket):
+    // it is on its way out, or the entry was named already.
+    const bool starts_inside = entry_along(from, from, raised).has_value();
+    if (along && !starts_inside && (!first || *along < *first)) {
       first = along;
       entered = &part;
     }

@@ -21,9 +21,9 @@ std::optional<double> entry_along(const Point& a, const Point& b, const Box& box
 /// The most boxes the realtime guard (src/rt/fatc_rack_guard.comp) holds.
 constexpr std::size_t kGuardBoxes = 4;
 
-/// A part of the rack's volume: pockets whose keep-out columns lie within a
-/// column's width of each other, as one box (a row of pockets is one box; the
-/// gaps between its holders hold nothing a spindle fits into). The box has no
+/// A part of the rack's volume: pockets whose keep-out columns lie less than
+/// twice the side offset apart, as one box (a row of pockets is one box; a
+/// spindle has no business between two holders of a rack). The box has no
 /// floor (tools hang below their holders down to the table) and reaches
 /// Config::keepout_above() over the highest holder top of its pockets (a
 /// pocket's Z plus pocket_above_chuck_offset_z: the nose clear of the pull
@@ -43,7 +43,8 @@ struct RackPart {
 std::vector<RackPart> rack_volume(const Config& config);
 
 /// Where a move of the spindle nose first enters the rack's volume with a
-/// tool `tool_length` long hanging below it (the volume raised by that length).
+/// tool `tool_length` long hanging below it (the volume raised by that length);
+/// none for a move that starts inside (it leaves, or entered before).
 struct RackEntry {
   int pocket = 0;  ///< the pocket of the part entered nearest to where it is entered
   Point nose;      ///< where the nose is as the tool's tip enters
