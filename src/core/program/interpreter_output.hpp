@@ -38,7 +38,8 @@ class CallListener {
   /// A call without its line number and count (`STRAIGHT_TRAVERSE(1.0000, ...)`),
   /// on `line`: its own, or, for a call of a subroutine file (`numbered`
   /// false), the program's line that called it: the first line calling a
-  /// subroutine after the last line a call named (that line when none does).
+  /// subroutine after the last line a call named (that line when none does;
+  /// a remapped code's own moves are shown so too, on the next call's line).
   virtual void call(int line, bool numbered, std::string_view call) = 0;
   /// An M6 or M61 as InterpreterOutput reads it, kept or not.
   virtual void tool_use(const ToolUse& use) = 0;

@@ -79,7 +79,6 @@ KeepoutCheck::KeepoutCheck(KeepoutCheckInput input)
 }
 
 void KeepoutCheck::call(int line, bool numbered, std::string_view call) {
-  line_ = line;
   // The calls that move or set the coordinate system; the rest (feeds,
   // spindle, comments) change nothing here.
   if (starts_with(call, "STRAIGHT_TRAVERSE(") || starts_with(call, "STRAIGHT_FEED(")) {
@@ -380,7 +379,7 @@ void KeepoutCheck::change(const program::ToolUse& use) {
     // Where the change ends is worked out when a move needs it (a program of
     // changes alone plans none); a change that follows before any move
     // replaces it, and the first one's way back with RETURN_TO_XY goes unchecked.
-    pending_ = PendingChange{line_, spindle_, use.tool, nose_, known_};
+    pending_ = PendingChange{use.where.line, spindle_, use.tool, nose_, known_};
     known_ = 0;
     out_of_step_ = kAll;
   }

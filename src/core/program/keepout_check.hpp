@@ -77,11 +77,10 @@ class KeepoutCheck : public program::CallListener {
   unsigned known_ = 0;       ///< axes (1 X, 2 Y, 4 Z) of nose_ known
   unsigned out_of_step_ = 7; ///< axes where rs274's position is not the machine's
   int plane_ = 17;           ///< G17, G18, G19
-  int line_ = 0;             ///< of the last call
   std::optional<int> spindle_;  ///< the tool in the spindle; nullopt: not known
   /// An M6 whose end no move has needed yet.
   struct PendingChange {
-    int line = 0;  ///< the M6's own (a ToolUse's is its T word's)
+    int line = 0;  ///< where the lint shows the change: its T word's line
     std::optional<int> from, to;
     Point called_at;  ///< the nose when it was called, on the axes of `known`
     unsigned known = 0;
