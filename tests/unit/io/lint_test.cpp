@@ -986,6 +986,21 @@ TEST_F(Lint, shouldNameTheLineThatTakesTheToolDownIntoThePocketsColumn) {
   EXPECT_LINE(r, "keepout.ngc: 1 tool change (M6), 0 M61, 1 problem, 0 not known\n");
 }
 
+TEST_F(Lint, shouldNameTheLineOfTheKeepoutScenarioProgram) {
+  // The integration scenario's program, T1 in the spindle: where the machine
+  // stands before its G53 moves is not known, where line 3 ends is.
+  Config config = *io::load_config_file(kConfig).config;
+  ToolState tools = ToolState::fresh(config);
+  tools.put_in_spindle(1);
+  io::save_state_file(path("t1.state"), tools, io::kCommandLineWait);
+  const LintRun r = lint(FATC_SOURCE_DIR "/tests/integration/keepout_program.ngc",
+                         {"--ini", kSimIni, "--state", path("t1.state")});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r,
+              "keepout_program.ngc: line 3: G1 would enter the rack at pocket 4 with T1 (length "
+              "30.0000 mm), the nose at machine X200.000 Y20.000 Z-80.000\n");
+}
+
 TEST_F(Lint, shouldRaiseTheRackByTheLengthOfTheToolInTheSpindle) {
   // G49: the nose at Z-28; T4's tip (25 long) at Z-53 passes, T6's (50) at Z-78 does not.
   const auto with = [&](int tool) {
