@@ -4,6 +4,7 @@ runs each scenario's G-code, samples what LinuxCNC reports (position, tool in
 spindle, HAL pins) and writes it all to FATC_RESULTS as JSON. LinuxCNC shuts
 down when this exits."""
 import ctypes
+import faulthandler
 import json
 import os
 import re
@@ -702,6 +703,8 @@ def when(action, s, result):
 
 
 def main():
+    # A run that hangs: `kill -USR1` prints where the driver waits.
+    faulthandler.register(signal.SIGUSR1)
     driver = hal.component("fatc-driver")  # hal.get_value needs a component of our own
     driver.ready()
     scenarios = json.load(open(os.environ["FATC_SCENARIOS"]))
