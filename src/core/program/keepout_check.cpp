@@ -313,10 +313,8 @@ bool KeepoutCheck::check(int line, bool numbered, const char* code, const Point&
   std::string held;
   if (!spindle_) {
     held = "with a tool known only when the program runs (counted with no length)";
-  } else if (*spindle_ == 0) {
-    held = "with an empty spindle";
-  } else if (table_length(*spindle_)) {
-    held = "with T" + std::to_string(*spindle_) + " (length " + format_length(config, length) + ")";
+  } else if (*spindle_ == 0 || table_length(*spindle_)) {
+    held = held_words(config, *spindle_, length);
   } else {
     held = "with T" + std::to_string(*spindle_) + " (no length known: counted as 0)";
   }

@@ -137,15 +137,18 @@ const char* keepout_words(KeepoutState state) {
   return "rack keep-out not armed: the machine is not on and homed";
 }
 
+std::string held_words(const Config& config, int tool, double tool_length) {
+  if (tool == 0) return "with an empty spindle";
+  return "with T" + std::to_string(tool) + " (length " + format_length(config, tool_length) + ")";
+}
+
 std::string keepout_refusal(const Config& config, const std::string& what, int pocket, int tool,
                             double tool_length, const Point& at) {
-  const std::string held = tool == 0 ? "with an empty spindle"
-                                     : "with T" + std::to_string(tool) + " (length " +
-                                           format_length(config, tool_length) + ")";
   char where[96];
   std::snprintf(where, sizeof where, "X%.3f Y%.3f Z%.3f", at.x, at.y, at.z);
-  return what + " would have entered the rack at pocket " + std::to_string(pocket) + " " + held +
-         ": stopped near " + where + " and aborted; move clear above or beside the rack";
+  return what + " would have entered the rack at pocket " + std::to_string(pocket) + " " +
+         held_words(config, tool, tool_length) + ": stopped near " + where +
+         " and aborted; move clear above or beside the rack";
 }
 
 }  // namespace fatc

@@ -74,6 +74,10 @@ KeepoutState keepout_state(const Config& config, const KeepoutInputs& in);
 /// The state in words, for the panel and messages.
 const char* keepout_words(KeepoutState state);
 
+/// "with T1 (length 30.0000 mm)", "with an empty spindle": the tool the
+/// spindle holds as a keep-out message names it.
+std::string held_words(const Config& config, int tool, double tool_length);
+
 /// What the operator is told when the guard stopped a motion: `what` moved
 /// ("program line 12", "an MDI command", "a jog").
 std::string keepout_refusal(const Config& config, const std::string& what, int pocket, int tool,
