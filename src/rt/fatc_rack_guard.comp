@@ -63,8 +63,8 @@ static double distance_to(struct __comp_state *__comp_inst, int k, double lift,
 /* How far an axis moving at v goes before it stands: along the path (the
    planner stops the path at the acceleration its slowest axis allows) or on
    its own (a jog stops each axis at its own), whichever is longer; plus
-   three servo periods: the one a trip may come late by (the nose moves a
-   period's travel between two looks), and two before the hold takes effect. */
+   three servo periods' travel: a trip may come a period late (the nose moves
+   a period's travel between two looks), and two before the hold takes effect. */
 static double run_out(double v, double speed, double path_accel, double axis_accel, double period) {
     double along = speed > 0.0 ? fabs(v) * speed / (2.0 * path_accel) : 0.0;
     double own = v * v / (2.0 * axis_accel);

@@ -61,10 +61,15 @@ def tripped(r):
 
 
 def stopped_short(r, volume, tool, within):
-    """Held outside the volume, yet not far out: within `within` mm above its boundary."""
+    """Held outside the volume, yet not far out: within `within` mm above its
+    boundary, the lowest Z from the trip until the driver's snapshot after it
+    (before it, an M6 may have left the spindle at safe Z, lower)."""
     z = r["snapshots"]["stopped"]["pos"][2]
     boundary = volume.top + length_of(r, tool)
-    lowest = min(s["pos"][2] for s in r["samples"])
+    first = r["samples"][0]["fatc-rack-guard.trips"]
+    after = [s for s in r["samples"] if s["fatc-rack-guard.trips"] > first and
+             s["t"] <= r["snapshots"]["stopped"]["t"]]
+    lowest = min(s["pos"][2] for s in after + [{"pos": [0, 0, z]}])
     if lowest < boundary - TOLERANCE:
         fail("Z went down to %.3f, below the boundary %.3f" % (lowest, boundary))
     if lowest > boundary + within:
