@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "../config/quote.hpp"
+#include "canonical_call.hpp"
 #include "numbered_program.hpp"
 
 namespace fatc::program {
@@ -14,10 +15,6 @@ namespace {
 
 /// How much of the interpreter's own message a finding repeats.
 constexpr std::size_t kMessageText = 300;
-
-bool starts_with(std::string_view text, std::string_view start) {
-  return text.substr(0, start.size()) == start;
-}
 
 /// The whole number in `CALL(n)`; nullopt when there is none.
 std::optional<long> argument_of(std::string_view call, std::string_view name) {

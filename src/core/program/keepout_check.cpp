@@ -8,9 +8,13 @@
 #include <utility>
 
 #include "../plan/simulator.hpp"
+#include "canonical_call.hpp"
 
 namespace fatc {
 namespace {
+
+using program::call_numbers;
+using program::starts_with;
 
 constexpr unsigned kX = 1, kY = 2, kZ = 4, kAll = 7;
 
@@ -23,31 +27,6 @@ constexpr double kMaxChords = 100000;
 
 double& axis(Point& p, int a) { return a == 0 ? p.x : a == 1 ? p.y : p.z; }
 double axis(const Point& p, int a) { return a == 0 ? p.x : a == 1 ? p.y : p.z; }
-
-bool starts_with(std::string_view text, std::string_view start) {
-  return text.substr(0, start.size()) == start;
-}
-
-/// The numbers between the parentheses of a call, in order.
-std::vector<double> numbers_of(std::string_view call) {
-  std::vector<double> values;
-  const auto open = call.find('(');
-  if (open == std::string_view::npos) return values;
-  const char* p = call.data() + open + 1;
-  const char* const end = call.data() + call.size();
-  while (p < end) {
-    if (*p == '-' || *p == '.' || (*p >= '0' && *p <= '9')) {
-      double value = 0.0;
-      const auto [next, failed] = std::from_chars(p, end, value);
-      if (failed != std::errc()) break;
-      values.push_back(value);
-      p = next;
-    } else {
-      ++p;
-    }
-  }
-  return values;
-}
 
 /// The machine point of a call's first three numbers, all finite; nullopt else.
 std::optional<Point> point_of(const std::vector<double>& args) {
@@ -82,15 +61,15 @@ void KeepoutCheck::call(int line, bool numbered, std::string_view call) {
   // The calls that move or set the coordinate system; the rest (feeds,
   // spindle, comments) change nothing here.
   if (starts_with(call, "STRAIGHT_TRAVERSE(") || starts_with(call, "STRAIGHT_FEED(")) {
-    if (const auto to = point_of(numbers_of(call))) {
+    if (const auto to = point_of(call_numbers(call))) {
       move(line, numbered, starts_with(call, "STRAIGHT_TRAVERSE(") ? "G0" : "G1", *to);
     }
   } else if (starts_with(call, "ARC_FEED(")) {
-    arc(line, numbered, numbers_of(call));
+    arc(line, numbered, call_numbers(call));
   } else if (starts_with(call, "STRAIGHT_PROBE(")) {
-    if (const auto to = point_of(numbers_of(call))) probe(line, numbered, *to);
+    if (const auto to = point_of(call_numbers(call))) probe(line, numbered, *to);
   } else if (starts_with(call, "RIGID_TAP(")) {
-    if (const auto to = point_of(numbers_of(call))) rigid_tap(line, numbered, *to);
+    if (const auto to = point_of(call_numbers(call))) rigid_tap(line, numbered, *to);
   } else if (starts_with(call, "NURBS_FEED(") || starts_with(call, "SPLINE_FEED(")) {
     // rs274 prints neither a spline's points nor its end: its way is not
     // known, and where it ends only from the next move's X and Y.
@@ -110,7 +89,7 @@ void KeepoutCheck::call(int line, bool numbered, std::string_view call) {
              : call.find("YZ") != std::string_view::npos ? 19
                                                          : 17;
   } else if (starts_with(call, "SET_XY_ROTATION(")) {
-    const auto args = numbers_of(call);
+    const auto args = call_numbers(call);
     if (!args.empty()) rs274_.xy_rotation_degrees = machine_.xy_rotation_degrees = args[0];
   } else {
     // Offsets, in the program's units when they are set (LinuxCNC keeps them in its own).
@@ -120,11 +99,11 @@ void KeepoutCheck::call(int line, bool numbered, std::string_view call) {
       return Point{args[first] * k, args[first + 1] * k, args[first + 2] * k};
     };
     if (starts_with(call, "SET_G5X_OFFSET(")) {
-      if (const auto o = offset(numbers_of(call), 1)) rs274_.g5x = machine_.g5x = *o;
+      if (const auto o = offset(call_numbers(call), 1)) rs274_.g5x = machine_.g5x = *o;
     } else if (starts_with(call, "SET_G92_OFFSET(")) {
-      if (const auto o = offset(numbers_of(call), 0)) rs274_.g92 = machine_.g92 = *o;
+      if (const auto o = offset(call_numbers(call), 0)) rs274_.g92 = machine_.g92 = *o;
     } else if (starts_with(call, "USE_TOOL_LENGTH_OFFSET(")) {
-      if (const auto o = offset(numbers_of(call), 0)) rs274_.tool_offset = machine_.tool_offset = *o;
+      if (const auto o = offset(call_numbers(call), 0)) rs274_.tool_offset = machine_.tool_offset = *o;
     }
   }
 }

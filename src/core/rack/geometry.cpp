@@ -1,26 +1,13 @@
 #include "geometry.hpp"
 
-#include "keepout.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
+#include "keepout.hpp"
+
 namespace fatc {
 namespace {
-
-Box column_of(const Config& config, const Point& pocket) {
-  const double m = config.keepout_margin();
-  // Tools hang below their holders down to the table: the column has no floor.
-  return {{pocket.x - m, pocket.y - m, -1e12},
-          {pocket.x + m, pocket.y + m, pocket.z + config.pocket_above_clearance_offset_z}};
-}
-
-/// Whether the segment a→b passes through the open interior of the box
-/// (touching a face, as at above_clearance, is allowed).
-bool passes_through(const Point& a, const Point& b, const Box& box) {
-  return entry_along(a, b, box).has_value();
-}
 
 std::string format(const char* pattern, double value) {
   char buffer[96];
@@ -67,7 +54,9 @@ std::vector<std::string> check_move(const Config& config, const Point& from, uns
   // The keep-out needs the start of the move: only once every axis is known.
   if (known == axis_xyz) {
     for (const auto& [number, pocket] : config.pockets) {
-      if (!passes_through(from, target, column_of(config, pocket.at))) continue;
+      // Touching a face, as at above_clearance, is no entry.
+      const Box column = pocket_column(config, pocket.at, config.pocket_above_clearance_offset_z);
+      if (!entry_along(from, target, column)) continue;
       if (number == step.pocket && step.approach) continue;
       problems.push_back("passes through the rack at pocket " + std::to_string(number) +
                          (number == step.pocket ? " outside its approach" : ""));

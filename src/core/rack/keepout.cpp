@@ -7,15 +7,7 @@
 namespace fatc {
 namespace {
 
-// Tools hang below their holders down to the table: the volume has no floor.
 constexpr double kNoFloor = -1e12;
-
-Box column_of(const Config& config, const Pocket& pocket) {
-  const double m = config.keepout_margin();
-  return {{pocket.at.x - m, pocket.at.y - m, kNoFloor},
-          {pocket.at.x + m, pocket.at.y + m,
-           pocket.at.z + config.pocket_above_chuck_offset_z + config.keepout_above()}};
-}
 
 /// Whether the XY footprints of two boxes lie within `gap` of each other.
 bool near(const Box& a, const Box& b, double gap) {
@@ -30,6 +22,11 @@ Box joined(const Box& a, const Box& b) {
 }
 
 }  // namespace
+
+Box pocket_column(const Config& config, const Point& pocket, double top_offset) {
+  const double m = config.keepout_margin();
+  return {{pocket.x - m, pocket.y - m, kNoFloor}, {pocket.x + m, pocket.y + m, pocket.z + top_offset}};
+}
 
 std::optional<double> entry_along(const Point& a, const Point& b, const Box& box) {
   constexpr double kTouch = 1e-6;
@@ -57,7 +54,9 @@ std::optional<double> entry_along(const Point& a, const Point& b, const Box& box
 std::vector<RackPart> rack_volume(const Config& config) {
   std::vector<RackPart> parts;
   for (const auto& [number, pocket] : config.pockets) {
-    parts.push_back({{{number, pocket.at}}, column_of(config, pocket)});
+    // Up to the holders' tops (the nose clear of the pull stud), and the margin above.
+    const double top = config.pocket_above_chuck_offset_z + config.keepout_above();
+    parts.push_back({{{number, pocket.at}}, pocket_column(config, pocket.at, top)});
   }
   // Join parts less than twice the side offset apart until none are: a
   // spindle has no business between two holders of a rack.

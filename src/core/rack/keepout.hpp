@@ -18,6 +18,11 @@ struct Box {
 /// interior of `box` (touching a face is not entering); none when it does not.
 std::optional<double> entry_along(const Point& a, const Point& b, const Box& box);
 
+/// A pocket's keep-out column: XY half-width Config::keepout_margin() around
+/// it, no floor (tools hang below their holders down to the table), its top
+/// `top_offset` above the pocket's Z.
+Box pocket_column(const Config& config, const Point& pocket, double top_offset);
+
 /// The most boxes the realtime guard (src/rt/fatc_rack_guard.comp) holds.
 constexpr std::size_t kGuardBoxes = 4;
 
