@@ -309,22 +309,17 @@ def holds(r, first, last):
     """Where the spindle stood each time the dry run held for Continue, in order:
     the last sample of each hold (the first may show the status a poll late); a
     new step number is a new hold, as two waypoints may be one place."""
-    places, counts, held = [], [], None
+    places, held = [], None
     for s in r["samples"][first:last]:
         step = s["fixed_atc_probe.step-number"]
         if not s["fixed_atc_probe.waiting-for-operator"]:
             continue
         if step == held:
             places[-1] = s
-            counts[-1] += 1
         else:
             places.append(s)
-            counts.append(1)
             held = step
-    # A hold lasts until the driver's press (100 ms): one sample alone is the
-    # driver reading the pins between two of the component's writes (the next
-    # step number beside the last waiting-for-operator, after Cancel).
-    return [p for p, n in zip(places, counts) if n > 1]
+    return places
 
 
 def check_rack_verify(r, rack, expected):
