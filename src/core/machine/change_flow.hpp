@@ -14,7 +14,6 @@ namespace fatc::machine {
 /// fetch the requested tool (from its pocket, or handed in), then measure it
 /// if `probe_after_change` asks. docs/sequences.md#m6.
 struct ChangeFlow_ : Flow<ChangeFlow_> {
-  using flag_list = boost::mpl::vector2<flag::Busy, flag::Changing>;
   /// The requested tool is in the rack: a fetch follows the return.
   static bool fetch_follows_return(const Context& c) {
     return c.tools.pocket_holding(c.requested_tool).has_value();
@@ -71,6 +70,5 @@ struct ChangeFlow_ : Flow<ChangeFlow_> {
   >;
   // clang-format on
 };
-using ChangeFlow = Machine_of<ChangeFlow_>;
 
 }  // namespace fatc::machine

@@ -11,12 +11,12 @@ Changer::~Changer() = default;
 
 void Changer::ready() {
   engine_->context.machine_ready = true;
-  engine_->fsm.process_event(Ready{});
+  engine_->take(Ready{});
 }
 
 void Changer::not_ready() {
   engine_->context.machine_ready = false;
-  engine_->fsm.process_event(NotReady{});
+  engine_->take(NotReady{});
 }
 
 void Changer::soft_limits(std::optional<SoftLimits> limits) {
@@ -31,77 +31,77 @@ void Changer::task_availability(std::optional<std::string> why_busy) {
 
 void Changer::spindle_stopped(bool stopped) {
   engine_->context.spindle_stopped = stopped;
-  engine_->fsm.process_event(SensorReport{});
+  engine_->take(SensorReport{});
 }
 
 void Changer::sensors(const SensorReadings& readings) {
   engine_->context.sensors = readings;
-  engine_->fsm.process_event(SensorReport{});
+  engine_->take(SensorReport{});
 }
 
-void Changer::tool_change(int tool) { engine_->fsm.process_event(ToolChange{tool}); }
-void Changer::load(int tool, int pocket) { engine_->fsm.process_event(LoadRequest{tool, pocket}); }
-void Changer::unload(int tool) { engine_->fsm.process_event(UnloadRequest{tool}); }
+void Changer::tool_change(int tool) { engine_->take(ToolChange{tool}); }
+void Changer::load(int tool, int pocket) { engine_->take(LoadRequest{tool, pocket}); }
+void Changer::unload(int tool) { engine_->take(UnloadRequest{tool}); }
 void Changer::measure_all(std::vector<int> tools) {
-  engine_->fsm.process_event(MeasureRequest{std::move(tools)});
+  engine_->take(MeasureRequest{std::move(tools)});
 }
-void Changer::verify(int pocket) { engine_->fsm.process_event(VerifyRequest{pocket}); }
+void Changer::verify(int pocket) { engine_->take(VerifyRequest{pocket}); }
 void Changer::chuck(ChuckRequest::Action action, std::optional<Point> at) {
-  engine_->fsm.process_event(ChuckRequest{action, at});
+  engine_->take(ChuckRequest{action, at});
 }
 void Changer::in_position() {
   // Within a phase the next waypoint follows; the tables see a phase's end.
   if (engine_->context.next_waypoint()) return;
-  engine_->fsm.process_event(InPosition{});
+  engine_->take(InPosition{});
 }
-void Changer::command_done() { engine_->fsm.process_event(CommandDone{}); }
+void Changer::command_done() { engine_->take(CommandDone{}); }
 
 void Changer::probe_result(bool touched, double machine_z, bool tripped_before) {
-  engine_->fsm.process_event(ProbeResult{touched, machine_z, tripped_before});
+  engine_->take(ProbeResult{touched, machine_z, tripped_before});
 }
 
-void Changer::timer_elapsed() { engine_->fsm.process_event(TimerElapsed{}); }
-void Changer::operator_continue() { engine_->fsm.process_event(OperatorContinue{}); }
-void Changer::operator_cancel() { engine_->fsm.process_event(OperatorCancel{}); }
-void Changer::abort(const std::string& reason) { engine_->fsm.process_event(Abort{reason}); }
+void Changer::timer_elapsed() { engine_->take(TimerElapsed{}); }
+void Changer::operator_continue() { engine_->take(OperatorContinue{}); }
+void Changer::operator_cancel() { engine_->take(OperatorCancel{}); }
+void Changer::abort(const std::string& reason) { engine_->take(Abort{reason}); }
 void Changer::clear_fault(int spindle_tool, std::optional<bool> pocket_holds_tool) {
-  engine_->fsm.process_event(ClearFault{spindle_tool, pocket_holds_tool});
+  engine_->take(ClearFault{spindle_tool, pocket_holds_tool});
 }
 
 bool Changer::reconfigure(Config config, std::string request) {
   const unsigned taken = engine_->context.configs_taken;
-  engine_->fsm.process_event(ConfigChanged{std::move(config), std::move(request)});
+  engine_->take(ConfigChanged{std::move(config), std::move(request)});
   return engine_->context.configs_taken != taken;
 }
 
 namespace {
 
 template <class Flag>
-bool active(const machine::Machine& fsm) {
-  return fsm.is_flag_active<Flag>();
+bool active(const machine::Engine& engine) {
+  return engine.active<Flag>();
 }
 
-Phase phase_of(const machine::Machine& fsm) {
+Phase phase_of(const machine::Engine& engine) {
   namespace flag = machine::flag;
-  if (active<flag::Faulted>(fsm)) return Phase::fault;
-  if (active<flag::Changing>(fsm)) return Phase::changing;
-  if (active<flag::Loading>(fsm)) return Phase::loading;
-  if (active<flag::Unloading>(fsm)) return Phase::unloading;
-  if (active<flag::Measuring>(fsm)) return Phase::measuring;
-  if (active<flag::Verifying>(fsm)) return Phase::verifying;
-  if (active<flag::Chucking>(fsm)) return Phase::chuck;
-  if (active<flag::Idle>(fsm)) return Phase::idle;
+  if (active<flag::Faulted>(engine)) return Phase::fault;
+  if (active<flag::Changing>(engine)) return Phase::changing;
+  if (active<flag::Loading>(engine)) return Phase::loading;
+  if (active<flag::Unloading>(engine)) return Phase::unloading;
+  if (active<flag::Measuring>(engine)) return Phase::measuring;
+  if (active<flag::Verifying>(engine)) return Phase::verifying;
+  if (active<flag::Chucking>(engine)) return Phase::chuck;
+  if (active<flag::Idle>(engine)) return Phase::idle;
   return Phase::not_ready;
 }
 
-Awaiting awaiting_of(const machine::Machine& fsm) {
+Awaiting awaiting_of(const machine::Engine& engine) {
   namespace flag = machine::flag;
-  if (active<flag::AwaitsOperator>(fsm)) return Awaiting::operator_choice;
-  if (active<flag::AwaitsProbe>(fsm)) return Awaiting::probe;
-  if (active<flag::AwaitsMotion>(fsm)) return Awaiting::motion;
-  if (active<flag::AwaitsTimer>(fsm)) return Awaiting::timer;
-  if (active<flag::AwaitsSpindle>(fsm)) return Awaiting::spindle;
-  if (active<flag::AwaitsSensor>(fsm)) return Awaiting::sensor;
+  if (active<flag::AwaitsOperator>(engine)) return Awaiting::operator_choice;
+  if (active<flag::AwaitsProbe>(engine)) return Awaiting::probe;
+  if (active<flag::AwaitsMotion>(engine)) return Awaiting::motion;
+  if (active<flag::AwaitsTimer>(engine)) return Awaiting::timer;
+  if (active<flag::AwaitsSpindle>(engine)) return Awaiting::spindle;
+  if (active<flag::AwaitsSensor>(engine)) return Awaiting::sensor;
   return Awaiting::nothing;
 }
 
@@ -142,16 +142,16 @@ std::string activity_of(const Status& status, const Context& c) {
 }  // namespace
 
 Status Changer::status() const {
-  const machine::Machine& fsm = engine_->fsm;
+  const machine::Engine& engine = *engine_;
   const Context& c = engine_->context;
   Status status;
-  status.phase = phase_of(fsm);
-  status.awaiting = awaiting_of(fsm);
+  status.phase = phase_of(engine);
+  status.awaiting = awaiting_of(engine);
   // Inside M6 an operator's answer holds the program, and only Stop ends a probe.
   const bool in_program = c.in_program;
-  status.holds_program = active<machine::flag::HoldsProgram>(fsm) ||
-                         (active<machine::flag::AwaitsOperator>(fsm) && in_program);
-  status.probe_cancellable = active<machine::flag::AwaitsProbe>(fsm) && !in_program;
+  status.holds_program = active<machine::flag::HoldsProgram>(engine) ||
+                         (active<machine::flag::AwaitsOperator>(engine) && in_program);
+  status.probe_cancellable = active<machine::flag::AwaitsProbe>(engine) && !in_program;
   status.over_mdi = status.busy() && !in_program;
   status.accepting = status.phase == Phase::idle && status.awaiting == Awaiting::nothing &&
                      !c.task_busy && !c.chuck_open;
@@ -160,11 +160,9 @@ Status Changer::status() const {
   status.step_number = status.busy() ? c.sequence_step : 0;
   status.pocket = status.busy() ? c.sequence_pocket() : 0;
   if (status.phase == Phase::measuring) {
-    const auto& batch = fsm.get_state<const machine::Operating&>()
-                            .get_state<const machine::MeasureAllFlow&>()
-                            .batch;
-    status.batch_done = static_cast<int>(batch.done);
-    status.batch_total = static_cast<int>(batch.tools.size());
+    const machine::BatchCount batch = engine_->flow()->batch();
+    status.batch_done = batch.done;
+    status.batch_total = batch.total;
   }
   status.activity = activity_of(status, c);
   return status;

@@ -9,6 +9,9 @@
 
 namespace fatc::machine {
 
+/// What the state file says is under way while a release holds the chuck open.
+inline constexpr const char* kChuckHeldOpen = "the chuck held open (released from G-code)";
+
 // ---------------------------------------------------------------- where, for messages
 /// "at pocket 3": where the chuck acts, for a leg that serves pocket `tool`.
 struct AtPocket {

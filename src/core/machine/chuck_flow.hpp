@@ -7,9 +7,6 @@
 namespace fatc::machine {
 
 // ================================================================ chuck atoms
-/// What the state file says is under way while a release holds the chuck open.
-inline constexpr const char* kChuckHeldOpen = "the chuck held open (released from G-code)";
-
 /// A chuck atom from G-code (nc_files/fixed_atc_probe_chuck_*.ngc), with
 /// the interlocks of the legs: a release waits until the chuck may open
 /// (air, the spindle at a standstill), gives the chuck `chuck_seconds`, and
@@ -17,7 +14,6 @@ inline constexpr const char* kChuckHeldOpen = "the chuck held open (released fro
 /// gives it `chuck_seconds` again and must read closed. What the spindle
 /// holds stays as recorded (docs/sequences.md#chuck-atoms).
 struct ChuckFlow_ : Flow<ChuckFlow_> {
-  using flag_list = boost::mpl::vector2<flag::Busy, flag::Chucking>;
   static int served_tool(const Context& ctx) { return ctx.tools.spindle; }
   template <class Parent>
   static int served_pocket(const Context&, int, const Parent&) {
@@ -114,6 +110,5 @@ struct ChuckFlow_ : Flow<ChuckFlow_> {
   >;
   // clang-format on
 };
-using ChuckFlow = Machine_of<ChuckFlow_>;
 
 }  // namespace fatc::machine

@@ -3,9 +3,6 @@
 // Building blocks shared by every table: the flow base, the kinds of state
 // (moving, timed, waiting for the operator), targets, guards and actions.
 
-#include <boost/mpl/fold.hpp>
-#include <boost/mpl/insert.hpp>
-#include <boost/mpl/set.hpp>
 #include <boost/msm/back/favor_compile_time.hpp>
 #include <boost/msm/back/state_machine.hpp>
 #include <boost/msm/front/functor_row.hpp>
@@ -17,6 +14,7 @@
 #include "events.hpp"
 #include "../rack/geometry.hpp"
 #include "context.hpp"
+#include "flow_run.hpp"
 
 namespace fatc::machine {
 
@@ -53,6 +51,15 @@ struct AwaitsSpindle {};
 struct AwaitsSensor {};      ///< a wired sensor must confirm a change (drawbar, tool, air)
 struct AwaitsOperator {};    ///< Continue or Cancel
 struct HoldsProgram {};      ///< an operator wait inside M6: the program holds
+struct EndedFinished {};     ///< a flow reached its end
+struct EndedCancelled {};    ///< a flow ended early: the operator cancelled
+struct EndedFailed {};       ///< a flow cannot go on
+template <class... Flags>
+struct List {};
+/// The flags a state inside a flow may carry: what FlowRun::flagged answers
+/// (Busy and the flow's own are on Running<Flow>, the rest on the machine above).
+using InFlows = List<AwaitsMotion, AwaitsProbe, AwaitsTimer, AwaitsSpindle, AwaitsSensor,
+                     AwaitsOperator, HoldsProgram, EndedFinished, EndedCancelled, EndedFailed>;
 }  // namespace flag
 
 /// A submachine finished; raised by its exit point `Finished`.
@@ -62,68 +69,38 @@ struct LegDone {
   LegDone(const Event&) {}
 };
 
+struct Finished;
+struct Failed;
+struct Cancelled;
 /// A submachine cannot go on; ctx.fault_reason says why.
 struct FlowFailed {
+  using ends_at = Failed;  ///< where the diagram draws it from
   FlowFailed() = default;
   template <class Event>
   FlowFailed(const Event&) {}
 };
-
-/// A row that only names an event; see recursive_get_transition_table below.
-template <class Event>
-struct Takes {
-  using transition_event = Event;
+/// A flow reached its end, or ended early for the operator's Cancel.
+struct FlowFinished {
+  using ends_at = Finished;
+};
+struct FlowCancelled {
+  using ends_at = Cancelled;
 };
 
-/// The submachine a row's state stands for: itself, the owner of its exit
-/// point, or none (void).
-template <class State, class = void>
-struct SubmachineOf {
-  using type = void;
+/// Where a leg or a flow ends. A leg's end is an exit point its flow takes
+/// on; a flow runs as a machine of its own (flow_run.hpp), so its end is a
+/// flag the machine above reads, then takes as FlowFinished, FlowCancelled
+/// or FlowFailed.
+struct Finished : msmf::exit_pseudo_state<LegDone> {
+  using flag_list = boost::mpl::vector1<flag::EndedFinished>;
 };
-template <class Front, class Policy>
-struct SubmachineOf<msm::back::state_machine<Front, Policy>> {
-  using type = msm::back::state_machine<Front, Policy>;
+struct Failed : msmf::exit_pseudo_state<FlowFailed> {
+  using flag_list = boost::mpl::vector1<flag::EndedFailed>;
 };
-template <class State>
-struct SubmachineOf<State, std::void_t<typename State::wrapped_exit>> {
-  using type = typename State::owner;
-};
-
-template <class Front>
-struct EventsBelow;
-/// `Events` with those of `Submachine`'s tables added.
-template <class Events, class Submachine>
-struct WithEventsOf {
-  using type = Events;
-};
-template <class Events, class Front, class Policy>
-struct WithEventsOf<Events, msm::back::state_machine<Front, Policy>> {
-  using type = typename boost::mpl::fold<typename EventsBelow<Front>::type, Events,
-                                         boost::mpl::insert<boost::mpl::placeholders::_1,
-                                                            boost::mpl::placeholders::_2>>::type;
-};
-/// `Events` with a row's event and the events of the submachines it names.
-template <class Events, class Row>
-struct WithEventsOfRow {
-  using own = std::conditional_t<std::is_same_v<typename Row::Evt, msmf::none>, Events,
-                                 typename boost::mpl::insert<Events, Takes<typename Row::Evt>>::type>;
-  using from = typename WithEventsOf<own, typename SubmachineOf<typename Row::Source>::type>::type;
-  using type = typename WithEventsOf<from, typename SubmachineOf<typename Row::Target>::type>::type;
-};
-/// Every event the tables of `Front` and of the submachines below it take,
-/// once each: all a submachine's dispatch needs to try.
-template <class Front>
-struct EventsBelow {
-  using type = typename boost::mpl::fold<
-      typename Front::transition_table, boost::mpl::set0<>,
-      WithEventsOfRow<boost::mpl::placeholders::_1, boost::mpl::placeholders::_2>>::type;
-};
-
-struct Finished : msmf::exit_pseudo_state<LegDone> {};
-struct Failed : msmf::exit_pseudo_state<FlowFailed> {};
 /// The operator cancelled: the flow ends early, nothing is uncertain.
-struct Cancelled : msmf::exit_pseudo_state<LegDone> {};
+struct Cancelled : msmf::exit_pseudo_state<LegDone> {
+  using flag_list = boost::mpl::vector1<flag::EndedCancelled>;
+};
 
 /// Base of every submachine front: takes the context from its parent on
 /// entry and remembers which tool it serves and at which pocket.
@@ -147,6 +124,13 @@ struct Flow : msmf::state_machine_def<Derived> {
   /// A fetch follows a return of this flow's: on the direct path that return
   /// may end at safe Z over its pocket, where the fetch starts.
   static bool fetch_follows_return(const Context&) { return false; }
+  /// How far a batch got: measure all's, none for the other flows.
+  BatchCount batch_count() const { return {}; }
+
+  /// An event a flow has no row for goes on to the machine above
+  /// (Engine::take), as Boost.MSM hands on a submachine's.
+  template <class Fsm, class Event>
+  void no_transition(const Event&, Fsm&, int) {}
 };
 
 // ---------------------------------------------------------------- kinds of state
@@ -389,16 +373,3 @@ struct CloseChuck {
 };
 
 }  // namespace fatc::machine
-
-/// What a machine's subtree answers, as Boost.MSM sees it. Its own
-/// metafunction merges the tables of every submachine below, level by level,
-/// and MSM computes it for every submachine even under favor_compile_time,
-/// where only the events are used: for this machine that took 12.7 GB and 7
-/// minutes for changer.cpp. The events the tables below take, once each,
-/// stand in for it (EventsBelow). The one Boost template the project
-/// specialises.
-template <class Front>
-struct boost::msm::back::recursive_get_transition_table<
-    boost::msm::back::state_machine<Front, boost::msm::back::favor_compile_time>> {
-  using type = typename fatc::machine::EventsBelow<Front>::type;
-};

@@ -18,17 +18,28 @@
 
 namespace fatc::machine {
 
-template <class T>
+template <class T, class = void>
 struct IsComposite : std::false_type {};
 template <class Front, class... Policies>
 struct IsComposite<boost::msm::back::state_machine<Front, Policies...>> : std::true_type {
   using front = Front;
+};
+/// A state that runs a flow as a machine of its own (Running<Flow>) is drawn
+/// as that flow.
+template <class T>
+struct IsComposite<T, std::void_t<typename T::flow_front>> : std::true_type {
+  using front = typename T::flow_front;
 };
 
 template <class T, class = void>
 struct IsExitState : std::false_type {};
 template <class T>
 struct IsExitState<T, std::void_t<typename T::pseudo_exit>> : std::true_type {};
+
+template <class T, class = void>
+struct HasEnd : std::false_type {};
+template <class T>
+struct HasEnd<T, std::void_t<typename T::ends_at>> : std::true_type {};
 
 template <class T, class = void>
 struct IsExitPoint : std::false_type {};
@@ -135,9 +146,22 @@ class DotWriter {
     out << "  }\n";
   }
 
+  /// Where a row starts: a flow's end (FlowFinished, ...) at the flow's
+  /// exit state, as a submachine's exit point is drawn.
+  template <class Row>
+  std::string source(const std::string& path) {
+    using Source = typename Row::Source;
+    const std::string node_id = node<Source>(path);
+    if constexpr (IsComposite<Source>::value && HasEnd<typename Row::Evt>::value) {
+      return node<typename Row::Evt::ends_at>(path + "/" + name_of<Source>());
+    } else {
+      return node_id;
+    }
+  }
+
   template <class Row>
   void row(const std::string& path) {
-    const std::string from = node<typename Row::Source>(path);
+    const std::string from = source<Row>(path);
     const bool internal = std::is_same_v<typename Row::Target, boost::msm::front::none>;
     const std::string to = internal ? from : node<typename Row::Target>(path);
     std::string label = std::is_same_v<typename Row::Evt, boost::msm::front::none>
@@ -151,7 +175,7 @@ class DotWriter {
     }
     out << "  \"" << from << "\" -> \"" << to << "\" [label=\"" << label << "\""
         << (internal ? ", style=dashed" : "");
-    if (IsComposite<typename Row::Source>::value && !internal) {
+    if (IsComposite<typename Row::Source>::value && !HasEnd<typename Row::Evt>::value && !internal) {
       out << ", ltail=\"cluster_" << path << "/" << name_of<typename Row::Source>() << "\"";
     }
     out << "];\n";

@@ -4,12 +4,35 @@ namespace fatc::machine {
 
 Engine::Engine(const Config& config, Ports& ports, ToolState tools)
     : context(config, ports, std::move(tools)), fsm(&context) {
-  context.refuse_step = [this](const std::string& why) { fsm.process_event(UnsafeStep{why}); };
-  context.raise_check_failed = [this](const CheckFailed& e) { fsm.process_event(e); };
-  context.recheck_sensors = [this] { fsm.process_event(SensorReport{}); };
+  context.refuse_step = [this](const std::string& why) { take(UnsafeStep{why}); };
+  context.raise_check_failed = [this](const CheckFailed& e) { take(e); };
+  context.recheck_sensors = [this] { take(SensorReport{}); };
   fsm.start();
 }
 
 Engine::~Engine() = default;
+
+FlowRun* Engine::flow() const {
+  return fsm.get_state<const Operating&>().flow.get();
+}
+
+/// A flow that reached an end hands it to the machine above, before any
+/// event raised meanwhile (a submachine's exit point does so in Boost.MSM).
+void Engine::take_flow_end() {
+  if (!flow()) return;
+  switch (flow()->take_end()) {
+    case FlowEnd::finished:
+      fsm.process_event(FlowFinished{});
+      break;
+    case FlowEnd::cancelled:
+      fsm.process_event(FlowCancelled{});
+      break;
+    case FlowEnd::failed:
+      fsm.process_event(FlowFailed{});
+      break;
+    case FlowEnd::running:
+      break;
+  }
+}
 
 }  // namespace fatc::machine

@@ -12,7 +12,6 @@ namespace fatc::machine {
 /// The operator loads a tool by hand at `loading`; it is measured on the
 /// sensor and put away in its pocket. docs/sequences.md#load-and-probe.
 struct LoadFlow_ : Flow<LoadFlow_> {
-  using flag_list = boost::mpl::vector2<flag::Busy, flag::Loading>;
 
   int load_pocket = 0;  ///< the pocket the loaded tool goes into (PutAway)
   template <class Event, class Parent>
@@ -86,6 +85,5 @@ struct LoadFlow_ : Flow<LoadFlow_> {
   >;
   // clang-format on
 };
-using LoadFlow = Machine_of<LoadFlow_>;
 
 }  // namespace fatc::machine

@@ -16,7 +16,6 @@ namespace fatc::machine {
 /// the machine grows by one table, not by new copies of the legs.
 /// docs/sequences.md#measure-all.
 struct MeasureAllFlow_ : Flow<MeasureAllFlow_> {
-  using flag_list = boost::mpl::vector2<flag::Busy, flag::Measuring>;
 
   /// The tools to measure, in order, and how far the batch got.
   struct Batch {
@@ -26,6 +25,9 @@ struct MeasureAllFlow_ : Flow<MeasureAllFlow_> {
     std::optional<double> stored;  ///< the length of the tool under way before it was measured
     std::vector<std::string> report;
   } batch;
+  BatchCount batch_count() const {
+    return {static_cast<int>(batch.done), static_cast<int>(batch.tools.size())};
+  }
   template <class Event, class Parent>
   void on_entry(const Event& e, Parent& parent) {
     Flow::on_entry(e, parent);
@@ -139,6 +141,5 @@ struct MeasureAllFlow_ : Flow<MeasureAllFlow_> {
   >;
   // clang-format on
 };
-using MeasureAllFlow = Machine_of<MeasureAllFlow_>;
 
 }  // namespace fatc::machine

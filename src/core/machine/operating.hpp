@@ -3,12 +3,8 @@
 // The machine on and homed: idle, or running one flow; the requests and
 // their refusals.
 
-#include "change_flow.hpp"
-#include "chuck_flow.hpp"
-#include "load_flow.hpp"
-#include "measure_all_flow.hpp"
-#include "unload_flow.hpp"
-#include "verify_flow.hpp"
+#include "chuck.hpp"
+#include "flow_run.hpp"
 
 namespace fatc::machine {
 
@@ -152,7 +148,45 @@ struct StopDryRun {
                                   "it out the way it came in before the next change");
   }
 };
+// The flows, each defined and built in its own files.
+struct ChangeFlow_;
+struct LoadFlow_;
+struct UnloadFlow_;
+struct MeasureAllFlow_;
+struct VerifyFlow_;
+struct ChuckFlow_;
+
+/// A flow running as a machine of its own (flow_run.hpp), started on entry
+/// with the request that asked for it and stopped on exit; it carries the
+/// flags Busy and the flow's own (Changing, ...). Only the flow's own file
+/// reads its table.
+template <class Front, class Request, class Flag>
+struct Running : msmf::state<> {
+  using flow_front = Front;
+  using flag_list = boost::mpl::vector2<flag::Busy, Flag>;
+  template <class Event, class Fsm>
+  void on_entry(const Event& e, Fsm& fsm) {
+    // Boost.MSM builds an entry for each event that enters Operating; only
+    // the request enters this state.
+    if constexpr (std::is_same_v<Event, Request>) fsm.flow = run_flow<Front>(*fsm.ctx, e);
+  }
+  template <class Event, class Fsm>
+  void on_exit(const Event&, Fsm& fsm) {
+    fsm.flow->stop();
+    fsm.flow.reset();
+  }
+};
+using ChangeFlow = Running<ChangeFlow_, ToolChange, flag::Changing>;
+using LoadFlow = Running<LoadFlow_, LoadRequest, flag::Loading>;
+using UnloadFlow = Running<UnloadFlow_, UnloadRequest, flag::Unloading>;
+using MeasureAllFlow = Running<MeasureAllFlow_, MeasureRequest, flag::Measuring>;
+using VerifyFlow = Running<VerifyFlow_, VerifyRequest, flag::Verifying>;
+using ChuckFlow = Running<ChuckFlow_, ChuckRequest, flag::Chucking>;
+
 struct Operating_ : Flow<Operating_> {
+  /// The flow running, if any (Running<Flow>).
+  std::unique_ptr<FlowRun> flow;
+
   struct Idle : msmf::state<> {
     using flag_list = boost::mpl::vector1<flag::Idle>;
   };
@@ -294,16 +328,16 @@ struct Operating_ : Flow<Operating_> {
   Row < ComparingSensors                 , SensorReport , Idle            , none              , SensorsAgree       >,
   Row < ComparingSensors                 , TimerElapsed , Failed          , SaySensorsDisagree, none               >,
   Row < Idle                             , SensorReport , ComparingSensors, none              , Not<SensorsAgree>  >,
-  Row < ChangeFlow::exit_pt<Finished>    , LegDone      , ComparingSensors, AnswerDone        , none               >,
-  Row < ChangeFlow::exit_pt<Failed>      , FlowFailed   , Failed          , none              , none               >,
-  Row < ChangeFlow::exit_pt<Cancelled>   , LegDone      , ComparingSensors, StopProgram       , none               >,
-  Row < LoadFlow::exit_pt<Finished>      , LegDone      , ComparingSensors, AnswerDone        , none               >,
-  Row < UnloadFlow::exit_pt<Finished>    , LegDone      , ComparingSensors, AnswerDone        , none               >,
-  Row < MeasureAllFlow::exit_pt<Finished>, LegDone      , ComparingSensors, AnswerDone        , none               >,
-  Row < VerifyFlow::exit_pt<Finished>    , LegDone      , ComparingSensors, AnswerDone        , none               >,
-  Row < VerifyFlow::exit_pt<Cancelled>   , LegDone      , ComparingSensors, AnswerDone        , none               >,
+  Row < ChangeFlow                       , FlowFinished , ComparingSensors, AnswerDone        , none               >,
+  Row < ChangeFlow                       , FlowFailed   , Failed          , none              , none               >,
+  Row < ChangeFlow                       , FlowCancelled, ComparingSensors, StopProgram       , none               >,
+  Row < LoadFlow                         , FlowFinished , ComparingSensors, AnswerDone        , none               >,
+  Row < UnloadFlow                       , FlowFinished , ComparingSensors, AnswerDone        , none               >,
+  Row < MeasureAllFlow                   , FlowFinished , ComparingSensors, AnswerDone        , none               >,
+  Row < VerifyFlow                       , FlowFinished , ComparingSensors, AnswerDone        , none               >,
+  Row < VerifyFlow                       , FlowCancelled, ComparingSensors, AnswerDone        , none               >,
   Row < VerifyFlow                       , Abort        , ComparingSensors, StopDryRun        , none               >,
-  Row < ChuckFlow::exit_pt<Finished>     , LegDone      , ComparingSensors, AnswerChuckDone   , none               >
+  Row < ChuckFlow                        , FlowFinished , ComparingSensors, AnswerChuckDone   , none               >
   >;
   using transition_table = boost::mpl::joint_view<requests, around_the_flows>;
   // clang-format on

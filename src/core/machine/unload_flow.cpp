@@ -1,7 +1,8 @@
-// The event dispatch of this submachine, generated here and nowhere else
-// (favor_compile_time, see Machine_of in common.hpp): a compiler run reads
-// only the tables it dispatches.
+// This flow's event dispatch and its start, generated here and nowhere else
+// (flow_run.hpp): a compiler run reads only the tables this flow dispatches.
 
 #include "unload_flow.hpp"
+#include "flow_run_of.hpp"
 
-BOOST_MSM_BACK_GENERATE_PROCESS_EVENT(fatc::machine::UnloadFlow)
+FATC_FLOW_DISPATCH(UnloadFlow_)
+FATC_FLOW_RUN(UnloadFlow_, UnloadRequest)

@@ -12,7 +12,6 @@ namespace fatc::machine {
 /// The requested tool is fetched (if not in the spindle already) and taken
 /// out by the operator at `loading`. docs/sequences.md#unload.
 struct UnloadFlow_ : Flow<UnloadFlow_> {
-  using flag_list = boost::mpl::vector2<flag::Busy, flag::Unloading>;
   static bool fetch_follows_return(const Context&) { return true; }
 
   struct SayCancelled {
@@ -53,6 +52,5 @@ struct UnloadFlow_ : Flow<UnloadFlow_> {
   >;
   // clang-format on
 };
-using UnloadFlow = Machine_of<UnloadFlow_>;
 
 }  // namespace fatc::machine

@@ -14,7 +14,6 @@ namespace fatc::machine {
 /// where the last one ended). Cancel ends the run where it stands.
 /// docs/sequences.md#verify-a-pocket.
 struct VerifyFlow_ : Flow<VerifyFlow_> {
-  using flag_list = boost::mpl::vector2<flag::Busy, flag::Verifying>;
   static int served_tool(const Context& ctx) { return ctx.tools.spindle; }
 
   /// The waypoints, in order (plan::verify_pocket).
@@ -116,6 +115,5 @@ struct VerifyFlow_ : Flow<VerifyFlow_> {
   >;
   // clang-format on
 };
-using VerifyFlow = Machine_of<VerifyFlow_>;
 
 }  // namespace fatc::machine
