@@ -24,10 +24,10 @@ using msmf::Internal;
 using msmf::none;
 using msmf::Row;
 
-/// Every (sub)machine of the changer. `favor_compile_time` lets a
-/// submachine's event dispatch be generated in a translation unit of its own
-/// (BOOST_MSM_BACK_GENERATE_PROCESS_EVENT in machine/*.cpp), so no compiler
-/// run instantiates the whole machine at once.
+/// Every machine of the changer: the top, Operating, each flow and each leg.
+/// `favor_compile_time` lets a machine's event dispatch be generated in a
+/// translation unit of its own (BOOST_MSM_BACK_GENERATE_PROCESS_EVENT in
+/// machine/*.cpp), so no compiler run instantiates the whole machine at once.
 template <class Front>
 using Machine_of = msm::back::state_machine<Front, msm::back::favor_compile_time>;
 
@@ -62,7 +62,7 @@ using InFlows = List<AwaitsMotion, AwaitsProbe, AwaitsTimer, AwaitsSpindle, Awai
                      AwaitsOperator, HoldsProgram, EndedFinished, EndedCancelled, EndedFailed>;
 }  // namespace flag
 
-/// A submachine finished; raised by its exit point `Finished`.
+/// A leg finished; raised by its exit point `Finished`.
 struct LegDone {
   LegDone() = default;
   template <class Event>
@@ -72,7 +72,7 @@ struct LegDone {
 struct Finished;
 struct Failed;
 struct Cancelled;
-/// A submachine cannot go on; ctx.fault_reason says why.
+/// A leg or a flow cannot go on; ctx.fault_reason says why.
 struct FlowFailed {
   using ends_at = Failed;  ///< where the diagram draws it from
   FlowFailed() = default;
@@ -102,8 +102,9 @@ struct Cancelled : msmf::exit_pseudo_state<LegDone> {
   using flag_list = boost::mpl::vector1<flag::EndedCancelled>;
 };
 
-/// Base of every submachine front: takes the context from its parent on
-/// entry and remembers which tool it serves and at which pocket.
+/// Base of every flow and leg front: takes the context from its parent on
+/// entry (a flow, a machine of its own, from itself: FlowRunOf sets it) and
+/// remembers which tool it serves and at which pocket.
 template <class Derived>
 struct Flow : msmf::state_machine_def<Derived> {
   Context* ctx = nullptr;
