@@ -31,8 +31,17 @@ cmake --build build -j"$(nproc)" "${targets[@]}"
 # rack guard) must be in LinuxCNC's modules folder. The package installs them
 # there; without the package this checkout's are compiled and installed by
 # halcompile, said on one line, and an installed package later replaces those
-# files with its own.
-if dpkg-query -W -f='${Status}' fixed-atc-probe 2>/dev/null | grep -q "install ok installed"; then
+# files with its own. Building only the package (`setup.sh deb`, as the
+# README installs) installs none: the package brings its own.
+modules=/usr/lib/linuxcnc/modules
+if [ "$*" = deb ]; then
+  echo "setup: built the package: apt-get install ./build/fixed-atc-probe_*_amd64.deb installs the realtime guards with it (none installed outside it)"
+  for guard in "$modules"/fatc_chuck_guard.so "$modules"/fatc_rack_guard.so; do
+    if [ -e "$guard" ] && ! dpkg -S "$guard" >/dev/null 2>&1; then
+      echo "setup: $guard is a checkout's (an earlier setup.sh, no package owns it): the package replaces it with its own, and removing the package removes it"
+    fi
+  done
+elif dpkg-query -W -f='${Status}' fixed-atc-probe 2>/dev/null | grep -q "install ok installed"; then
   echo "setup: the realtime guards are the installed fixed-atc-probe package's"
 else
   guard=$(mktemp -d)
