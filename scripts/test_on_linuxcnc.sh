@@ -18,7 +18,8 @@
 #     another), and puts the chuck guard into SRC/rtlib where that LinuxCNC
 #     loads realtime modules from;
 #  3. runs the integration label (the real LinuxCNC headless, and the GUI
-#     tests on a virtual X server) with SRC's rip-environment, and ends with
+#     tests on a virtual X server) and the linuxcnc label (the adapters'
+#     unit tests against SRC) with SRC's rip-environment, and ends with
 #     ctest's summary line and its exit status. CTEST_ARGS go to ctest, e.g.
 #     -R integration_run.
 # Every LinuxCNC start takes the machine-wide lock (run_sim.sh, pins_golden.sh):
@@ -103,10 +104,10 @@ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DLINUXCNC_ROOT="$src" "
   > "$build.cmake.log" 2>&1 ||
   { cat "$build.cmake.log"; exit 1; }
 rm -f "$build.cmake.log"
-nice -n 10 cmake --build "$build" -j"$jobs" --target fixed_atc_probe chuck_guard
+nice -n 10 cmake --build "$build" -j"$jobs" --target fixed_atc_probe chuck_guard linuxcnc_tests
 install -m 644 "$build/rt/fatc_chuck_guard.so" "$src/rtlib/fatc_chuck_guard.so"
 say "the chuck guard (compiled by $src/bin/halcompile) is in $src/rtlib"
 
 # 3. The real-LinuxCNC tests, ending with ctest's summary.
 say "running the integration tests on LinuxCNC $version ($(command -v linuxcnc))"
-exec ctest --test-dir "$build" -L integration --output-on-failure "$@"
+exec ctest --test-dir "$build" -L 'integration|linuxcnc' --output-on-failure "$@"

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <emc.hh>
 #include <emc_nml.hh>
+#include <emcglb.h>
 #include <rcs_print.hh>
 #include <stat_msg.hh>
 #include <thread>
@@ -125,7 +126,10 @@ std::string nml_file_of(const std::string& ini_path) {
   if (ini) {
     if (const auto file = ini->get("EMC", "NML_FILE")) return *file;
   }
-  return "/usr/share/linuxcnc/linuxcnc.nml";
+  // LinuxCNC's own default, compiled into the liblinuxcnc.a linked here:
+  // /usr/share/linuxcnc/linuxcnc.nml for Debian's package, a run-in-place
+  // tree's configs/common/linuxcnc.nml for one built from source.
+  return emc_nmlfile;
 }
 
 }  // namespace fatc::linuxcnc
