@@ -12,6 +12,16 @@
 #include "io/ini.hpp"
 
 namespace fatc::linuxcnc {
+namespace {
+// LinuxCNC 2.10 made task's enums enum classes, with the same values.
+#if FATC_LINUXCNC_SERIES >= 210
+constexpr auto kInterpIdle = EMC_TASK_INTERP::IDLE;
+constexpr auto kModeMdi = EMC_TASK_MODE::MDI;
+#else
+constexpr auto kInterpIdle = EMC_TASK_INTERP_IDLE;
+constexpr auto kModeMdi = EMC_TASK_MODE_MDI;
+#endif
+}  // namespace
 
 struct NmlLink::Channels {
   std::unique_ptr<RCS_STAT_CHANNEL> status;
@@ -45,7 +55,7 @@ bool NmlLink::poll() {
   }
   if (channels_->status->peek() == EMC_STAT_TYPE) {
     const auto* stat = static_cast<EMC_STAT*>(channels_->status->get_address());
-    interpreter_idle_ = stat->task.interpState == EMC_TASK_INTERP_IDLE;
+    interpreter_idle_ = stat->task.interpState == kInterpIdle;
     // linearUnits: machine units per mm.
     const double per_mm = stat->motion.traj.linearUnits > 0 ? stat->motion.traj.linearUnits : 1.0;
     const EmcPose& at = stat->motion.traj.actualPosition;
@@ -107,7 +117,7 @@ bool NmlLink::write_received(RCS_CMD_MSG& message) {
 
 bool NmlLink::run_mdi(const std::string& line) {
   EMC_TASK_SET_MODE mode;
-  mode.mode = EMC_TASK_MODE_MDI;
+  mode.mode = kModeMdi;
   if (!write_received(mode)) return false;
   EMC_TASK_PLAN_EXECUTE execute;
   std::strncpy(execute.command, line.c_str(), sizeof execute.command - 1);
