@@ -83,6 +83,15 @@ else
   say "built LinuxCNC $version in $(( $(date +%s) - start )) s"
 fi
 
+# rtapi_app setuid root as Debian's package installs it (mode 4755; `make
+# setuid`'s 4750 would keep the test user out): run as that user it still
+# gives its threads realtime priority, else the servo thread is one more
+# ordinary process, starved by whatever compiles beside it.
+if [ ! -u "$src/bin/rtapi_app" ] || [ "$(stat -c %U "$src/bin/rtapi_app")" != root ]; then
+  chown root "$src/bin/rtapi_app"
+  chmod 4755 "$src/bin/rtapi_app"
+  say "rtapi_app made setuid root, as Debian's package has it"
+fi
 # LinuxCNC runs as an ordinary user (rtapi_app refuses root), who must reach
 # the tree: its programs, libraries, modules and Python.
 d=$src
