@@ -83,6 +83,24 @@ else
   say "built LinuxCNC $version in $(( $(date +%s) - start )) s"
 fi
 
+# What its linuxcnc-uspace package would bring along (its Depends in the
+# debian/control that debian/configure writes): a run-in-place tree is no
+# package, and its GUIs need them (2.9.10's gladevcp imports GtkSource 4,
+# Debian's 2.9.0~pre1 GtkSource 3). python3-opencv (qtvcp's camera view
+# only, some 160 packages) left out; of alternatives the first.
+[ -f "$src/debian/control" ] || (cd "$src" && debian/configure no-docs) > /dev/null
+mapfile -t runtime < <(awk '/^Package: linuxcnc-uspace$/ {p = 1} p && /^Depends:/ {d = 1; next}
+                            d && /^[^ \t]/ {exit} d' "$src/debian/control" |
+  tr ',' '\n' | sed -e 's/|.*//' -e 's/(.*)//' -e 's/^[ \t]*//' -e 's/[ \t]*$//' |
+  grep -v -e '^\$' -e '^$' -e '^python3-opencv$')
+missing=()
+for p in "${runtime[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  say "installing LinuxCNC $version's run-time dependencies: ${missing[*]}"
+  apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
 # rtapi_app setuid root as Debian's package installs it (mode 4755; `make
 # setuid`'s 4750 would keep the test user out): run as that user it still
 # gives its threads realtime priority, else the servo thread is one more
