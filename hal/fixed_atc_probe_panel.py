@@ -274,6 +274,7 @@ class Handler:
         halcomp.newpin("tool-number", hal.HAL_S32, hal.HAL_OUT)
         halcomp.newpin("pocket-number", hal.HAL_S32, hal.HAL_OUT)
         halcomp.newpin("measure-which", hal.HAL_S32, hal.HAL_OUT)
+        halcomp.newpin("rack-keepout-lift", hal.HAL_BIT, hal.HAL_OUT)
         for name in ("state", "awaiting", "tool-in-spindle", "step-kind", "cut-off-pocket",
                      "pocket-served", "batch-done", "batch-total"):
             halcomp.newpin(name, hal.HAL_S32, hal.HAL_IN)
@@ -338,6 +339,9 @@ class Handler:
         self.builder.get_object("measure_which").set_active_id(str(MEASURE_PROGRAM))
         self.on_button_clicked(self.builder.get_object("measure-all"))
 
+    def on_keepout_lift_toggled(self, button):
+        self.comp["rack-keepout-lift"] = button.get_active()
+
     def on_button_clicked(self, button):
         name = Gtk.Buildable.get_name(button)
         if name in self.pulses:
@@ -374,6 +378,7 @@ class Handler:
             # Prompts are the activity already: the last other message.
             said = [m["text"] for m in status.get("messages", []) if m.get("kind") != "prompt"]
             get("said_words").set_text(said[-1] if said else " ")
+            get("keepout_words").set_text(status.get("keepout", " "))
         else:
             get("step_words").set_text(describe_awaiting(c["awaiting"], c["step-kind"], c["step-x"],
                                                          c["step-y"], c["step-z"], c["units-inch"]))

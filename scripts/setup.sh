@@ -27,16 +27,17 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >/dev/null
 targets=()
 for target in "$@"; do targets+=(--target "$target"); done
 cmake --build build -j"$(nproc)" "${targets[@]}"
-# The realtime chuck guard the HAL snippet loads must be in LinuxCNC's
-# modules folder. The package installs it there; without the package this
-# checkout's is compiled and installed by halcompile, said on one line, and
-# an installed package later replaces that file with its own.
+# The realtime guards the HAL snippet loads (src/rt: the chuck guard, the
+# rack guard) must be in LinuxCNC's modules folder. The package installs them
+# there; without the package this checkout's are compiled and installed by
+# halcompile, said on one line, and an installed package later replaces those
+# files with its own.
 if dpkg-query -W -f='${Status}' fixed-atc-probe 2>/dev/null | grep -q "install ok installed"; then
-  echo "setup: the chuck guard is the installed fixed-atc-probe package's"
+  echo "setup: the realtime guards are the installed fixed-atc-probe package's"
 else
   guard=$(mktemp -d)
-  cp src/rt/fatc_chuck_guard.comp "$guard/"
-  (cd "$guard" && halcompile --install fatc_chuck_guard.comp >/dev/null)
+  cp src/rt/*.comp "$guard/"
+  for comp in "$guard"/*.comp; do (cd "$guard" && halcompile --install "$comp" >/dev/null); done
   rm -rf "$guard"
-  echo "setup: installed this checkout's chuck guard into LinuxCNC's modules folder (halcompile --install; no package owns it)"
+  echo "setup: installed this checkout's realtime guards ($(cd src/rt && echo *.comp)) into LinuxCNC's modules folder (halcompile --install; no package owns them)"
 fi

@@ -13,10 +13,10 @@
 #     without the documentation), then autogen.sh, configure --with-realtime=uspace
 #     --disable-build-documentation, make; its log in SRC/src/fatc-build.log;
 #  2. builds fixed_atc_probe against it (-DLINUXCNC_ROOT=SRC: SRC's headers,
-#     libraries and halcompile, which compiles the chuck guard) in a build
-#     folder of its own, build-lcnc-<SRC's folder name> (FATC_LCNC_BUILD names
-#     another), and puts the chuck guard into SRC/rtlib where that LinuxCNC
-#     loads realtime modules from;
+#     libraries and halcompile, which compiles the realtime guards of src/rt)
+#     in a build folder of its own, build-lcnc-<SRC's folder name>
+#     (FATC_LCNC_BUILD names another), and puts every src/rt module into
+#     SRC/rtlib where that LinuxCNC loads realtime modules from;
 #  3. runs the integration label (the real LinuxCNC headless, and the GUI
 #     tests on a virtual X server) and the linuxcnc label (the adapters'
 #     unit tests against SRC) with SRC's rip-environment, and ends with
@@ -131,9 +131,16 @@ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DLINUXCNC_ROOT="$src" "
   > "$build.cmake.log" 2>&1 ||
   { cat "$build.cmake.log"; exit 1; }
 rm -f "$build.cmake.log"
-nice -n 10 cmake --build "$build" -j"$jobs" --target fixed_atc_probe chuck_guard linuxcnc_tests
-install -m 644 "$build/rt/fatc_chuck_guard.so" "$src/rtlib/fatc_chuck_guard.so"
-say "the chuck guard (compiled by $src/bin/halcompile) is in $src/rtlib"
+nice -n 10 cmake --build "$build" -j"$jobs" --target fixed_atc_probe realtime_guards linuxcnc_tests
+# Every realtime module of src/rt (the chuck guard, the rack guard), as
+# SRC's halcompile compiled it, into SRC/rtlib.
+for comp in "$root"/src/rt/*.comp; do
+  module=$(basename "$comp" .comp).so
+  [ -f "$build/rt/$module" ] ||
+    { say "$build/rt/$module was not built: CMake's realtime_guards lacks $(basename "$comp")"; exit 1; }
+  install -m 644 "$build/rt/$module" "$src/rtlib/$module"
+  say "$module (compiled by $src/bin/halcompile) is in $src/rtlib"
+done
 
 # 3. The real-LinuxCNC tests, ending with ctest's summary.
 say "running the integration tests on LinuxCNC $version ($(command -v linuxcnc))"

@@ -398,7 +398,9 @@ std::optional<program::InterpreterRun> run_interpreter(const InterpreterInput& i
   if (ini) {
     if (const auto file = ini->get("RS274NGC", "PARAMETER_FILE")) {
       std::string ignored;
-      parameters = read_small_file(from_folder(*file, machine_folder), ignored).value_or("");
+      parameters = program::interpreter_parameters(
+          read_small_file(from_folder(*file, machine_folder), ignored).value_or(""),
+          1.0 / (units_per_mm * 25.4));
     }
   }
   const auto parameter_copy = scratch.write("parameters.var", parameters, error);
@@ -451,8 +453,10 @@ std::optional<program::InterpreterRun> run_interpreter(const InterpreterInput& i
   given.numbered_path = program_copy;
   given.stub_folder = stub_folder;
   given.input_lines = numberer.input_lines();
+  given.call_lines = numberer.call_lines();
   given.lines = numberer.lines();
   program::InterpreterOutput output(std::move(given), table.tool_of_row);
+  output.listen(input.listener);
   const auto ending = run_child(argv, machine_folder, scratch.path(), input, output, error);
   if (!ending) return std::nullopt;
   if (WIFEXITED(ending->status) && WEXITSTATUS(ending->status) >= 126) {

@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 
+#include "core/program/interpreter_output.hpp"
 #include "core/program/tool_use.hpp"
 
 namespace fatc::io {
@@ -28,6 +29,8 @@ struct InterpreterInput {
   std::size_t max_program_bytes = kMaxProgramBytes;
   double seconds = kInterpreterSeconds;
   std::size_t max_output_bytes = kMaxInterpreterOutput;
+  /// Told of every canonical call and tool use as they are read; may be null.
+  program::CallListener* listener = nullptr;
 };
 
 /// LinuxCNC's standalone interpreter: $FATC_RS274 when set, else `rs274` on

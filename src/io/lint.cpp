@@ -1,5 +1,6 @@
 #include "lint.hpp"
 
+#include <strings.h>
 #include <sys/stat.h>
 
 #include <algorithm>
@@ -12,6 +13,7 @@
 #include <memory>
 #include <ostream>
 
+#include "core/program/keepout_check.hpp"
 #include "core/program/preflight.hpp"
 #include "core/program/tool_table.hpp"
 #include "files.hpp"
@@ -30,6 +32,8 @@ struct MachineIni {
   MachineMotion motion;   ///< the limits for the estimate, and where they came from
   bool remaps_m6 = true;     ///< false: the INI has no REMAP=M6 ... ngc=fixed_atc_probe_m6
   std::optional<std::string> tool_table;  ///< [EMCIO]TOOL_TABLE, from the INI's folder
+  std::optional<double> units_per_mm;     ///< [TRAJ]LINEAR_UNITS: the tool table's units
+  bool return_to_xy = false;              ///< [FIXED_ATC_PROBE]RETURN_TO_XY
 };
 
 /// Whether a REMAP line (`M6 modalgroup=6 ngc=fixed_atc_probe_m6`) is this changer's M6.
@@ -108,6 +112,10 @@ bool read_ini(const Options& options, const Config& config, MachineIni& machine,
   machine.remaps_m6 = std::any_of(remaps.begin(), remaps.end(), is_own_m6_remap);
   if (const auto table = ini->get("EMCIO", "TOOL_TABLE")) {
     machine.tool_table = (*table)[0] == '/' ? *table : folder_of(*options.ini_path) + "/" + *table;
+  }
+  if (const auto units = ini->linear_units(); units && *units > 0.0) machine.units_per_mm = units;
+  if (const auto back = ini->get("FIXED_ATC_PROBE", "RETURN_TO_XY")) {
+    machine.return_to_xy = *back == "1" || strcasecmp(back->c_str(), "true") == 0;
   }
   return true;
 }
@@ -203,10 +211,11 @@ void sort_by_line(std::vector<program::Finding>& findings) {
 }
 
 /// The program run through LinuxCNC's interpreter with the machine's INI
-/// and tool table (`tool_table`, else the INI's).
+/// and tool table (`tool_table`, else the INI's); `listener` told of its calls.
 std::optional<program::InterpreterRun> interpret(const Options& options, const Config& config,
                                                  const std::optional<std::string>& tool_table,
-                                                 std::string& error) {
+                                                 std::string& error,
+                                                 program::CallListener* listener = nullptr) {
   const auto rs274 = find_rs274(error);
   if (!rs274) return std::nullopt;
   InterpreterInput input;
@@ -216,6 +225,7 @@ std::optional<program::InterpreterRun> interpret(const Options& options, const C
   input.tool_table_path = tool_table;
   input.subroutine_path = options.subroutine_path;
   input.inch_machine = config.units == Units::inch;
+  input.listener = listener;
   return run_interpreter(input, error);
 }
 
@@ -271,12 +281,28 @@ int lint(const Options& options, std::ostream& out, std::ostream& err) {
     table = parse_tool_table(*text);
     table_name = shown_path(*table_path);
   }
-  auto run = interpret(options, config, table_path, error);
+  const std::string name = shown_path(options.program_path);
+  KeepoutCheckInput rack;
+  rack.config = &config;
+  rack.program = name;
+  rack.tools = *state.state;
+  rack.return_to_xy = machine.return_to_xy;
+  if (table) {
+    // The table is in the machine's units: the INI's, else the config's.
+    const double config_per_mm = config.units == Units::inch ? 1.0 / 25.4 : 1.0;
+    const double table_per_mm = machine.units_per_mm.value_or(config_per_mm);
+    rack.lengths.emplace();
+    for (const auto& [tool, entry] : table->tools) {
+      (*rack.lengths)[tool] = entry.z.value_or(0.0) / table_per_mm * config_per_mm;
+    }
+    rack.table_name = table_name;
+  }
+  KeepoutCheck keepout(std::move(rack));
+  auto run = interpret(options, config, table_path, error, &keepout);
   if (!run) {
     err << error << "\n";
     return 2;
   }
-  const std::string name = shown_path(options.program_path);
 
   PreflightInput input;
   input.config = &config;
@@ -289,6 +315,8 @@ int lint(const Options& options, std::ostream& out, std::ostream& err) {
 
   std::vector<program::Finding> problems = run->problems;
   problems.insert(problems.end(), checked.problems.begin(), checked.problems.end());
+  const auto entries = keepout.problems();
+  problems.insert(problems.end(), entries.begin(), entries.end());
   const auto first_change = std::find_if(run->uses.begin(), run->uses.end(), [](const auto& use) {
     return use.kind == program::ToolUse::Kind::change;
   });
@@ -299,6 +327,7 @@ int lint(const Options& options, std::ostream& out, std::ostream& err) {
   }
   sort_by_line(problems);
   std::vector<program::Finding>& unknowns = run->unknowns;
+  unknowns.insert(unknowns.end(), keepout.unknowns().begin(), keepout.unknowns().end());
   if (run->uses_not_kept > 0) {
     unknowns.push_back(program::finding(name, 0, "more than " + std::to_string(program::kMaxToolUses) +
                                        " tool changes and M61: the other " +

@@ -53,13 +53,15 @@ void StatusFile::said(MessageKind kind, const std::string& text) {
   ++serial_;
 }
 
-void StatusFile::write(const Status& status, const std::optional<InProgress>& cut_off) {
+void StatusFile::write(const Status& status, const std::optional<InProgress>& cut_off,
+                       const std::string& keepout) {
   // Called every poll: compare what it shows before building anything.
   const std::string key = std::to_string(static_cast<int>(status.phase)) + "/" +
                           std::to_string(static_cast<int>(status.awaiting)) + "/" +
                           std::to_string(serial_) + "/" + std::to_string(status.pocket) + "/" +
                           std::to_string(status.batch_done) + "/" + status.activity + "/" +
-                          (cut_off ? cut_off->sequence + cut_off->step : std::string("-"));
+                          (cut_off ? cut_off->sequence + cut_off->step : std::string("-")) + "/" +
+                          keepout;
   if (key == shown_) return;
   shown_ = key;  // a failed write is not retried every poll; the next change writes again
   nlohmann::json root = {{"phase", phase_word(status.phase)},
@@ -70,6 +72,7 @@ void StatusFile::write(const Status& status, const std::optional<InProgress>& cu
                          {"batch", {{"done", status.batch_done}, {"total", status.batch_total}}},
                          {"cut_off", nullptr},
                          {"messages", nlohmann::json::array()},
+                         {"keepout", keepout},
                          {"serial", serial_}};
   if (cut_off) {
     root["cut_off"] = {

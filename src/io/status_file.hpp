@@ -19,8 +19,10 @@ class StatusFile {
   explicit StatusFile(std::string path) : path_(std::move(path)) {}
   /// Remembers a message for the file's `messages` (the newest few).
   void said(MessageKind kind, const std::string& text);
-  /// Writes the file if the status, the cut-off sequence or the messages changed.
-  void write(const Status& status, const std::optional<InProgress>& cut_off);
+  /// Writes the file if the status, the cut-off sequence, the messages or the
+  /// rack keep-out's state (in words) changed.
+  void write(const Status& status, const std::optional<InProgress>& cut_off,
+             const std::string& keepout);
   const std::string& path() const { return path_; }
 
  private:

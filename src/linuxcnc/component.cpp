@@ -36,10 +36,11 @@ void Component::poll(Clock::time_point now, std::optional<bool> interpreter_idle
   measure_program_tools();
   start_executor_if_needed();
   if (task_free_) spindle_tool_.poll(now, *pins_->linuxcnc_tool, *changer_, *nml_, *this);
+  keepout_.poll(*pins_, *changer_, machine_ready_.value_or(false), nml_, *this);
   const Status status = changer_->status();
   write_link(*pins_, link_.write(status.phase == Phase::idle));
   write_status(*pins_, status, *changer_, link_.attached(), nml_ != nullptr);
-  status_file_.write(status, changer_->cut_off());
+  status_file_.write(status, changer_->cut_off(), keepout_words(keepout_.state()));
 }
 
 void Component::read_machine(std::optional<bool> interpreter_idle) {

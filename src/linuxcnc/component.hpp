@@ -11,6 +11,7 @@
 #include "core/config/teach.hpp"
 #include "io/status_file.hpp"
 #include "program_tools_job.hpp"
+#include "rack_keepout.hpp"
 #include "spindle_tool_sync.hpp"
 
 namespace fatc::linuxcnc {
@@ -86,6 +87,7 @@ class Component : public Ports {
   std::optional<SensorReadings> sensors_;
   bool task_free_ = false;
   SpindleToolSync spindle_tool_;
+  RackKeepout keepout_;
   io::StatusFile status_file_;
   ProgramToolsJob program_tools_;
   Edge abort_, clear_, load_, unload_, continue_, cancel_;

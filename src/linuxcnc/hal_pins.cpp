@@ -43,6 +43,7 @@ const char* type_name(const PinDeclaration& pin) {
     case PinDeclaration::Type::s32:
       return "s32";
     case PinDeclaration::Type::real:
+    case PinDeclaration::Type::real_per_box:
       return "float";
     default:
       return "bit";
@@ -50,6 +51,11 @@ const char* type_name(const PinDeclaration& pin) {
 }
 
 const char* dir_name(const PinDeclaration& pin) { return pin.dir == HAL_IN ? "in" : "out"; }
+
+std::string box_pin_name(const PinDeclaration& pin, std::size_t box) {
+  std::string name = pin.name;
+  return name.replace(name.find("-N-"), 3, "-" + std::to_string(box) + "-");
+}
 
 HalPins* create_pins(const std::string& name, int& id, const std::vector<int>& pockets) {
   id = hal_init(name.c_str());
@@ -72,6 +78,12 @@ HalPins* create_pins(const std::string& name, int& id, const std::vector<int>& p
         break;
       case PinDeclaration::Type::bit_per_pocket:
         make_pocket_pins(id, p, name, pockets);
+        break;
+      case PinDeclaration::Type::real_per_box:
+        for (std::size_t box = 0; box < kGuardBoxes; ++box) {
+          make(id, pin.dir, &(p->*pin.per_box)[box], name, box_pin_name(pin, box));
+          *(p->*pin.per_box)[box] = 0.0;
+        }
         break;
     }
   }

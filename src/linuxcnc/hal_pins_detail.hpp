@@ -2,6 +2,7 @@
 
 #include <hal.h>
 
+#include "core/rack/keepout.hpp"
 #include "hal_pins.hpp"
 
 namespace fatc::linuxcnc {
@@ -82,6 +83,22 @@ struct HalPins {
   hal_s32_t* awaiting;
   hal_bit_t* accepting;
   hal_bit_t* can_cancel;
+  hal_s32_t* rack_keepout;
+  hal_bit_t* rack_keepout_lift;
+  hal_bit_t* rack_keepout_enable;
+  hal_float_t* rack_keepout_tool_length;
+  hal_s32_t* rack_keepout_boxes;
+  /// out: box N of the rack's volume for fatc-rack-guard, machine units
+  hal_float_t* keepout_x_min[kGuardBoxes];
+  hal_float_t* keepout_x_max[kGuardBoxes];
+  hal_float_t* keepout_y_min[kGuardBoxes];
+  hal_float_t* keepout_y_max[kGuardBoxes];
+  hal_float_t* keepout_z_max[kGuardBoxes];
+  hal_s32_t* rack_keepout_trips;
+  hal_s32_t* rack_keepout_box;
+  hal_float_t* rack_keepout_at_x;
+  hal_float_t* rack_keepout_at_y;
+  hal_float_t* rack_keepout_at_z;
 };
 
 }  // namespace fatc::linuxcnc

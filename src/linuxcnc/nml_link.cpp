@@ -60,10 +60,21 @@ bool NmlLink::poll() {
     const double per_mm = stat->motion.traj.linearUnits > 0 ? stat->motion.traj.linearUnits : 1.0;
     const EmcPose& at = stat->motion.traj.actualPosition;
     position_mm_ = Point{at.tran.x / per_mm, at.tran.y / per_mm, at.tran.z / per_mm};
+    units_per_mm_ = per_mm;
+    spindle_tool_ = stat->io.tool.toolInSpindle;
+    spindle_tool_length_ = spindle_tool_ > 0 ? stat->io.tool.toolTableCurrent.offset.tran.z : 0.0;
+    task_mode_ = stat->task.mode;
+    motion_line_ = stat->task.motionLine;
     program_.assign(stat->task.file, strnlen(stat->task.file, sizeof stat->task.file));
     serial_ = std::max(serial_, stat->echo_serial_number);
   }
   return true;
+}
+
+std::string NmlLink::what_moves() const {
+  if (task_mode_ == EMC_TASK_MODE_AUTO) return "program line " + std::to_string(motion_line_);
+  if (task_mode_ == EMC_TASK_MODE_MDI) return "an MDI command";
+  return "a jog";
 }
 
 void NmlLink::tell(MessageKind kind, const std::string& text) {

@@ -26,6 +26,14 @@ class NmlLink {
   /// Where the machine is (G53, actual position), in mm, as the newest status
   /// said; nothing before one was read or once the channel failed.
   std::optional<Point> machine_position_mm() const { return position_mm_; }
+  /// Machine units per mm ([TRAJ]LINEAR_UNITS), once a status was read.
+  std::optional<double> units_per_mm() const { return units_per_mm_; }
+  /// LinuxCNC's tool in the spindle and its tool table length, machine units.
+  int spindle_tool() const { return spindle_tool_; }
+  double spindle_tool_length() const { return spindle_tool_length_; }
+  /// What task runs motion from now, in words: "program line 12", "an MDI
+  /// command", "a jog".
+  std::string what_moves() const;
   /// The program loaded in LinuxCNC (task's file), empty if none.
   const std::string& loaded_program() const { return program_; }
   /// An operator message: errors as EMC_OPERATOR_ERROR, the rest as EMC_OPERATOR_DISPLAY.
@@ -48,6 +56,11 @@ class NmlLink {
   std::unique_ptr<Channels> channels_;
   bool interpreter_idle_ = true;
   std::optional<Point> position_mm_;
+  std::optional<double> units_per_mm_;
+  int spindle_tool_ = 0;
+  double spindle_tool_length_ = 0.0;
+  int task_mode_ = 0;
+  int motion_line_ = 0;
   std::string program_;
   int serial_ = 0;
 };

@@ -5,15 +5,21 @@
 // tests/integration/pins.golden are generated from it (fatc_docs), and a
 // test fails when a generated file is stale.
 
+#include <string>
+
 #include "hal_pins_detail.hpp"
 
 namespace fatc::linuxcnc {
 
 /// `pocket-occupied-N`: one pin for each pocket of config.json.
 struct PerPocket {};
+/// `rack-keepout-N-...`: one pin for each box the rack guard holds.
+struct PerBox {
+  hal_float_t* (HalPins::*member)[kGuardBoxes];
+};
 
 struct PinDeclaration {
-  enum class Type { bit, s32, real, bit_per_pocket };
+  enum class Type { bit, s32, real, bit_per_pocket, real_per_box };
   constexpr PinDeclaration(const char* name, hal_bit_t* HalPins::*member, hal_pin_dir_t dir,
                            const char* doc, int start = 0)
       : name(name), type(Type::bit), dir(dir), doc(doc), start(start), bit(member) {}
@@ -25,6 +31,8 @@ struct PinDeclaration {
       : name(name), type(Type::real), dir(dir), doc(doc), start(start), real(member) {}
   constexpr PinDeclaration(const char* name, PerPocket, hal_pin_dir_t dir, const char* doc)
       : name(name), type(Type::bit_per_pocket), dir(dir), doc(doc) {}
+  constexpr PinDeclaration(const char* name, PerBox boxes, hal_pin_dir_t dir, const char* doc)
+      : name(name), type(Type::real_per_box), dir(dir), doc(doc), per_box(boxes.member) {}
 
   const char* name;  ///< after `fixed_atc_probe.`
   Type type;
@@ -35,12 +43,15 @@ struct PinDeclaration {
   hal_bit_t* HalPins::*bit = nullptr;
   hal_s32_t* HalPins::*s32 = nullptr;
   hal_float_t* HalPins::*real = nullptr;
+  hal_float_t* (HalPins::*per_box)[kGuardBoxes] = nullptr;
 };
 
 /// HAL's word for a pin's type: bit, s32 or float.
 const char* type_name(const PinDeclaration& pin);
 /// in or out.
 const char* dir_name(const PinDeclaration& pin);
+/// A per-box pin's name for box `box`: rack-keepout-N-x-min -> rack-keepout-2-x-min.
+std::string box_pin_name(const PinDeclaration& pin, std::size_t box);
 
 // clang-format off
 inline const PinDeclaration kPins[] = {
@@ -201,6 +212,39 @@ inline const PinDeclaration kPins[] = {
    "`load` and `unload` would be accepted now (idle, no program or MDI running)"},
   {"can-cancel", &HalPins::can_cancel, HAL_OUT,
    "`cancel` would act now: a prompt, a probe of the load flow, or measure all"},
+  // The rack kept out of every motion by the realtime guard `fatc-rack-guard`.
+  {"rack-keepout", &HalPins::rack_keepout, HAL_OUT,
+   "the keep-out of every motion: 0 off (`rack_keepout_all_motion` false), 1 armed, 2 lifted "
+   "for the changer's own moves, 3 lifted by `rack-keepout-lift`, 4 not armed: the machine is "
+   "not on and homed, or LinuxCNC's status is not read", 4},
+  {"rack-keepout-lift", &HalPins::rack_keepout_lift, HAL_IN,
+   "true lifts the keep-out while the operator jogs into the rack to teach a pocket"},
+  {"rack-keepout-enable", &HalPins::rack_keepout_enable, HAL_OUT,
+   "to `fatc-rack-guard.enable`: the keep-out is armed"},
+  {"rack-keepout-tool-length", &HalPins::rack_keepout_tool_length, HAL_OUT,
+   "to `fatc-rack-guard.tool-length`: the length of LinuxCNC's tool in the spindle in its tool "
+   "table, machine units, whatever offset is in force"},
+  {"rack-keepout-boxes", &HalPins::rack_keepout_boxes, HAL_OUT,
+   "to `fatc-rack-guard.boxes`: how many boxes the rack's volume has"},
+  {"rack-keepout-N-x-min", PerBox{&HalPins::keepout_x_min}, HAL_OUT,
+   "to `fatc-rack-guard.box.N.x-min`, N 0 to 3: box N of the rack's volume, machine units"},
+  {"rack-keepout-N-x-max", PerBox{&HalPins::keepout_x_max}, HAL_OUT,
+   "to `fatc-rack-guard.box.N.x-max`"},
+  {"rack-keepout-N-y-min", PerBox{&HalPins::keepout_y_min}, HAL_OUT,
+   "to `fatc-rack-guard.box.N.y-min`"},
+  {"rack-keepout-N-y-max", PerBox{&HalPins::keepout_y_max}, HAL_OUT,
+   "to `fatc-rack-guard.box.N.y-max`"},
+  {"rack-keepout-N-z-max", PerBox{&HalPins::keepout_z_max}, HAL_OUT,
+   "to `fatc-rack-guard.box.N.z-max`: its top for an empty spindle (the guard adds the tool's "
+   "length)"},
+  {"rack-keepout-trips", &HalPins::rack_keepout_trips, HAL_IN,
+   "from `fatc-rack-guard.trips`: it counts the motions held before they entered the rack; at "
+   "each, the component aborts what task runs and says what, where and with which tool"},
+  {"rack-keepout-box", &HalPins::rack_keepout_box, HAL_IN,
+   "from `fatc-rack-guard.box`: the box the last trip was about to enter"},
+  {"rack-keepout-at-x", &HalPins::rack_keepout_at_x, HAL_IN, "from `fatc-rack-guard.at-x`"},
+  {"rack-keepout-at-y", &HalPins::rack_keepout_at_y, HAL_IN, "from `fatc-rack-guard.at-y`"},
+  {"rack-keepout-at-z", &HalPins::rack_keepout_at_z, HAL_IN, "from `fatc-rack-guard.at-z`"},
 };
 // clang-format on
 

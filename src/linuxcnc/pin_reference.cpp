@@ -33,6 +33,8 @@ std::string pins_man() {
     std::string name = pin.name;
     if (const auto n = name.rfind("-N"); n != std::string::npos && n + 2 == name.size()) {
       name = name.substr(0, n + 1) + "\\fIN\\fB";
+    } else if (const auto m = name.find("-N-"); m != std::string::npos) {
+      name = name.substr(0, m + 1) + "\\fIN\\fB" + name.substr(m + 2);
     }
     out += ".TP\n.B fixed_atc_probe." + name + " \\fR" + type_name(pin) + " " + dir_name(pin) +
            "\n" + io::man_text(pin.doc) + "\n";
@@ -48,6 +50,11 @@ std::string pins_golden(const std::vector<int>& pockets) {
     if (pin.type == PinDeclaration::Type::bit_per_pocket) {
       for (const int pocket : pockets) {
         const std::string name = "fixed_atc_probe.pocket-occupied-" + std::to_string(pocket);
+        lines.emplace_back(name, head + name);
+      }
+    } else if (pin.type == PinDeclaration::Type::real_per_box) {
+      for (std::size_t box = 0; box < kGuardBoxes; ++box) {
+        const std::string name = "fixed_atc_probe." + box_pin_name(pin, box);
         lines.emplace_back(name, head + name);
       }
     } else {

@@ -307,18 +307,19 @@ def verify_runs(r):
 
 def holds(r, first, last):
     """Where the spindle stood each time the dry run held for Continue, in order:
-    the last sample of each hold (the first may show the status a poll late); a
-    new step number is a new hold, as two waypoints may be one place."""
-    places, held = [], None
+    the last sample of each hold. A hold begins where waiting-for-operator
+    rises (it falls between two holds, even of one place) and keeps the step
+    number it began with: the driver reads the pins one by one, so the next
+    step number may show a sample before waiting-for-operator falls."""
+    places, waiting, step = [], False, None
     for s in r["samples"][first:last]:
-        step = s["fixed_atc_probe.step-number"]
-        if not s["fixed_atc_probe.waiting-for-operator"]:
-            continue
-        if step == held:
-            places[-1] = s
-        else:
+        now = s["fixed_atc_probe.waiting-for-operator"]
+        if now and not waiting:
             places.append(s)
-            held = step
+            step = s["fixed_atc_probe.step-number"]
+        elif now and s["fixed_atc_probe.step-number"] == step:
+            places[-1] = s
+        waiting = now
     return places
 
 

@@ -4,6 +4,7 @@ runs each scenario's G-code, samples what LinuxCNC reports (position, tool in
 spindle, HAL pins) and writes it all to FATC_RESULTS as JSON. LinuxCNC shuts
 down when this exits."""
 import ctypes
+import faulthandler
 import json
 import os
 import re
@@ -25,7 +26,8 @@ PINS = ["fixed_atc_probe.chuck", "fixed_atc_probe.waiting-for-operator", "fixed_
         "fixed_atc_probe.can-cancel", "fixed_atc_probe.rack-cover-open",
         "fixed_atc_probe.rack-cover-opened", "fixed_atc_probe.rack-cover-closed",
         "fixed_atc_probe.air-blast", "fixed_atc_probe.chuck-held", "motion.feed-inhibit",
-        "spindle.0.inhibit",
+        "spindle.0.inhibit", "fixed_atc_probe.rack-keepout", "fatc-rack-guard.tripped", "fatc-rack-guard.trips",
+        "motion.jog-is-active",
         "motion.digital-out-02"]  # the benchmark programs' mark between two changes
 COMPONENT = "fixed_atc_probe"
 
@@ -349,7 +351,7 @@ def snapshot(start):
     """What the component and LinuxCNC say at one moment: pins, files, tool."""
     stat.poll()
     return {"t": time.monotonic() - start, "pins": {p: pin_value(p) for p in PINS},
-            "tool_in_spindle": stat.tool_in_spindle,
+            "tool_in_spindle": stat.tool_in_spindle, "pos": list(stat.actual_position[:3]),
             "state_file": read_json(state_path()), "status_file": read_json(state_path() + ".status")}
 
 
@@ -623,6 +625,26 @@ def run_operator(scenario):
         elif "abort" in step:
             command.abort()
             sampled_wait(lambda: stat.interp_state == linuxcnc.INTERP_IDLE, 30, "the abort")
+        elif "wait_interp_idle" in step:
+            # A move held by the rack guard: the component aborts it.
+            sampled_wait(lambda: stat.interp_state == linuxcnc.INTERP_IDLE and
+                         not hal.get_value("fatc-rack-guard.tripped"), step["wait_interp_idle"],
+                         "the interpreter idle, the rack guard released")
+        elif "jog_cont" in step:
+            # The operator holds a jog key until the machine stops or `timeout`,
+            # then lets go (JOG_STOP), as a GUI does.
+            axis, velocity = step["jog_cont"]
+            command.mode(linuxcnc.MODE_MANUAL)
+            command.wait_complete()
+            command.jog(linuxcnc.JOG_CONTINUOUS, False, axis, velocity)
+            sampled_wait(lambda: hal.get_value("motion.jog-is-active"), 10, "the jog to start")
+            try:
+                sampled_wait(lambda: not hal.get_value("motion.jog-is-active"),
+                             step.get("timeout", 30), "the jog to stop")
+            except TimeoutError:
+                pass  # the checker judges where it went
+            command.jog(linuxcnc.JOG_STOP, False, axis)
+            result["jogged_to"] = list(stat.actual_position[:3])
         elif "wait_z_below" in step:
             sampled_wait(lambda: stat.actual_position[2] < step["wait_z_below"], 60,
                          "Z below %s" % step["wait_z_below"])
@@ -681,6 +703,8 @@ def when(action, s, result):
 
 
 def main():
+    # A run that hangs: `kill -USR1` prints where the driver waits.
+    faulthandler.register(signal.SIGUSR1)
     driver = hal.component("fatc-driver")  # hal.get_value needs a component of our own
     driver.ready()
     scenarios = json.load(open(os.environ["FATC_SCENARIOS"]))

@@ -47,3 +47,20 @@ if ! grep -q "fixed_atc_probe: $work/bad.json: safe: expected an object, got 1" 
   echo "FAIL: no clear line about the bad config:"; cat "$work/bad.txt"; exit 1
 fi
 echo "ok: a bad config fails loadusr -W in $(( $(date +%s) - start )) s with: $(grep -m1 'safe:' "$work/bad.txt")"
+
+# rack_keepout_all_motion false: the component says the keep-out is off, on
+# its pin and in one line.
+sed 's/^{/{"rack_keepout_all_motion": false, /' "$root/config/config.json" > "$work/off.json"
+chmod 644 "$work/off.json"
+cat > "$work/off.hal" <<HAL
+loadusr -W $binary --config $work/off.json --state $work/state.json
+loadusr -w sleep 0.5
+show pin fixed_atc_probe.rack-keepout
+HAL
+runuser -u "$user" -- timeout 60 halrun -f "$work/off.hal" > "$work/off.txt" 2>&1 || { cat "$work/off.txt"; exit 1; }
+if ! grep -q "s32 *OUT *0 *fixed_atc_probe.rack-keepout$" "$work/off.txt" ||
+   ! grep -q "rack keep-out OFF: rack_keepout_all_motion is false" "$work/off.txt"; then
+  echo "FAIL: with rack_keepout_all_motion false the component does not say the keep-out is off:"
+  cat "$work/off.txt"; exit 1
+fi
+echo "ok: rack_keepout_all_motion false: rack-keepout 0 and: $(grep -m1 'keep-out OFF' "$work/off.txt")"

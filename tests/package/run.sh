@@ -27,8 +27,8 @@ put_back_guard() {
   # A failed run leaves nothing installed either.
   dpkg -s fixed-atc-probe >/dev/null 2>&1 && apt-get remove --purge -y -qq fixed-atc-probe >/dev/null
   tmp=$(mktemp -d)
-  cp "$root/src/rt/fatc_chuck_guard.comp" "$tmp/"
-  (cd "$tmp" && halcompile --install fatc_chuck_guard.comp >/dev/null)
+  cp "$root"/src/rt/*.comp "$tmp/"
+  for comp in "$tmp"/*.comp; do (cd "$tmp" && halcompile --install "$comp" >/dev/null); done
   rm -rf "$tmp"
 }
 trap put_back_guard EXIT
@@ -37,6 +37,7 @@ trap put_back_guard EXIT
 apt-get install -y -qq --reinstall "$deb" >/dev/null
 files=$(dpkg -L fixed-atc-probe)
 for want in /usr/bin/fixed_atc_probe /usr/lib/linuxcnc/modules/fatc_chuck_guard.so \
+            /usr/lib/linuxcnc/modules/fatc_rack_guard.so \
             /usr/share/fixed_atc_probe/nc_files/fixed_atc_probe_m6.ngc \
             /usr/share/fixed_atc_probe/nc_files/fixed_atc_probe_execute.ngc \
             /usr/share/fixed_atc_probe/nc_files/fixed_atc_probe_chuck_release.ngc \

@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "../rack/keepout.hpp"
 #include "json_text.hpp"
 #include "reader.hpp"
 
@@ -351,6 +352,13 @@ void check_geometry(Reader& reader, Config& config) {
                                             format_number(side) + "), got " +
                                             format_number(*config.rack_keepout_margin));
   }
+  if (const auto parts = rack_volume(config).size();
+      config.rack_keepout_all_motion && parts > kGuardBoxes) {
+    reader.error("rack_keepout_all_motion",
+                 "the pockets lie in " + std::to_string(parts) +
+                     " groups apart from each other, and the realtime guard holds " +
+                     std::to_string(kGuardBoxes) + ": move pockets together or set it false");
+  }
   if (config.window() <= config.check_tolerance()) {
     reader.error("probe_window", "must be larger than probe_check_tolerance (" +
                                      format_number(config.check_tolerance()) + "), got " +
@@ -399,6 +407,11 @@ double Config::keepout_margin() const {
   return std::hypot(pocket_side_offset.x, pocket_side_offset.y) / 2.0;
 }
 
+double Config::keepout_above() const {
+  if (rack_keepout_above) return *rack_keepout_above;
+  return units == Units::inch ? 0.2 : 5.0;
+}
+
 ConfigResult parse_config(const std::string& json_text) {
   ConfigResult result;
   JsonText parsed = parse_json_text(json_text);
@@ -445,6 +458,12 @@ ConfigResult parse_config(const std::string& json_text) {
   read_flush(reader, root, config);
   reader.read(root, "", "spindle_stop_timeout_seconds", config.spindle_stop_timeout_seconds);
   config.rack_keepout_margin = reader.declared(root, "", "rack_keepout_margin");
+  if (const auto all = root.find("rack_keepout_all_motion"); all != root.end()) {
+    if (const auto value = boolean(reader, *all, "rack_keepout_all_motion")) {
+      config.rack_keepout_all_motion = *value;
+    }
+  }
+  config.rack_keepout_above = reader.declared(root, "", "rack_keepout_above");
 
   read_probe_after_change(reader, root, config);
   read_choice(reader, root, "path",

@@ -99,6 +99,8 @@ struct Config {
   FlushConfig flush;
   double spindle_stop_timeout_seconds = 10.0;
   std::optional<double> rack_keepout_margin;  ///< unset: half the side offset
+  bool rack_keepout_all_motion = true;        ///< the realtime guard keeps all motion out
+  std::optional<double> rack_keepout_above;   ///< unset: 5 mm or 0.2 inch
   ProbeAfterChange probe_after_change = ProbeAfterChange::off;
   std::optional<double> probe_check_tolerance;  ///< unset: 0.1 mm or 0.004 inch
   bool manual_tools = true;             ///< M6 to a tool without pocket hands it over at `loading`
@@ -114,6 +116,8 @@ struct Config {
   /// The pocket that holds `tool` at first start, if any.
   std::optional<int> first_pocket_of(int tool) const;
   double keepout_margin() const;
+  /// How far above the holders' tops the rack's volume reaches.
+  double keepout_above() const;
   double check_tolerance() const;
   /// How far from its stored length a tool may first touch the sensor in a
   /// probe after M6: a touch outside stops the probe.

@@ -1,5 +1,6 @@
 #include "keys.hpp"
 
+#include <sstream>
 #include <stdexcept>
 
 namespace fatc {
@@ -21,6 +22,16 @@ constexpr Range kSensorTimeout{0.01, 60.0, "seconds"};
 constexpr Range kPulses{0.0, 20.0, ""};
 constexpr const char* kBoolean = "`true`, `false`";
 constexpr const char* kRequired = "required";
+
+// A key left out keeps the value a Config starts with: the defaults the
+// reference states are those values, never written twice.
+const Config kStart;
+const RackCoverConfig kCover;
+std::string stated(double value) {
+  std::ostringstream out;
+  out << value;
+  return out.str();
+}
 
 // clang-format off
 const std::vector<KeyDeclaration> kKeys = {
@@ -86,15 +97,15 @@ const std::vector<KeyDeclaration> kKeys = {
    "`\"prototype\"`: through safe XY before and after each leg; `\"direct\"`: over the rack at "
    "safe Z, safe XY only where the program or the operator comes next, only the keep-out column "
    "crossed slowly (docs/sequences.md, the direct path)"},
-  {"pocket_feed", "500", kFeed, "", "the slow moves into and out of a pocket"},
+  {"pocket_feed", stated(kStart.pocket_feed), kFeed, "", "the slow moves into and out of a pocket"},
   {"verify_feed", "`pocket_feed`", kFeed, "",
    "every move of a dry run through a pocket (verifying a pocket); into and out of the pocket "
    "never faster than `pocket_feed`"},
-  {"probe_seek_feed", "300 (sample: 3000)", kFeed, "",
+  {"probe_seek_feed", stated(kStart.probe_seek_feed) + " (sample: 3000)", kFeed, "",
    "the first, fast probing stage, and the back-off"},
-  {"probe_latch_feed", "25 (sample: 60)", kFeed, "not above `probe_seek_feed`",
+  {"probe_latch_feed", stated(kStart.probe_latch_feed) + " (sample: 60)", kFeed, "not above `probe_seek_feed`",
    "the second, slow probing stage: it sets the accuracy"},
-  {"probe_backoff", "2 (sample: 0.5)", kOffset, "",
+  {"probe_backoff", stated(kStart.probe_backoff) + " (sample: 0.5)", kOffset, "",
    "lift above the first touch before the slow stage"},
   {"probe_after_change", "`\"off\"`", {}, "`\"off\"`, `\"measure\"`, `\"check\"`",
    "after M6: nothing, measure the new tool and write its length, or measure it and fault when "
@@ -108,16 +119,24 @@ const std::vector<KeyDeclaration> kKeys = {
    "M6 to a tool with no pocket hands it over at `loading`; `false`: refused"},
   {"flush", "1 pulse of 0.2 s, 0.2 s pause", {}, "an object of the keys below",
    "chuck pulses that drop whatever the spindle holds before it takes a tool"},
-  {"flush.pulses", "1", kPulses, "a whole number", "how many times the chuck opens; 0: no flush"},
-  {"flush.pulse_seconds", "0.2", kPulse, "", "how long it stays open each time"},
-  {"flush.pause_seconds", "0.2", kPulse, "", "how long it stays closed between pulses"},
-  {"spindle_stop_timeout_seconds", "10", kTimeout, "",
+  {"flush.pulses", stated(kStart.flush.pulses), kPulses, "a whole number", "how many times the chuck opens; 0: no flush"},
+  {"flush.pulse_seconds", stated(kStart.flush.pulse_seconds), kPulse, "", "how long it stays open each time"},
+  {"flush.pause_seconds", stated(kStart.flush.pause_seconds), kPulse, "", "how long it stays closed between pulses"},
+  {"spindle_stop_timeout_seconds", stated(kStart.spindle_stop_timeout_seconds), kTimeout, "",
    "how long M6 (and a chuck about to open) waits for the spindle to stop"},
   {"rack_keepout_margin", "half the side offset's length", kMargin,
    "from 0.04 in inch; below the side offset's length",
    "half-width of each pocket's keep-out column: no move may cross it except the pocket's own "
    "approach. A holder is not zero wide: a column of nothing would let every move through the "
    "rack", 0.04},
+  {"rack_keepout_all_motion", "`true`", {}, kBoolean,
+   "the rack's volume is kept out of every motion, programs, MDI and jogs alike, by the "
+   "realtime guard `fatc-rack-guard`; `false` switches that off, and the component and panel "
+   "say it is off (the changer's own moves are checked either way)"},
+  {"rack_keepout_above", "5 mm, 0.2 inch", kMargin, "from 0.04 in inch",
+   "how far above the holders' tops (a pocket's Z plus `pocket_above_chuck_offset_z`) the "
+   "rack's volume reaches: the lowest the tip of the tool in the spindle may pass over a pocket",
+   0.04},
   {"sensors", "all `false`", {}, "an object of the keys below",
    "which optional sensors are wired; one not wired is never read"},
   {"sensors.tool_present", "`false`", {}, kBoolean,
@@ -130,15 +149,15 @@ const std::vector<KeyDeclaration> kKeys = {
   {"sensors.pocket_occupancy", "`false`", {},
    "`true` (every pocket), `false`, or a list of pockets of `pockets`, each once: `[1, 2, 5]`",
    "`pocket-occupied-N`: pocket N holds a tool"},
-  {"sensor_timeout_seconds", "1", kSensorTimeout, "",
+  {"sensor_timeout_seconds", stated(kStart.sensor_timeout_seconds), kSensorTimeout, "",
    "how long a wired sensor may take to confirm a change"},
   {"rack_cover", "absent: no cover", {},
    "an object of the keys below; `{}` turns the cover on with their defaults",
    "the rack has a dust cover on `rack-cover-open`"},
   {"rack_cover.opened_sensor", "`false`", {}, kBoolean, "`rack-cover-opened` is wired"},
   {"rack_cover.closed_sensor", "`false`", {}, kBoolean, "`rack-cover-closed` is wired"},
-  {"rack_cover.seconds", "1", kTimeout, "", "how long the cover takes to open where no sensor says"},
-  {"rack_cover.timeout_seconds", "5", kTimeout, "", "how long a wired cover sensor may take"},
+  {"rack_cover.seconds", stated(kCover.seconds), kTimeout, "", "how long the cover takes to open where no sensor says"},
+  {"rack_cover.timeout_seconds", stated(kCover.timeout_seconds), kTimeout, "", "how long a wired cover sensor may take"},
   {"air_blast", "`false`", {}, kBoolean,
    "drive `air-blast` while the chuck is open at a pocket with the spindle empty"},
 };

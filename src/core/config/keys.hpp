@@ -23,7 +23,7 @@ struct KeyDeclaration {
   /// The JSON path: "flush.pulses"; `N` stands for any pocket ("pockets.N.x");
   /// a last part "{x,y,z}" declares each of them alike.
   const char* path;
-  const char* fallback;  ///< the default in words, or "required"
+  std::string fallback;  ///< the default in words, or "required"
   std::optional<Range> bounds;
   /// The range in words where bounds do not say it all: choices, relations.
   const char* range;

@@ -3,10 +3,11 @@
 #include <cctype>
 #include <cstdio>
 #include <cstdlib>
+#include <string_view>
 
 namespace fatc::program {
 
-InterpreterTable interpreter_table(const ToolTable& table, double diameter_scale) {
+InterpreterTable interpreter_table(const ToolTable& table, double length_scale) {
   InterpreterTable result;
   result.tool_of_row.push_back(0);
   for (const auto& [tool, entry] : table.tools) {
@@ -15,10 +16,10 @@ InterpreterTable interpreter_table(const ToolTable& table, double diameter_scale
     std::string line;
     for (const std::string& field : entry.fields) {
       const char letter = static_cast<char>(std::toupper(static_cast<unsigned char>(field[0])));
-      if (letter == 'D') {
+      if (std::string_view("XYZUVWD").find(letter) != std::string_view::npos) {
         char scaled[64];
-        std::snprintf(scaled, sizeof scaled, "D%.9g", std::strtod(field.c_str() + 1, nullptr) *
-                                                          diameter_scale);
+        std::snprintf(scaled, sizeof scaled, "%c%.9g", letter,
+                      std::strtod(field.c_str() + 1, nullptr) * length_scale);
         line += scaled;
       } else {
         line += field;
@@ -28,6 +29,47 @@ InterpreterTable interpreter_table(const ToolTable& table, double diameter_scale
     if (!line.empty()) line.back() = '\n';
     result.text += line;
     result.tool_of_row.push_back(tool);
+  }
+  return result;
+}
+
+namespace {
+
+/// Whether parameter `number` holds a length of a stored position or offset:
+/// X Y Z and U V W of G28 (5161), G30 (5181), G92 (5211) and the nine
+/// coordinate systems (5221, 20 apart); not A B C, nor a system's rotation.
+bool holds_length(long number) {
+  for (const long base : {5161L, 5181L, 5211L}) {
+    const long axis = number - base;
+    if ((axis >= 0 && axis <= 2) || (axis >= 6 && axis <= 8)) return true;
+  }
+  if (number < 5221 || number > 5221 + 8 * 20 + 8) return false;
+  const long axis = (number - 5221) % 20;
+  return (axis >= 0 && axis <= 2) || (axis >= 6 && axis <= 8);
+}
+
+}  // namespace
+
+std::string interpreter_parameters(std::string_view text, double length_scale) {
+  std::string result;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    end = end == std::string_view::npos ? text.size() : end + 1;
+    const std::string line(text.substr(start, end - start));
+    start = end;
+    // LinuxCNC reads each line with sscanf("%d %lf").
+    char* after = nullptr;
+    const long number = std::strtol(line.c_str(), &after, 10);
+    char* value_end = nullptr;
+    const double value = after == line.c_str() ? 0.0 : std::strtod(after, &value_end);
+    if (after == line.c_str() || value_end == after || !holds_length(number)) {
+      result += line;
+      continue;
+    }
+    char scaled[80];
+    std::snprintf(scaled, sizeof scaled, "%ld\t%.9g\n", number, value * length_scale);
+    result += scaled;
   }
   return result;
 }

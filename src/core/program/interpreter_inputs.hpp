@@ -17,9 +17,16 @@ struct InterpreterTable {
 };
 
 /// The machine's tools, each on one row in order of tool number, LinuxCNC's
-/// own lines otherwise (what it skips left out); diameters times
-/// `diameter_scale` (rs274 reads them as inches whatever the machine's units).
-InterpreterTable interpreter_table(const ToolTable& table, double diameter_scale);
+/// own lines otherwise (what it skips left out); lengths and diameters (X Y
+/// Z U V W D) times `length_scale` (rs274 reads them as inches whatever the
+/// machine's units: sim.tbl's Z40 was a G43 of 1016 mm).
+InterpreterTable interpreter_table(const ToolTable& table, double length_scale);
+
+/// The machine's parameter file (`5221\t12.5`, one a line) as rs274 is given
+/// it: the lengths of G28, G30, G92 and G54-G59.3 (X Y Z U V W) times
+/// `length_scale`, as interpreter_table's (a G54 X12.5 of a mm machine was
+/// 317.5 mm to rs274); every other line as it is.
+std::string interpreter_parameters(std::string_view text, double length_scale);
 
 /// Without a tool table (--lint without --tool-table and --ini): rs274
 /// refuses a tool its table lacks, so it is given tools 1 to this (a table

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "../config/quote.hpp"
+#include "canonical_call.hpp"
 #include "numbered_program.hpp"
 
 namespace fatc::program {
@@ -14,10 +15,6 @@ namespace {
 
 /// How much of the interpreter's own message a finding repeats.
 constexpr std::size_t kMessageText = 300;
-
-bool starts_with(std::string_view text, std::string_view start) {
-  return text.substr(0, start.size()) == start;
-}
 
 /// The whole number in `CALL(n)`; nullopt when there is none.
 std::optional<long> argument_of(std::string_view call, std::string_view name) {
@@ -107,6 +104,12 @@ void InterpreterOutput::canonical_call(std::string_view line) {
   }
   while (at < line.size() && line[at] == ' ') ++at;
   const std::string_view call = line.substr(at);
+  if (listener_ && numbered) {
+    listener_->call(line_, true, call);
+  } else if (listener_) {
+    if (caller_.first != line_) caller_ = {line_, program_.call_lines.next_after(line_)};
+    listener_->call(caller_.second > 0 ? caller_.second : line_, false, call);
+  }
   if (const auto tool = argument_of(call, "SELECT_TOOL")) {
     any_selected_ = true;
     selected_ = static_cast<int>(*tool);
@@ -141,14 +144,15 @@ void InterpreterOutput::canonical_call(std::string_view line) {
 }
 
 void InterpreterOutput::use(ToolUse::Kind kind, std::optional<int> tool, int line) {
-  if (run_.uses.size() + unknown_changes_.size() >= kMaxToolUses) {
-    ++run_.uses_not_kept;
-    return;
-  }
   ToolUse use;
   use.kind = kind;
   use.tool = tool;
   use.where = {program_.name, line};
+  if (listener_) listener_->tool_use(use);
+  if (run_.uses.size() + unknown_changes_.size() >= kMaxToolUses) {
+    ++run_.uses_not_kept;
+    return;
+  }
   run_.uses.push_back(use);
 }
 

@@ -5,6 +5,7 @@
 #include <set>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "numbered_program.hpp"
@@ -25,7 +26,23 @@ struct ProgramGiven {
   /// find (LineNumberer::undefined_calls); empty when there is none.
   std::string stub_folder;
   LineSet input_lines;  ///< LineNumberer's
+  LineSet call_lines;   ///< LineNumberer's
   int lines = 0;        ///< LineNumberer's
+};
+
+/// What else reads the canonical calls as rs274 prints them (the rack
+/// keep-out check), told of each as InterpreterOutput reads it.
+class CallListener {
+ public:
+  virtual ~CallListener() = default;
+  /// A call without its line number and count (`STRAIGHT_TRAVERSE(1.0000, ...)`),
+  /// on `line`: its own, or, for a call of a subroutine file (`numbered`
+  /// false), the program's line that called it: the first line calling a
+  /// subroutine after the last line a call named (that line when none does;
+  /// a remapped code's own moves are shown so too, on the next call's line).
+  virtual void call(int line, bool numbered, std::string_view call) = 0;
+  /// An M6 or M61 as InterpreterOutput reads it, kept or not.
+  virtual void tool_use(const ToolUse& use) = 0;
 };
 
 /// Reads what rs274 prints of a program numbered by LineNumberer: the
@@ -50,6 +67,8 @@ class InterpreterOutput {
   bool done() const { return past_the_end_ || stopped_at_.has_value(); }
   /// The line of the last canonical call that named one (0: none yet).
   int line() const { return line_; }
+  /// Tells `listener` (which outlives this) of every call and tool use from now on.
+  void listen(CallListener* listener) { listener_ = listener; }
 
  private:
   void use(ToolUse::Kind kind, std::optional<int> tool, int line);
@@ -63,6 +82,8 @@ class InterpreterOutput {
   std::vector<int> tool_of_row_;
   InterpreterRun run_;
   int line_ = 0;                   ///< of the last call that named one
+  /// The line that called the subroutine file whose calls come now, for line_.
+  std::pair<int, int> caller_{-1, 0};
   std::optional<int> selected_;    ///< the last T, nullopt when it is not known
   int selected_line_ = 0;          ///< its line, 0 in a subroutine file
   bool any_selected_ = false;
@@ -74,6 +95,7 @@ class InterpreterOutput {
   std::optional<int> stopped_at_;  ///< the line of the error beyond kMaxErrors
   bool past_the_end_ = false;
   bool said_no_end_ = false;
+  CallListener* listener_ = nullptr;
 };
 
 /// Whether a line's text holds an M6 word (M6, m06, outside comments and

@@ -70,6 +70,13 @@ bool LineSet::contains(int line) const {
          bits_[static_cast<std::size_t>(line)];
 }
 
+int LineSet::next_after(int line) const {
+  for (std::size_t at = static_cast<std::size_t>(std::max(line, -1) + 1); at < bits_.size(); ++at) {
+    if (bits_[at]) return static_cast<int>(at);
+  }
+  return 0;
+}
+
 void LineNumberer::add(std::string_view piece) {
   if (ended_) return;
   if (const auto nul = piece.find('\0'); nul != std::string_view::npos) {
@@ -193,6 +200,7 @@ void LineNumberer::note_subroutine(std::string_view line) {
   }
   if (!file_name(name)) return;
   const std::string_view rest = std::string_view(words).substr(at);
+  if (rest.rfind("call", 0) == 0) call_lines_.insert(lines_);
   std::set<std::string>* names = rest.rfind("call", 0) == 0  ? &called_
                                  : rest.rfind("sub", 0) == 0 ? &defined_
                                                              : nullptr;

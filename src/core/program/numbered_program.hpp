@@ -30,6 +30,8 @@ class LineSet {
  public:
   void insert(int line);
   bool contains(int line) const;
+  /// The first line of the set after `line`; 0 when there is none.
+  int next_after(int line) const;
 
  private:
   std::vector<bool> bits_;
@@ -62,6 +64,8 @@ class LineNumberer {
   /// Lines that read #5399, where M66 puts the input it waited for: known
   /// only on the running machine (rs274 reads 0).
   const LineSet& input_lines() const { return input_lines_; }
+  /// Lines that call a subroutine (`o<name> call`, `o100 call`).
+  const LineSet& call_lines() const { return call_lines_; }
   int lines() const { return lines_; }
   /// Bytes of the whole lines read (what the interpreter is given of a cut file).
   std::uint64_t bytes() const { return whole_bytes_; }
@@ -91,6 +95,7 @@ class LineNumberer {
   bool ended_ = false;  ///< a NUL byte, kMaxLines or finish(): nothing more is taken
   std::optional<LineNote> nul_;
   LineSet input_lines_;
+  LineSet call_lines_;
   std::set<std::string> called_;
   std::set<std::string> defined_;
 };

@@ -4,44 +4,10 @@
 #include <cmath>
 #include <cstdio>
 
+#include "keepout.hpp"
+
 namespace fatc {
 namespace {
-
-struct Box {
-  Point low, high;
-};
-
-Box column_of(const Config& config, const Point& pocket) {
-  const double m = config.keepout_margin();
-  // Tools hang below their holder down to the table: the column has no floor.
-  return {{pocket.x - m, pocket.y - m, -1e12},
-          {pocket.x + m, pocket.y + m, pocket.z + config.pocket_above_clearance_offset_z}};
-}
-
-/// Whether the segment a→b passes through the open interior of the box
-/// (touching a face, as at above_clearance, is allowed).
-bool passes_through(const Point& a, const Point& b, const Box& box) {
-  constexpr double kTouch = 1e-6;
-  const double start[] = {a.x, a.y, a.z};
-  const double delta[] = {b.x - a.x, b.y - a.y, b.z - a.z};
-  const double low[] = {box.low.x + kTouch, box.low.y + kTouch, box.low.z + kTouch};
-  const double high[] = {box.high.x - kTouch, box.high.y - kTouch, box.high.z - kTouch};
-  double enter = 0.0;
-  double leave = 1.0;
-  for (int axis = 0; axis < 3; ++axis) {
-    if (delta[axis] == 0.0) {
-      if (start[axis] <= low[axis] || start[axis] >= high[axis]) return false;
-      continue;
-    }
-    double t1 = (low[axis] - start[axis]) / delta[axis];
-    double t2 = (high[axis] - start[axis]) / delta[axis];
-    if (t1 > t2) std::swap(t1, t2);
-    enter = std::max(enter, t1);
-    leave = std::min(leave, t2);
-    if (enter >= leave) return false;
-  }
-  return true;
-}
 
 std::string format(const char* pattern, double value) {
   char buffer[96];
@@ -88,7 +54,9 @@ std::vector<std::string> check_move(const Config& config, const Point& from, uns
   // The keep-out needs the start of the move: only once every axis is known.
   if (known == axis_xyz) {
     for (const auto& [number, pocket] : config.pockets) {
-      if (!passes_through(from, target, column_of(config, pocket.at))) continue;
+      // Touching a face, as at above_clearance, is no entry.
+      const Box column = pocket_column(config, pocket.at, config.pocket_above_clearance_offset_z);
+      if (!entry_along(from, target, column)) continue;
       if (number == step.pocket && step.approach) continue;
       problems.push_back("passes through the rack at pocket " + std::to_string(number) +
                          (number == step.pocket ? " outside its approach" : ""));

@@ -162,6 +162,11 @@ INSTANTIATE_TEST_SUITE_P(Each, BadConfigs, ::testing::Values(
   BadConfig{"timeout_zero", [](Json& j) { j["spindle_stop_timeout_seconds"] = 0; }, "spindle_stop_timeout_seconds: must be from 0.01 to 3600 seconds, got 0"},
   BadConfig{"margin_negative", [](Json& j) { j["rack_keepout_margin"] = -1; }, "rack_keepout_margin: must be from 1 to 1000 mm, got -1"},
   BadConfig{"margin_over_side", [](Json& j) { j["rack_keepout_margin"] = 45; }, "rack_keepout_margin: must be smaller than the side offset (40)"},
+  BadConfig{"keepout_all_motion_text", [](Json& j) { j["rack_keepout_all_motion"] = "yes"; }, "rack_keepout_all_motion: expected true or false, got \"yes\""},
+  BadConfig{"keepout_above_zero", [](Json& j) { j["rack_keepout_above"] = 0; }, "rack_keepout_above: must be from 1 to 1000 mm, got 0"},
+  BadConfig{"keepout_groups", [](Json& j) {
+    for (int i = 0; i < 9; ++i) j["pockets"][std::to_string(10 + i)] = {{"x", 1000.0 + 200.0 * i}};
+  }, "rack_keepout_all_motion: the pockets lie in 10 groups apart from each other, and the realtime guard holds 4: move pockets together or set it false"},
   BadConfig{"margin_inch_below_floor", [](Json& j) { j["units"] = "inch"; j["rack_keepout_margin"] = 0.01; }, "rack_keepout_margin: must be from 0.04 to 1000 inch, got 0.01"},
   BadConfig{"probe_after_change_word", [](Json& j) { j["probe_after_change"] = "always"; }, "probe_after_change: expected \"off\", \"measure\" or \"check\", got \"always\""},
   BadConfig{"tolerance_zero", [](Json& j) { j["probe_check_tolerance"] = 0; }, "probe_check_tolerance: must be from 0.0001 to 100 mm, got 0"},

@@ -83,7 +83,7 @@ namespace {
 
 /// The default a declaration states in words, as a number ("300 (sample: 3000)" -> 300).
 double stated(const char* path) {
-  return std::strtod(key(path).fallback, nullptr);
+  return std::strtod(key(path).fallback.c_str(), nullptr);
 }
 
 TEST(ConfigKeys, shouldStateTheDefaultsTheReaderGives) {

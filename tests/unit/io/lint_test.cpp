@@ -680,7 +680,8 @@ TEST_F(Lint, shouldStopAtTheEndOfAProgramWithoutM2) {
   EXPECT_LINE(r,
               "no_end.ngc: line 2: LinuxCNC stops the program here: File ended with no percent "
               "sign or program end\n");
-  EXPECT_LINE(r, "no_end.ngc: 1 tool change (M6), 0 M61, 2 problems, 0 not known\n");
+  // Not known: no tool table gives T1's length for the rack keep-out.
+  EXPECT_LINE(r, "no_end.ngc: 1 tool change (M6), 0 M61, 2 problems, 1 not known\n");
   EXPECT_WITHIN_A_SECOND(r);
 }
 
@@ -798,7 +799,10 @@ TEST_F(Lint, shouldReadAnUnclosedWhileOfAHundredThousandLinesInLinearTime) {
       big_program(path("while.ngc"), "T1 M6\no100 while [1]\n", "G0 X1\n", 100000, "M2\n");
   const LintRun r = lint(program, {"--state", state_with_lengths({1})});
   EXPECT_EQ(r.code, 0) << r.out << r.err;
-  EXPECT_LINE(r, "while.ngc: 1 tool change (M6), 0 M61, 0 problems, 0 not known\n");
+  EXPECT_LINE(r, "while.ngc: 1 tool change (M6), 0 M61, 0 problems, 1 not known\n");
+  EXPECT_LINE(r, "while.ngc: line 3: no tool table (--tool-table, or the INI's "
+                 "[EMCIO]TOOL_TABLE): the moves are checked against the rack with no tool "
+                 "length\n");
   EXPECT_CPU_BELOW(r, 5.0);
 }
 
@@ -855,6 +859,8 @@ TEST_F(Lint, shouldLintTenThousandChangesOnATwoHundredPocketRackInLinearTime) {
                                                 {"y", 20.0 + (i / 20) * 100.0}};
   }
   config["safe"] = {{"x", 450.0}, {"y", 1050.0}, {"z", -5.0}};
+  // Ten rows 100 apart: more parts than the realtime guard's four boxes.
+  config["rack_keepout_all_motion"] = false;
   config["loading"] = {{"x", 20.0}, {"y", 1100.0}, {"z", -10.0}};
   config["probe_limit"] = {{"x", 20.0}, {"y", 1100.0}, {"z", -90.0}};
   const std::string rack = write("rack200.json", config.dump());
@@ -961,6 +967,103 @@ TEST_F(Lint, shouldReportTheProblemsOfTheIniToolTable) {
   EXPECT_LINE(r,
               "p.ngc: line 2: LinuxCNC stops the program here: Requested tool 2 not found in "
               "the tool table\n");
+}
+
+// ---- the rack keep-out: config.json's rack (pockets along X at Y20, Z-80,
+// margin 20), up to Z-55 with an empty spindle; sim.tbl's lengths ----
+
+TEST_F(Lint, shouldNameTheLineThatTakesTheToolDownIntoThePocketsColumn) {
+  const std::string text =
+      "T1 M6\nG43\nG0 X150 Y60 Z-40\nG0 Z-100 (beside the rack, low)\nG0 Z-40\nG0 Y20\n"
+      "G0 Z-60\nM2\n";
+  const LintRun r = lint(write("keepout.ngc", text),
+                         {"--ini", kSimIni, "--state", state_with_lengths({1})});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r,
+              "keepout.ngc: line 7: G0 would enter the rack at pocket 3 with T1 (length "
+              "30.0000 mm), the nose at machine X150.000 Y20.000 Z-25.000\n");
+  EXPECT_NO_LINE(r, "line 4:");
+  EXPECT_LINE(r, "keepout.ngc: 1 tool change (M6), 0 M61, 1 problem, 0 not known\n");
+}
+
+TEST_F(Lint, shouldNameTheLineOfTheKeepoutScenarioProgram) {
+  // The integration scenario's program, T1 in the spindle: where the machine
+  // stands before its G53 moves is not known, where line 3 ends is.
+  Config config = *io::load_config_file(kConfig).config;
+  ToolState tools = ToolState::fresh(config);
+  tools.put_in_spindle(1);
+  io::save_state_file(path("t1.state"), tools, io::kCommandLineWait);
+  const LintRun r = lint(FATC_SOURCE_DIR "/tests/integration/keepout_program.ngc",
+                         {"--ini", kSimIni, "--state", path("t1.state")});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r,
+              "keepout_program.ngc: line 3: G1 would enter the rack at pocket 4 with T1 (length "
+              "30.0000 mm), the nose at machine X200.000 Y20.000 Z-80.000\n");
+}
+
+TEST_F(Lint, shouldRaiseTheRackByTheLengthOfTheToolInTheSpindle) {
+  // G49: the nose at Z-28; T4's tip (25 long) at Z-53 passes, T6's (50) at Z-78 does not.
+  const auto with = [&](int tool) {
+    return lint(write("long.ngc", "T" + std::to_string(tool) +
+                                      " M6\nG49\nG0 X150 Y20 Z-2\nG0 Z-28\nM2\n"),
+                {"--ini", kSimIni, "--state", state_with_lengths({4, 6})});
+  };
+  EXPECT_EQ(with(4).code, 0) << with(4).out;
+  EXPECT_LINE(with(6),
+              "long.ngc: line 4: G0 would enter the rack at pocket 3 with T6 (length 50.0000 "
+              "mm), the nose at machine X150.000 Y20.000 Z-5.000\n");
+}
+
+TEST_F(Lint, shouldNameAnArcThatSweepsThroughTheRack) {
+  // About X150 Y60 from X100 to X200: counterclockwise it dips to Y10.
+  const LintRun r = lint(write("arc.ngc", "G0 X100 Y60 Z-70\nG3 X200 Y60 I50 J0 F500\nM2\n"));
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r,
+              "arc.ngc: line 2: G3 would enter the rack at pocket 2 with an empty spindle, the "
+              "nose at machine X104.17");
+  EXPECT_EQ(lint(write("arc.ngc", "G0 X100 Y60 Z-70\nG2 X200 Y60 I50 J0 F500\nM2\n")).code, 0);
+}
+
+TEST_F(Lint, shouldNameASubroutinesMoveWithTheLineThatCallsIt) {
+  fs::create_directories(path("subs"));
+  write("subs/dip.ngc", "o<dip> sub\nG0 Z-70\no<dip> endsub\nM2\n");
+  const LintRun r = lint(write("calls_dip.ngc", "G0 X150 Y20 Z-5\n#1 = 2\no<dip> call\nM2\n"),
+                         {"--subroutine-path", path("subs")});
+  EXPECT_LINE(r,
+              "calls_dip.ngc: line 3: G0 would enter the rack at pocket 3 with an empty spindle, "
+              "the nose at machine X150.000 Y20.000 Z-55.000 (in a subroutine this line calls)\n");
+  // A subroutine of the program's own file: its own line.
+  const LintRun own = lint(write(
+      "own_dip.ngc", "o<low> sub\nG0 Z-70\no<low> endsub\nG0 X150 Y20 Z-5\no<low> call\nM2\n"));
+  EXPECT_LINE(own,
+              "own_dip.ngc: line 2: G0 would enter the rack at pocket 3 with an empty spindle, "
+              "the nose at machine X150.000 Y20.000 Z-55.000\n");
+}
+
+TEST_F(Lint, shouldTakeAnInchProgramOnAMmMachine) {
+  const LintRun r =
+      lint(write("inch.ngc", "G20\nG0 X5.9055 Y0.7874 Z-0.1969\nG0 Z-2.7559\nM2\n"));
+  EXPECT_LINE(r,
+              "inch.ngc: line 3: G0 would enter the rack at pocket 3 with an empty spindle, the "
+              "nose at machine X150.000 Y20.000 Z-55.000\n");
+}
+
+TEST_F(Lint, shouldFindTheNoseUnderEveryOffsetAsLinuxCncDoes) {
+  // G54 from the machine's parameter file (in its units, mm), G92, a
+  // rotated coordinate system and G43: G53 down over pocket 4 ends there.
+  const std::string ini = write(
+      "offsets.ini",
+      "[RS274NGC]\nPARAMETER_FILE = offsets.var\nSUBROUTINE_PATH = " FATC_SOURCE_DIR
+      "/nc_files\nREMAP = M6 modalgroup=6 ngc=fixed_atc_probe_m6\n[EMCIO]\nTOOL_TABLE = " +
+          kSimTable + "\n[TRAJ]\nLINEAR_UNITS = mm\n");
+  write("offsets.var", "5220\t1\n5221\t12.5\n5222\t-7.25\n5223\t-3\n");
+  const std::string text =
+      "T1 M6\nG54 G92 X5 Y5 Z5\nG10 L2 P1 R30\nG43\nG53 G0 X200 Y20 Z-5\nG53 G0 Z-70\nM2\n";
+  const LintRun r =
+      lint(write("offsets.ngc", text), {"--ini", ini, "--state", state_with_lengths({1})});
+  EXPECT_LINE(r,
+              "offsets.ngc: line 6: G0 would enter the rack at pocket 4 with T1 (length 30.0000 "
+              "mm), the nose at machine X200.000 Y20.000 Z-25.000\n");
 }
 
 }  // namespace

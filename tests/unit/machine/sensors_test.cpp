@@ -710,7 +710,7 @@ TEST(SensorFaults, shouldReachThePanelThroughTheStatusFile) {
   rig.run();
   for (const auto& error : rig.sim.messages(MessageKind::error))
     file.said(MessageKind::error, error);
-  file.write(rig.status(), rig.changer->cut_off());
+  file.write(rig.status(), rig.changer->cut_off(), "rack keep-out armed");
   std::ifstream in(file.path());
   const nlohmann::json status = nlohmann::json::parse(in);
   const std::string words =
@@ -720,6 +720,7 @@ TEST(SensorFaults, shouldReachThePanelThroughTheStatusFile) {
   EXPECT_EQ(status["activity"], "fault: " + words);
   EXPECT_TRUE(has(status["messages"].back()["text"].get<std::string>(), words));
   EXPECT_EQ(status["cut_off"]["pocket"], 3);
+  EXPECT_EQ(status["keepout"], "rack keep-out armed");
   std::filesystem::remove_all(folder);
 }
 

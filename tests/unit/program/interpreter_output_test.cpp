@@ -355,11 +355,11 @@ TEST(LineSet, shouldHoldTheLinesInsertedOnly) {
   EXPECT_FALSE(lines.contains(2000000));
 }
 
-TEST(InterpreterTable, shouldListEachToolOnceWithItsDiameterInInches) {
+TEST(InterpreterTable, shouldListEachToolOnceWithItsLengthsAndDiameterInInches) {
   const ToolTable table = parse_tool_table(
-      "T7 P2 Z20 D2.54 ;c\nT1 P5 Z30.0 D25.4\nT0 P0\nT4 P4 Zabc\nT1 P6 Z31\n");
+      "T7 P2 Z20.32 D2.54 ;c\nT1 P5 X2.54 Z25.4 D25.4 A90\nT0 P0\nT4 P4 Zabc\nT1 P6 Z31\n");
   const auto given = interpreter_table(table, 1.0 / 25.4);
-  EXPECT_EQ(given.text, "T1 P5 Z30.0 D1\nT7 P2 Z20 D0.1\n");
+  EXPECT_EQ(given.text, "T1 P5 X0.1 Z1 D1 A90\nT7 P2 Z0.8 D0.1\n");
   EXPECT_EQ(given.tool_of_row, (std::vector<int>{0, 1, 7}));
   const auto any = any_tool_table();
   EXPECT_EQ(any.tool_of_row.size(), static_cast<std::size_t>(kToolsWithoutTable + 1));
