@@ -17,9 +17,11 @@ namespace {
 #if FATC_LINUXCNC_SERIES >= 210
 constexpr auto kInterpIdle = EMC_TASK_INTERP::IDLE;
 constexpr auto kModeMdi = EMC_TASK_MODE::MDI;
+constexpr auto kModeAuto = EMC_TASK_MODE::AUTO;
 #else
 constexpr auto kInterpIdle = EMC_TASK_INTERP_IDLE;
 constexpr auto kModeMdi = EMC_TASK_MODE_MDI;
+constexpr auto kModeAuto = EMC_TASK_MODE_AUTO;
 #endif
 }  // namespace
 
@@ -63,7 +65,7 @@ bool NmlLink::poll() {
     units_per_mm_ = per_mm;
     spindle_tool_ = stat->io.tool.toolInSpindle;
     spindle_tool_length_ = spindle_tool_ > 0 ? stat->io.tool.toolTableCurrent.offset.tran.z : 0.0;
-    task_mode_ = stat->task.mode;
+    task_mode_ = static_cast<int>(stat->task.mode);
     motion_line_ = stat->task.motionLine;
     program_.assign(stat->task.file, strnlen(stat->task.file, sizeof stat->task.file));
     serial_ = std::max(serial_, stat->echo_serial_number);
@@ -72,8 +74,8 @@ bool NmlLink::poll() {
 }
 
 std::string NmlLink::what_moves() const {
-  if (task_mode_ == EMC_TASK_MODE_AUTO) return "program line " + std::to_string(motion_line_);
-  if (task_mode_ == EMC_TASK_MODE_MDI) return "an MDI command";
+  if (task_mode_ == static_cast<int>(kModeAuto)) return "program line " + std::to_string(motion_line_);
+  if (task_mode_ == static_cast<int>(kModeMdi)) return "an MDI command";
   return "a jog";
 }
 
