@@ -93,18 +93,23 @@ mapfile -t runtime < <(awk '/^Package: linuxcnc-uspace$/ {p = 1} p && /^Depends:
                             d && /^[^ \t]/ {exit} d' "$src/debian/control" |
   tr ',' '\n' | sed -e 's/|.*//' -e 's/(.*)//' -e 's/^[ \t]*//' -e 's/[ \t]*$//' |
   grep -v -e '^\$' -e '^$' -e '^python3-opencv$')
+# A name may be a virtual package (tclx, tclreadline: tclx8.4 and
+# tcl-tclreadline provide them): one that an installed package provides is there.
+provided=$(dpkg-query -W -f='${db:Status-Abbrev} ${Provides}\n' 2>/dev/null | awk '/^ii/ {$1 = ""; print}' |
+  tr ',' '\n' | sed -e 's/(.*)//' -e 's/^[ \t]*//' -e 's/[ \t]*$//')
 missing=()
 for p in "${runtime[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" ||
+    grep -qxF -- "$p" <<< "$provided" || missing+=("$p")
 done
 if [ ${#missing[@]} -gt 0 ]; then
   say "installing LinuxCNC $version's run-time dependencies: ${missing[*]}"
   apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 # rtapi_app setuid root as Debian's package installs it (mode 4755; `make
-# setuid`'s 4750 would keep the test user out): run as that user it still
-# gives its threads realtime priority, else the servo thread is one more
-# ordinary process, starved by whatever compiles beside it.
+# setuid`'s 4750 would keep the test user out): on a realtime kernel
+# (PREEMPT_RT) that is what gives its threads realtime priority. On a stock
+# kernel LinuxCNC runs "POSIX non-realtime" either way, 2.9 and 2.10 alike.
 if [ ! -u "$src/bin/rtapi_app" ] || [ "$(stat -c %U "$src/bin/rtapi_app")" != root ]; then
   chown root "$src/bin/rtapi_app"
   chmod 4755 "$src/bin/rtapi_app"
