@@ -18,16 +18,61 @@
 #include "core/plan/simulator.hpp"
 #include "files.hpp"
 
+#if FATC_LINUXCNC_INI_CLASS
+#include <fcntl.h>
+#include <sys/stat.h>
+
+#include <atomic>
+#endif
+
 namespace fatc::io {
 namespace {
 
+#if FATC_LINUXCNC_INI_CLASS
+// LinuxCNC 2.10 (master) replaced 2.9's ::IniFile (read from a FILE at each
+// lookup) by linuxcnc::IniFile: read from a path once, and kept by that path
+// for the whole process, never read again. So each text goes into a file of
+// a name this process never used before (its pid and a counter), readable by
+// its owner only, which the reader reads once; then the file is removed.
+std::shared_ptr<const linuxcnc::IniFile> read_with_linuxcnc(const std::string& text,
+                                                           std::string& error) {
+  static std::atomic<unsigned long> count{0};
+  const char* folder = std::getenv("TMPDIR");
+  const std::string path = std::string(folder != nullptr && *folder != '\0' ? folder : "/tmp") +
+                           "/fixed_atc_probe-ini-" + std::to_string(::getpid()) + "-" +
+                           std::to_string(++count) + ".ini";
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+  if (fd < 0) {
+    error = "cannot make a private copy to read: " + path + ": " + std::strerror(errno);
+    return nullptr;
+  }
+  const bool written = ::write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size());
+  ::close(fd);
+  std::shared_ptr<const linuxcnc::IniFile> reader;
+  if (written) reader = std::make_shared<const linuxcnc::IniFile>(path);
+  ::unlink(path.c_str());
+  if (!written) error = "cannot make a private copy to read: " + path;
+  return reader;
+}
+
+const linuxcnc::IniFile* reader_of(const std::shared_ptr<const void>& reader) {
+  const auto* ini = static_cast<const linuxcnc::IniFile*>(reader.get());
+  return ini != nullptr && ini->isOpen() ? ini : nullptr;
+}
+#endif
+
 /// LinuxCNC's reader, with the protected lookup EmcIniFile::FindLinearUnits uses.
+#if FATC_LINUXCNC_INI_CLASS
+class LinuxCncIni {
+ public:
+#else
 class LinuxCncIni : public ::IniFile {
  public:
   explicit LinuxCncIni(std::FILE* file) : ::IniFile(0, file) {}
   ErrorCode linear_units(double* result) {
     return Find(result, kLinearUnits, "LINEAR_UNITS", "TRAJ");
   }
+#endif
   static bool is_unit_name(const std::string& text) {
     for (const StrDoublePair* unit = kLinearUnits; unit->pStr != nullptr; ++unit) {
       if (::strcasecmp(text.c_str(), unit->pStr) == 0) return true;
@@ -36,7 +81,14 @@ class LinuxCncIni : public ::IniFile {
   }
 
  private:
-  // The table of EmcIniFile::linearUnitsMap (emcIniFile.cc, LinuxCNC 2.9).
+  // The table of EmcIniFile::linearUnitsMap (emcIniFile.cc, LinuxCNC 2.9;
+  // IniFile::mapLinearUnits in 2.10).
+#if FATC_LINUXCNC_INI_CLASS
+  struct StrDoublePair {
+    const char* pStr;
+    double value;
+  };
+#endif
   static inline StrDoublePair kLinearUnits[] = {
       {"mm", 1.0},        {"metric", 1.0},        {"in", 1 / 25.4},
       {"inch", 1 / 25.4}, {"imperial", 1 / 25.4}, {nullptr, 0.0}};
@@ -104,12 +156,26 @@ std::optional<IniFile> IniFile::from_text(const std::string& text, const std::st
   IniFile ini;
   ini.path_ = name;
   ini.file_.reset(file, [](std::FILE* f) { std::fclose(f); });
+#if FATC_LINUXCNC_INI_CLASS
+  ini.reader_ = read_with_linuxcnc(text, error);
+  if (ini.reader_ == nullptr) {
+    error = name + ": " + error;
+    return std::nullopt;
+  }
+#endif
   return ini;
 }
 
 std::optional<std::string> IniFile::get(const std::string& section, const std::string& key,
                                         int& line) const {
   line = 0;
+#if FATC_LINUXCNC_INI_CLASS
+  const auto* reader = reader_of(reader_);
+  if (reader == nullptr) return std::nullopt;
+  auto value = reader->findString(1, key, section);
+  if (value) line = std::max(0, reader->lineOf(1, key, section).second);
+  return value;
+#else
   LinuxCncIni reader(file_.get());
   if (!reader.IsOpen()) return std::nullopt;
   const char* value = reader.Find(key.c_str(), section.c_str(), 1, &line);
@@ -118,6 +184,7 @@ std::optional<std::string> IniFile::get(const std::string& section, const std::s
     return std::nullopt;
   }
   return std::string(value);
+#endif
 }
 
 std::optional<std::string> IniFile::get(const std::string& section, const std::string& key) const {
@@ -128,6 +195,15 @@ std::optional<std::string> IniFile::get(const std::string& section, const std::s
 std::vector<std::string> IniFile::get_all(const std::string& section,
                                           const std::string& key) const {
   std::vector<std::string> values;
+#if FATC_LINUXCNC_INI_CLASS
+  const auto* reader = reader_of(reader_);
+  if (reader == nullptr) return values;
+  for (int n = 1; n <= kMaxRepeatedKeys; ++n) {
+    auto value = reader->findString(n, key, section);
+    if (!value) break;
+    values.push_back(std::move(*value));
+  }
+#else
   LinuxCncIni reader(file_.get());
   if (!reader.IsOpen()) return values;
   // LinuxCNC's reader numbers repeated keys from 1 and reads the file from its
@@ -137,21 +213,36 @@ std::vector<std::string> IniFile::get_all(const std::string& section,
     if (value == nullptr) break;
     values.emplace_back(value);
   }
+#endif
   return values;
 }
 
 std::optional<double> IniFile::number(const std::string& section, const std::string& key) const {
+#if FATC_LINUXCNC_INI_CLASS
+  // 2.10 reads a number with strtod: trailing characters only warned about.
+  const auto* reader = reader_of(reader_);
+  if (reader == nullptr) return std::nullopt;
+  return reader->findReal(1, key, section);
+#else
   LinuxCncIni reader(file_.get());
   double value = 0.0;
   if (reader.Find(&value, key.c_str(), section.c_str()) != ::IniFile::ERR_NONE) return std::nullopt;
   return value;
+#endif
 }
 
 std::optional<double> IniFile::linear_units() const {
+#if FATC_LINUXCNC_INI_CLASS
+  // 2.10 takes a unit's name only (IniFile::findLinearUnits), no number.
+  const auto* reader = reader_of(reader_);
+  if (reader == nullptr) return std::nullopt;
+  return reader->findLinearUnits(1, "LINEAR_UNITS", "TRAJ");
+#else
   LinuxCncIni reader(file_.get());
   double value = 0.0;
   if (reader.linear_units(&value) != ::IniFile::ERR_NONE) return std::nullopt;
   return value;
+#endif
 }
 
 std::optional<SoftLimits> soft_limits(const IniFile& ini, Units units, std::string& error) {

@@ -44,6 +44,9 @@ class IniFile {
  private:
   std::string path_;
   std::shared_ptr<std::FILE> file_;  ///< a private copy of the text (memfd), never changed
+  /// LinuxCNC 2.10's reader (linuxcnc::IniFile) of the same text, read once at
+  /// from_text; empty with 2.9's, which reads file_ at each lookup.
+  std::shared_ptr<const void> reader_;
 };
 
 /// The soft limits of axes X, Y and Z ([AXIS_n] MIN_LIMIT/MAX_LIMIT), converted

@@ -58,7 +58,16 @@ void Component::read_machine(std::optional<bool> interpreter_idle) {
   const bool ready = *pins_->machine_on && *pins_->all_homed;
   if (machine_ready_ != ready) {
     machine_ready_ = ready;
-    ready ? changer_->ready() : changer_->not_ready();
+    if (ready) {
+      changer_->ready();
+    } else {
+      changer_->not_ready();
+      // LinuxCNC ends the program with the machine, the executor with it; a
+      // step still offered to it must not wait for kAbortGrace: 2.10 keeps the
+      // request output high through an estop and can be on again sooner, and
+      // the next M6's executor would take the cut-off change's step.
+      link_.drop();
+    }
   }
   // The operator flows run the executor over MDI: task must be free for it.
   task_free_ = nml_ && interpreter_idle.value_or(false);

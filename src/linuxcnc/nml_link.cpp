@@ -4,6 +4,7 @@
 #include <cstring>
 #include <emc.hh>
 #include <emc_nml.hh>
+#include <emcglb.h>
 #include <rcs_print.hh>
 #include <stat_msg.hh>
 #include <thread>
@@ -11,6 +12,18 @@
 #include "io/ini.hpp"
 
 namespace fatc::linuxcnc {
+namespace {
+// LinuxCNC 2.10 made task's enums enum classes, with the same values.
+#if FATC_LINUXCNC_SERIES >= 210
+constexpr auto kInterpIdle = EMC_TASK_INTERP::IDLE;
+constexpr auto kModeMdi = EMC_TASK_MODE::MDI;
+constexpr auto kModeAuto = EMC_TASK_MODE::AUTO;
+#else
+constexpr auto kInterpIdle = EMC_TASK_INTERP_IDLE;
+constexpr auto kModeMdi = EMC_TASK_MODE_MDI;
+constexpr auto kModeAuto = EMC_TASK_MODE_AUTO;
+#endif
+}  // namespace
 
 struct NmlLink::Channels {
   std::unique_ptr<RCS_STAT_CHANNEL> status;
@@ -44,7 +57,7 @@ bool NmlLink::poll() {
   }
   if (channels_->status->peek() == EMC_STAT_TYPE) {
     const auto* stat = static_cast<EMC_STAT*>(channels_->status->get_address());
-    interpreter_idle_ = stat->task.interpState == EMC_TASK_INTERP_IDLE;
+    interpreter_idle_ = stat->task.interpState == kInterpIdle;
     // linearUnits: machine units per mm.
     const double per_mm = stat->motion.traj.linearUnits > 0 ? stat->motion.traj.linearUnits : 1.0;
     const EmcPose& at = stat->motion.traj.actualPosition;
@@ -52,7 +65,7 @@ bool NmlLink::poll() {
     units_per_mm_ = per_mm;
     spindle_tool_ = stat->io.tool.toolInSpindle;
     spindle_tool_length_ = spindle_tool_ > 0 ? stat->io.tool.toolTableCurrent.offset.tran.z : 0.0;
-    task_mode_ = stat->task.mode;
+    task_mode_ = static_cast<int>(stat->task.mode);
     motion_line_ = stat->task.motionLine;
     program_.assign(stat->task.file, strnlen(stat->task.file, sizeof stat->task.file));
     serial_ = std::max(serial_, stat->echo_serial_number);
@@ -61,8 +74,8 @@ bool NmlLink::poll() {
 }
 
 std::string NmlLink::what_moves() const {
-  if (task_mode_ == EMC_TASK_MODE_AUTO) return "program line " + std::to_string(motion_line_);
-  if (task_mode_ == EMC_TASK_MODE_MDI) return "an MDI command";
+  if (task_mode_ == static_cast<int>(kModeAuto)) return "program line " + std::to_string(motion_line_);
+  if (task_mode_ == static_cast<int>(kModeMdi)) return "an MDI command";
   return "a jog";
 }
 
@@ -117,7 +130,7 @@ bool NmlLink::write_received(RCS_CMD_MSG& message) {
 
 bool NmlLink::run_mdi(const std::string& line) {
   EMC_TASK_SET_MODE mode;
-  mode.mode = EMC_TASK_MODE_MDI;
+  mode.mode = kModeMdi;
   if (!write_received(mode)) return false;
   EMC_TASK_PLAN_EXECUTE execute;
   std::strncpy(execute.command, line.c_str(), sizeof execute.command - 1);
@@ -136,7 +149,10 @@ std::string nml_file_of(const std::string& ini_path) {
   if (ini) {
     if (const auto file = ini->get("EMC", "NML_FILE")) return *file;
   }
-  return "/usr/share/linuxcnc/linuxcnc.nml";
+  // LinuxCNC's own default, compiled into the liblinuxcnc.a linked here:
+  // /usr/share/linuxcnc/linuxcnc.nml for Debian's package, a run-in-place
+  // tree's configs/common/linuxcnc.nml for one built from source.
+  return emc_nmlfile;
 }
 
 }  // namespace fatc::linuxcnc

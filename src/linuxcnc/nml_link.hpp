@@ -65,7 +65,8 @@ class NmlLink {
   int serial_ = 0;
 };
 
-/// The NML file LinuxCNC uses: [EMC]NML_FILE of the INI, or the default.
+/// The NML file LinuxCNC uses: [EMC]NML_FILE of the INI, or the default of
+/// the LinuxCNC built against (Debian's package, or a run-in-place tree).
 std::string nml_file_of(const std::string& ini_path);
 
 }  // namespace fatc::linuxcnc

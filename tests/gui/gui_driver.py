@@ -26,6 +26,7 @@ gi.require_version("Gdk", "3.0")
 from gi.repository import Gdk, Gio, GLib  # noqa: E402
 
 import Xlib.protocol.event  # noqa: E402
+import Xlib.error  # noqa: E402
 from Xlib import X, display  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.environ["FATC_ROOT"], "tests", "integration"))
@@ -157,10 +158,16 @@ def panel_plug():
     atom = xdisplay.intern_atom("_XEMBED_AT_SPI_PATH")
 
     def search(window):
-        value = window.get_full_property(atom, X.AnyPropertyType)
+        # A window may close while the tree is walked (AXIS opens and closes
+        # some while it starts): that one holds no panel.
+        try:
+            value = window.get_full_property(atom, X.AnyPropertyType)
+            children = [] if value else window.query_tree().children
+        except Xlib.error.XError:
+            return None
         if value:
             return value.value.decode() if isinstance(value.value, bytes) else bytes(value.value).decode()
-        for child in window.query_tree().children:
+        for child in children:
             found = search(child)
             if found:
                 return found

@@ -188,6 +188,9 @@ def after_cut(messages):
 
 def observe_refusals(case):
     """Faulted: M6 and the operator flows are refused with a message; nothing moves."""
+    # The position now, not at the last poll: machine_on() may have homed since
+    # (the estop column failed on master with the old poll as its baseline).
+    d.stat.poll()
     before = list(d.stat.actual_position[:3])
     said = run_program(program("fatc_matrix_refused.ngc", "T%d M6\nM2\n" % OTHER), 60)
     first = len(d.messages)

@@ -18,6 +18,9 @@ cmake --build "$build" --target deb >/dev/null
 deb=$(ls -t "$build"/fixed-atc-probe_*.deb | head -1)
 echo "package: $(basename "$deb") ($(du -k "$deb" | cut -f1) KiB)"
 dpkg-deb --field "$deb" Package Version Depends Recommends
+# Only onto the LinuxCNC series it was built for (cmake/linuxcnc_depends.cmake).
+dpkg-deb --field "$deb" Depends | grep -q 'linuxcnc-uspace (<< ' ||
+  { echo "FAIL: the package's Depends does not pin the LinuxCNC series it was built against"; exit 1; }
 
 put_back_guard() {
   local tmp

@@ -177,6 +177,15 @@ struct LinkRig {
     last = out;
     if (executor_turn) executor.turn(out);
   }
+
+  /// The machine went off or into estop, as the component reacts: the
+  /// changer hears of it, and the link forgets the executor's run (LinuxCNC
+  /// ended the program with it).
+  void machine_not_ready() {
+    ports.log.push_back("  component: machine not ready");
+    changer.not_ready();
+    ports.link.drop();
+  }
 };
 
 }  // namespace fatc::test

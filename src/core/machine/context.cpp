@@ -83,6 +83,7 @@ void Context::open_cover() {
   if (!config.rack_cover || cover_open) return;
   cover_open = true;
   cover_settled = false;
+  cover_closing = false;
   ++sequence_step;
   ports.set_rack_cover_open(true);
 }
@@ -90,6 +91,7 @@ void Context::open_cover() {
 void Context::close_cover() {
   if (!config.rack_cover || !cover_open) return;
   cover_open = false;
+  cover_closing = config.rack_cover->closed_sensor;
   ++sequence_step;
   ports.set_rack_cover_open(false);
 }
@@ -98,6 +100,12 @@ bool Context::cover_reads_open() const {
   if (!config.rack_cover) return true;
   if (!cover_open) return false;
   return config.rack_cover->opened_sensor ? sensors.rack_cover_opened : cover_settled;
+}
+
+bool Context::cover_still_closing() const {
+  // The cover's own disagreement is one of those disagreements() names.
+  return cover_closing && config.rack_cover && config.rack_cover->closed_sensor && !cover_open &&
+         !sensors.rack_cover_closed && disagreements().size() == 1;
 }
 
 void Context::wait(double seconds, std::string what) {

@@ -56,6 +56,9 @@ class Context {
   bool chuck_open = false;    ///< as last commanded
   bool cover_open = false;    ///< the rack cover, as last commanded
   bool cover_settled = true;  ///< an unsensed cover has had `rack_cover.seconds` to move
+  /// The changer commanded the cover closed after its last sequence and waits
+  /// for `rack-cover-closed` (Operating's ComparingSensors clears it on exit).
+  bool cover_closing = false;
   Point position;             ///< where the last published moves lead
   unsigned known_axes = 0;    ///< which axes of `position` are known
   bool at_safe() const;
@@ -128,6 +131,11 @@ class Context {
   /// No cover, or it is open: `rack-cover-opened` on where wired, else it
   /// has had its `seconds`.
   bool cover_reads_open() const;
+  /// The only disagreement is the cover the changer itself commanded closed
+  /// after its last sequence: it is still on its way (`rack-cover-closed` off,
+  /// at most `rack_cover.timeout_seconds`). A request waits for it; a cover
+  /// that reads open otherwise refuses requests.
+  bool cover_still_closing() const;
   /// Where the wired sensors contradict the tool state (or the rack cover
   /// its command), one phrase each.
   std::vector<std::string> disagreements() const;

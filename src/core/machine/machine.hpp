@@ -15,6 +15,10 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
   /// The running flow had rows for the event in hand and their guards said
   /// no: as Boost.MSM treats a submachine's, that is no unexpected event.
   bool flow_declined = false;
+  /// A request Operating leaves unanswered while no flow runs waits here
+  /// (msmf::Defer) and is offered again after the next event: see
+  /// `waits_for_the_changer`.
+  using activate_deferred_events = int;
 
   struct MachineNotReady : msmf::state<> {
     using flag_list = boost::mpl::vector1<flag::NotReady>;
@@ -215,6 +219,19 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
   Row < Faulted                    , InternalError , none            , none            , none                  >
   >;
   using transition_table = boost::mpl::joint_view<until_a_fault, after_a_fault>;
+  /// A request no state above answers with no flow running: Operating's
+  /// ComparingSensors waits for the cover it closed (CoverStillClosing), or
+  /// Operating is on its way out to a fault. It waits and is offered again
+  /// after the next event: taken once the cover reads closed, refused by
+  /// Faulted (the cover's timeout) or MachineNotReady.
+  using waits_for_the_changer = boost::mpl::vector<
+  Internal < ToolChange      , msmf::Defer                , Not<IsBusy> >,
+  Internal < LoadRequest     , msmf::Defer                , Not<IsBusy> >,
+  Internal < UnloadRequest   , msmf::Defer                , Not<IsBusy> >,
+  Internal < MeasureRequest  , msmf::Defer                , Not<IsBusy> >,
+  Internal < VerifyRequest   , msmf::Defer                , Not<IsBusy> >,
+  Internal < ChuckRequest    , msmf::Defer                , Not<IsBusy> >
+  >;
   /// What no state above answers: a request while a flow runs (Idle and the
   /// other states answer every request themselves), the operator pressed a
   /// button that has nothing to act on, or the spindle or a sensor changed
@@ -226,8 +243,9 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
   Internal < ClearFault      , Say<ThereIsNoFault>        , none >,
   Internal < SensorReport    , none                       , none >
   >;
-  using internal_transition_table =
-      boost::mpl::joint_view<RefusesRequests<BecauseBusy>, nothing_else_answers>;
+  using internal_transition_table = boost::mpl::joint_view<
+      boost::mpl::joint_view<RefusesRequests<BecauseBusy, IsBusy>, waits_for_the_changer>,
+      nothing_else_answers>;
   // clang-format on
 
   template <class Fsm, class Event>

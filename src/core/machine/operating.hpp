@@ -110,15 +110,16 @@ struct BecauseNotIdle {
   }
 };
 /// The requests, refused for one reason (a taught config: for not being idle):
-/// a state's internal rows.
-template <class Because>
+/// a state's internal rows. With `Guard`, a request is refused only where it
+/// holds (a taught config always).
+template <class Because, class Guard = none>
 using RefusesRequests =
-    boost::mpl::vector<msmf::Internal<ToolChange, Refuse<Because>, none>,
-                       msmf::Internal<LoadRequest, Refuse<Because>, none>,
-                       msmf::Internal<UnloadRequest, Refuse<Because>, none>,
-                       msmf::Internal<MeasureRequest, Refuse<Because>, none>,
-                       msmf::Internal<VerifyRequest, Refuse<Because>, none>,
-                       msmf::Internal<ChuckRequest, Refuse<Because>, none>,
+    boost::mpl::vector<msmf::Internal<ToolChange, Refuse<Because>, Guard>,
+                       msmf::Internal<LoadRequest, Refuse<Because>, Guard>,
+                       msmf::Internal<UnloadRequest, Refuse<Because>, Guard>,
+                       msmf::Internal<MeasureRequest, Refuse<Because>, Guard>,
+                       msmf::Internal<VerifyRequest, Refuse<Because>, Guard>,
+                       msmf::Internal<ChuckRequest, Refuse<Because>, Guard>,
                        msmf::Internal<ConfigChanged, Refuse<BecauseNotIdle>, none>>;
 
 // ================================================================ operating
@@ -199,16 +200,31 @@ struct Operating_ : Flow<Operating_> {
                  : c.sensor_timeout_seconds;
     }
   };
+  /// The cover this state commanded closed is still on its way, and nothing
+  /// else disagrees: a request waits for it (the top machine defers it).
+  struct CoverStillClosing {
+    template <class Event, class Fsm, class Source, class Target>
+    bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      return fsm.ctx->cover_still_closing();
+    }
+  };
   /// Before the changer takes work (at start, after a fault, after every
   /// flow, and whenever a sensor changes while idle) the wired sensors must
   /// agree with the tool state, or come to within sensor_timeout_seconds.
+  /// A request meanwhile is refused, unless it only waits for the cover to close.
   struct ComparingSensors : AwaitingSensor<SensorsAgree, SensorOrCoverTimeout> {
     using flag_list = boost::mpl::vector2<flag::Idle, flag::AwaitsSensor>;
-    using internal_transition_table = RefusesRequests<BecauseSensorsDisagree>;
+    using internal_transition_table =
+        RefusesRequests<BecauseSensorsDisagree, Not<CoverStillClosing>>;
     template <class Event, class Fsm>
     void on_entry(const Event& e, Fsm& fsm) {
       fsm.ctx->close_cover();
       AwaitingSensor::on_entry(e, fsm);
+    }
+    template <class Event, class Fsm>
+    void on_exit(const Event& e, Fsm& fsm) {
+      fsm.ctx->cover_closing = false;
+      AwaitingSensor::on_exit(e, fsm);
     }
   };
   struct SaySensorsDisagree {

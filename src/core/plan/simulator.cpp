@@ -85,7 +85,7 @@ void Simulator::set_rack_cover_open(bool open) {
   cover_open = open;
   if (!rack.modelled || rack.cover_jammed || rack.cover_open == open) return;
   rack.cover_open = open;
-  if (changer_ && !answers_late) report_sensors(*changer_);
+  if (changer_ && !answers_late && !rack.cover_slow) report_sensors(*changer_);
 }
 
 void Simulator::set_air_blast(bool on) {
@@ -323,6 +323,27 @@ Simulator planned(const Config& config, const ToolState& tools, const Planning& 
   return sim;
 }
 
+/// `then` made of a changer whose change to `to` (from `tools`) has just
+/// ended, answering late: the rack cover it closed reads closed only when
+/// its time is up, so `then` waits for it before its flow starts.
+Simulator planned_right_after(const Config& config, const ToolState& tools, int to,
+                              const std::function<void(Changer&)>& then) {
+  Simulator sim;
+  sim.sensor_z = config.probe_limit.z;
+  sim.model_rack(config, tools);
+  Changer changer(config, sim, tools);
+  changer.plan_only();
+  sim.report_sensors(changer);
+  changer.ready();
+  sim.answer_late(changer);
+  changer.tool_change(to);
+  while (changer.status().busy() && sim.run(changer, 1) == 1) {
+  }
+  then(changer);
+  run_with_operator(sim, changer);
+  return sim;
+}
+
 }  // namespace
 
 Simulator plan_change(const Config& config, int from, int to, double sensor_z) {
@@ -374,6 +395,12 @@ double longest_executor_wait(const Config& config) {
   free.pockets[config.pockets.begin()->first] = {};
   late(free, 0, [=](Changer& c) { c.load(first, 0); });
   late(with_in_spindle(config, first), 0, [=](Changer& c) { c.unload(first); });
+  if (config.rack_cover && config.rack_cover->closed_sensor) {
+    // A program's next M6 waits for the cover the last one closed.
+    const Simulator sim = planned_right_after(config, with_in_spindle(config, first), second,
+                                              [=](Changer& c) { c.tool_change(first); });
+    longest = std::max(longest, sim.longest_wait);
+  }
   return longest;
 }
 

@@ -40,6 +40,9 @@ struct Rack {
   bool drawbar_open = false;    ///< where the drawbar is
   bool cover_open = false;      ///< where the rack cover is
   bool cover_jammed = false;    ///< the rack cover does not move (its feedback stays)
+  /// The rack cover's feedback follows its command only at run()'s next
+  /// event, not at once: the changer hears of it while it is still moving.
+  bool cover_slow = false;
   Point at;                     ///< where the spindle is (known_axes of it)
   unsigned known_axes = 0;
 
@@ -148,7 +151,8 @@ Simulator plan_unload(const Config& config, const ToolState& tools, int tool);
 
 /// The longest the changer may keep the executor waiting between two steps,
 /// in seconds: the most of every change, load and unload planned with the
-/// Simulator answering late, and of a change whose first grip fails.
+/// Simulator answering late, of a change whose first grip fails, and of a
+/// change that comes while the rack cover the last one closed is moving.
 double longest_executor_wait(const Config& config);
 
 }  // namespace fatc

@@ -28,6 +28,13 @@ std::optional<long> argument_of(std::string_view call, std::string_view name) {
   return value;
 }
 
+/// `CALL()` or `CALL(n)`: LinuxCNC 2.10's rs274 prints CHANGE_TOOL() (the
+/// tool is the one selected before), 2.9's CHANGE_TOOL(n).
+bool calls(std::string_view call, std::string_view name) {
+  return argument_of(call, name) ||
+         (starts_with(call, name) && call.substr(name.size(), 2) == "()");
+}
+
 std::string replaced(std::string text, const std::string& from, const std::string& to) {
   if (from.empty()) return text;
   for (auto at = text.find(from); at != std::string::npos; at = text.find(from, at + to.size())) {
@@ -117,7 +124,7 @@ void InterpreterOutput::canonical_call(std::string_view line) {
                 "program runs on the machine (rs274 reads 0)");
       }
     }
-  } else if (argument_of(call, "CHANGE_TOOL")) {
+  } else if (calls(call, "CHANGE_TOOL")) {
     if (!any_selected_ && !said_no_t_) {
       said_no_t_ = true;
       if (run_.problems.size() < kMaxErrors) {

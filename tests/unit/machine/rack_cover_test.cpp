@@ -152,6 +152,100 @@ TEST(RackCover, shouldRefuseWorkWhileItReadsNotClosed) {
       << rig.changer->status().activity;
 }
 
+/// Runs `rig`'s change to its end, one event at a time: the changer has just
+/// commanded the cover closed, and the rack has not yet said it is.
+void run_until_the_change_ends(CoverRig& rig) {
+  rig.sim.rack.cover_slow = true;
+  for (int i = 0; i < 500 && rig.changer->status().busy(); ++i) {
+    ASSERT_EQ(rig.sim.run(*rig.changer, 1), 1) << "event " << i;
+  }
+  ASSERT_FALSE(rig.changer->status().busy());
+  ASSERT_FALSE(rig.sim.cover_open) << "commanded closed after the change";
+  ASSERT_EQ(rig.changer->status().awaiting, Awaiting::sensor) << "rack-cover-closed not yet on";
+}
+
+// LinuxCNC 2.10's task hands the M6 back within a cycle, so a program's next
+// M6 can come before the cover the last one closed reads closed.
+TEST(RackCover, shouldTakeAChangeThatComesWhileTheCoverItClosedIsStillMoving) {
+  CoverRig rig(R"("rack_cover": {"opened_sensor": true, "closed_sensor": true})");
+  rig.changer->tool_change(3);
+  run_until_the_change_ends(rig);
+  rig.changer->tool_change(5);
+  EXPECT_EQ(rig.changer->status().phase, Phase::idle) << rig.changer->status().activity;
+  EXPECT_TRUE(rig.sim.messages(MessageKind::error).empty())
+      << rig.sim.messages(MessageKind::error).front();
+  const Lines lines = rig.run();
+  EXPECT_TRUE(rig.sim.messages(MessageKind::error).empty())
+      << rig.sim.messages(MessageKind::error).front();
+  EXPECT_EQ(rig.changer->tools().spindle, 5);
+  EXPECT_EQ(rig.changer->status().phase, Phase::idle);
+  EXPECT_FALSE(rig.sim.rack.cover_open);
+}
+
+TEST(RackCover, shouldTakeAnUnloadThatComesWhileTheCoverItClosedIsStillMoving) {
+  CoverRig rig(R"("rack_cover": {"closed_sensor": true})", 2);
+  rig.changer->tool_change(0);
+  run_until_the_change_ends(rig);
+  rig.changer->unload(3);
+  rig.run();
+  EXPECT_TRUE(rig.sim.messages(MessageKind::error).empty())
+      << rig.sim.messages(MessageKind::error).front();
+  EXPECT_EQ(rig.changer->status().phase, Phase::unloading) << rig.changer->status().activity;
+  EXPECT_TRUE(rig.changer->status().awaits_operator()) << "tool 3 at loading for the operator";
+}
+
+TEST(RackCover, shouldRefuseAtOnceWhileACoverItDidNotCloseReadsOpen) {
+  CoverRig rig(R"("rack_cover": {"closed_sensor": true})");
+  rig.sim.rack.cover_open = true;  // opened by hand while idle
+  ASSERT_TRUE(rig.sim.report_sensors(*rig.changer));
+  ASSERT_EQ(rig.changer->status().awaiting, Awaiting::sensor);
+  rig.changer->tool_change(3);
+  const auto errors = rig.sim.messages(MessageKind::error);
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_EQ(errors.front(),
+            "M6 T3 refused: the sensors disagree with the saved tool state; the rack cover is not "
+            "closed (rack-cover-closed off)");
+  EXPECT_EQ(rig.changer->tools().spindle, 0);
+}
+
+TEST(RackCover, shouldRefuseAWaitingChangeAsAFaultWhenTheCoverItClosedDoesNotClose) {
+  CoverRig rig(R"("rack_cover": {"closed_sensor": true, "timeout_seconds": 3})");
+  rig.changer->tool_change(3);
+  for (int i = 0; i < 50 && !rig.sim.rack.cover_open; ++i) rig.sim.run(*rig.changer, 1);
+  ASSERT_TRUE(rig.sim.rack.cover_open);
+  rig.sim.rack.cover_jammed = true;  // opened, and now it sticks open
+  run_until_the_change_ends(rig);
+  rig.changer->tool_change(5);
+  EXPECT_TRUE(rig.sim.messages(MessageKind::error).empty()) << "it waits for the cover";
+  rig.run();
+  EXPECT_EQ(rig.changer->tools().spindle, 3);
+  EXPECT_EQ(rig.changer->status().phase, Phase::fault);
+  const auto errors = rig.sim.messages(MessageKind::error);
+  ASSERT_EQ(errors.size(), 2u);
+  EXPECT_EQ(errors.front().rfind("fault: the sensors disagree with the saved tool state; the rack "
+                                 "cover is not closed (rack-cover-closed off)",
+                                 0),
+            0u)
+      << errors.front();
+  EXPECT_EQ(errors.back(),
+            "M6 T5 refused: the changer is in fault (the sensors disagree with the saved tool "
+            "state; the rack cover is not closed (rack-cover-closed off)); clear it first");
+}
+
+TEST(RackCover, shouldRefuseAWaitingChangeWhenTheMachineGoesOff) {
+  CoverRig rig(R"("rack_cover": {"closed_sensor": true})");
+  rig.changer->tool_change(3);
+  run_until_the_change_ends(rig);
+  rig.changer->tool_change(5);
+  EXPECT_TRUE(rig.sim.messages(MessageKind::error).empty()) << "it waits for the cover";
+  rig.changer->not_ready();
+  const auto errors = rig.sim.messages(MessageKind::error);
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_EQ(errors.front(), "M6 T5 refused: the machine is not on and homed, or is in estop");
+  EXPECT_EQ(rig.changer->status().phase, Phase::not_ready);
+  EXPECT_EQ(rig.changer->tools().spindle, 3);
+}
+
 // ---------------------------------------------------------------- the air blast
 
 TEST(AirBlast, shouldBlowOnlyWhileTheChuckIsOpenAtAPocketWithTheSpindleEmpty) {

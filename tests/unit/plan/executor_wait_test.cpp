@@ -46,9 +46,23 @@ TEST(ExecutorWait, shouldCountASecondGripAfterAFailedFirst) {
 TEST(ExecutorWait, shouldCountTheRackCoverAtItsTimeout) {
   const Config config = valid_config(
       R"("spindle_stop_timeout_seconds": 0.1,
-         "rack_cover": {"opened_sensor": true, "closed_sensor": true, "timeout_seconds": 12})");
+         "rack_cover": {"opened_sensor": true, "timeout_seconds": 12})");
   // The spindle stops (0.1 s), then the cover opens before the first move.
   EXPECT_NEAR(longest_executor_wait(config), 12.1, 1e-9);
+}
+
+TEST(ExecutorWait, shouldCountAChangeThatWaitsForTheCoverTheLastOneClosed) {
+  const Config config = valid_config(
+      R"("spindle_stop_timeout_seconds": 0.1, "sensor_timeout_seconds": 0.5,
+         "rack_cover": {"closed_sensor": true, "seconds": 1, "timeout_seconds": 12})");
+  // The next M6 waits up to 12 s for the cover to close (the spindle stops
+  // meanwhile), then 1 s for it to open again before it moves.
+  EXPECT_NEAR(longest_executor_wait(config), 13.0, 1e-9);
+  const Config sensed = valid_config(
+      R"("spindle_stop_timeout_seconds": 0.1,
+         "rack_cover": {"opened_sensor": true, "closed_sensor": true, "timeout_seconds": 12})");
+  // Closing and opening, each at its timeout.
+  EXPECT_NEAR(longest_executor_wait(sensed), 24.0, 1e-9);
 }
 
 }  // namespace

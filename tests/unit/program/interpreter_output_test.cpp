@@ -63,6 +63,19 @@ TEST(InterpreterOutput, shouldTakeEachChangeOnItsTWordsLineThroughTheRemap) {
   EXPECT_TRUE(run.unknowns.empty());
 }
 
+TEST(InterpreterOutput, shouldTakeAChangeWithoutItsToolAsLinuxCnc210PrintsIt) {
+  // LinuxCNC 2.10's rs274 prints CHANGE_TOOL() with no number: the tool is
+  // the one SELECT_TOOL chose (2.9 printed CHANGE_TOOL(7)).
+  const auto run = read(
+      "   11 N1000000005 SELECT_TOOL(2)\n"
+      "   16 N..... CHANGE_TOOL()\n"
+      "   17 N1000000006 SELECT_TOOL(7)\n"
+      "   22 N..... CHANGE_TOOL()\n",
+      "");
+  EXPECT_EQ(uses_of(run), "M6 T2@5 M6 T7@6 ");
+  EXPECT_TRUE(run.problems.empty());
+}
+
 TEST(InterpreterOutput, shouldReadTheToolNumberOfAnM61FromItsRow) {
   // The table's rows: tool 12 is on row 3; rs274 names the row.
   const auto run = read("  7 N1000000001 CHANGE_TOOL_NUMBER(3)\n", "", {}, {0, 1, 7, 12});

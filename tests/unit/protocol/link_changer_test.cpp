@@ -63,5 +63,61 @@ TEST(LinkWithChanger, shouldPerformThePlannedStepsInOrderAndAnswerIocontrolWhenO
   EXPECT_TRUE(ports.unexpected_events.empty());
 }
 
+// LinuxCNC 2.10 (master) keeps the executor's step-request output high
+// through an estop and is on again within ExecutorLink::kAbortGrace: the
+// fault matrix's next M6 took the step still offered to the dead run and
+// moved the machine 70 mm before it was refused.
+TEST(LinkWithChanger, shouldPerformNoStepOfTheCutOffChangeWhenTheNextM6ComesRightAfterAnEstop) {
+  const Config config = test::valid_config();
+  LinkedPorts ports;
+  Changer changer(config, ports, ToolState::fresh(config));
+  changer.ready();
+  changer.spindle_stopped(true);
+  LinkInputs in;
+  in.interpreter_idle = false;
+  in.number = 2;
+  FakeExecutor executor(in);
+  executor.call(ExecutorCall::tool_change);
+  test::LinkRig rig{ports, changer, in, executor};
+
+  // Up to the second move offered, the executor asking for it: the estop.
+  int moves_offered = 0;
+  for (int turn = 0; turn < 2000 && moves_offered < 2; ++turn) {
+    rig.turn(false);
+    if (rig.last.step_ready && is_motion(rig.last.step.kind) && in.step_request) {
+      if (++moves_offered == 2) break;
+    }
+    executor.turn(rig.last);
+  }
+  ASSERT_EQ(moves_offered, 2);
+  ASSERT_EQ(executor.performed.size(), 1u);
+  executor.running = false;  // the program is gone; motion keeps the request high
+  in.interpreter_idle = true;
+  rig.machine_not_ready();
+  rig.turn();
+  ASSERT_EQ(changer.status().phase, Phase::fault) << "cut off during the change";
+
+  // On again at once, and the next M6's executor: its M64 finds the request high.
+  changer.ready();
+  rig.turn();
+  executor.performed.clear();
+  in.number = 3;
+  in.interpreter_idle = false;
+  executor.call(ExecutorCall::tool_change);
+  for (int turn = 0; turn < 200 && executor.running; ++turn) rig.turn();
+
+  for (const auto& line : ports.log) std::cout << line << "\n";
+  std::vector<std::string> performed;
+  for (const Step& step : executor.performed) performed.push_back(describe(step));
+  ASSERT_EQ(performed.size(), 2u) << ::testing::PrintToString(performed);
+  EXPECT_EQ(executor.performed.front().kind, StepKind::resync);
+  EXPECT_EQ(executor.performed.back().kind, StepKind::fail);
+  EXPECT_EQ(executor.performed.back().label.rfind("M6 T3 refused: the changer is in fault", 0), 0u)
+      << executor.performed.back().label;
+  EXPECT_FALSE(executor.running);
+  EXPECT_EQ(changer.status().phase, Phase::fault);
+  EXPECT_TRUE(ports.unexpected_events.empty());
+}
+
 }  // namespace
 }  // namespace fatc
