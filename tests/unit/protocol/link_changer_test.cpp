@@ -24,19 +24,26 @@ using test::FakeExecutor;
 using test::LinkedPorts;
 using test::show;
 
-TEST(LinkWithChanger, shouldPerformThePlannedStepsInOrderAndAnswerIocontrolWhenOneM6Runs) {
+/// A changer on and idle, the spindle stopped, and a program's M6 T2 whose
+/// executor has just been called.
+class LinkWithChanger : public ::testing::Test {
+ protected:
+  LinkWithChanger() {
+    changer.ready();
+    changer.spindle_stopped(true);
+    in.interpreter_idle = false;  // a program runs
+    in.number = 2;                // T2 prepared
+    executor.call(ExecutorCall::tool_change);
+  }
   const Config config = test::valid_config();
   LinkedPorts ports;
-  Changer changer(config, ports, ToolState::fresh(config));
-  changer.ready();
-  changer.spindle_stopped(true);
+  Changer changer{config, ports, ToolState::fresh(config)};
   LinkInputs in;
-  in.interpreter_idle = false;  // a program runs
-  in.number = 2;                // T2 prepared
-  FakeExecutor executor(in);
-  executor.call(ExecutorCall::tool_change);
-
+  FakeExecutor executor{in};
   test::LinkRig rig{ports, changer, in, executor};
+};
+
+TEST_F(LinkWithChanger, shouldPerformThePlannedStepsInOrderAndAnswerIocontrolWhenOneM6Runs) {
   for (int turn = 0; turn < 2000 && executor.running; ++turn) rig.turn();
 
   // The builtin M6 at the end of the remap: iocontrol's level handshake.
@@ -67,18 +74,7 @@ TEST(LinkWithChanger, shouldPerformThePlannedStepsInOrderAndAnswerIocontrolWhenO
 // through an estop and is on again within ExecutorLink::kAbortGrace: the
 // fault matrix's next M6 took the step still offered to the dead run and
 // moved the machine 70 mm before it was refused.
-TEST(LinkWithChanger, shouldPerformNoStepOfTheCutOffChangeWhenTheNextM6ComesRightAfterAnEstop) {
-  const Config config = test::valid_config();
-  LinkedPorts ports;
-  Changer changer(config, ports, ToolState::fresh(config));
-  changer.ready();
-  changer.spindle_stopped(true);
-  LinkInputs in;
-  in.interpreter_idle = false;
-  in.number = 2;
-  FakeExecutor executor(in);
-  executor.call(ExecutorCall::tool_change);
-  test::LinkRig rig{ports, changer, in, executor};
+TEST_F(LinkWithChanger, shouldPerformNoStepOfTheCutOffChangeWhenTheNextM6ComesRightAfterAnEstop) {
 
   // Up to the second move offered, the executor asking for it: the estop.
   int moves_offered = 0;
