@@ -392,19 +392,25 @@ class Handler:
         get("batch_progress").set_visible(bool(progress))
         get("measure_these").set_visible(bool(self.never_in_rack))
         get("measure_these").set_sensitive(bool(self.never_in_rack) and c["accepting"])
+        # Each input read once: every button of one refresh sees the same changer.
+        accepting = c["accepting"]
         wanted = c["tool-number"] > 0
+        pocket = c["pocket-number"] > 0
         # A teach while a program or MDI runs would take the position of a
         # moving machine: only when Load could start (idle, task free).
-        teach = c["accepting"]
-        enabled = {"load": c["accepting"] and wanted, "unload": c["accepting"] and wanted,
+        teach = accepting
+        enabled = {"load": accepting and wanted, "unload": accepting and wanted,
                    "continue": c["waiting-for-operator"], "cancel": c["can-cancel"],
-                   "clear-fault": state == PHASE_FAULT, "measure-all": c["accepting"],
-                   "teach-pocket": teach and c["pocket-number"] > 0, "teach-loading": teach,
-                   "verify-pocket": c["accepting"] and c["pocket-number"] > 0,
+                   "clear-fault": state == PHASE_FAULT, "measure-all": accepting,
+                   "teach-pocket": teach and pocket, "teach-loading": teach,
+                   "verify-pocket": accepting and pocket,
                    "teach-safe": teach, "teach-sensor": teach}
         for name, on in enabled.items():
             get(name).set_sensitive(bool(on))
-            c[name + "-enabled"] = bool(on)
+        # The pins after the screen, Load and Continue last: a reader that
+        # waits for either finds the others of the same refresh already set.
+        for name in sorted(enabled, key=lambda name: (name == "load", name == "continue")):
+            c[name + "-enabled"] = bool(enabled[name])
         return True
 
     def read_status(self):

@@ -67,10 +67,12 @@ void write_status(HalPins& pins, const Status& status, const Changer& changer,
   if (status.last_length) *pins.last_length = *status.last_length;
   // An operator flow waits for the operator once its executor run has ended
   // (the GUI and jogging are then free); M6 holds its program meanwhile.
-  *pins.waiting_for_operator =
-      status.awaits_operator() && (!executor_attached || status.holds_program);
-  *pins.can_cancel = *pins.waiting_for_operator || (status.probe_cancellable && linuxcnc_task) ||
+  const bool waiting = status.awaits_operator() && (!executor_attached || status.holds_program);
+  // can-cancel first: a reader that sees the operator awaited sees the prompt
+  // cancellable too.
+  *pins.can_cancel = waiting || (status.probe_cancellable && linuxcnc_task) ||
                      status.phase == Phase::measuring;
+  *pins.waiting_for_operator = waiting;
   // After can-cancel: a reader that sees a batch under way sees it cancellable.
   *pins.batch_done = status.batch_done;
   *pins.batch_total = status.batch_total;
