@@ -58,7 +58,7 @@ def main():
                  "epilog=change_epilog\nON_ABORT_COMMAND = O <on_abort> call", ini, flags=re.M)
     # Our component, its panel, its wiring and touch-off sensor out: basic_sim.tcl's own loops
     # answer tool-prepare and tool-change at once.
-    ini = re.sub(r"^(POSTGUI_)?HALFILE = .*(fixed_atc_probe|touchoff_sensor).*\.hal\n", "", ini, flags=re.M)
+    ini = re.sub(r"^(POSTGUI_)?HALFILE = .*(fixed_atc_probe|touchoff_sensor|spindle_sim).*\.hal\n", "", ini, flags=re.M)
     ini = re.sub(r"^GLADEVCP = .*\n", "", ini, flags=re.M)
     ini += """
 [PYTHON]

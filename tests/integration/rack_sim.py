@@ -8,8 +8,8 @@ The tool follows the drawbar: when it opens with a tool in the spindle, the
 tool drops into the pocket the spindle nose is in (or out of the machine);
 when it closes with the spindle empty in a pocket that holds a tool, the
 spindle takes it. The drawbar follows the valve (`chuck`, the fatc-chuck
-signal) after 50 ms, and opens only with air. Zero speed comes 0.3 s after
-spindle.0.on falls.
+signal) after 50 ms, and opens only with air. Zero speed is the simulated
+mill's own (config/sim/spindle_sim.hal).
 
 Faults to inject, as a test would on a real machine:
   grip-fails        bit: a closing drawbar does not take the tool (not seated)
@@ -30,7 +30,6 @@ import hal
 PERIOD = 0.005
 DRAWBAR_SECONDS = 0.05
 COVER_SECONDS = 0.2  # the rack cover takes this long to open or close
-SPIN_DOWN_SECONDS = 0.3
 AT = 0.01  # mm: the sim follows its commands exactly
 
 running = True
@@ -57,12 +56,12 @@ def main():
     c = hal.component("fatc-rack-sim")
     for name in ("x", "y", "z"):
         c.newpin(name, hal.HAL_FLOAT, hal.HAL_IN)
-    for name in ("chuck", "spindle-on", "grip-fails", "air-off", "air-cut", "cover", "cover-jam"):
+    for name in ("chuck", "grip-fails", "air-off", "air-cut", "cover", "cover-jam"):
         c.newpin(name, hal.HAL_BIT, hal.HAL_IN)
     c.newpin("air-cut-seconds", hal.HAL_FLOAT, hal.HAL_IN)
     c.newpin("take-from-pocket", hal.HAL_S32, hal.HAL_IN)
-    for name in ("tool-present", "drawbar-open", "drawbar-closed", "air-pressure-ok", "zero-speed",
-                 "cover-opened", "cover-closed"):
+    for name in ("tool-present", "drawbar-open", "drawbar-closed", "air-pressure-ok", "cover-opened",
+                 "cover-closed"):
         c.newpin(name, hal.HAL_BIT, hal.HAL_OUT)
     c.newpin("spindle-tool", hal.HAL_S32, hal.HAL_OUT)
     for tool in pockets:
@@ -85,7 +84,6 @@ def main():
     air_off_until = 0.0
     last_cut = False
     last_take = 0
-    last_on = -1e9
     note("start", pockets=holder, spindle=spindle)
 
     def pocket_at():
@@ -141,9 +139,6 @@ def main():
             holder[take] = 0
         last_take = take
 
-        if c["spindle-on"]:
-            last_on = now
-        c["zero-speed"] = not c["spindle-on"] and now - last_on >= SPIN_DOWN_SECONDS
         c["air-pressure-ok"] = air
         c["drawbar-open"] = drawbar_open
         c["drawbar-closed"] = not drawbar_open

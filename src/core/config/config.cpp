@@ -457,6 +457,11 @@ ConfigResult parse_config(const std::string& json_text) {
   reader.read(root, "", "probe_backoff", config.probe_backoff);
   read_flush(reader, root, config);
   reader.read(root, "", "spindle_stop_timeout_seconds", config.spindle_stop_timeout_seconds);
+  if (const auto overlap = root.find("move_while_spindle_stops"); overlap != root.end()) {
+    if (const auto value = boolean(reader, *overlap, "move_while_spindle_stops")) {
+      config.move_while_spindle_stops = *value;
+    }
+  }
   config.rack_keepout_margin = reader.declared(root, "", "rack_keepout_margin");
   if (const auto all = root.find("rack_keepout_all_motion"); all != root.end()) {
     if (const auto value = boolean(reader, *all, "rack_keepout_all_motion")) {

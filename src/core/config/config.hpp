@@ -98,6 +98,7 @@ struct Config {
   double probe_backoff = 2.0;      ///< lift between the two stages
   FlushConfig flush;
   double spindle_stop_timeout_seconds = 10.0;
+  bool move_while_spindle_stops = true;  ///< M6 moves toward the rack while the spindle runs down
   std::optional<double> rack_keepout_margin;  ///< unset: half the side offset
   bool rack_keepout_all_motion = true;        ///< the realtime guard keeps all motion out
   std::optional<double> rack_keepout_above;   ///< unset: 5 mm or 0.2 inch

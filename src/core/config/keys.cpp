@@ -124,6 +124,10 @@ const std::vector<KeyDeclaration> kKeys = {
   {"flush.pause_seconds", stated(kStart.flush.pause_seconds), kPulse, "", "how long it stays closed between pulses"},
   {"spindle_stop_timeout_seconds", stated(kStart.spindle_stop_timeout_seconds), kTimeout, "",
    "how long M6 (and a chuck about to open) waits for the spindle to stop"},
+  {"move_while_spindle_stops", "`true`", {}, kBoolean,
+   "M6 lifts to safe Z and travels at safe Z toward the first pocket while the spindle runs "
+   "down, the chuck closed, into no keep-out column; nothing goes lower until the spindle "
+   "stands. `false`: M6 stands until the spindle stops"},
   {"rack_keepout_margin", "half the side offset's length", kMargin,
    "from 0.04 in inch; below the side offset's length",
    "half-width of each pocket's keep-out column: no move may cross it except the pocket's own "

@@ -6,6 +6,7 @@
 #include "probing_leg.hpp"
 #include "retrieve_leg.hpp"
 #include "return_leg.hpp"
+#include "spindle_stop_leg.hpp"
 
 namespace fatc::machine {
 
@@ -19,19 +20,6 @@ struct ChangeFlow_ : Flow<ChangeFlow_> {
     return c.tools.pocket_holding(c.requested_tool).has_value();
   }
 
-  /// LinuxCNC's spindle off and, where wired, zero speed.
-  struct WaitingForSpindle
-      : AwaitingSensor<SpindleIsStopped, SpindleStopTimeout, flag::AwaitsSpindle> {};
-  struct SaySpindleDidNotStop {
-    template <class Event, class Fsm, class Source, class Target>
-    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      const Context& c = *fsm.ctx;
-      fsm.ctx->fault_reason = "the spindle did not stop within spindle_stop_timeout_seconds";
-      if (c.config.sensors.zero_speed && !c.sensors.zero_speed) {
-        fsm.ctx->fault_reason += " (zero-speed off)";
-      }
-    }
-  };
   struct ProbesAfterChange {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
@@ -44,29 +32,29 @@ struct ChangeFlow_ : Flow<ChangeFlow_> {
   /// The spindle is empty: how does the requested tool get into it?
   struct DecidingHowToFetch : Decision {};
   struct DecidingToMeasure : Decision {};
-  using initial_state = WaitingForSpindle;
+  using initial_state = SpindleStopLeg;
   // clang-format off
   using transition_table = boost::mpl::vector<
-  //    Start                            Event           Next                Action                Guard
-  // +--------------------------------+---------------+-------------------+---------------------+-------------------------+
-  Row < WaitingForSpindle              , SensorReport  , DecidingHowToEmpty, none                , SpindleIsStopped     >,
-  Row < WaitingForSpindle              , TimerElapsed  , Failed            , SaySpindleDidNotStop, none                    >,
-  Row < DecidingHowToEmpty             , none          , Returning         , none                , SpindleHoldsRackTool    >,
-  Row < DecidingHowToEmpty             , none          , HandOutLeg        , none                , SpindleHoldsManualTool  >,
-  Row < DecidingHowToEmpty             , none          , DecidingHowToFetch, none                , Not<SpindleHoldsTool>   >,
-  Row < Returning::exit_pt<Finished>   , LegDone       , DecidingHowToFetch, none                , none                    >,
-  Row < HandOutLeg::exit_pt<Finished>  , LegDone       , DecidingHowToFetch, none                , none                    >,
-  Row < HandOutLeg::exit_pt<Cancelled> , LegDone       , Cancelled         , none                , none                    >,
-  Row < DecidingHowToFetch             , none          , RetrieveLeg       , none                , RequestedRackTool       >,
-  Row < DecidingHowToFetch             , none          , HandInLeg         , none                , RequestedManualTool     >,
-  Row < DecidingHowToFetch             , none          , Finished          , none                , Not<ToolRequested>      >,
-  Row < RetrieveLeg::exit_pt<Finished> , LegDone       , DecidingToMeasure , none                , none                    >,
-  Row < HandInLeg::exit_pt<Finished>   , LegDone       , DecidingToMeasure , none                , none                    >,
-  Row < HandInLeg::exit_pt<Cancelled>  , LegDone       , Cancelled         , none                , none                    >,
-  Row < DecidingToMeasure              , none          , MeasureLeg        , none                , ProbesAfterChange       >,
-  Row < DecidingToMeasure              , none          , Finished          , none                , Not<ProbesAfterChange>  >,
-  Row < MeasureLeg::exit_pt<Finished>  , LegDone       , Finished          , none                , none                    >,
-  Row < MeasureLeg::exit_pt<Failed>    , FlowFailed    , Failed            , none                , none                    >
+  //    Start                               Event        Next                 Action   Guard
+  // +-----------------------------------+------------+--------------------+--------+------------------------+
+  Row < SpindleStopLeg::exit_pt<Finished> , LegDone    , DecidingHowToEmpty , none   , none                   >,
+  Row < SpindleStopLeg::exit_pt<Failed>   , FlowFailed , Failed             , none   , none                   >,
+  Row < DecidingHowToEmpty                , none       , Returning          , none   , SpindleHoldsRackTool   >,
+  Row < DecidingHowToEmpty                , none       , HandOutLeg         , none   , SpindleHoldsManualTool >,
+  Row < DecidingHowToEmpty                , none       , DecidingHowToFetch , none   , Not<SpindleHoldsTool>  >,
+  Row < Returning::exit_pt<Finished>      , LegDone    , DecidingHowToFetch , none   , none                   >,
+  Row < HandOutLeg::exit_pt<Finished>     , LegDone    , DecidingHowToFetch , none   , none                   >,
+  Row < HandOutLeg::exit_pt<Cancelled>    , LegDone    , Cancelled          , none   , none                   >,
+  Row < DecidingHowToFetch                , none       , RetrieveLeg        , none   , RequestedRackTool      >,
+  Row < DecidingHowToFetch                , none       , HandInLeg          , none   , RequestedManualTool    >,
+  Row < DecidingHowToFetch                , none       , Finished           , none   , Not<ToolRequested>     >,
+  Row < RetrieveLeg::exit_pt<Finished>    , LegDone    , DecidingToMeasure  , none   , none                   >,
+  Row < HandInLeg::exit_pt<Finished>      , LegDone    , DecidingToMeasure  , none   , none                   >,
+  Row < HandInLeg::exit_pt<Cancelled>     , LegDone    , Cancelled          , none   , none                   >,
+  Row < DecidingToMeasure                 , none       , MeasureLeg         , none   , ProbesAfterChange      >,
+  Row < DecidingToMeasure                 , none       , Finished           , none   , Not<ProbesAfterChange> >,
+  Row < MeasureLeg::exit_pt<Finished>     , LegDone    , Finished           , none   , none                   >,
+  Row < MeasureLeg::exit_pt<Failed>       , FlowFailed , Failed             , none   , none                   >
   >;
   // clang-format on
 };

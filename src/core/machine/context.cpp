@@ -37,7 +37,7 @@ void Context::publish(const Step& next) {
 
 void Context::walk(plan::Route route) {
   if (route.empty()) throw std::logic_error("a phase with no waypoints");
-  route_ = std::move(route);
+  route_ = plan::from_where_it_stands(config, std::move(route), position, known_axes);
   route_next_ = 1;
   publish(route_.front());
 }

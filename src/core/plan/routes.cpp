@@ -193,6 +193,54 @@ Route fetch_out_and_away(const Config& c, int pocket) {
   return route;
 }
 
+namespace {
+/// A move that stays at safe Z: across, or up (or down) to safe Z.
+bool at_safe_z(const Config& c, const Step& step) {
+  return is_motion(step.kind) && (!(step.axes & axis_z) || step.target.z == c.safe.z);
+}
+}  // namespace
+
+Route while_spindle_stops(const Config& c, const Route& first) {
+  Route route;
+  if (!c.move_while_spindle_stops) return route;
+  for (const Step& step : first) {
+    if (!at_safe_z(c, step) || (c.rack_cover && (step.axes & axis_xy))) break;
+    route.push_back(step);
+  }
+  // Across at a Z nobody knows is safe: only once up at safe Z.
+  if (route.empty() || route.front().axes != axis_z) return {};
+  return route;
+}
+
+Route from_where_it_stands(const Config& c, Route route, const Point& at, unsigned known_axes) {
+  if (!(known_axes & axis_z) || at.z != c.safe.z) return route;
+  Point along = at;
+  std::size_t start = 0;
+  for (std::size_t i = 0; i + 1 < route.size() && at_safe_z(c, route[i]); ++i) {
+    const Step& step = route[i];
+    if ((step.axes & ~known_axes) != 0) break;
+    if (step.axes & axis_x) along.x = step.target.x;
+    if (step.axes & axis_y) along.y = step.target.y;
+    if (step.axes & axis_z) along.z = step.target.z;
+    if (along.x == at.x && along.y == at.y && along.z == at.z) start = i + 1;
+  }
+  route.erase(route.begin(), route.begin() + static_cast<std::ptrdiff_t>(start));
+  return route;
+}
+
+bool stands_at_end(const Route& route, const Point& at, unsigned known_axes) {
+  Point end = at;
+  unsigned commanded = 0;
+  for (const Step& step : route) {
+    if (!is_motion(step.kind)) return false;
+    if (step.axes & axis_x) end.x = step.target.x;
+    if (step.axes & axis_y) end.y = step.target.y;
+    if (step.axes & axis_z) end.z = step.target.z;
+    commanded |= step.axes;
+  }
+  return (commanded & ~known_axes) == 0 && end.x == at.x && end.y == at.y && end.z == at.z;
+}
+
 Route to_safe_z(const Config& c) { return {safe_z(c)}; }
 Route to_loading(const Config& c) { return {loading_z(c), loading_xy(c)}; }
 Route to_sensor(const Config& c) { return {loading_z(c), sensor_xy(c)}; }

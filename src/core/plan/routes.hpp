@@ -58,6 +58,24 @@ Route fetch_down_to_tool(const Config& c, int pocket);
 /// Out of the holder with the tool (slowly while engaged) and back to safe.
 Route fetch_out_and_away(const Config& c, int pocket);
 
+// ---------------------------------------------------------------- while the spindle runs down
+/// What M6 may do before the spindle stands, of `first`, the route its first
+/// leg walks: the leading moves that stay at safe Z (up to it, and across
+/// toward the pocket above every keep-out column); with a rack cover, whose
+/// shape the config does not give, only up to safe Z. Nothing lower, the
+/// chuck closed. None where `move_while_spindle_stops` is false.
+Route while_spindle_stops(const Config& c, const Route& first);
+
+/// `route` from where the spindle stands: a leading run of moves at safe Z
+/// that ends where the spindle already is (the axes of `known_axes` of `at`)
+/// is left out, so that a leg after the moves made while the spindle ran down
+/// does not walk them again. The last waypoint is always kept.
+Route from_where_it_stands(const Config& c, Route route, const Point& at, unsigned known_axes);
+
+/// The spindle stands where `route` ends: every axis it commands known and
+/// there (`at`, of `known_axes`).
+bool stands_at_end(const Route& route, const Point& at, unsigned known_axes);
+
 // ---------------------------------------------------------------- the operator and the sensor
 /// Up to safe Z where the spindle stands.
 Route to_safe_z(const Config& c);

@@ -243,8 +243,8 @@ TEST(Change, shouldRefuseASecondRequestWhileBusyAndFinishTheFirst) {
   EXPECT_EQ(rig.changer->status().phase, Phase::idle);
 }
 
-TEST(Change, shouldWaitForTheSpindleToStopBeforeMoving) {
-  Rig rig(0);
+TEST(Change, shouldWaitForTheSpindleToStopBeforeMovingWhenToldNotToMoveMeanwhile) {
+  Rig rig(test::valid_config(R"("move_while_spindle_stops": false)"), 0);
   rig.changer->spindle_stopped(false);
   rig.changer->tool_change(2);
   EXPECT_EQ(rig.changer->status().awaiting, Awaiting::spindle);
@@ -254,15 +254,71 @@ TEST(Change, shouldWaitForTheSpindleToStopBeforeMoving) {
   EXPECT_EQ(rig.changer->tools().spindle, 2);
 }
 
-TEST(Change, shouldFaultWhenTheSpindleDoesNotStopInTime) {
+TEST(Change, shouldRiseAndCrossAtSafeZWhileTheSpindleRunsDownThenGoOnFromThere) {
+  Rig rig(2);
+  rig.changer->spindle_stopped(false);
+  rig.changer->tool_change(5);
+  rig.sim.run(*rig.changer);
+  // Then it waits for the spindle, at most spindle_stop_timeout_seconds.
+  EXPECT_EQ(rig.lines(), (Lines{"rapid safe Z", "rapid safe XY", "rapid over the side of pocket 2",
+                                "dwell 10.00"}));
+  EXPECT_EQ(rig.changer->status().awaiting, Awaiting::spindle);
+  EXPECT_FALSE(rig.sim.chuck_open);
+  const std::size_t stood = rig.sim.records.size();
+  rig.changer->spindle_stopped(true);
+  rig.sim.run(*rig.changer);
+  // The return walks on from over the side: what it would have walked first is done.
+  Lines rest = return_to_pocket(2);
+  rest.erase(rest.begin(), rest.begin() + 3);
+  EXPECT_EQ(rig.lines(stood), concat({rest, retrieve_from_safe(5), {"done T5"}}));
+  EXPECT_EQ(rig.changer->tools().spindle, 5);
+}
+
+TEST(Change, shouldCrossOverThePocketToFetchFromWhileTheSpindleRunsDownOnTheDirectPath) {
+  Rig rig(test::valid_config(R"("path": "direct")"), 0);
+  rig.changer->spindle_stopped(false);
+  rig.changer->tool_change(4);
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.lines(), (Lines{"rapid safe Z", "rapid over pocket 4", "dwell 10.00"}));
+  const std::size_t stood = rig.sim.records.size();
+  rig.changer->spindle_stopped(true);
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.lines(stood).at(0), "rapid above-chuck of pocket 4") << "not over the pocket again";
+  EXPECT_EQ(rig.changer->tools().spindle, 4);
+}
+
+TEST(Change, shouldOnlyRiseWhileTheSpindleRunsDownUnderARackCover) {
+  Rig rig(test::valid_config(R"("rack_cover": {})"), 2);
+  rig.changer->spindle_stopped(false);
+  rig.changer->tool_change(5);
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.lines(), (Lines{"rapid safe Z", "dwell 10.00"}))
+      << "the cover's shape is not known: not across";
+}
+
+TEST(Change, shouldStandStillWhileTheSpindleRunsDownBeforeAHandoverAtLoading) {
+  Rig rig(0);
+  rig.changer->spindle_stopped(false);
+  rig.changer->tool_change(20);
+  rig.sim.run(*rig.changer);
+  EXPECT_TRUE(rig.sim.motion_steps().empty()) << "the operator's hand meets the spindle there";
+  EXPECT_EQ(rig.changer->status().awaiting, Awaiting::spindle);
+}
+
+TEST(Change, shouldFaultWhenTheSpindleDoesNotStopInTimeWithNothingEntered) {
   Rig rig(1);
   rig.changer->spindle_stopped(false);
   rig.changer->tool_change(2);
+  rig.sim.run(*rig.changer);
+  ASSERT_EQ(rig.changer->status().awaiting, Awaiting::spindle);
   rig.changer->timer_elapsed();
   EXPECT_EQ(rig.changer->status().phase, Phase::fault);
-  EXPECT_TRUE(rig.sim.motion_steps().empty());
+  for (const Step& step : rig.sim.motion_steps()) {
+    EXPECT_TRUE(!(step.axes & axis_z) || step.target.z == rig.config.safe.z) << describe(step);
+  }
+  EXPECT_FALSE(rig.sim.chuck_open);
   EXPECT_EQ(rig.sim.steps().back().kind, StepKind::fail);
-  EXPECT_FALSE(rig.changer->tools().uncertain) << "nothing moved, the spindle still holds tool 1";
+  EXPECT_FALSE(rig.changer->tools().uncertain) << "nothing entered, the spindle still holds tool 1";
   EXPECT_NE(rig.sim.messages(MessageKind::error).back().find("did not stop"), std::string::npos);
 }
 

@@ -196,10 +196,12 @@ TEST(Status, shouldSayItWaitsForTheSpindleToStopAsActivity) {
   Rig rig;
   rig.changer->spindle_stopped(false);
   rig.changer->tool_change(2);
+  EXPECT_EQ(rig.status().activity, "rapid to safe Z") << "up to safe Z while it runs down";
+  rig.sim.run(*rig.changer);
   EXPECT_EQ(rig.status().awaiting, Awaiting::spindle);
   EXPECT_EQ(rig.status().activity, "waiting for the spindle to stop");
   rig.changer->spindle_stopped(true);
-  EXPECT_EQ(rig.status().activity, "rapid to safe Z");
+  EXPECT_EQ(rig.status().awaiting, Awaiting::motion);
 }
 
 TEST(Status, shouldShowThePromptAsActivityWhileTheOperatorIsAsked) {
@@ -505,6 +507,7 @@ TEST(Timer, shouldStopTheSpindleTimeoutWhenTheSpindleStops) {
   Rig rig;
   rig.changer->spindle_stopped(false);
   rig.changer->tool_change(2);
+  rig.sim.run(*rig.changer);
   ASSERT_TRUE(rig.sim.timer_armed);
   rig.changer->spindle_stopped(true);
   EXPECT_EQ(rig.status().awaiting, Awaiting::motion);

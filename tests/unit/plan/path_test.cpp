@@ -10,6 +10,7 @@
 #include "core/config/config.hpp"
 #include "core/rack/geometry.hpp"
 #include "core/program/preflight.hpp"
+#include "core/plan/routes.hpp"
 #include "core/plan/simulator.hpp"
 #include "core/plan/timing.hpp"
 #include "sim_lines.hpp"
@@ -167,6 +168,52 @@ TEST(DirectPath, shouldMoveSlowlyOnlyBelowAboveChuckInATopPocket) {
                    "feed pocket 1", "rapid above-chuck of pocket 1", "rapid safe Z",
                    "rapid over pocket 2", "rapid above-chuck of pocket 2", "feed pocket 2",
                    "feed above-chuck of pocket 2", "rapid safe Z", "rapid safe XY"}));
+}
+
+// ---------------------------------------------------------------- from where the spindle stands
+
+TEST(FromWhereItStands, shouldLeaveOutTheWayAtSafeZToWhereTheSpindleAlreadyIs) {
+  const Config c = valid_config();
+  const plan::Route route = plan::return_to_approach(c, 2);
+  const Point over_side = route.at(2).target;
+  const plan::Route rest = plan::from_where_it_stands(c, route, {over_side.x, over_side.y, c.safe.z}, axis_xyz);
+  ASSERT_EQ(rest.size(), route.size() - 3);
+  EXPECT_EQ(rest.front().label, "side of pocket 2");
+}
+
+TEST(FromWhereItStands, shouldKeepEveryWaypointWhereTheSpindleIsNotKnownToBeAtSafeZ) {
+  const Config c = valid_config();
+  const plan::Route route = plan::return_to_approach(c, 2);
+  const Point over_side = route.at(2).target;
+  EXPECT_EQ(plan::from_where_it_stands(c, route, {over_side.x, over_side.y, c.safe.z}, axis_xy).size(),
+            route.size());
+  EXPECT_EQ(plan::from_where_it_stands(c, route, {over_side.x, over_side.y, c.safe.z - 1}, axis_xyz).size(),
+            route.size());
+  EXPECT_EQ(plan::from_where_it_stands(c, route, {1, 2, c.safe.z}, axis_xyz).size(), route.size() - 1)
+      << "only the rise to safe Z, which is done";
+}
+
+TEST(FromWhereItStands, shouldKeepTheLastWaypointAndEverythingBelowSafeZ) {
+  const Config c = valid_config();
+  const plan::Route down = plan::return_into_pocket(c, 2);
+  const Point end = down.back().target;
+  EXPECT_EQ(plan::from_where_it_stands(c, down, end, axis_xyz).size(), down.size());
+  const plan::Route up = plan::to_safe_z(c);
+  EXPECT_EQ(plan::from_where_it_stands(c, up, c.safe, axis_xyz).size(), 1u);
+}
+
+TEST(WhileSpindleStops, shouldTakeOnlyTheMovesAtSafeZAndNothingWhenSwitchedOff) {
+  const Config c = valid_config();
+  const plan::Route meanwhile = plan::while_spindle_stops(c, plan::return_to_approach(c, 2));
+  ASSERT_EQ(meanwhile.size(), 3u);
+  for (const Step& step : meanwhile) {
+    EXPECT_TRUE(!(step.axes & axis_z) || step.target.z == c.safe.z) << describe(step);
+  }
+  EXPECT_TRUE(plan::while_spindle_stops(valid_config(R"("move_while_spindle_stops": false)"),
+                                        plan::return_to_approach(c, 2))
+                  .empty());
+  EXPECT_TRUE(plan::while_spindle_stops(c, plan::return_into_pocket(c, 2)).empty())
+      << "never across before the rise to safe Z";
 }
 
 }  // namespace
