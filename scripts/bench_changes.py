@@ -8,7 +8,9 @@ sim.ini): prototype/ and direct/ (tests/bench/changes.ngc on the rack of
 rack_config.json), row_prototype/, row_direct/ and row_peer/
 (tests/bench/peer_changes.ngc on rack_y.json; the peer is LinuxCNC's
 rack-toolchange example), demo_prototype/ and demo_direct/ (the demo
-program), and the idle run (idle/results.json).
+program), spindown_true/ and spindown_false/ (tests/bench/spindown.ngc,
+moving while the spindle runs down and not), and the idle run
+(idle/results.json).
 
 The bound is what `fixed_atc_probe --plan` prints as such: the direct
 path's moves at the INI's velocities and accelerations, each an exact stop
@@ -31,6 +33,48 @@ CHANGES = [(0, 12, "empty -> pocket 1"), (12, 7, "pocket 1 -> adjacent 2"),
 ROW_CHANGES = [(0, 1, "empty -> pocket 1"), (1, 2, "pocket 1 -> adjacent 2"),
                (2, 6, "pocket 2 -> farthest 6"), (6, 6, "the same tool 6 again"),
                (6, 0, "pocket 6 -> empty")]
+
+
+SPIN_DOWN = 3.0  # s: S12000 at the 4000 rpm/s of the spin-down runs
+
+
+def spin_down_bound(binary, config, ini, frm, to):
+    """(the bound with the spindle running down for SPIN_DOWN: the longer of it
+    and the moves --plan says may go meanwhile, plus the rest at the bound;
+    the bound standing until it stops: SPIN_DOWN plus the change's bound)."""
+    out = subprocess.run([binary, "--plan", "--config", config, "--ini", ini, "--from", str(frm),
+                          "--to", str(to)], capture_output=True, text=True).stdout
+    whole = re.search(r"^bound ([\d.]+) s", out, re.M)
+    parts = re.search(r"^while the spindle runs down: ([\d.]+) s .* the rest ([\d.]+) s", out, re.M)
+    if not whole or not parts:
+        return 0.0, 0.0
+    meanwhile, rest = float(parts.group(1)), float(parts.group(2))
+    return max(SPIN_DOWN, meanwhile) + rest, SPIN_DOWN + float(whole.group(1))
+
+
+def print_spin_down(work, binary):
+    """tests/bench/spindown.ngc, T1 to T2, moving while the spindle runs down
+    and standing until it stops: each change's time, the spin-down measured
+    (M5 to zero-speed) and the bounds."""
+    seconds, measured = {}, None
+    for overlap in ("true", "false"):
+        scenario, times = load(work, "spindown_" + overlap, [(1, 2, "pocket 1 -> 2")])
+        seconds[overlap] = times[0]
+        samples = scenario["samples"]
+        if overlap == "true":
+            off = next((b["t"] for a, b in zip(samples, samples[1:]) if a["spindle.0.on"] and not b["spindle.0.on"]),
+                       None)
+            stood = next((s["t"] for s in samples if off is not None and s["t"] >= off
+                          and s["fixed_atc_probe.zero-speed"]), None)
+            measured = stood - off if off is not None and stood is not None else None
+    overlapped, stop_first = spin_down_bound(binary, "%s/spindown_true/config.json" % work,
+                                             "%s/spindown_true/sim.ini" % work, 1, 2)
+    print("\nspin-down %.1f s: overlapped %.2f s, stop first %.2f s, bound %.2f s (overlapped ratio to bound "
+          "%.2f; stop first's bound %.2f s, ratio %.2f; the spin-down measured from M5 to zero-speed: %s)"
+          % (SPIN_DOWN, seconds["true"], seconds["false"], overlapped,
+             seconds["true"] / overlapped if overlapped else 0.0, stop_first,
+             seconds["false"] / stop_first if stop_first else 0.0,
+             "%.2f s" % measured if measured is not None else "not seen"))
 
 
 def plan_bounds(binary, config, ini, frm, to):
@@ -201,6 +245,7 @@ def main():
               "bound)" % (prototype, prototype / sum(rack["bound"]), blended, blended / sum(rack["bound"])))
     print_table("peer_changes.ngc, top pockets", ("prototype", "direct", "peer", "bound"), row, ROW_CHANGES)
     print_demo(work, binary)
+    print_spin_down(work, binary)
 
 
 if __name__ == "__main__":

@@ -7,7 +7,11 @@
 #  - tests/bench/peer_changes.ngc on tests/bench/rack_y.json (six top pockets
 #    along Y), on both paths and with LinuxCNC's own rack-toolchange remap
 #    example instead of the changer (tests/bench/peer_ini.py), the peer;
-#  - the demo program, nc_files/demo.ngc, as the demo runs it, on both paths.
+#  - the demo program, nc_files/demo.ngc, as the demo runs it, on both paths;
+#  - tests/bench/spindown.ngc on config/config.json, direct path: one change
+#    between two side pockets with the simulated spindle taking 3 s to stop
+#    from S12000 (zero-speed wired), moving while it runs down and standing
+#    until it stops (move_while_spindle_stops true and false).
 # Prints each change's time, the bound and the ratios; the component's CPU and
 # memory idle for a minute and during the changes. Never asserts.
 #   scripts/bench_changes.sh          (ctest: ctest --test-dir build -L bench -V)
@@ -42,6 +46,11 @@ done
 for path in prototype direct; do
   run "demo_$path" nc_files/demo.ngc config/config.json config/sim/sim.tbl \
     FATC_CONFIG_SET="{\"path\": \"$path\"}"
+done
+for overlap in true false; do
+  run "spindown_$overlap" tests/bench/spindown.ngc config/config.json config/sim/sim.tbl \
+    FATC_INI_SED="s/^SIM_SPINDLE_RAMP = .*/SIM_SPINDLE_RAMP = 4000/" \
+    FATC_CONFIG_SET="{\"path\": \"direct\", \"sensors\": {\"zero_speed\": true}, \"move_while_spindle_stops\": $overlap}"
 done
 run row_peer tests/bench/peer_changes.ngc tests/bench/rack_y.json tests/bench/rack_y.tbl \
   FATC_NO_CHANGER=1 FATC_INI_FILTER="$PWD/tests/bench/peer_ini.py"

@@ -310,6 +310,15 @@ void print_estimate(const Options& options, const Config& config, const ToolStat
       << "path's: " << seconds_text(limits_seconds(prototype, config.safe, *limits))
       << "; with each run of rapids as one move, more than blending could save: "
       << seconds_text(blended_seconds(direct, config.safe, *limits)) << ")\n";
+  if (!config.move_while_spindle_stops) return;
+  Config direct_config = config;
+  direct_config.path = Path::direct;
+  const Simulator running = plan_change_running_down(direct_config, tools, to, config.probe_limit.z);
+  const double meanwhile = limits_seconds_while_running_down(running, config.safe, *limits);
+  out << "while the spindle runs down: " << seconds_text(meanwhile)
+      << " of the bound's moves (up to safe Z and across at it), the rest "
+      << seconds_text(limits_seconds(running, config.safe, *limits) - meanwhile)
+      << " once it stands\n";
 }
 
 int plan(const Options& options, std::ostream& out, std::ostream& err) {

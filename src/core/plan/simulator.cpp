@@ -304,6 +304,7 @@ struct Planning {
   std::optional<double> sensor_z;
   bool late = false;      ///< Simulator::answer_late
   int grips_failing = 0;  ///< Rack::grips_failing
+  bool runs_down = false;  ///< the spindle turns at the request, stands once awaited
 };
 
 /// The records of `request` made of a ready changer with `tools`.
@@ -318,7 +319,17 @@ Simulator planned(const Config& config, const ToolState& tools, const Planning& 
   sim.report_sensors(changer);
   changer.ready();
   if (planning.late) sim.answer_late(changer);
+  if (planning.runs_down) changer.spindle_stopped(false);
   request(changer);
+  if (planning.runs_down) {
+    sim.run(changer);
+    // The wait for the spindle is the run-down's own, no dwell of the change.
+    if (!sim.records.empty() && sim.records.back().kind == Record::Kind::dwell) {
+      sim.records.pop_back();
+    }
+    sim.spindle_stood = sim.records.size();
+    changer.spindle_stopped(true);
+  }
   run_with_operator(sim, changer);
   return sim;
 }
@@ -352,6 +363,13 @@ Simulator plan_change(const Config& config, int from, int to, double sensor_z) {
 
 Simulator plan_change(const Config& config, const ToolState& tools, int to, double sensor_z) {
   return planned(config, tools, {sensor_z}, [to](Changer& c) { c.tool_change(to); });
+}
+
+Simulator plan_change_running_down(const Config& config, const ToolState& tools, int to,
+                                   double sensor_z) {
+  Planning running_down{sensor_z};
+  running_down.runs_down = true;
+  return planned(config, tools, running_down, [to](Changer& c) { c.tool_change(to); });
 }
 
 Simulator plan_load(const Config& config, int tool, int from, double sensor_z) {

@@ -106,6 +106,7 @@ class Simulator : public Ports {
   std::vector<Step> motion_steps() const;
   std::vector<std::string> messages(MessageKind kind) const;
   int saves = 0;
+  std::size_t spindle_stood = 0;  ///< plan_change_running_down: the record where the spindle stood
 
  private:
   /// Records a change of the chuck, the rack cover or the air blast.
@@ -138,6 +139,11 @@ ToolState with_in_spindle(const Config& config, int tool);
 Simulator plan_change(const Config& config, int from, int to, double sensor_z);
 /// The same from the tools as `tools` has them (a saved state).
 Simulator plan_change(const Config& config, const ToolState& tools, int to, double sensor_z);
+/// The same with the spindle turning at the request, standing once the changer
+/// waits for it: the records before `spindle_stood` are what M6 did while it
+/// ran down (move_while_spindle_stops), without the wait itself.
+Simulator plan_change_running_down(const Config& config, const ToolState& tools, int to,
+                                   double sensor_z);
 /// The records of loading `tool` by hand with `from` in the spindle; the operator
 /// continues at every wait and the sensor touches at `sensor_z`.
 Simulator plan_load(const Config& config, int tool, int from, double sensor_z);
