@@ -86,9 +86,9 @@ std::optional<MachineMotion> machine_motion(const std::optional<std::string>& in
 }
 
 std::string estimate_costs_text(const MachineTiming& timing) {
-  char buffer[240];
+  char buffer[320];
   std::snprintf(buffer, sizeof buffer,
-                "each an exact stop at half the acceleration as LinuxCNC plans it, plus the "
+                "each an exact stop (G61.1) at the axes' full acceleration as LinuxCNC plans it, plus the "
                 "dwells, %.0f ms a step (the executor's handshake) and %.2f s a change (%g of "
                 "iocontrol's %g s cycles for T and M6, %.0f ms for the remap)",
                 kStepSeconds * 1000.0,

@@ -83,8 +83,6 @@ double move_seconds(const Point& from, const Point& to, double feed_per_minute,
 
 MotionLimits planner_limits(const MotionLimits& limits) {
   MotionLimits planned = limits;
-  planned.acceleration = {limits.acceleration.x / 2.0, limits.acceleration.y / 2.0,
-                          limits.acceleration.z / 2.0};
   planned.linear_acceleration = std::numeric_limits<double>::infinity();
   return planned;
 }
@@ -130,6 +128,13 @@ double limits_seconds(const Simulator& plan, const Point& start, const MotionLim
         moves += move_seconds(from, to, feed_of(step), limits);
       });
   return moves + dwells;
+}
+
+double limits_seconds_while_running_down(const Simulator& plan, const Point& start,
+                                         const MotionLimits& limits) {
+  Simulator before = plan;
+  before.records.resize(std::min(plan.spindle_stood, plan.records.size()));
+  return limits_seconds(before, start, limits);
 }
 
 ChangeTime change_time(const Simulator& plan, const Point& start, const MachineTiming& machine) {

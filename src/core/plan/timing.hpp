@@ -57,16 +57,15 @@ double trapezoid_seconds(double distance, double velocity, double acceleration);
 double move_seconds(const Point& from, const Point& to, double feed_per_minute,
                     const MotionLimits& limits);
 
-/// The limits LinuxCNC's trajectory planner (linuxcnc-uspace 2.9) gives a
-/// move that ends standing still: the velocities, and half the axes'
-/// accelerations. Blending (G64, the interpreter's default, which the
-/// executor leaves as the program set it) keeps half of each for the next
-/// move (tp.c, tpGetScaledAccel), though the executor's moves never blend:
-/// each waits for the next step. [TRAJ]MAX_LINEAR_ACCELERATION bounds no
-/// straight move (canon takes the axes' alone). Measured on the simulated
-/// mill (scripts/bench_estimate.sh): 20 mm along Z in 0.285 s at 141 mm/s
-/// at most (half of 2000 mm/s²: 0.283 s, 141 mm/s); 80 mm along X with 60
-/// along Y in 0.661 s (half of X's 2000 / 0.8: 0.660 s).
+/// The limits LinuxCNC's trajectory planner (linuxcnc-uspace 2.9) gives the
+/// executor's moves, each an exact stop (G61.1): the velocities and the
+/// axes' full accelerations. [TRAJ]MAX_LINEAR_ACCELERATION bounds no
+/// straight move (canon takes the axes' alone). Under G64, LinuxCNC's
+/// default, a move that may blend gets half of each (tc.c,
+/// tcGetOverallMaxAccel), though nothing follows it: measured on the
+/// simulated mill before the executor took G61.1, 20 mm along Z in 0.285 s
+/// (half of 2000 mm/s²: 0.283 s) and 80 mm along X with 60 along Y in
+/// 0.661 s (half of X's 2000 / 0.8: 0.660 s).
 MotionLimits planner_limits(const MotionLimits& limits);
 
 /// The plan's steps at `limits`: every move an exact stop as move_seconds
@@ -80,6 +79,11 @@ double limits_seconds(const Simulator& plan, const Point& start, const MotionLim
 /// standing to standing. Less than any blending of the corners could reach,
 /// so what blending is worth at most.
 double blended_seconds(const Simulator& plan, const Point& start, const MotionLimits& limits);
+
+/// Of limits_seconds, the part made before the spindle stood
+/// (plan_change_running_down: the records before Simulator::spindle_stood).
+double limits_seconds_while_running_down(const Simulator& plan, const Point& start,
+                                         const MotionLimits& limits);
 
 /// What an estimate needs of the machine: its motion limits and
 /// [EMCIO]CYCLE_TIME, in seconds.

@@ -38,8 +38,8 @@ TEST(Cli, shouldEstimateThePlannedChangeOnBothPaths) {
   EXPECT_NE(line.find(" on the direct path) (moves "), std::string::npos) << line;
   EXPECT_NE(r.out.find("\n  from safe: the moves at 3000 mm/min and 500 "
                       "mm/s², assumed (--ini gives the machine's [AXIS_*] and [TRAJ] limits), "
-                      "each an exact stop at half the acceleration as LinuxCNC plans it, plus "
-                      "the dwells, 17 ms a step"),
+                      "each an exact stop (G61.1) at the axes' full acceleration as LinuxCNC "
+                      "plans it, plus the dwells, 17 ms a step"),
             std::string::npos)
       << line;
   double prototype = 0.0, direct = 0.0;

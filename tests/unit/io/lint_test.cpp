@@ -469,8 +469,8 @@ TEST_F(Lint, shouldEstimateTheChangeTimeFromThePlannedSteps) {
               " for 2 changes, from safe to safe (the way between the work and safe not "
               "counted)\n  from the steps --plan prints for each: the moves at 3000 mm/min "
               "and 500 mm/s², assumed (--ini gives the machine's [AXIS_*] and [TRAJ] limits), "
-              "each an exact stop at half the acceleration as LinuxCNC plans it, plus the "
-              "dwells, 17 ms a step (the executor's handshake) and 0.53 s a change (4.5 of "
+              "each an exact stop (G61.1) at the axes' full acceleration as LinuxCNC plans it, "
+              "plus the dwells, 17 ms a step (the executor's handshake) and 0.53 s a change (4.5 of "
               "iocontrol's 0.1 s cycles for T and M6, 75 ms for the remap)\n");
 }
 

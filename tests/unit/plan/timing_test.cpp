@@ -87,30 +87,28 @@ TEST(MoveSeconds, shouldTakeNoTimeWithoutALimitToMoveAt) {
 
 // ---- as LinuxCNC plans it ----
 
-TEST(PlannerLimits, shouldKeepTheVelocitiesAndHalveTheAxesAccelerations) {
+TEST(PlannerLimits, shouldKeepTheVelocitiesAndTheAxesAccelerationsOfAnExactStop) {
   MotionLimits limits = simulated_mill();
   limits.velocity.z = 30;
   limits.acceleration.z = 200;
   const MotionLimits planned = planner_limits(limits);
   EXPECT_EQ(planned.velocity.z, 30);
   EXPECT_EQ(planned.linear_velocity, 200);
-  EXPECT_EQ(planned.acceleration.x, 1000);
-  EXPECT_EQ(planned.acceleration.z, 100);
+  EXPECT_EQ(planned.acceleration.x, 2000);
+  EXPECT_EQ(planned.acceleration.z, 200);
   EXPECT_TRUE(std::isinf(planned.linear_acceleration));
 }
 
 TEST(PlannerLimits, shouldTimeARapidOfTheSimulatedMillAsLinuxCncRanIt) {
-  // 20 mm along Z with 1000 mm/s²: never at 200 mm/s (that needs 40 mm); a
-  // triangle of 2 √(20 / 1000) = 0.283 s at 141 mm/s at most. LinuxCNC: 0.285 s.
+  // 20 mm along Z with 2000 mm/s²: never at 200 mm/s (that needs 20 mm of
+  // ramps and no cruise); a triangle of 2 √(20 / 2000) = 0.2 s.
   const MotionLimits planned = planner_limits(simulated_mill());
-  EXPECT_NEAR(move_seconds({0, 0, -80}, {0, 0, -60}, 0.0, planned), 2.0 * std::sqrt(0.02), 1e-9);
-  // 230 mm along X: 1.15 s at 200 mm/s and 0.2 s of ramps. LinuxCNC: 1.351 s.
-  EXPECT_NEAR(move_seconds({100, 20, -5}, {330, 20, -5}, 0.0, planned), 1.35, 1e-9);
+  EXPECT_NEAR(move_seconds({0, 0, -80}, {0, 0, -60}, 0.0, planned), 0.2, 1e-9);
+  // 230 mm along X: 1.15 s at 200 mm/s and 0.1 s of ramps.
+  EXPECT_NEAR(move_seconds({100, 20, -5}, {330, 20, -5}, 0.0, planned), 1.25, 1e-9);
   // 80 along X with 60 along Y: [TRAJ] holds it to 200 mm/s, X's 2000 / 0.8
-  // halved to 1250 mm/s² (not [TRAJ]'s 2000 halved): 0.5 s + 0.16 s. LinuxCNC: 0.661 s.
-  EXPECT_NEAR(move_seconds({200, 20, -5}, {120, 80, -5}, 0.0, planned), 0.66, 1e-9);
-  // At the axes' full acceleration, what the bound takes: 0.5 s + 0.1 s.
-  EXPECT_NEAR(move_seconds({200, 20, -5}, {120, 80, -5}, 0.0, simulated_mill()), 0.6, 1e-9);
+  // to 2500 mm/s² (not [TRAJ]'s 2000): 0.5 s + 0.08 s.
+  EXPECT_NEAR(move_seconds({200, 20, -5}, {120, 80, -5}, 0.0, planned), 0.58, 1e-9);
 }
 
 // ---- the bound ----
@@ -148,24 +146,24 @@ TEST(Bound, shouldTakeARunOfRapidsAsOneMoveForWhatBlendingIsWorthAtMost) {
 TEST(ChangeTime, shouldAddThePlannedMovesTheDwellsAndTheCostsPerStepAndPerChange) {
   Simulator plan;
   plan.sensor_z = -20.0;
-  // At 10/s with 20/s², planned with 10/s²: a move of d ≥ 10 takes d/v + v/10.
-  publish_move(plan, StepKind::rapid, axis_x, {100, 0, 0}, 0);     // 10 s + 1 s
-  publish_move(plan, StepKind::feed, axis_xy, {100, 50, 0}, 60);   // 50 at 1/s: 50 s + 0.1 s
+  // At 10/s with 20/s², each an exact stop: a move of d ≥ 5 takes d/v + v/20.
+  publish_move(plan, StepKind::rapid, axis_x, {100, 0, 0}, 0);     // 10 s + 0.5 s
+  publish_move(plan, StepKind::feed, axis_xy, {100, 50, 0}, 60);   // 50 at 1/s: 50 s + 0.05 s
   plan.set_chuck_open(true);                                       // no time of its own
   plan.start_timer(0.5);                                           // a dwell
   publish_move(plan, StepKind::probe, axis_z, {0, 0, -100}, 300);  // to the sensor: 20 at 5/s:
-                                                                   // 4 s + 0.5 s
+                                                                   // 4 s + 0.25 s
   plan.tell(MessageKind::prompt, "insert tool 7");                 // the operator's: not counted
   publish_done(plan);
   MachineTiming machine{limits_of(10, 20), 0.05};  // iocontrol's cycle 50 ms
   const ChangeTime time = change_time(plan, {0, 0, 0}, machine);
-  EXPECT_NEAR(time.moves, 11.0 + 50.1 + 4.5, 1e-9);
+  EXPECT_NEAR(time.moves, 10.5 + 50.05 + 4.25, 1e-9);
   EXPECT_NEAR(time.dwells, 0.5, 1e-9);
   EXPECT_EQ(time.steps, 4);  // three moves and done: each one handshake
   EXPECT_NEAR(time.iocontrol, kIocontrolCycles * 0.05, 1e-9);
   EXPECT_EQ(time.operator_waits, 1);
   EXPECT_NEAR(time.seconds(),
-              65.6 + 0.5 + 4 * kStepSeconds + kIocontrolCycles * 0.05 + kChangeSeconds, 1e-9);
+              64.8 + 0.5 + 4 * kStepSeconds + kIocontrolCycles * 0.05 + kChangeSeconds, 1e-9);
 }
 
 TEST(ChangeTime, shouldNeverEstimateAChangeBelowItsBound) {
