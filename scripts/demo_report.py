@@ -2,7 +2,8 @@
 """Prints what the demo run did, from what LinuxCNC reported: each tool change
 with its duration and the waypoints the machine stopped at, and the figures
 of the benchmark (handshake overhead per step, time to first motion,
-chip-to-chip time).   demo_report.py RESULTS.json"""
+chip-to-chip time); with a second run of the same program on the other path,
+both paths' change times.   demo_report.py RESULTS.json [OTHER_PATH_RESULTS.json]"""
 import json
 import statistics
 import sys
@@ -72,6 +73,30 @@ def main():
     for i, seconds in enumerate(chip_to_chip, 1):
         print("  chip-to-chip %d (spindle off to on again): %.2f s" % (i, seconds))
     print("\nprogram: %.1f s, final tool in spindle T%d" % (run["duration"], samples[-1]["tool_in_spindle"]))
+    if len(sys.argv) > 2:
+        other = json.load(open(sys.argv[2]))
+        if other["error"]:
+            print("the run on the other path failed: " + other["error"])
+            sys.exit(1)
+        print_paths({"direct": run, "prototype": other["scenarios"][0]})
+
+
+def change_seconds(run):
+    """Each change's time: the changer busy."""
+    samples = run["samples"]
+    return [samples[b]["t"] - samples[a]["t"] for a, b in intervals(samples, "fixed_atc_probe.busy")]
+
+
+def print_paths(runs):
+    """The change times of the same program on both paths, side by side."""
+    times = {path: change_seconds(run) for path, run in runs.items()}
+    print("\nthe changes on both paths (config.json's \"path\"):")
+    for path, seconds in times.items():
+        print("  %-9s %s: %.2f s in all, the program %.1f s" % (
+            path, ", ".join("%.2f" % s for s in seconds), sum(seconds), runs[path]["duration"]))
+    if sum(times["prototype"]) > 0:
+        print("  the direct path takes %.2f of the prototype path's time" % (
+            sum(times["direct"]) / sum(times["prototype"])))
 
 
 if __name__ == "__main__":

@@ -34,8 +34,9 @@ TEST(Cli, shouldEstimateThePlannedChangeOnBothPaths) {
   const auto at = r.out.find("estimated ");
   ASSERT_NE(at, std::string::npos) << r.out;
   const std::string line = r.out.substr(at, r.out.find('\n', at) - at);
-  EXPECT_NE(line.find(" on the prototype path ("), std::string::npos) << line;
-  EXPECT_NE(line.find(" on the direct path) (moves "), std::string::npos) << line;
+  // The sample config's path first, the other in brackets.
+  EXPECT_NE(line.find(" on the direct path ("), std::string::npos) << line;
+  EXPECT_NE(line.find(" on the prototype path) (moves "), std::string::npos) << line;
   EXPECT_NE(r.out.find("\n  from safe: the moves at 3000 mm/min and 500 "
                       "mm/s², assumed (--ini gives the machine's [AXIS_*] and [TRAJ] limits), "
                       "each an exact stop (G61.1) at the axes' full acceleration as LinuxCNC "
@@ -43,8 +44,8 @@ TEST(Cli, shouldEstimateThePlannedChangeOnBothPaths) {
             std::string::npos)
       << line;
   double prototype = 0.0, direct = 0.0;
-  ASSERT_EQ(std::sscanf(line.c_str(), "estimated %lf s on the prototype path (%lf s", &prototype,
-                        &direct),
+  ASSERT_EQ(std::sscanf(line.c_str(), "estimated %lf s on the direct path (%lf s", &direct,
+                        &prototype),
             2)
       << line;
   EXPECT_LT(direct, prototype) << line;
@@ -71,10 +72,19 @@ TEST(Cli, shouldPrintTheBoundFromTheInisVelocitiesAndAccelerations) {
   // the handshakes) of the direct path is never below its bound.
   double estimate = 0.0;
   ASSERT_EQ(std::sscanf(r.out.substr(r.out.find("estimated ")).c_str(),
-                        "estimated %*f s on the "
-                        "prototype path (%lf s",
-                        &estimate),
+                        "estimated %lf s on the direct path", &estimate),
             1);
+  double meanwhile = 0.0, rest = 0.0;
+  const auto running_down = r.out.find("while the spindle runs down: ");
+  ASSERT_NE(running_down, std::string::npos) << r.out;
+  ASSERT_EQ(std::sscanf(r.out.c_str() + running_down,
+                        "while the spindle runs down: %lf s of the bound's moves (up to safe Z "
+                        "and across at it), the rest %lf s once it stands",
+                        &meanwhile, &rest),
+            2)
+      << r.out;
+  EXPECT_GT(meanwhile, 0.0);
+  EXPECT_NEAR(meanwhile + rest, bound, 0.1 + 1e-9) << "the same moves, parted where it stands";
   EXPECT_GT(estimate, bound) << r.out;
 
   const CliRun without = run({"--plan", "--config", kConfig, "--from", "2", "--to", "5"});

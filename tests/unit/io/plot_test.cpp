@@ -78,7 +78,7 @@ TEST(Plot, shouldWriteTheFileAndSayWhatItDrew) {
   std::ostringstream written;
   written << std::ifstream(path).rdbuf();
   std::remove(path.c_str());
-  EXPECT_NE(written.str().find("M6 T5 with T2 in the spindle, the prototype path"),
+  EXPECT_NE(written.str().find("M6 T5 with T2 in the spindle, the direct path"),
             std::string::npos);
 }
 
