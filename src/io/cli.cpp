@@ -316,7 +316,8 @@ void print_estimate(const Options& options, const Config& config, const ToolStat
   const Simulator running = plan_change_running_down(direct_config, tools, to, config.probe_limit.z);
   const double meanwhile = limits_seconds_while_running_down(running, config.safe, *limits);
   out << "while the spindle runs down: " << seconds_text(meanwhile)
-      << " of the bound's moves (up to safe Z and across at it), the rest "
+      << " of the bound's moves (" << (config.rack_cover ? "up to safe Z" : "up to safe Z and across at it")
+      << "), the rest "
       << seconds_text(limits_seconds(running, config.safe, *limits) - meanwhile)
       << " once it stands\n";
 }

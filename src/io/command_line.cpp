@@ -61,11 +61,12 @@ const std::vector<ModeDeclaration> kModes = {
    "print the steps of M6 TB with TA in the spindle",
    "print the steps of M6 TB with TA in the spindle (the tools where --state has them, else "
    "the first-start map), then its estimated time on the config's path and on the other one "
-   "(each move an exact stop at the --ini's velocities and half its axes' accelerations, as "
+   "(each move an exact stop, G61.1, at the --ini's velocities and axes' accelerations, as "
    "LinuxCNC plans it, else at assumed ones; the dwells; the executor's handshake a step and "
    "iocontrol's cycles a change) and, with --ini, the bound: the direct path's moves at the INI's velocities and "
    "accelerations, each an exact stop, plus the dwells (and the prototype path's time at the "
-   "same limits). Exit 0 printed, 1 refused or invalid, 2 usage"},
+   "same limits), and how much of it may move while the spindle runs down "
+   "(move_while_spindle_stops). Exit 0 printed, 1 refused or invalid, 2 usage"},
   {Mode::confirm, "--confirm", "", {"--config", "--spindle"}, {"--state", "--pocket"},
    "after a fault, LinuxCNC stopped: record what you found",
    "the recovery of a fault while LinuxCNC is not running: records in the state file that the "

@@ -78,8 +78,9 @@ inline const PinDeclaration kPins[] = {
    "the touch-off sensor, netted together with `motion.probe-input` (G38.3 reads that one); "
    "the executor does not probe when it is already on"},
   {"spindle-stopped", &HalPins::spindle_stopped, HAL_IN,
-   "LinuxCNC has the spindle off (the snippet nets `not spindle.0.on`); M6 waits for it up to "
-   "`spindle_stop_timeout_seconds`"},
+   "LinuxCNC has the spindle off (the snippet nets `not spindle.0.on`; a drive's own stopped "
+   "signal says when it stands); M6 moves only at safe Z until it (and `zero-speed` where "
+   "wired) says so, then waits for it up to `spindle_stop_timeout_seconds`"},
   // The optional sensors: read only where config.json's `sensors` says they are wired.
   {"zero-speed", &HalPins::zero_speed, HAL_IN,
    "sensor (`sensors.zero_speed`): the spindle's zero-speed feedback; the chuck opens only "

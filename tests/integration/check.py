@@ -311,10 +311,12 @@ def check_modal(r, rack):
     if not snap:
         fail("the program never reached its M0 after M6")
     codes = set(snap["gcodes"])
-    for code, name in ((200, "G20"), (910, "G91"), (430, "G43")):
+    for code, name in ((200, "G20"), (910, "G91"), (610, "G61"), (430, "G43")):
         if code not in codes:
             fail("%s not active after M6 (active: %s)" % (name, sorted(c for c in codes if c > 0)))
-    ok("G20, G91 and G43 active after M6")
+    if 611 in codes:
+        fail("the executor's G61.1 still active after M6")
+    ok("G20, G91, G61 and G43 active after M6, not the executor's G61.1")
     length_in = 35.0 / 25.4  # tool 2's length in sim.tbl, in the program's inches
     if abs(snap["tool_offset"][2] - length_in) > 1e-4 and abs(snap["tool_offset"][2] - 35.0) > 1e-3:
         fail("tool length offset %.4f, expected tool 2's 35 mm" % snap["tool_offset"][2])

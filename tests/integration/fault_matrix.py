@@ -84,8 +84,9 @@ def program(name, text):
     return path
 
 
-def run_program(path, timeout=120):
-    """Runs a program to its end; returns the messages it produced."""
+def run_program(path, timeout=120, each=lambda: None):
+    """Runs a program to its end, `each()` at every look at it; returns the
+    messages it produced."""
     first = len(d.messages)
     d.wait_for(lambda: d.stat.interp_state == linuxcnc.INTERP_IDLE, 60, "task free")
     d.start_program(path)  # an absolute path: the driver's join keeps it
@@ -93,6 +94,7 @@ def run_program(path, timeout=120):
     seen = []
 
     def ended():
+        each()
         if d.stat.interp_state != linuxcnc.INTERP_IDLE:
             seen.append(True)
         return d.stat.interp_state == linuxcnc.INTERP_IDLE and (seen or time.monotonic() - began > 2)
@@ -300,8 +302,8 @@ def run_hold(at, steps):
 
 def run_spindle_turning(steps):
     """The spindle never reports stopped (a zero-speed signal stuck low): M6
-    must fault after spindle_stop_timeout_seconds with the chuck closed and
-    nothing moved."""
+    must fault after spindle_stop_timeout_seconds with the chuck closed, having
+    moved only up to safe Z and across at it (move_while_spindle_stops)."""
     case = {"kind": "spindle", "step": 0, "what": ["spindle", "does not stop"]}
     stopped = P + "spindle-stopped"
     try:
@@ -312,11 +314,17 @@ def run_spindle_turning(steps):
         before = list(d.stat.actual_position[:3])
         first = len(d.messages)
         began = time.monotonic()
-        run_program(program("fatc_matrix_t%d.ngc" % OTHER, "T%d M6\nM2\n" % OTHER), 60)
+        lowest, chuck = [before[2]], [False]
+
+        def watch():
+            d.stat.poll()
+            lowest[0] = min(lowest[0], d.stat.actual_position[2])
+            chuck[0] = chuck[0] or bool(pin("fatc-chuck-guard.chuck"))
+        run_program(program("fatc_matrix_t%d.ngc" % OTHER, "T%d M6\nM2\n" % OTHER), 60, watch)
         case["program_seconds"] = time.monotonic() - began
         d.stat.poll()
-        case["after"] = {"fault": pin(P + "fault"), "chuck_ever": None,
-                         "moved": max(abs(a - b) for a, b in zip(before, d.stat.actual_position[:3])),
+        case["after"] = {"fault": pin(P + "fault"), "chuck_ever": chuck[0], "lowest_z": lowest[0],
+                         "start_z": before[2], "end_z": d.stat.actual_position[2],
                          "messages": d.messages[first:], "linuxcnc_tool": d.stat.tool_in_spindle}
     except Exception as e:
         case["error"] = "%s: %s" % (type(e).__name__, e)

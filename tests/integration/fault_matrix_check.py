@@ -38,13 +38,18 @@ def hold_problems(case):
 
 
 def spindle_problems(case):
-    """A spindle that never reports stopped: fault, nothing moved, no chuck."""
+    """A spindle that never reports stopped: fault, the chuck never open,
+    nothing lower than where M6 was called (it rises to safe Z and crosses at
+    it while it waits)."""
     after = case["after"]
     found = []
     if not after["fault"]:
         found.append("no fault when the spindle never stopped")
-    if after["moved"] > 1e-6:
-        found.append("the machine moved %.3f while the spindle turned" % after["moved"])
+    if after["lowest_z"] < after["start_z"] - 1e-3 or after["end_z"] < after["start_z"] - 1e-3:
+        found.append("Z went down to %.3f (from %.3f) while the spindle turned"
+                     % (after["lowest_z"], after["start_z"]))
+    if after["chuck_ever"]:
+        found.append("the chuck opened while the spindle turned")
     if not any("did not stop" in m for m in after["messages"]):
         found.append("no message says the spindle did not stop: %s" % after["messages"])
     return found + confirmed_problems(case)
@@ -116,7 +121,7 @@ def cell(case):
     if case["kind"] == "hold":
         return "ok T%d" % case["after_hold"]["changer_tool"]
     if case["kind"] == "spindle":
-        return "ok fault, still"
+        return "ok fault, Z >= %.0f" % case["after"]["start_z"]
     return "ok %.2f/%.2f T%d" % (case["chuck_closed_after"], case["program_stopped_after"],
                                  case["confirmed"]["spindle"])
 

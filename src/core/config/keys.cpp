@@ -127,7 +127,10 @@ const std::vector<KeyDeclaration> kKeys = {
   {"move_while_spindle_stops", "`true`", {}, kBoolean,
    "M6 lifts to safe Z and travels at safe Z toward the first pocket while the spindle runs "
    "down, the chuck closed, into no keep-out column; nothing goes lower until the spindle "
-   "stands. `false`: M6 stands until the spindle stops"},
+   "stands. It needs a spindle that says it runs down: `zero-speed` wired "
+   "(`sensors.zero_speed`), or `spindle-stopped` from the drive; netted from "
+   "`not spindle.0.on` alone, the spindle reads stopped at M5. `false`: M6 stands until the "
+   "spindle stops"},
   {"rack_keepout_margin", "half the side offset's length", kMargin,
    "from 0.04 in inch; below the side offset's length",
    "half-width of each pocket's keep-out column: no move may cross it except the pocket's own "

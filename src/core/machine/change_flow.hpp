@@ -6,7 +6,7 @@
 #include "probing_leg.hpp"
 #include "retrieve_leg.hpp"
 #include "return_leg.hpp"
-#include "spindle_stop_leg.hpp"
+#include "spindle_run_down.hpp"
 
 namespace fatc::machine {
 
@@ -32,13 +32,13 @@ struct ChangeFlow_ : Flow<ChangeFlow_> {
   /// The spindle is empty: how does the requested tool get into it?
   struct DecidingHowToFetch : Decision {};
   struct DecidingToMeasure : Decision {};
-  using initial_state = SpindleStopLeg;
+  using initial_state = SpindleRunDown;
   // clang-format off
   using transition_table = boost::mpl::vector<
   //    Start                               Event        Next                 Action   Guard
   // +-----------------------------------+------------+--------------------+--------+------------------------+
-  Row < SpindleStopLeg::exit_pt<Finished> , LegDone    , DecidingHowToEmpty , none   , none                   >,
-  Row < SpindleStopLeg::exit_pt<Failed>   , FlowFailed , Failed             , none   , none                   >,
+  Row < SpindleRunDown::exit_pt<Finished> , LegDone    , DecidingHowToEmpty , none   , none                   >,
+  Row < SpindleRunDown::exit_pt<Failed>   , FlowFailed , Failed             , none   , none                   >,
   Row < DecidingHowToEmpty                , none       , Returning          , none   , SpindleHoldsRackTool   >,
   Row < DecidingHowToEmpty                , none       , HandOutLeg         , none   , SpindleHoldsManualTool >,
   Row < DecidingHowToEmpty                , none       , DecidingHowToFetch , none   , Not<SpindleHoldsTool>  >,

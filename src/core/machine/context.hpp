@@ -74,7 +74,10 @@ class Context {
 
   void publish(const Step& step);
   /// A phase walks `route`: its first waypoint is published now, each
-  /// following one when the one before is reached (next_waypoint).
+  /// following one when the one before is reached (next_waypoint). The way
+  /// at safe Z to where the spindle already stands is left out
+  /// (plan::from_where_it_stands): M6's first leg after its moves while the
+  /// spindle ran down; in a sequence's other routes there is none.
   void walk(plan::Route route);
   /// The waypoint under way was reached: publishes the next one of the route
   /// walked and says true; false when the route is done, or none is walked.

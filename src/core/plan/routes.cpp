@@ -228,19 +228,6 @@ Route from_where_it_stands(const Config& c, Route route, const Point& at, unsign
   return route;
 }
 
-bool stands_at_end(const Route& route, const Point& at, unsigned known_axes) {
-  Point end = at;
-  unsigned commanded = 0;
-  for (const Step& step : route) {
-    if (!is_motion(step.kind)) return false;
-    if (step.axes & axis_x) end.x = step.target.x;
-    if (step.axes & axis_y) end.y = step.target.y;
-    if (step.axes & axis_z) end.z = step.target.z;
-    commanded |= step.axes;
-  }
-  return (commanded & ~known_axes) == 0 && end.x == at.x && end.y == at.y && end.z == at.z;
-}
-
 Route to_safe_z(const Config& c) { return {safe_z(c)}; }
 Route to_loading(const Config& c) { return {loading_z(c), loading_xy(c)}; }
 Route to_sensor(const Config& c) { return {loading_z(c), sensor_xy(c)}; }

@@ -66,15 +66,11 @@ Route fetch_out_and_away(const Config& c, int pocket);
 /// chuck closed. None where `move_while_spindle_stops` is false.
 Route while_spindle_stops(const Config& c, const Route& first);
 
-/// `route` from where the spindle stands: a leading run of moves at safe Z
-/// that ends where the spindle already is (the axes of `known_axes` of `at`)
-/// is left out, so that a leg after the moves made while the spindle ran down
-/// does not walk them again. The last waypoint is always kept.
+/// `route` from where the spindle stands (`at`, known on the axes of
+/// `known_axes`): a leading run of moves at safe Z that ends there is left
+/// out, so that the leg after the moves made while the spindle ran down does
+/// not walk them again. The last waypoint is always kept.
 Route from_where_it_stands(const Config& c, Route route, const Point& at, unsigned known_axes);
-
-/// The spindle stands where `route` ends: every axis it commands known and
-/// there (`at`, of `known_axes`).
-bool stands_at_end(const Route& route, const Point& at, unsigned known_axes);
 
 // ---------------------------------------------------------------- the operator and the sensor
 /// Up to safe Z where the spindle stands.

@@ -2,6 +2,6 @@
 // (favor_compile_time, see Machine_of in common.hpp): a compiler run reads
 // only the tables it dispatches.
 
-#include "spindle_stop_leg.hpp"
+#include "spindle_run_down.hpp"
 
-BOOST_MSM_BACK_GENERATE_PROCESS_EVENT(fatc::machine::SpindleStopLeg)
+BOOST_MSM_BACK_GENERATE_PROCESS_EVENT(fatc::machine::SpindleRunDown)

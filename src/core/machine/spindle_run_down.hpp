@@ -6,13 +6,13 @@
 
 namespace fatc::machine {
 
-// ================================================================ the spindle stops
+// ================================================================ the spindle runs down
 /// M6 stops the spindle (M5) before its executor runs: until it stands the
 /// spindle rises to safe Z and crosses at safe Z toward the first pocket
 /// (plan::while_spindle_stops), and nothing goes lower and the chuck stays
 /// closed. A spindle that does not stand within spindle_stop_timeout_seconds
 /// of the end of those moves fails the change. docs/sequences.md#m6.
-struct SpindleStopLeg_ : Flow<SpindleStopLeg_> {
+struct SpindleRunDown_ : Flow<SpindleRunDown_> {
   /// The route M6's first leg walks: the return of the spindle's rack tool,
   /// else the fetch of the requested one. None for a handover at `loading`,
   /// where the operator's hand meets the spindle once it stands.
@@ -27,21 +27,18 @@ struct SpindleStopLeg_ : Flow<SpindleStopLeg_> {
   }
   /// Up to safe Z and across toward the first leg's pocket while the spindle
   /// runs down (plan::while_spindle_stops); the leg then starts from there.
-  struct MovingWhileSpindleStops : Walking<MovingWhileSpindleStops> {
+  struct MovingWhileRunningDown : Walking<MovingWhileRunningDown> {
     template <class Leg>
     static plan::Route route(const Context& c, const Leg&) {
       return plan::while_spindle_stops(c.config, first_leg_route(c));
     }
   };
-  /// The spindle still turns, and part of the way that needs no standstill
-  /// is still to go.
-  struct MovesWhileSpindleTurns {
+  /// The spindle still turns, and part of the way needs no standstill.
+  struct MayMoveWhileRunningDown {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       const Context& c = *fsm.ctx;
-      const plan::Route way = MovingWhileSpindleStops::route(c, fsm);
-      return !c.spindle_at_standstill() && !way.empty() &&
-             !plan::stands_at_end(way, c.position, c.known_axes);
+      return !c.spindle_at_standstill() && !MovingWhileRunningDown::route(c, fsm).empty();
     }
   };
   /// LinuxCNC's spindle off and, where wired, zero speed.
@@ -62,16 +59,16 @@ struct SpindleStopLeg_ : Flow<SpindleStopLeg_> {
   using initial_state = DecidingToMove;
   // clang-format off
   using transition_table = boost::mpl::vector<
-  //    Start                     Event          Next                      Action                 Guard
-  // +-------------------------+--------------+-------------------------+----------------------+-----------------------------+
-  Row < DecidingToMove          , none         , MovingWhileSpindleStops , none                 , MovesWhileSpindleTurns      >,
-  Row < DecidingToMove          , none         , WaitingForSpindle       , none                 , Not<MovesWhileSpindleTurns> >,
-  Row < MovingWhileSpindleStops , InPosition   , WaitingForSpindle       , none                 , none                        >,
-  Row < WaitingForSpindle       , SensorReport , Finished                , none                 , SpindleIsStopped            >,
-  Row < WaitingForSpindle       , TimerElapsed , Failed                  , SaySpindleDidNotStop , none                        >
+  //    Start                    Event          Next                     Action                 Guard
+  // +------------------------+--------------+------------------------+----------------------+------------------------------+
+  Row < DecidingToMove         , none         , MovingWhileRunningDown , none                 , MayMoveWhileRunningDown      >,
+  Row < DecidingToMove         , none         , WaitingForSpindle      , none                 , Not<MayMoveWhileRunningDown> >,
+  Row < MovingWhileRunningDown , InPosition   , WaitingForSpindle      , none                 , none                         >,
+  Row < WaitingForSpindle      , SensorReport , Finished               , none                 , SpindleIsStopped             >,
+  Row < WaitingForSpindle      , TimerElapsed , Failed                 , SaySpindleDidNotStop , none                         >
   >;
   // clang-format on
 };
-using SpindleStopLeg = Machine_of<SpindleStopLeg_>;
+using SpindleRunDown = Machine_of<SpindleRunDown_>;
 
 }  // namespace fatc::machine
