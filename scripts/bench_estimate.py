@@ -48,8 +48,9 @@ def plan_parts(binary, run, frm, to):
     out = subprocess.run([binary, "--plan", "--config", run + "/config.json", "--ini",
                           run + "/sim.ini", "--from", str(frm), "--to", str(to)],
                          capture_output=True, text=True).stdout
-    m = re.search(r"([\d.]+) s a change .*\(moves ([\d.]+) s, dwells ([\d.]+) s, (\d+) steps\)", out)
-    return (float(m.group(2)), float(m.group(3)), int(m.group(4)), float(m.group(1)))
+    parts = re.search(r"\(moves ([\d.]+) s, dwells ([\d.]+) s, (\d+) steps?\)", out)
+    change = re.search(r"([\d.]+) s a change", out)
+    return (float(parts.group(1)), float(parts.group(2)), int(parts.group(3)), float(change.group(1)))
 
 
 def step_cost(binary):
