@@ -21,6 +21,7 @@ import statistics
 import subprocess
 import sys
 
+from demo_report import change_seconds as change_seconds_of
 from demo_report import intervals, stops
 
 PATHS = ("prototype", "direct")
@@ -42,14 +43,13 @@ def spin_down_bound(binary, config, ini, frm, to):
     """(the bound with the spindle running down for SPIN_DOWN: the longer of it
     and the moves --plan says may go meanwhile, plus the rest at the bound;
     the bound standing until it stops: SPIN_DOWN plus the change's bound)."""
-    out = subprocess.run([binary, "--plan", "--config", config, "--ini", ini, "--from", str(frm),
-                          "--to", str(to)], capture_output=True, text=True).stdout
-    whole = re.search(r"^bound ([\d.]+) s", out, re.M)
+    out = plan_text(binary, config, ini, frm, to)
+    whole = bounds_in(out)[0]
     parts = re.search(r"^while the spindle runs down: ([\d.]+) s .* the rest ([\d.]+) s", out, re.M)
     if not whole or not parts:
         return 0.0, 0.0
     meanwhile, rest = float(parts.group(1)), float(parts.group(2))
-    return max(SPIN_DOWN, meanwhile) + rest, SPIN_DOWN + float(whole.group(1))
+    return max(SPIN_DOWN, meanwhile) + rest, SPIN_DOWN + whole
 
 
 def print_spin_down(work, binary):
@@ -77,11 +77,20 @@ def print_spin_down(work, binary):
              "%.2f s" % measured if measured is not None else "not seen"))
 
 
+def plan_text(binary, config, ini, frm, to):
+    """What --plan prints for M6 T`to` with T`frm`."""
+    return subprocess.run([binary, "--plan", "--config", config, "--ini", ini, "--from", str(frm),
+                           "--to", str(to)], capture_output=True, text=True).stdout
+
+
 def plan_bounds(binary, config, ini, frm, to):
     """(the bound, the prototype path's time at the same limits, the direct
     path's with each run of rapids as one move) of --plan."""
-    out = subprocess.run([binary, "--plan", "--config", config, "--ini", ini, "--from", str(frm),
-                          "--to", str(to)], capture_output=True, text=True).stdout
+    return bounds_in(plan_text(binary, config, ini, frm, to))
+
+
+def bounds_in(out):
+    """plan_bounds of --plan's text."""
     line = re.search(r"^bound (.*)$", out, re.M)
     if not line:
         return 0.0, 0.0, 0.0
@@ -212,8 +221,7 @@ def print_demo(work, binary):
                                                if a["tool_in_spindle"] != b["tool_in_spindle"]]
     changes = [(a, b, "") for a, b in zip(tools, tools[1:])]
     bounds = bound(work, "demo_direct", binary, changes)
-    busy = {p: sum(r["samples"][b]["t"] - r["samples"][a]["t"]
-                   for a, b in intervals(r["samples"], "fixed_atc_probe.busy")) for p, r in runs.items()}
+    busy = {p: sum(change_seconds_of(r)) for p, r in runs.items()}
     print("\nnc_files/demo.ngc (tools %s): the program %.2f s on the prototype path, %.2f s on the "
           "direct path (ratio %.2f); its changes %.2f s and %.2f s (ratio %.2f), bound %.2f s from safe%s"
           % (" > ".join("T%d" % t for t in tools), runs["prototype"]["duration"], runs["direct"]["duration"],

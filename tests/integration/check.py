@@ -152,6 +152,14 @@ def load_results(path, name):
     return {"error": run["error"], "scenarios": scenarios}
 
 
+def scenario(results, name):
+    """Scenario `name` of the run's results; fails when it did not run."""
+    found = next((s for s in results["scenarios"] if s["name"] == name), None)
+    if found is None:
+        fail("scenario %s did not run: %s" % (name, results["error"]))
+    return found
+
+
 def near(a, b):
     return math.dist(a, b) < TOLERANCE
 
@@ -934,11 +942,9 @@ def main():
     results = load_results(sys.argv[1], sys.argv[3])
     rack = Rack(json.load(open(sys.argv[2])))
     name = sys.argv[3]
-    scenario = next((s for s in results["scenarios"] if s["name"] == name), None)
-    if scenario is None:
-        fail("scenario %s did not run: %s" % (name, results["error"]))
-    globals()["check_" + name](scenario, rack)
-    print("%s: %.1f s, %d samples" % (name, scenario["duration"], len(scenario["samples"])))
+    r = scenario(results, name)
+    globals()["check_" + name](r, rack)
+    print("%s: %.1f s, %d samples" % (name, r["duration"], len(r["samples"])))
 
 
 if __name__ == "__main__":

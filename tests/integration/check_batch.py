@@ -10,9 +10,8 @@ import math
 import re
 import sys
 
-from check import (Rack, distinct, load_results, fail, measured_to_truth, no_fault, ok, said, sensor_truth,
-                   spindle_holds, tool_table_length, visits_in_order)
-from check_teach import scenario
+from check import (Rack, distinct, load_results, fail, measured_to_truth, no_fault, ok, said, scenario,
+                   sensor_truth, spindle_holds, tool_table_length, visits_in_order)
 
 P = "fixed_atc_probe."
 # The lengths each scenario sets by G10 L1 before its batch: what a tool keeps

@@ -8,7 +8,7 @@ import json
 import os
 import sys
 
-from check import Rack, distinct, fail, in_pockets, load_results, near, ok, rising_samples, said
+from check import Rack, distinct, fail, in_pockets, load_results, near, ok, rising_samples, said, scenario
 
 GRIP_FAULT = "tool 2 not in the spindle after the chuck closed at pocket 2 (tool-present off, retried once)"
 AIR_FAULT = "air pressure low (air-pressure-ok off) before the chuck opened to flush it; it stayed closed"
@@ -270,10 +270,7 @@ def main():
     if results.get("error"):
         fail("the run failed: %s" % results["error"])
     rack = Rack(json.load(open(config_path)))
-    scenario = next((s for s in results["scenarios"] if s["name"] == name), None)
-    if scenario is None:
-        fail("scenario %s did not run" % name)
-    globals()["check_" + name](scenario, rack, rack_log(results_path))
+    globals()["check_" + name](scenario(results, name), rack, rack_log(results_path))
 
 
 if __name__ == "__main__":

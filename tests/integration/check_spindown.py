@@ -11,7 +11,7 @@ import json
 import math
 import sys
 
-from check import TOLERANCE, fail, load_results, near, ok, said
+from check import TOLERANCE, fail, load_results, near, ok, said, scenario
 
 ZERO = "fixed_atc_probe.zero-speed"
 DID_NOT_STOP = "the spindle did not stop within spindle_stop_timeout_seconds (zero-speed off)"
@@ -94,10 +94,7 @@ def main():
     results = load_results(results_path, name)
     if results.get("error"):
         fail("the run failed: %s" % results["error"])
-    scenario = next((s for s in results["scenarios"] if s["name"] == name), None)
-    if scenario is None:
-        fail("scenario %s did not run" % name)
-    globals()["check_" + name](scenario, json.load(open(config_path)))
+    globals()["check_" + name](scenario(results, name), json.load(open(config_path)))
 
 
 if __name__ == "__main__":

@@ -15,20 +15,13 @@ import sys
 import tempfile
 
 from check import (Rack, chuck_only_at_pockets, fail, handshake_complete, no_fault, ok, said,
-                   spindle_holds, visits_in_order)
+                   scenario, spindle_holds, visits_in_order)
 
 # mm: teaching rounds to 4 decimals, and reads the actual position a moment
 # after the driver did (which may catch the last micrometres of the move).
 ROUNDING = 5e-3
 # Farther than this from the old pocket 3's waypoints: the M6 did not go there.
 AWAY = 1.0
-
-
-def scenario(results, name):
-    found = next((s for s in results["scenarios"] if s["name"] == name), None)
-    if found is None:
-        fail("scenario %s did not run: %s" % (name, results["error"]))
-    return found
 
 
 def files(r, when):

@@ -34,7 +34,7 @@ struct ChangeFlow_ : Flow<ChangeFlow_> {
     }
     const auto pocket = c.tools.pocket_holding(c.requested_tool);
     if (c.requested_tool == 0 || !pocket) return {};
-    return plan::fetch_to_above_chuck(c.config, *pocket, false);
+    return plan::fetch_to_above_chuck(c.config, *pocket);
   }
   /// Up to safe Z and across toward the first leg's pocket while the spindle
   /// runs down (plan::while_spindle_stops); the leg then starts from there.

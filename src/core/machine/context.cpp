@@ -7,11 +7,6 @@
 
 namespace fatc {
 
-bool Context::at_safe() const {
-  return known_axes == axis_xyz && position.x == config.safe.x && position.y == config.safe.y &&
-         position.z == config.safe.z;
-}
-
 void Context::publish(const Step& next) {
   // The second layer behind --check: every move, before it goes out.
   const auto problems = check_moves ? check_move(config, position, known_axes, next, limits)

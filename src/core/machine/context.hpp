@@ -61,7 +61,6 @@ class Context {
   bool cover_closing = false;
   Point position;             ///< where the last published moves lead
   unsigned known_axes = 0;    ///< which axes of `position` are known
-  bool at_safe() const;
 
   // What the status view's activity is derived from.
   Step step;                          ///< the last published step
@@ -77,7 +76,7 @@ class Context {
   /// following one when the one before is reached (next_waypoint). The way
   /// at safe Z to where the spindle already stands is left out
   /// (plan::from_where_it_stands): M6's first leg after its moves while the
-  /// spindle ran down; in a sequence's other routes there is none.
+  /// spindle ran down, a fetch from safe or (direct path) from safe Z.
   void walk(plan::Route route);
   /// The waypoint under way was reached: publishes the next one of the route
   /// walked and says true; false when the route is done, or none is walked.

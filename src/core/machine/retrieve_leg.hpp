@@ -23,15 +23,9 @@ struct RetrieveLeg_ : Flow<RetrieveLeg_> {
   }
   // The phases; plan/routes.hpp says where each goes.
   /// Over the pocket to above-chuck; straight over it from safe, or, on the
-  /// direct path, from anywhere at safe Z (where a direct return ends).
-  struct ToAboveChuck : Walking<ToAboveChuck> {
-    template <class Leg>
-    static plan::Route route(const Context& c, const Leg& leg) {
-      const bool at_safe_z = (c.known_axes & axis_z) && c.position.z == c.config.safe.z;
-      const bool at_safe = c.at_safe() || (c.config.path == Path::direct && at_safe_z);
-      return plan::fetch_to_above_chuck(c.config, leg.pocket, at_safe);
-    }
-  };
+  /// direct path, from anywhere at safe Z (where a direct return ends):
+  /// Context::walk leaves out the way to where the spindle already stands.
+  struct ToAboveChuck : GoingAtPocket<plan::fetch_to_above_chuck> {};
   struct WaitingToOpen : WaitingToOpenChuck<AbovePocket> {};
   struct OpeningChuck : Timed {
     template <class Event, class Fsm>

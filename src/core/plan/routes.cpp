@@ -161,13 +161,10 @@ Route return_away(const Config& c, int pocket, bool fetch_follows) {
   return route;
 }
 
-Route fetch_to_above_chuck(const Config& c, int pocket, bool at_safe) {
+Route fetch_to_above_chuck(const Config& c, int pocket) {
   const Pocket p{c, pocket};
-  Route route;
-  if (!at_safe) {
-    route.push_back(safe_z(c));
-    if (!direct(c)) route.push_back(safe_xy(c));
-  }
+  Route route{safe_z(c)};
+  if (!direct(c)) route.push_back(safe_xy(c));
   route.push_back(p.over_pocket());
   if (!direct(c)) route.push_back(p.above_clearance());
   route.push_back(p.above_chuck());

@@ -50,9 +50,8 @@ Route return_away(const Config& c, int pocket, bool fetch_follows);
 
 // ---------------------------------------------------------------- fetch a tool
 /// To above-chuck over the pocket, where the chuck flushes and opens: from
-/// safe Z (through safe XY and above-clearance on the prototype path), or
-/// straight over the pocket when the spindle is at safe already (`at_safe`).
-Route fetch_to_above_chuck(const Config& c, int pocket, bool at_safe);
+/// safe Z (through safe XY and above-clearance on the prototype path).
+Route fetch_to_above_chuck(const Config& c, int pocket);
 /// Slowly down around the tool, the chuck open.
 Route fetch_down_to_tool(const Config& c, int pocket);
 /// Out of the holder with the tool (slowly while engaged) and back to safe.
@@ -68,8 +67,9 @@ Route while_spindle_stops(const Config& c, const Route& first);
 
 /// `route` from where the spindle stands (`at`, known on the axes of
 /// `known_axes`): a leading run of moves at safe Z that ends there is left
-/// out, so that the leg after the moves made while the spindle ran down does
-/// not walk them again. The last waypoint is always kept.
+/// out, so that a leg does not walk again the way to where it already is (after
+/// the moves made while the spindle ran down, a fetch after a return). The
+/// last waypoint is always kept.
 Route from_where_it_stands(const Config& c, Route route, const Point& at, unsigned known_axes);
 
 // ---------------------------------------------------------------- the operator and the sensor
