@@ -73,6 +73,8 @@ void Component::read_machine(std::optional<bool> interpreter_idle) {
   task_free_ = nml_ && interpreter_idle.value_or(false);
   if (!nml_) {
     changer_->task_availability("no connection to LinuxCNC's task (NML)");
+  } else if (!interpreter_idle) {
+    changer_->task_availability(std::string(kStatusLost));
   } else if (!task_free_) {
     changer_->task_availability("a program or MDI command is running");
   } else {

@@ -1,6 +1,7 @@
 #include "nml_link.hpp"
 
 #include <chrono>
+#include <cstdio>
 #include <cstring>
 #include <emc.hh>
 #include <emc_nml.hh>
@@ -51,26 +52,30 @@ NmlLink::NmlLink(std::unique_ptr<Channels> channels) : channels_(std::move(chann
 NmlLink::~NmlLink() = default;
 
 bool NmlLink::poll() {
-  if (!channels_->status->valid()) {
-    position_mm_.reset();
-    return false;
+  // Checked again after the peek: a peek that timed out on the lock (10 s)
+  // leaves the channel invalid, and what it read before is stale.
+  if (channels_->status->valid()) {
+    if (channels_->status->peek() == EMC_STAT_TYPE) {
+      const auto* stat = static_cast<EMC_STAT*>(channels_->status->get_address());
+      interpreter_idle_ = stat->task.interpState == kInterpIdle;
+      // linearUnits: machine units per mm.
+      const double per_mm = stat->motion.traj.linearUnits > 0 ? stat->motion.traj.linearUnits : 1.0;
+      const EmcPose& at = stat->motion.traj.actualPosition;
+      position_mm_ = Point{at.tran.x / per_mm, at.tran.y / per_mm, at.tran.z / per_mm};
+      units_per_mm_ = per_mm;
+      spindle_tool_ = stat->io.tool.toolInSpindle;
+      spindle_tool_length_ = spindle_tool_ > 0 ? stat->io.tool.toolTableCurrent.offset.tran.z : 0.0;
+      task_mode_ = static_cast<int>(stat->task.mode);
+      motion_line_ = stat->task.motionLine;
+      program_.assign(stat->task.file, strnlen(stat->task.file, sizeof stat->task.file));
+      serial_ = std::max(serial_, stat->echo_serial_number);
+    }
+    if (channels_->status->valid()) return true;
   }
-  if (channels_->status->peek() == EMC_STAT_TYPE) {
-    const auto* stat = static_cast<EMC_STAT*>(channels_->status->get_address());
-    interpreter_idle_ = stat->task.interpState == kInterpIdle;
-    // linearUnits: machine units per mm.
-    const double per_mm = stat->motion.traj.linearUnits > 0 ? stat->motion.traj.linearUnits : 1.0;
-    const EmcPose& at = stat->motion.traj.actualPosition;
-    position_mm_ = Point{at.tran.x / per_mm, at.tran.y / per_mm, at.tran.z / per_mm};
-    units_per_mm_ = per_mm;
-    spindle_tool_ = stat->io.tool.toolInSpindle;
-    spindle_tool_length_ = spindle_tool_ > 0 ? stat->io.tool.toolTableCurrent.offset.tran.z : 0.0;
-    task_mode_ = static_cast<int>(stat->task.mode);
-    motion_line_ = stat->task.motionLine;
-    program_.assign(stat->task.file, strnlen(stat->task.file, sizeof stat->task.file));
-    serial_ = std::max(serial_, stat->echo_serial_number);
-  }
-  return true;
+  if (!lost_said_) std::fprintf(stderr, "fixed_atc_probe: %s\n", kStatusLost.data());
+  lost_said_ = true;
+  position_mm_.reset();
+  return false;
 }
 
 std::string NmlLink::what_moves() const {

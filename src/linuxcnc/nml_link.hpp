@@ -4,12 +4,21 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 
 #include "core/machine/ports.hpp"
 
 class RCS_CMD_MSG;
 
 namespace fatc::linuxcnc {
+
+/// Why nothing runs over NML once task's status stopped answering. Each NML
+/// buffer's lock is a semaphore taken without undo: a reader that died
+/// holding it (killed, crashed) leaves it taken, task blocks on every status
+/// write, and only a restart of LinuxCNC frees it.
+inline constexpr std::string_view kStatusLost =
+    "LinuxCNC's status channel does not answer (its NML lock is held, by a program that died "
+    "holding it, or LinuxCNC stopped): restart LinuxCNC";
 
 /// LinuxCNC's NML channels: status (is the interpreter idle, which is how the
 /// component learns that a program was aborted) and commands (operator
@@ -20,7 +29,8 @@ class NmlLink {
   static std::unique_ptr<NmlLink> open(const std::string& nml_file, std::string& error);
   ~NmlLink();
 
-  /// Reads the newest status; false when the channel fails.
+  /// Reads the newest status; false when the channel fails, and then for
+  /// good (kStatusLost, said once on stderr).
   bool poll();
   bool interpreter_idle() const { return interpreter_idle_; }
   /// Where the machine is (G53, actual position), in mm, as the newest status
@@ -63,6 +73,7 @@ class NmlLink {
   int motion_line_ = 0;
   std::string program_;
   int serial_ = 0;
+  bool lost_said_ = false;
 };
 
 /// The NML file LinuxCNC uses: [EMC]NML_FILE of the INI, or the default of

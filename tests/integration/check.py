@@ -938,6 +938,17 @@ def check_restart_after_kill(r, rack):
     ok("T3 M6 ran after the confirm: LinuxCNC and the changer say T3")
 
 
+def check_status_lock_lost(r, rack):
+    words = "load of tool 4 refused: LinuxCNC's status channel does not answer"
+    shown = [m["text"] for m in r["status_file"].get("messages", [])]
+    if not any(words in text for text in shown):
+        fail("the panel's words after the status lock was lost: %s" % shown)
+    if r["status_file"].get("phase") != "idle":
+        fail("the changer left idle: %s" % r["status_file"].get("phase"))
+    ok("with task's status lock held by a dead reader, Load is refused in one line on the panel "
+       "(%.1f s after)" % (r["answered_at"] - r["lock_lost_at"]))
+
+
 def main():
     results = load_results(sys.argv[1], sys.argv[3])
     rack = Rack(json.load(open(sys.argv[2])))

@@ -204,9 +204,58 @@ def the_component_pid():
     return pids[0]
 
 
+# LinuxCNC's NML buffers (the sim runs with LinuxCNC's default NML file) each
+# have a SysV semaphore as their lock, taken without SEM_UNDO: a process that
+# dies holding one leaves it taken, and task then blocks on every status
+# write ("SHMEM: Can't take semaphore"). True of any NML client (a GUI too);
+# so the driver stops and kills the component only outside these locks.
+NML_BUFFER_KEYS = (1001, 1002, 1003, 1004, 1005)
+GETPID, GETVAL = 11, 12  # semctl commands, <linux/sem.h>
+libc = ctypes.CDLL(None, use_errno=True)
+
+
+def holds_nml_lock(pid):
+    for key in NML_BUFFER_KEYS:
+        ident = libc.semget(key, 0, 0)
+        if ident >= 0 and libc.semctl(ident, 0, GETVAL) == 0 and libc.semctl(ident, 0, GETPID) == pid:
+            return True
+    return False
+
+
+def stop_outside_nml_locks(pid):
+    """SIGSTOP at a moment `pid` holds none of LinuxCNC's NML locks."""
+    for _ in range(1000):
+        os.kill(pid, signal.SIGSTOP)
+        deadline = time.monotonic() + 10
+        while not process_stopped(pid):  # no stat.poll here: it would wait on the lock
+            if time.monotonic() > deadline:
+                raise TimeoutError("the component did not stop on SIGSTOP")
+            time.sleep(0.001)
+        if not holds_nml_lock(pid):
+            return
+        os.kill(pid, signal.SIGCONT)
+    raise RuntimeError("the component held LinuxCNC's NML lock at every one of 1000 stops")
+
+
+def die_holding_nml_lock(key):
+    """A process that takes NML buffer `key`'s lock and dies holding it."""
+    child = os.fork()
+    if child == 0:
+        take = (ctypes.c_short * 3)(0, -1, 0)  # struct sembuf: the first semaphore, -1, no SEM_UNDO
+        os._exit(0 if libc.semop(libc.semget(key, 0, 0), take, 1) == 0 else 1)
+    if os.waitpid(child, 0)[1] != 0:
+        raise RuntimeError("could not take the lock of NML buffer %d" % key)
+
+
+def process_stopped(pid):
+    with open("/proc/%d/stat" % pid) as f:
+        return f.read().rsplit(")", 1)[1].split()[0] in ("T", "t")
+
+
 def kill_component():
     """SIGKILL: the component gets no chance to close its chuck or save anything."""
     pid = the_component_pid()
+    stop_outside_nml_locks(pid)
     os.kill(pid, signal.SIGKILL)
     killed = time.monotonic()
     wait_for(lambda: process_gone(pid), 10, "the killed component to die")
@@ -407,7 +456,7 @@ def run_scenario(scenario):
             elif action["do"] == "stop":
                 # The component hangs: SIGSTOP, SIGCONT in an after step.
                 result["stopped_pid"] = the_component_pid()
-                os.kill(result["stopped_pid"], signal.SIGSTOP)
+                stop_outside_nml_locks(result["stopped_pid"])
                 result["stopped_at"] = s["t"]
             elif action["do"] == "estop":
                 command.state(linuxcnc.STATE_ESTOP)
@@ -555,6 +604,23 @@ def perform(step, result, start):
              not hal.get_value("iocontrol.0.tool-changed"), 10, "the change handshake to end")
         result.setdefault("programs", {})[step["name"]] = {"began": began, "ended": now(),
                                                            "program": step["program"]}
+    elif step["do"] == "status_lock_lost":
+        # A reader of task's status dies holding its lock (NML_BUFFER_KEYS):
+        # LinuxCNC stalls until it restarts, so this ends its run; nothing
+        # here polls the status. Then the operator presses Load.
+        die_holding_nml_lock(1002)
+        result["lock_lost_at"] = now()
+        hal.set_p(COMPONENT + ".tool-number", str(step["tool"]))
+        hal.set_p(COMPONENT + ".load", "1")
+        deadline = time.monotonic() + 60
+        while time.monotonic() < deadline:
+            status = read_json(state_path() + ".status")
+            if any(step["words"] in m.get("text", "") for m in status.get("messages", [])):
+                break
+            time.sleep(0.05)
+        hal.set_p(COMPONENT + ".load", "0")
+        result["status_file"] = read_json(state_path() + ".status")
+        result["answered_at"] = now()
     else:
         raise ValueError("unknown step %s" % step)
 
