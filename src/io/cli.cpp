@@ -169,9 +169,14 @@ int check(const Options& options, std::ostream& out, std::ostream& err) {
     std::string error;
     if (const auto ini = IniFile::read(*options.ini_path, error)) {
       const Config* config = loaded.config ? &*loaded.config : nullptr;
-      for (const auto& problem : executor_problems(*ini, config)) {
-        err << problem << "\n";
-        ++problems;
+      const auto section = executor_problems(*ini, config);
+      for (const auto& problem : section) err << problem << "\n";
+      problems += static_cast<int>(section.size());
+      if (!section.empty()) {
+        loaded.not_checked.push_back("INI [FIXED_ATC_PROBE] not valid (" +
+                                     std::to_string(section.size()) +
+                                     (section.size() == 1 ? " problem" : " problems") +
+                                     "): M6 would not run as set up");
       }
     }
   }

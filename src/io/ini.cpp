@@ -32,16 +32,17 @@ namespace {
 // LinuxCNC 2.10 (master) replaced 2.9's ::IniFile (read from a FILE at each
 // lookup) by linuxcnc::IniFile: read from a path once, and kept by that path
 // for the whole process, never read again. So each text goes into a file of
-// a name this process never used before (its pid and a counter), readable by
-// its owner only, which the reader reads once; then the file is removed.
+// a name this process never used before (its pid and a counter) that nobody
+// can plant beforehand (mkstemps' random part), readable by its owner only,
+// which the reader reads once; then the file is removed.
 std::shared_ptr<const linuxcnc::IniFile> read_with_linuxcnc(const std::string& text,
                                                            std::string& error) {
   static std::atomic<unsigned long> count{0};
   const char* folder = std::getenv("TMPDIR");
-  const std::string path = std::string(folder != nullptr && *folder != '\0' ? folder : "/tmp") +
-                           "/fixed_atc_probe-ini-" + std::to_string(::getpid()) + "-" +
-                           std::to_string(++count) + ".ini";
-  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+  std::string path = std::string(folder != nullptr && *folder != '\0' ? folder : "/tmp") +
+                     "/fixed_atc_probe-ini-" + std::to_string(::getpid()) + "-" +
+                     std::to_string(++count) + "-XXXXXX.ini";
+  const int fd = ::mkostemps(path.data(), 4, O_CLOEXEC);
   if (fd < 0) {
     error = "cannot make a private copy to read: " + path + ": " + std::strerror(errno);
     return nullptr;

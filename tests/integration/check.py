@@ -502,6 +502,17 @@ def check_load_probe(r, rack):
     if not os.path.exists(log) or "tool 4 measured" not in open(log, errors="replace").read():
         fail("the component's log %s does not hold the load's message" % log)
     ok("the component's log %s holds it" % log)
+    # The load ran over MDI in the executor's modes (G21 G90 G17 G49, feed
+    # override off): the operator's come back at its end.
+    modes = r.get("modes", {}).get("after_load")
+    if modes is None:
+        fail("no modes read after the load")
+    wanted = {200: "G20", 910: "G91", 180: "G18", 430: "G43"}
+    missing = [name for code, name in wanted.items() if code not in modes["gcodes"]]
+    if missing or not modes["feed_override_enabled"]:
+        fail("after the load LinuxCNC lacks %s of the operator's G20 G91 G18 G43, feed override %s"
+             % (missing, "on" if modes["feed_override_enabled"] else "off"))
+    ok("the operator's G20 G91 G18 G43 and feed override back after the load over MDI")
 
 
 def check_unload_cancel(r, rack):

@@ -452,6 +452,16 @@ TEST_F(CheckRun, shouldSayTheSoftLimitsWereNotCheckedWhenTheIniIsNotValid) {
             "INI not valid: soft limits not checked\n");
 }
 
+TEST_F(CheckRun, shouldNotEndInZeroViolationsWhenTheExecutorSectionIsNotValid) {
+  const std::string ini = file("sim.ini", sim_ini_with("PROBE_Z_OUT = 02", "PROBE_Z_OUT = 0\u202e2"));
+  const CliRun r = run({"--check", "--config", kConfig, "--ini", ini});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NE(r.err.find("[FIXED_ATC_PROBE]PROBE_Z_OUT (line "), std::string::npos) << r.err;
+  const std::string last = r.out.substr(r.out.rfind('\n', r.out.size() - 2) + 1);
+  EXPECT_EQ(last, "INI [FIXED_ATC_PROBE] not valid (1 problem): M6 would not run as set up\n");
+  EXPECT_EQ(r.out.find("station"), std::string::npos) << "no full report: " << r.out;
+}
+
 TEST_F(CheckRun, shouldSayNothingWasCheckedAgainstTheRackWhenTheConfigIsUnreadable) {
   ASSERT_EQ(::mkfifo((folder_ + "/config.json").c_str(), 0600), 0);
   const CliRun r = run({"--check", "--config", folder_ + "/config.json", "--state",
