@@ -1,10 +1,8 @@
 #include "component.hpp"
 
-#include <cstdlib>
 #include <iostream>
 
 #include "core/config/quote.hpp"
-#include "core/machine/measure_which.hpp"
 #include "hal_pins_detail.hpp"
 #include "hal_pins_view.hpp"
 #include "io/files.hpp"
@@ -33,7 +31,7 @@ void Component::poll(Clock::time_point now, std::optional<bool> interpreter_idle
     deadline_.reset();
     changer_->timer_elapsed();
   }
-  measure_program_tools();
+  measure_all_press_.poll(*changer_, refuse_);
   start_executor_if_needed();
   if (task_free_) spindle_tool_.poll(now, *pins_->linuxcnc_tool, *changer_, *nml_, *this);
   keepout_.poll(*pins_, *changer_, machine_ready_.value_or(false), nml_, *this);
@@ -100,7 +98,10 @@ void Component::read_executor(std::optional<bool> interpreter_idle) {
 void Component::read_operator() {
   if (load_.rose(*pins_->load)) changer_->load(*pins_->tool_number, *pins_->pocket_number);
   if (unload_.rose(*pins_->unload)) changer_->unload(*pins_->tool_number);
-  if (measure_all_.rose(*pins_->measure_all)) measure_all();
+  if (measure_all_.rose(*pins_->measure_all)) {
+    measure_all_press_.press(*pins_->measure_which, nml_ ? nml_->loaded_program() : std::string(),
+                             *changer_, refuse_);
+  }
   if (verify_.rose(*pins_->verify_pocket)) changer_->verify(*pins_->pocket_number);
   if (continue_.rose(*pins_->continue_)) changer_->operator_continue();
   if (cancel_.rose(*pins_->cancel)) {
@@ -134,30 +135,6 @@ std::optional<Point> Component::position() const {
   if (!mm) return std::nullopt;
   const double scale = changer_->config().units == Units::inch ? 1.0 / 25.4 : 1.0;
   return Point{mm->x * scale, mm->y * scale, mm->z * scale};
-}
-
-void Component::measure_all() {
-  const MeasureChoice choice = measure_which(*pins_->measure_which, changer_->tools());
-  if (choice.kind == MeasureChoice::Kind::tools) changer_->measure_all(choice.tools);
-  if (choice.kind == MeasureChoice::Kind::refused) tell(MessageKind::error, choice.refusal);
-  if (choice.kind != MeasureChoice::Kind::program_tools) return;
-  const std::string program = nml_ ? nml_->loaded_program() : std::string();
-  const char* ini = std::getenv("INI_FILE_NAME");
-  if (program.empty()) {
-    tell(MessageKind::error, measure_refused("no program is loaded in LinuxCNC"));
-  } else if (!program_tools_.start(program, ini ? ini : "", changer_->config())) {
-    tell(MessageKind::error, measure_refused("the program's tools are being worked out"));
-  }  // else measure_program_tools() goes on once the interpreter has them
-}
-
-void Component::measure_program_tools() {
-  auto done = program_tools_.take();
-  if (!done) return;
-  if (!done->tools) {
-    tell(MessageKind::error, measure_refused(done->error));
-    return;
-  }
-  changer_->measure_all(*done->tools);
 }
 
 void Component::abort(const std::string& reason) {

@@ -67,10 +67,6 @@ class Component : public Ports {
   void teach(const TeachTarget& target);
   /// Where the machine stands, in machine coordinates and config units; nothing without NML.
   std::optional<Point> position() const;
-  /// Measure all, of the tools `measure-which` names (the program's: once
-  /// program_tools_ has them).
-  void measure_all();
-  void measure_program_tools();
   void abort(const std::string& reason);
   void start_executor_if_needed();
 
@@ -89,7 +85,10 @@ class Component : public Ports {
   SpindleToolSync spindle_tool_;
   RackKeepout keepout_;
   io::StatusFile status_file_;
-  ProgramToolsJob program_tools_;
+  MeasureAllPress measure_all_press_;
+  const MeasureAllPress::Refuse refuse_ = [this](const std::string& why) {
+    tell(MessageKind::error, why);
+  };
   Edge abort_, clear_, load_, unload_, continue_, cancel_;
   Edge teach_pocket_, teach_loading_, teach_safe_, teach_sensor_, measure_all_, verify_;
 };

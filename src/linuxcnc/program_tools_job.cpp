@@ -1,7 +1,9 @@
 #include "program_tools_job.hpp"
 
+#include <cstdlib>
 #include <new>
 
+#include "core/machine/measure_which.hpp"
 #include "io/lint.hpp"
 
 namespace fatc::linuxcnc {
@@ -34,6 +36,30 @@ std::optional<ProgramToolsJob::Result> ProgramToolsJob::take() {
   if (!thread_.joinable() || !done_) return std::nullopt;
   thread_.join();
   return std::move(result_);
+}
+
+void MeasureAllPress::press(int which, const std::string& program, Changer& changer,
+                            const Refuse& refuse) {
+  const MeasureChoice choice = measure_which(which, changer.tools());
+  if (choice.kind == MeasureChoice::Kind::tools) changer.measure_all(choice.tools);
+  if (choice.kind == MeasureChoice::Kind::refused) refuse(choice.refusal);
+  if (choice.kind != MeasureChoice::Kind::program_tools) return;
+  const char* ini = std::getenv("INI_FILE_NAME");
+  if (program.empty()) {
+    refuse(measure_refused("no program is loaded in LinuxCNC"));
+  } else if (!job_.start(program, ini ? ini : "", changer.config())) {
+    refuse(measure_refused("the program's tools are being worked out"));
+  }  // else poll() goes on once the interpreter has them
+}
+
+void MeasureAllPress::poll(Changer& changer, const Refuse& refuse) {
+  auto done = job_.take();
+  if (!done) return;
+  if (done->tools) {
+    changer.measure_all(*done->tools);
+  } else {
+    refuse(measure_refused(done->error));
+  }
 }
 
 }  // namespace fatc::linuxcnc

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -8,6 +9,7 @@
 #include <vector>
 
 #include "core/config/config.hpp"
+#include "core/machine/changer.hpp"
 
 namespace fatc::linuxcnc {
 
@@ -38,6 +40,20 @@ class ProgramToolsJob {
   std::thread thread_;
   std::atomic<bool> done_{false};
   Result result_;  ///< written by the thread before done_, read after it
+};
+
+/// The panel's Measure all: measure-which as the core reads it
+/// (measure_which), the loaded program's tools by a ProgramToolsJob.
+class MeasureAllPress {
+ public:
+  using Refuse = std::function<void(const std::string&)>;
+  /// A press: `which` from measure-which, `program` the one loaded in LinuxCNC.
+  void press(int which, const std::string& program, Changer& changer, const Refuse& refuse);
+  /// Gives the changer the program's tools once the job has them.
+  void poll(Changer& changer, const Refuse& refuse);
+
+ private:
+  ProgramToolsJob job_;
 };
 
 }  // namespace fatc::linuxcnc

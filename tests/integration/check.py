@@ -504,15 +504,21 @@ def check_load_probe(r, rack):
     ok("the component's log %s holds it" % log)
     # The load ran over MDI in the executor's modes (G21 G90 G17 G49, feed
     # override off): the operator's come back at its end.
-    modes = r.get("modes", {}).get("after_load")
+    operator_modes_back(r, "after_load", {200: "G20", 910: "G91", 180: "G18"})
+
+
+def operator_modes_back(r, name, wanted):
+    """After an operator flow over MDI: the operator's G codes (code -> name)
+    and the feed override are LinuxCNC's again, not the executor's."""
+    modes = r.get("modes", {}).get(name)
     if modes is None:
-        fail("no modes read after the load")
-    wanted = {200: "G20", 910: "G91", 180: "G18", 430: "G43"}
-    missing = [name for code, name in wanted.items() if code not in modes["gcodes"]]
+        fail("no modes read %s" % name)
+    missing = [word for code, word in wanted.items() if code not in modes["gcodes"]]
     if missing or not modes["feed_override_enabled"]:
-        fail("after the load LinuxCNC lacks %s of the operator's G20 G91 G18 G43, feed override %s"
-             % (missing, "on" if modes["feed_override_enabled"] else "off"))
-    ok("the operator's G20 G91 G18 G43 and feed override back after the load over MDI")
+        fail("%s LinuxCNC lacks %s of the operator's %s, feed override %s"
+             % (name, missing, " ".join(wanted.values()), "on" if modes["feed_override_enabled"] else "off"))
+    ok("%s: the operator's %s and the feed override back" % (name, " ".join(wanted.values())))
+    return modes
 
 
 def check_unload_cancel(r, rack):
@@ -522,6 +528,11 @@ def check_unload_cancel(r, rack):
     if not any("cancelled" in m for m in r["messages"]):
         fail("no message saying what is where: %s" % r["messages"])
     ok("message: %s" % [m for m in r["messages"] if "cancelled" in m][0])
+    # G43 was in force with tool 2's length: it is again, with motion applying it.
+    modes = operator_modes_back(r, "after_cancel", {200: "G20", 910: "G91", 180: "G18", 430: "G43"})
+    if abs(modes["tool_offset"][2] - modes["tool_z"]) > 1e-6 or modes["tool_z"] == 0:
+        fail("motion applies %.4f, tool %d's length is %s" % (modes["tool_offset"][2], modes["tool_in_spindle"], modes["tool_z"]))
+    ok("G43: motion applies tool %d's length %.4f" % (modes["tool_in_spindle"], modes["tool_z"]))
 
 
 def said(r, wanted):

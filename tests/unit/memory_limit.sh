@@ -11,6 +11,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 { echo "T1 M6"; for i in $(seq 1 5000); do echo "G1 X$((i % 100)).000 Y2.000 F100"; done
   echo "T2 M6"; echo "M2"; } > "$work/program.ngc"
+safe=$(python3 -c 'import json, sys; s = json.load(open(sys.argv[1]))["safe"]; print("%s,%s,%s" % (s["x"], s["y"], s["z"]))' "$config")
 failures=0
 check() {  # check LIMIT_KB NAME ARGS...: one run under the limit
   local limit=$1 name=$2
@@ -41,7 +42,11 @@ for limit in $(seq 8000 2000 32000) 48000 64000 128000; do
   check "$limit" dot --dot
   check "$limit" plot --plot "$work/rack.svg" --config "$config"
   check "$limit" lint --lint "$work/program.ngc" --config "$config" --state "$work/none.state"
-  runs=$((runs + 6))
+  # The writers: a teach of the sample's own safe position, a confirm with nothing cut off.
+  cp "$config" "$work/teach.json"
+  check "$limit" teach --teach safe --config "$work/teach.json" --at "$safe"
+  check "$limit" confirm --confirm --config "$config" --spindle 0 --state "$work/none.state"
+  runs=$((runs + 8))
 done
 echo "memory_limit.sh: $runs runs from ulimit -v 8000 to 128000 KB, $failures failures"
 [ "$failures" -eq 0 ]
