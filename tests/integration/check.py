@@ -528,7 +528,12 @@ def check_unload_cancel(r, rack):
     if not any("cancelled" in m for m in r["messages"]):
         fail("no message saying what is where: %s" % r["messages"])
     ok("message: %s" % [m for m in r["messages"] if "cancelled" in m][0])
-    # G43 was in force with tool 2's length: it is again, with motion applying it.
+
+
+def check_unload_cancel_modes(r, rack):
+    """Tool 2 in the spindle, G43 with its length in force: an unload of it
+    over MDI, cancelled at the prompt, gives every mode back."""
+    check_unload_cancel(r, rack)
     modes = operator_modes_back(r, "after_cancel", {200: "G20", 910: "G91", 180: "G18", 430: "G43"})
     if abs(modes["tool_offset"][2] - modes["tool_z"]) > 1e-6 or modes["tool_z"] == 0:
         fail("motion applies %.4f, tool %d's length is %s" % (modes["tool_offset"][2], modes["tool_in_spindle"], modes["tool_z"]))
