@@ -176,7 +176,7 @@ int check(const Options& options, std::ostream& out, std::ostream& err) {
         loaded.not_checked.push_back("INI [FIXED_ATC_PROBE] not valid (" +
                                      std::to_string(section.size()) +
                                      (section.size() == 1 ? " problem" : " problems") +
-                                     "): M6 would not run as set up");
+                                     "): M6, the panel's flows and the chuck M-codes would not run as set up");
       }
     }
   }

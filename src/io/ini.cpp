@@ -32,8 +32,8 @@ namespace {
 // LinuxCNC 2.10 (master) replaced 2.9's ::IniFile (read from a FILE at each
 // lookup) by linuxcnc::IniFile: read from a path once, and kept by that path
 // for the whole process, never read again. So each text goes into a file of
-// a name this process never used before (its pid and a counter) that nobody
-// can plant beforehand (mkstemps' random part), readable by its owner only,
+// a name this process never used before and nobody can plant beforehand
+// (mkostemps' random part; pid and counter say whose it is), owner-only,
 // which the reader reads once; then the file is removed.
 std::shared_ptr<const linuxcnc::IniFile> read_with_linuxcnc(const std::string& text,
                                                            std::string& error) {

@@ -31,6 +31,9 @@ class Component : public Ports {
   /// changer the new one.
   Component(HalPins* pins, const Config& config, std::string config_path, std::string state_path,
             NmlLink* nml);
+  // It hands out `this` (the changer's ports, refuse_): it stays where it was made.
+  Component(const Component&) = delete;
+  Component& operator=(const Component&) = delete;
   void attach(Changer* changer) { changer_ = changer; }
   /// The machine's soft limits, which a taught position must respect.
   void soft_limits(std::optional<SoftLimits> limits) { teacher_.soft_limits(std::move(limits)); }

@@ -3,6 +3,7 @@
 #include <cstdlib>
 #include <new>
 
+#include "core/machine/changer.hpp"
 #include "core/machine/measure_which.hpp"
 #include "io/lint.hpp"
 

@@ -9,7 +9,10 @@
 #include <vector>
 
 #include "core/config/config.hpp"
-#include "core/machine/changer.hpp"
+
+namespace fatc {
+class Changer;
+}
 
 namespace fatc::linuxcnc {
 

@@ -535,7 +535,8 @@ def check_unload_cancel_modes(r, rack):
     over MDI, cancelled at the prompt, gives every mode back."""
     check_unload_cancel(r, rack)
     modes = operator_modes_back(r, "after_cancel", {200: "G20", 910: "G91", 180: "G18", 430: "G43"})
-    if abs(modes["tool_offset"][2] - modes["tool_z"]) > 1e-6 or modes["tool_z"] == 0:
+    if modes["tool_z"] is None or modes["tool_z"] == 0.0 or \
+            abs(modes["tool_offset"][2] - modes["tool_z"]) > 1e-6:
         fail("motion applies %.4f, tool %d's length is %s" % (modes["tool_offset"][2], modes["tool_in_spindle"], modes["tool_z"]))
     ok("G43: motion applies tool %d's length %.4f" % (modes["tool_in_spindle"], modes["tool_z"]))
 

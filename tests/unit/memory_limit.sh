@@ -45,7 +45,8 @@ for limit in $(seq 8000 2000 32000) 48000 64000 128000; do
   # The writers: a teach of the sample's own safe position, a confirm with nothing cut off.
   cp "$config" "$work/teach.json"
   check "$limit" teach --teach safe --config "$work/teach.json" --at "$safe"
-  check "$limit" confirm --confirm --config "$config" --spindle 0 --state "$work/none.state"
+  rm -f "$work/confirm.state"  # a confirm that went through wrote it: each starts with none
+  check "$limit" confirm --confirm --config "$config" --spindle 0 --state "$work/confirm.state"
   runs=$((runs + 8))
 done
 echo "memory_limit.sh: $runs runs from ulimit -v 8000 to 128000 KB, $failures failures"

@@ -458,7 +458,7 @@ TEST_F(CheckRun, shouldNotEndInZeroViolationsWhenTheExecutorSectionIsNotValid) {
   EXPECT_EQ(r.code, 1);
   EXPECT_NE(r.err.find("[FIXED_ATC_PROBE]PROBE_Z_OUT (line "), std::string::npos) << r.err;
   const std::string last = r.out.substr(r.out.rfind('\n', r.out.size() - 2) + 1);
-  EXPECT_EQ(last, "INI [FIXED_ATC_PROBE] not valid (1 problem): M6 would not run as set up\n");
+  EXPECT_EQ(last, "INI [FIXED_ATC_PROBE] not valid (1 problem): M6, the panel's flows and the chuck M-codes would not run as set up\n");
   EXPECT_EQ(r.out.find("station"), std::string::npos) << "no full report: " << r.out;
 }
 
