@@ -188,13 +188,18 @@ def component_usage():
             "rss_kib": memory.get("VmRSS"), "peak_kib": memory.get("VmHWM")}
 
 
-def process_gone(pid):
-    """Dead: no such process, or a zombie its parent has not reaped."""
+def process_state(pid):
+    """The state letter /proc gives the process (R, S, T, Z, ...), None when there is none."""
     try:
         with open("/proc/%d/stat" % pid) as f:
-            return f.read().rsplit(")", 1)[1].split()[0] in ("Z", "X")
+            return f.read().rsplit(")", 1)[1].split()[0]
     except OSError:
-        return True
+        return None
+
+
+def process_gone(pid):
+    """Dead: no such process, or a zombie its parent has not reaped."""
+    return process_state(pid) in (None, "Z", "X")
 
 
 def the_component_pid():
@@ -248,8 +253,7 @@ def die_holding_nml_lock(key):
 
 
 def process_stopped(pid):
-    with open("/proc/%d/stat" % pid) as f:
-        return f.read().rsplit(")", 1)[1].split()[0] in ("T", "t")
+    return process_state(pid) in ("T", "t")
 
 
 def kill_component():
