@@ -57,6 +57,11 @@ struct HalPins {
   hal_float_t* step_feed;
   hal_s32_t* step_tool;
   hal_float_t* step_value;
+  hal_s32_t* step_via;
+  hal_float_t* step_via_x;
+  hal_float_t* step_via_y;
+  hal_float_t* step_via_z;
+  hal_float_t* step_blend;
   hal_bit_t* return_to_xy;
   hal_bit_t* units_inch;
   hal_float_t* probe_z;

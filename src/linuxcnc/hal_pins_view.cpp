@@ -47,6 +47,18 @@ void write_link(HalPins& pins, const LinkOutputs& out) {
   *pins.step_feed = out.step.feed;
   *pins.step_tool = out.step.tool;
   *pins.step_value = out.step.value;
+  // A run of rapids: up to safe Z and across at it before the step's own move.
+  *pins.step_via = static_cast<int>(via_of(out.step));
+  Point via = out.step.target;
+  for (const Step& move : out.step.before) {
+    if (move.axes & axis_x) via.x = move.target.x;
+    if (move.axes & axis_y) via.y = move.target.y;
+    if (move.axes & axis_z) via.z = move.target.z;
+  }
+  *pins.step_via_x = via.x;
+  *pins.step_via_y = via.y;
+  *pins.step_via_z = via.z;
+  *pins.step_blend = out.step.blend;
   *pins.step_ready = out.step_ready;
   *pins.prepared = out.prepared;
   *pins.changed = out.changed;

@@ -359,6 +359,16 @@ void check_geometry(Reader& reader, Config& config) {
                      " groups apart from each other, and the realtime guard holds " +
                      std::to_string(kGuardBoxes) + ": move pockets together or set it false");
   }
+  int highest = 0;
+  if (const double headroom = config.safe_z_headroom(&highest);
+      config.blend_tolerance > 0.0 && config.blend_tolerance > headroom) {
+    reader.error("blend_tolerance",
+                 "must not be more than " + format_number(std::max(headroom, 0.0)) +
+                     ", how far safe.z lies above the highest above-clearance (pocket " +
+                     std::to_string(highest) +
+                     "'s): a rounded corner would cut into the rack; got " +
+                     format_number(config.blend_tolerance));
+  }
   if (config.window() <= config.check_tolerance()) {
     reader.error("probe_window", "must be larger than probe_check_tolerance (" +
                                      format_number(config.check_tolerance()) + "), got " +
@@ -390,6 +400,18 @@ std::string format_length(const Config& config, double length) {
   std::snprintf(buffer, sizeof buffer, config.units == Units::inch ? "%.5f inch" : "%.4f mm",
                 length);
   return buffer;
+}
+
+double Config::safe_z_headroom(int* pocket) const {
+  double headroom = std::numeric_limits<double>::infinity();
+  for (const auto& [number, entry] : pockets) {
+    const double below = safe.z - (entry.at.z + pocket_above_clearance_offset_z);
+    if (below < headroom) {
+      headroom = below;
+      if (pocket) *pocket = number;
+    }
+  }
+  return headroom;
 }
 
 double Config::check_tolerance() const {
@@ -462,6 +484,7 @@ ConfigResult parse_config(const std::string& json_text) {
       config.move_while_spindle_stops = *value;
     }
   }
+  reader.read(root, "", "blend_tolerance", config.blend_tolerance);
   config.rack_keepout_margin = reader.declared(root, "", "rack_keepout_margin");
   if (const auto all = root.find("rack_keepout_all_motion"); all != root.end()) {
     if (const auto value = boolean(reader, *all, "rack_keepout_all_motion")) {

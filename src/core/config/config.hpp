@@ -99,6 +99,9 @@ struct Config {
   FlushConfig flush;
   double spindle_stop_timeout_seconds = 10.0;
   bool move_while_spindle_stops = true;  ///< M6 moves toward the rack while the spindle runs down
+  /// How far below safe Z the corners of a run of rapids at safe Z may be
+  /// rounded (G64 P); 0: every move ends standing.
+  double blend_tolerance = 0.0;
   std::optional<double> rack_keepout_margin;  ///< unset: half the side offset
   bool rack_keepout_all_motion = true;        ///< the realtime guard keeps all motion out
   std::optional<double> rack_keepout_above;   ///< unset: 5 mm or 0.2 inch
@@ -117,6 +120,9 @@ struct Config {
   /// The pocket that holds `tool` at first start, if any.
   std::optional<int> first_pocket_of(int tool) const;
   double keepout_margin() const;
+  /// How far safe Z lies above the highest pocket's above-clearance: what
+  /// a rounded corner at safe Z may cut at most; `pocket`: that pocket.
+  double safe_z_headroom(int* pocket = nullptr) const;
   /// How far above the holders' tops the rack's volume reaches.
   double keepout_above() const;
   double check_tolerance() const;

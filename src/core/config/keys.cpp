@@ -20,6 +20,7 @@ constexpr Range kPulse{0.01, 60.0, "seconds"};
 constexpr Range kTimeout{0.01, 3600.0, "seconds"};
 constexpr Range kSensorTimeout{0.01, 60.0, "seconds"};
 constexpr Range kPulses{0.0, 20.0, ""};
+constexpr Range kBlend{0.0, 1000.0, "length"};
 constexpr const char* kBoolean = "`true`, `false`";
 constexpr const char* kRequired = "required";
 
@@ -131,6 +132,11 @@ const std::vector<KeyDeclaration> kKeys = {
    "(`sensors.zero_speed`), or `spindle-stopped` from the drive; netted from "
    "`not spindle.0.on` alone, the spindle reads stopped at M5. `false`: M6 stands until the "
    "spindle stops"},
+  {"blend_tolerance", "0", kBlend, "up to how far `safe.z` lies above the highest pocket's "
+   "above-clearance",
+   "how far below safe Z M6 may round the corners of its rapids at safe Z (G64 P): up to safe Z, "
+   "across and down run on without stopping at either corner; 0: every move ends standing. The "
+   "machine must be clear this far below safe Z wherever M6 starts and ends; the rack is checked"},
   {"rack_keepout_margin", "half the side offset's length", kMargin,
    "from 0.04 in inch; below the side offset's length",
    "half-width of each pocket's keep-out column: no move may cross it except the pocket's own "

@@ -9,30 +9,42 @@ namespace fatc {
 
 void Context::publish(const Step& next) {
   // The second layer behind --check: every move, before it goes out.
-  const auto problems = check_moves ? check_move(config, position, known_axes, next, limits)
-                                    : std::vector<std::string>{};
-  if (!problems.empty()) {
-    refuse_step("unsafe step not sent: " + describe(next) + ": " + problems.front());
-    return;
+  // A run of rapids (Step::before) is checked move by move.
+  const std::vector<Step> moves = moves_of(next);
+  Point along = position;
+  unsigned known_along = known_axes;
+  for (const Step& move : moves) {
+    const auto problems = check_moves ? check_move(config, along, known_along, move, limits)
+                                      : std::vector<std::string>{};
+    if (!problems.empty()) {
+      refuse_step("unsafe step not sent: " + describe(move) + ": " + problems.front());
+      return;
+    }
+    if (move.kind == StepKind::rapid || move.kind == StepKind::feed) {
+      if (move.axes & axis_x) along.x = move.target.x;
+      if (move.axes & axis_y) along.y = move.target.y;
+      if (move.axes & axis_z) along.z = move.target.z;
+      known_along |= move.axes;
+    }
   }
   if (next.kind == StepKind::rapid || next.kind == StepKind::feed) {
-    if (next.axes & axis_x) position.x = next.target.x;
-    if (next.axes & axis_y) position.y = next.target.y;
-    if (next.axes & axis_z) position.z = next.target.z;
-    known_axes |= next.axes;
+    position = along;
+    known_axes = known_along;
   } else if (next.kind == StepKind::probe) {
     known_axes &= ~static_cast<unsigned>(axis_z);  // the probe stops wherever it touches
   } else if (next.kind == StepKind::wait_operator || next.kind == StepKind::fail) {
     known_axes = 0;  // the operator may jog; a failed sequence may stop anywhere
   }
   step = next;
-  ++sequence_step;
+  sequence_step += static_cast<int>(moves.size());
   ports.publish(next);
 }
 
 void Context::walk(plan::Route route) {
   if (route.empty()) throw std::logic_error("a phase with no waypoints");
-  route_ = plan::from_where_it_stands(config, std::move(route), position, known_axes);
+  route_ = plan::blended(
+      config, plan::from_where_it_stands(config, std::move(route), position, known_axes),
+      position, known_axes);
   route_next_ = 1;
   publish(route_.front());
 }

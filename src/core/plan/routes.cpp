@@ -225,6 +225,40 @@ Route from_where_it_stands(const Config& c, Route route, const Point& at, unsign
   return route;
 }
 
+namespace {
+bool rapid_on(const Step& step, unsigned axes) {
+  return step.kind == StepKind::rapid && step.axes == axes;
+}
+}  // namespace
+
+Route blended(const Config& c, const Route& route, const Point& at, unsigned known_axes) {
+  if (c.blend_tolerance <= 0.0) return route;
+  Route runs;
+  bool at_safe = (known_axes & axis_z) && at.z == c.safe.z;
+  for (std::size_t i = 0; i < route.size(); ++i) {
+    // A corner is rounded only at safe Z and only into another rapid: a slow
+    // move, a probe or anything the changer decides on starts from standing.
+    const auto rapid_follows = [&] {
+      return i + 1 < route.size() && route[i + 1].kind == StepKind::rapid;
+    };
+    std::vector<Step> before;
+    if (rapid_on(route[i], axis_z) && route[i].target.z == c.safe.z && rapid_follows()) {
+      before.push_back(route[i++]);
+      at_safe = true;
+    }
+    if (at_safe && rapid_on(route[i], axis_xy) && rapid_follows()) before.push_back(route[i++]);
+    Step step = route[i];
+    if (!before.empty()) {
+      step.before = std::move(before);
+      step.blend = c.blend_tolerance;
+    }
+    if (step.kind == StepKind::probe) at_safe = false;
+    if (is_motion(step.kind) && (step.axes & axis_z)) at_safe = step.target.z == c.safe.z;
+    runs.push_back(std::move(step));
+  }
+  return runs;
+}
+
 Route to_safe_z(const Config& c) { return {safe_z(c)}; }
 Route to_loading(const Config& c) { return {loading_z(c), loading_xy(c)}; }
 Route to_sensor(const Config& c) { return {loading_z(c), sensor_xy(c)}; }

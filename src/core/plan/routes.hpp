@@ -72,6 +72,12 @@ Route while_spindle_stops(const Config& c, const Route& first);
 /// last waypoint is always kept.
 Route from_where_it_stands(const Config& c, Route route, const Point& at, unsigned known_axes);
 
+/// `route` as the executor runs it with `blend_tolerance`: up to safe Z and
+/// across at it, each followed by a rapid, go into the step of that rapid
+/// (Step::before), so that their corners at safe Z are rounded; from `at`
+/// (known on `known_axes`). Unchanged with a tolerance of 0.
+Route blended(const Config& c, const Route& route, const Point& at, unsigned known_axes);
+
 // ---------------------------------------------------------------- the operator and the sensor
 /// Up to safe Z where the spindle stands.
 Route to_safe_z(const Config& c);

@@ -33,9 +33,12 @@ std::string describe(const Record& record) {
 }
 
 void Simulator::publish(const Step& step) {
-  Record record;
-  record.step = step;
-  records.push_back(record);
+  // A run of rapids is recorded move by move, as --plan prints them.
+  for (const Step& move : moves_of(step)) {
+    Record record;
+    record.step = move;
+    records.push_back(record);
+  }
   longest_wait = std::max(longest_wait, clock - waiting_since_);
   // done, fail and wait_operator end an executor run: nothing to finish. A
   // refused M6's fail goes to that M6's executor, not to the one running.

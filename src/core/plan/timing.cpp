@@ -145,7 +145,8 @@ ChangeTime change_time(const Simulator& plan, const Point& start, const MachineT
     time.moves += move_seconds(from, to, feed_of(step), planned);
   });
   for (const Record& record : plan.records) {
-    if (record.kind == Record::Kind::step) ++time.steps;
+    // A run of rapids is one step of the executor: its moves run on into each other.
+    if (record.kind == Record::Kind::step && record.step.blend == 0.0) ++time.steps;
     // Every wait for the operator is a prompt (in M6 for a manual tool, the only sign).
     if (record.kind == Record::Kind::message && record.message_kind == MessageKind::prompt) {
       ++time.operator_waits;

@@ -22,6 +22,25 @@ bool is_motion(StepKind kind) {
   return kind == StepKind::rapid || kind == StepKind::feed || kind == StepKind::probe;
 }
 
+std::vector<Step> moves_of(const Step& step) {
+  std::vector<Step> moves;
+  for (Step move : step.before) {
+    move.blend = step.blend;
+    moves.push_back(std::move(move));
+  }
+  Step last = step;
+  last.before.clear();
+  last.blend = 0.0;
+  moves.push_back(std::move(last));
+  return moves;
+}
+
+Via via_of(const Step& step) {
+  int via = 0;
+  for (const Step& move : step.before) via |= move.axes == axis_z ? 1 : 2;
+  return static_cast<Via>(via);
+}
+
 const char* step_kind_name(StepKind kind) {
   switch (kind) {
     case StepKind::resync:
@@ -74,7 +93,12 @@ std::string describe(const Step& step) {
   std::string line = buffer;
   line += coordinates;
   if (line.size() < 48) line.resize(48, ' ');
-  return line + " " + step.label;
+  line += " " + step.label;
+  if (step.blend > 0.0) {
+    std::snprintf(buffer, sizeof buffer, ", on into the next within %.3f", step.blend);
+    line += buffer;
+  }
+  return line;
 }
 
 }  // namespace fatc

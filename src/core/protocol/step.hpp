@@ -1,6 +1,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "../rack/point.hpp"
 
@@ -34,6 +35,11 @@ struct Step {
   int pocket = 0;         ///< the pocket this move serves (its number), 0 if none
   bool approach = false;  ///< part of the way into or out of `pocket`: may enter its column
   std::string label;      ///< the machinist's name for the target ("side of pocket 3")
+  /// A run of rapids published as one step (blend_tolerance): the rapids
+  /// before this one, up to safe Z and across at it. Each of their corners,
+  /// all at safe Z, is rounded within `blend` (G64 P); the run ends standing.
+  std::vector<Step> before;
+  double blend = 0.0;  ///< how far a corner of the run may be cut; 0: none is
 };
 
 /// The step that makes a waiting executor abort its program, saying `why`.
@@ -42,6 +48,13 @@ Step failure_step(std::string why);
 Step resync_step();
 
 bool is_motion(StepKind kind);
+/// The moves `step` makes, in order: those of its run, then itself. In those
+/// of the run, `blend` says the corner after each is rounded.
+std::vector<Step> moves_of(const Step& step);
+/// The codes of the `step-via` pin: what the executor does before the step's
+/// own move (nc_files/fixed_atc_probe_execute.ngc reads them).
+enum class Via { none = 0, up = 1, across = 2, up_and_across = 3 };
+Via via_of(const Step& step);
 const char* step_kind_name(StepKind kind);
 
 /// One line, e.g. `rapid  Z=50.000            safe Z`.

@@ -51,6 +51,10 @@ const Codes kAxes = {
     {"xy", {"axis_xy", static_cast<int>(axis_xy)}},
     {"xyz", {"axis_xyz", static_cast<int>(axis_xyz)}},
 };
+const Codes kVia = {
+    {"up", {"Via::up", static_cast<int>(Via::up)}},
+    {"across", {"Via::across", static_cast<int>(Via::across)}},
+};
 const Codes kPhases = {
     {"not_ready", {"Phase::not_ready", static_cast<int>(Phase::not_ready)}},
     {"idle", {"Phase::idle", static_cast<int>(Phase::idle)}},
@@ -117,7 +121,7 @@ struct Syntax {
 
 // `#<step_rapid> = 1`, optionally followed by a comment. NGC names ignore case.
 const Syntax kNgc{
-    std::regex(R"(\s*#<\s*((?:step|axes)_\w+)\s*>\s*=\s*([-+]?[\w.]+)\s*(?:\(.*\))?\s*)",
+    std::regex(R"(\s*#<\s*((?:step|axes|via)_\w+)\s*>\s*=\s*([-+]?[\w.]+)\s*(?:\(.*\))?\s*)",
                std::regex::icase),
     "#<", ">"};
 // `STEP_RAPID = 1`, optionally followed by a comment.
@@ -190,7 +194,9 @@ void check_codes(const std::string& file, const Syntax& syntax, const std::vecto
 TEST(Codes, shouldMatchTheCoreWhenTheExecutorNamesAStepKindOrAxes) {
   // Every step kind: the executor must know each one the component can publish.
   check_codes(kExecutor, kNgc,
-              {{"step_", &kStepKinds, all_of(kStepKinds)}, {"axes_", &kAxes, {"z", "xy"}}});
+              {{"step_", &kStepKinds, all_of(kStepKinds)},
+               {"axes_", &kAxes, {"z", "xy"}},
+               {"via_", &kVia, {"across"}}});
 }
 
 TEST(Codes, shouldMatchTheCoreWhenThePanelNamesAPhaseAwaitingOrStepKind) {

@@ -1,0 +1,142 @@
+// blend_tolerance: a run of rapids at safe Z goes out as one step whose
+// corners the executor rounds (G64 P). Blending changes when the machine
+// stops, never where it goes.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "core/config/config.hpp"
+#include "core/plan/routes.hpp"
+#include "core/plan/sequence_check.hpp"
+#include "core/plan/simulator.hpp"
+#include "core/plan/timing.hpp"
+#include "sim_lines.hpp"
+#include "test_config.hpp"
+
+namespace fatc {
+namespace {
+
+using test::valid_config;
+
+/// What --plan prints of a change, each move without what blending adds.
+test::Lines plain_lines(const Simulator& sim) {
+  test::Lines lines = test::record_lines(sim);
+  for (std::string& line : lines) {
+    const auto rounded = line.find(", on into the next within");
+    if (rounded != std::string::npos) line.erase(rounded);
+  }
+  return lines;
+}
+
+Config top_rack(const std::string& extra) {
+  std::string text = test::kValidConfig;
+  const std::string side = R"("pocket_default": {"y": 20.0, "z": -80.0})";
+  text.replace(text.find(side), side.size(),
+               R"("pocket_default": {"y": 20.0, "z": -80.0, "approach": "top"})");
+  text.insert(text.rfind('}'), "," + extra);
+  return parse_config(text).config.value();
+}
+
+TEST(Blend, shouldLeaveEveryRouteAsItIsWithoutATolerance) {
+  const Config c = valid_config(R"("path": "direct")");
+  const plan::Route route = plan::return_to_approach(c, 2);
+  const plan::Route same = plan::blended(c, route, c.safe, axis_xyz);
+  ASSERT_EQ(same.size(), route.size());
+  for (const Step& step : same) EXPECT_TRUE(step.before.empty()) << describe(step);
+}
+
+TEST(Blend, shouldJoinUpToSafeZAndAcrossIntoTheRapidThatFollows) {
+  const Config c = valid_config(R"("path": "direct", "blend_tolerance": 10)");
+  // Up to safe Z, over the side of pocket 2, down to the side: one step.
+  const plan::Route route = plan::return_to_approach(c, 2);
+  ASSERT_GE(route.size(), 3u);
+  const plan::Route runs = plan::blended(c, route, Point{0, 0, -60}, axis_xyz);
+  ASSERT_EQ(runs.size(), route.size() - 2);
+  const Step& run = runs.front();
+  EXPECT_EQ(via_of(run), Via::up_and_across);
+  EXPECT_EQ(run.blend, 10.0);
+  EXPECT_EQ(run.label, route[2].label);
+  const auto moves = moves_of(run);
+  ASSERT_EQ(moves.size(), 3u);
+  EXPECT_EQ(moves[0].label, "safe Z");
+  EXPECT_EQ(moves[0].blend, 10.0);
+  EXPECT_EQ(moves[1].blend, 10.0);
+  EXPECT_EQ(moves[2].blend, 0.0) << "the run's last move ends standing";
+  EXPECT_TRUE(moves[2].before.empty());
+}
+
+TEST(Blend, shouldRoundNoCornerBelowSafeZNorIntoASlowMove) {
+  const Config c = valid_config(R"("path": "direct", "blend_tolerance": 10)");
+  // At safe Z over the work (the walk leaves out the way up): across, then
+  // down at rapid, joined.
+  const plan::Route fetch = plan::from_where_it_stands(c, plan::fetch_to_above_chuck(c, 2),
+                                                       c.safe, axis_xyz);
+  EXPECT_EQ(via_of(plan::blended(c, fetch, c.safe, axis_xyz).front()), Via::across);
+  // Where Z is not known to be safe Z, nothing goes across on the way.
+  const plan::Route across{plan::safe_xy(c), plan::safe_z(c)};
+  EXPECT_EQ(via_of(plan::blended(c, across, c.safe, axis_xyz).front()), Via::across);
+  for (const Step& step : plan::blended(c, across, c.safe, axis_xy)) {
+    EXPECT_TRUE(step.before.empty()) << describe(step);
+  }
+  // Into a pocket: the slow move starts from standing.
+  for (const Step& step : plan::blended(c, plan::return_into_pocket(c, 2), c.safe, axis_xyz)) {
+    for (const Step& move : moves_of(step)) {
+      if (move.blend > 0.0) {
+        EXPECT_TRUE(move.axes == axis_xy || move.target.z == c.safe.z) << describe(move);
+      }
+    }
+  }
+}
+
+TEST(Blend, shouldGoThroughTheSameWaypointsOnEveryChange) {
+  for (const Config& blended :
+       {valid_config(R"("path": "direct", "blend_tolerance": 15)"),
+        valid_config(R"("blend_tolerance": 15)"), top_rack(R"("path": "direct", "blend_tolerance": 15)")}) {
+    Config exact = blended;
+    exact.blend_tolerance = 0.0;
+    for (int from = 0; from <= 6; ++from) {
+      for (int to = 0; to <= 6; ++to) {
+        const Simulator rounded = plan_change(blended, from, to, -70.0);
+        const Simulator stopped = plan_change(exact, from, to, -70.0);
+        EXPECT_EQ(plain_lines(rounded), plain_lines(stopped)) << from << "->" << to;
+        EXPECT_TRUE(check_sequence("M6", blended, rounded, std::nullopt).empty())
+            << from << "->" << to;
+        for (const Step& move : rounded.motion_steps()) {
+          if (move.blend == 0.0) continue;
+          EXPECT_TRUE(move.kind == StepKind::rapid &&
+                      (move.axes == axis_xy || move.target.z == blended.safe.z))
+              << from << "->" << to << ": " << describe(move);
+        }
+        // Fewer handshakes: one step a run.
+        const MachineTiming machine{};
+        const auto fewer = change_time(rounded, blended.safe, machine).steps;
+        const auto each = change_time(stopped, exact.safe, machine).steps;
+        EXPECT_LE(fewer, each) << from << "->" << to;
+        if (from != to) {
+          EXPECT_LT(fewer, each) << from << "->" << to;
+        }
+      }
+    }
+  }
+}
+
+TEST(Blend, shouldRefuseATolerancePastSafeZsHeadroomOverTheRack) {
+  const Config c = valid_config();
+  int pocket = 0;
+  EXPECT_EQ(c.safe_z_headroom(&pocket), 15.0);  // safe Z -5, above-clearance -80 + 60
+  EXPECT_EQ(pocket, 1);
+  std::string text = test::kValidConfig;
+  text.insert(text.rfind('}'), R"(, "blend_tolerance": 15.5)");
+  const auto result = parse_config(text);
+  ASSERT_FALSE(result.config);
+  EXPECT_EQ(result.errors.front(),
+            "blend_tolerance: must not be more than 15, how far safe.z lies above the highest "
+            "above-clearance (pocket 1's): a rounded corner would cut into the rack; got 15.5");
+  EXPECT_TRUE(parse_config(std::string(test::kValidConfig).insert(
+                               std::string(test::kValidConfig).rfind('}'),
+                               R"(, "blend_tolerance": 15)"))
+                  .config);
+}
+
+}  // namespace
+}  // namespace fatc
