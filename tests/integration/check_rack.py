@@ -96,15 +96,16 @@ def follows_route(r, route, found, offset=0):
     return offset + len(route)
 
 
-def straight_and_slow(r, route, found, offset, feed):
-    """Between two stops the spindle moved along the straight line; into a stop
-    reached slowly, no faster than pocket_feed."""
+def straight_and_slow(r, route, found, offset, feed, rounded=()):
+    """Between two stops the spindle moved along the straight line (but for the
+    moves through rounded corners, `rounded`); into a stop reached slowly, no
+    faster than pocket_feed."""
     route = merged(route)
     samples = r["samples"]
     slow = 0
     for i in range(1, len(route)):
         (a, _, left), (b, arrived, _) = found[offset + i - 1], found[offset + i]
-        for s in samples[left:arrived + 1]:
+        for s in samples[left:arrived + 1] if i not in rounded else []:
             if distance_to_segment(s["pos"], a, b) > TOLERANCE:
                 fail("between %s and %s the spindle left the straight line: %s at %.3f s" % (
                     route[i - 1][0], route[i][0], s["pos"], s["t"]))
@@ -136,6 +137,50 @@ def outside_other_columns(r, rack):
                     fail("at %s (%.3f s) the spindle is in pocket %d's keep-out column, but "
                          "pocket-served says %s" % (s["pos"], s["t"], n, s[SERVED]))
     ok("no sample in a keep-out column but the served pocket's (%d samples inside one)" % inside)
+
+
+def rounded_at_safe_z(r, route, found, rack):
+    """blend_tolerance: the route's stops at safe Z that the spindle did not
+    stand at are corners it rounded. Each must lie between two rapids, and the
+    path between the stops around it within blend_tolerance of the straight
+    moves through it (G64 P; outside_other_columns checks the rest). Returns the route without them, the stops the spindle
+    stood at, and the indexes of the moves between those that ran through a
+    rounded corner."""
+    blend, safe_z = rack.c["blend_tolerance"], rack.c["safe"]["z"]
+    route = merged(route)
+    samples = r["samples"]
+    kept, rounded, through, j = [], set(), [], 0
+    for i, stop in enumerate(route):
+        if j < len(found) and near(found[j][0], stop[1]):
+            if through:
+                # The samples between the two stops stay near the moves through the corners.
+                line = [kept[-1][1]] + [c[1] for c in through] + [stop[1]]
+                for s in samples[found[j - 1][2]:found[j][1] + 1]:
+                    off = min(distance_to_segment(s["pos"], a, b) for a, b in zip(line, line[1:]))
+                    if off > blend + TOLERANCE:
+                        fail("rounding %s the spindle was %.3f off its moves at %.3f s (blend_tolerance %g)"
+                             % (" and ".join(c[0] for c in through), off, s["t"], blend))
+                rounded.add(len(kept))
+                through = []
+            kept.append(stop)
+            j += 1
+            continue
+        if not kept or i + 1 == len(route) or abs(stop[1][2] - safe_z) > TOLERANCE \
+                or stop[2] or route[i + 1][2]:
+            fail("the spindle did not stand at %s %s, and it is no corner at safe Z between two "
+                 "rapids (stops so far: %s)" % (stop[0], stop[1], [k[0] for k in kept]))
+        through.append(stop)
+    if not rounded:
+        fail("blend_tolerance %g: every corner at safe Z was a stop, none rounded" % blend)
+    # Rounded, not only stopped short: somewhere the spindle went up or down and across at once.
+    diagonal = sum(1 for a, b in zip(samples, samples[1:])
+                   if math.dist(a["pos"][:2], b["pos"][:2]) > TOLERANCE
+                   and abs(a["pos"][2] - b["pos"][2]) > TOLERANCE)
+    if diagonal == 0:
+        fail("no sample moved up or down and across at once: no corner was rounded")
+    ok("%d moves ran through rounded corners at safe Z, each within blend_tolerance %g of its "
+       "straight moves; %d samples moved up or down and across at once" % (len(rounded), blend, diagonal))
+    return kept, rounded
 
 
 def served_at_stops(r, route, found, offset):
@@ -222,11 +267,14 @@ def program_changes(r, rack, expected, tools):
                     tool, snap["state_file"].get("spindle"), got, expected.state_pockets()))
             ok("when T%d was gripped the state file had it out of pocket %d, the previous tool home" %
                (tool, expected.pocket_of(tool)))
+    rounded = set()
+    if rack.c.get("blend_tolerance", 0) > 0:
+        route, rounded = rounded_at_safe_z(r, route, found, rack)
     end = follows_route(r, route, found)
     if end != len(found):
         fail("the spindle stopped %d more times after the route: %s" % (
             len(found) - end, [f[0] for f in found[end:]]))
-    straight_and_slow(r, route, found, 0, rack.c["pocket_feed"])
+    straight_and_slow(r, route, found, 0, rack.c["pocket_feed"], rounded)
     served_at_stops(r, route, found, 0)
     served_per_change(r, served)
     outside_other_columns(r, rack)

@@ -359,15 +359,11 @@ void check_geometry(Reader& reader, Config& config) {
                      " groups apart from each other, and the realtime guard holds " +
                      std::to_string(kGuardBoxes) + ": move pockets together or set it false");
   }
-  int highest = 0;
-  if (const double headroom = config.safe_z_headroom(&highest);
-      config.blend_tolerance > 0.0 && config.blend_tolerance > headroom) {
-    reader.error("blend_tolerance",
-                 "must not be more than " + format_number(std::max(headroom, 0.0)) +
-                     ", how far safe.z lies above the highest above-clearance (pocket " +
-                     std::to_string(highest) +
-                     "'s): a rounded corner would cut into the rack; got " +
-                     format_number(config.blend_tolerance));
+  if (std::string why; config.blend_tolerance > config.blend_room(&why)) {
+    reader.error("blend_tolerance", "must not be more than " +
+                                        format_number(config.blend_room()) + ", " + why +
+                                        ": a rounded corner would cut into the rack; got " +
+                                        format_number(config.blend_tolerance));
   }
   if (config.window() <= config.check_tolerance()) {
     reader.error("probe_window", "must be larger than probe_check_tolerance (" +
@@ -402,16 +398,38 @@ std::string format_length(const Config& config, double length) {
   return buffer;
 }
 
-double Config::safe_z_headroom(int* pocket) const {
-  double headroom = std::numeric_limits<double>::infinity();
-  for (const auto& [number, entry] : pockets) {
-    const double below = safe.z - (entry.at.z + pocket_above_clearance_offset_z);
-    if (below < headroom) {
-      headroom = below;
-      if (pocket) *pocket = number;
+double Config::blend_room(std::string* why) const {
+  double room = std::numeric_limits<double>::infinity();
+  const auto limit = [&](double value, const std::string& what) {
+    if (value >= room) return;
+    room = value;
+    if (why) *why = what;
+  };
+  const double margin = keepout_margin();
+  for (auto a = pockets.begin(); a != pockets.end(); ++a) {
+    const std::string name = "pocket " + std::to_string(a->first);
+    limit(safe.z - (a->second.at.z + pocket_above_clearance_offset_z),
+          "how far safe.z lies above " + name + "'s above-clearance");
+    if (a->second.approach == Approach::side) {
+      limit(std::hypot(a->second.side_offset.x, a->second.side_offset.y) - margin,
+            "how far " + name + "'s side lies outside its keep-out column");
+    }
+    for (auto b = pockets.begin(); b != pockets.end(); ++b) {
+      if (b == a) continue;
+      const std::string column = "pocket " + std::to_string(b->first) + "'s keep-out column";
+      const Point& at = a->second.at;
+      const Point& other = b->second.at;
+      limit(std::hypot(at.x - other.x, at.y - other.y) - margin,
+            "how far " + name + " lies from " + column);
+      if (a->second.approach == Approach::side) {
+        limit(std::hypot(at.x + a->second.side_offset.x - other.x,
+                         at.y + a->second.side_offset.y - other.y) -
+                  margin,
+              "how far " + name + "'s side lies from " + column);
+      }
     }
   }
-  return headroom;
+  return std::max(room, 0.0);
 }
 
 double Config::check_tolerance() const {

@@ -120,9 +120,13 @@ struct Config {
   /// The pocket that holds `tool` at first start, if any.
   std::optional<int> first_pocket_of(int tool) const;
   double keepout_margin() const;
-  /// How far safe Z lies above the highest pocket's above-clearance: what
-  /// a rounded corner at safe Z may cut at most; `pocket`: that pocket.
-  double safe_z_headroom(int* pocket = nullptr) const;
+  /// The largest blend_tolerance the rack allows, and in `why` what limits
+  /// it. A rounded corner stays within the tolerance of its straight moves
+  /// (G64 P): of the crossing at safe Z, which must stay above every
+  /// pocket's above-clearance, and of the way up or down, which must stay out
+  /// of every other pocket's keep-out column (and, beside a side pocket, out
+  /// of its own).
+  double blend_room(std::string* why = nullptr) const;
   /// How far above the holders' tops the rack's volume reaches.
   double keepout_above() const;
   double check_tolerance() const;

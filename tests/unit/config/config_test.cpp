@@ -172,7 +172,7 @@ INSTANTIATE_TEST_SUITE_P(Each, BadConfigs, ::testing::Values(
   BadConfig{"tolerance_zero", [](Json& j) { j["probe_check_tolerance"] = 0; }, "probe_check_tolerance: must be from 0.0001 to 100 mm, got 0"},
   BadConfig{"manual_tools_word", [](Json& j) { j["manual_tools"] = "yes"; }, "manual_tools: expected true or false, got \"yes\""},
   BadConfig{"blend_negative", [](Json& j) { j["blend_tolerance"] = -1; }, "blend_tolerance: must be from 0 to 1000 mm, got -1"},
-  BadConfig{"blend_into_rack", [](Json& j) { j["blend_tolerance"] = 16; }, "blend_tolerance: must not be more than 15, how far safe.z lies above the highest above-clearance (pocket 1's)"},
+  BadConfig{"blend_into_rack", [](Json& j) { j["blend_tolerance"] = 16; }, "blend_tolerance: must not be more than 15, how far safe.z lies above pocket 1's above-clearance"},
   BadConfig{"huge_number", [](Json& j) { j["safe"]["x"] = 1e308 * 10; }, "safe.x: expected a number, got null"}
 ));
 // clang-format on

@@ -3,6 +3,7 @@
 // stops, never where it goes.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "core/config/config.hpp"
@@ -120,22 +121,32 @@ TEST(Blend, shouldGoThroughTheSameWaypointsOnEveryChange) {
   }
 }
 
-TEST(Blend, shouldRefuseATolerancePastSafeZsHeadroomOverTheRack) {
-  const Config c = valid_config();
-  int pocket = 0;
-  EXPECT_EQ(c.safe_z_headroom(&pocket), 15.0);  // safe Z -5, above-clearance -80 + 60
-  EXPECT_EQ(pocket, 1);
-  std::string text = test::kValidConfig;
-  text.insert(text.rfind('}'), R"(, "blend_tolerance": 15.5)");
-  const auto result = parse_config(text);
-  ASSERT_FALSE(result.config);
-  EXPECT_EQ(result.errors.front(),
-            "blend_tolerance: must not be more than 15, how far safe.z lies above the highest "
-            "above-clearance (pocket 1's): a rounded corner would cut into the rack; got 15.5");
-  EXPECT_TRUE(parse_config(std::string(test::kValidConfig).insert(
-                               std::string(test::kValidConfig).rfind('}'),
-                               R"(, "blend_tolerance": 15)"))
-                  .config);
+TEST(Blend, shouldRefuseAToleranceThatWouldCutIntoTheRack) {
+  // Safe Z -5 over above-clearance -80 + 60: 15. Pockets 50 apart along X,
+  // sides 40 along Y, keep-out columns 20 wide each way: 30 and 20 apart.
+  std::string why;
+  EXPECT_EQ(valid_config().blend_room(&why), 15.0);
+  EXPECT_EQ(why, "how far safe.z lies above pocket 1's above-clearance");
+  const auto refused = [](double tolerance, double safe_z = -5.0, double side = 40.0,
+                          double margin = 20.0) {
+    auto j = nlohmann::json::parse(test::kValidConfig);
+    j["blend_tolerance"] = tolerance;
+    j["safe"]["z"] = safe_z;
+    j["pocket_side_offset"]["y"] = side;
+    j["rack_keepout_margin"] = margin;
+    const auto result = parse_config(j.dump());
+    return result.config ? std::string() : result.errors.front();
+  };
+  EXPECT_EQ(refused(15.5),
+            "blend_tolerance: must not be more than 15, how far safe.z lies above pocket 1's "
+            "above-clearance: a rounded corner would cut into the rack; got 15.5");
+  EXPECT_EQ(refused(15), "");
+  EXPECT_EQ(refused(12, 30.0, 40.0, 39.0),
+            "blend_tolerance: must not be more than 1, how far pocket 1's side lies outside its "
+            "keep-out column: a rounded corner would cut into the rack; got 12");
+  EXPECT_EQ(refused(12, 30.0, 45.0, 39.0),
+            "blend_tolerance: must not be more than 6, how far pocket 1's side lies outside its "
+            "keep-out column: a rounded corner would cut into the rack; got 12");
 }
 
 }  // namespace
