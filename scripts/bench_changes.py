@@ -7,7 +7,8 @@ WORKDIR holds the runs as run_sim.sh left them (results.json, config.json,
 sim.ini): prototype/ and direct/ (tests/bench/changes.ngc on the rack of
 rack_config.json), row_prototype/, row_direct/ and row_peer/
 (tests/bench/peer_changes.ngc on rack_y.json; the peer is LinuxCNC's
-rack-toolchange example), demo_prototype/ and demo_direct/ (the demo
+rack-toolchange example), blended/ and row_blended/ (the direct path
+with blend_tolerance 10 and 15), demo_prototype/ and demo_direct/ (the demo
 program), spindown_true/ and spindown_false/ (tests/bench/spindown.ngc,
 moving while the spindle runs down and not), and the idle run
 (idle/results.json).
@@ -203,7 +204,7 @@ def print_table(title, columns, rows, changes):
 
 
 RATIOS = [("direct", "prototype"), ("direct", "bound"), ("prototype", "bound"), ("direct", "peer"),
-          ("prototype", "peer")]
+          ("prototype", "peer"), ("blended", "direct"), ("blended", "bound"), ("blended", "peer")]
 
 
 def print_demo(work, binary):
@@ -240,18 +241,22 @@ def main():
         print_usage("%s path" % path, scenario)
         print_latency("%s path" % path, scenario)
         row[path] = load(work, "row_" + path, ROW_CHANGES)[1]
+    scenario, rack["blended"] = load(work, "blended", CHANGES)
+    print_handshake("direct path, blended", scenario)
+    row["blended"] = load(work, "row_blended", ROW_CHANGES)[1]
     peer, row["peer"] = load(work, "row_peer", ROW_CHANGES)
     print_latency("LinuxCNC's rack-toolchange example", peer)
     rack["bound"] = bound(work, "direct", binary, CHANGES)
     row["bound"] = bound(work, "row_direct", binary, ROW_CHANGES)
-    print_table("tests/bench/changes.ngc", ("prototype", "direct", "bound"), rack, CHANGES)
+    print_table("tests/bench/changes.ngc", ("prototype", "direct", "blended", "bound"), rack, CHANGES)
     prototype = sum(bound(work, "direct", binary, CHANGES, which=1))
     blended = sum(bound(work, "direct", binary, CHANGES, which=2))
     if sum(rack["bound"]) > 0:
         print("the prototype's plan at the same limits: %.2f s (%.2f of the bound); the direct path "
               "with each run of rapids unstopped (more than blending could save): %.2f s (%.2f of the "
               "bound)" % (prototype, prototype / sum(rack["bound"]), blended, blended / sum(rack["bound"])))
-    print_table("peer_changes.ngc, top pockets", ("prototype", "direct", "peer", "bound"), row, ROW_CHANGES)
+    print_table("peer_changes.ngc, top pockets", ("prototype", "direct", "blended", "peer", "bound"), row,
+                ROW_CHANGES)
     print_demo(work, binary)
     print_spin_down(work, binary)
 

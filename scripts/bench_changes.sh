@@ -7,6 +7,8 @@
 #  - tests/bench/peer_changes.ngc on tests/bench/rack_y.json (six top pockets
 #    along Y), on both paths and with LinuxCNC's own rack-toolchange remap
 #    example instead of the changer (tests/bench/peer_ini.py), the peer;
+#  - both programs again on the direct path with blend_tolerance 10 and 15, the
+#    corners at safe Z rounded;
 #  - the demo program, nc_files/demo.ngc, as the demo runs it, on both paths;
 #  - tests/bench/spindown.ngc on config/config.json, direct path: one change
 #    between two side pockets with the simulated spindle taking 3 s to stop
@@ -43,6 +45,12 @@ for path in prototype direct; do
   run "row_$path" tests/bench/peer_changes.ngc tests/bench/rack_y.json tests/bench/rack_y.tbl \
     FATC_CONFIG_SET="{\"path\": \"$path\"}"
 done
+# Blended runs: blend_tolerance as much as each rack allows (Config::blend_room):
+# 10 on rack_config.json (pocket 5's side to pocket 4's column), 15 on rack_y.json.
+run blended tests/bench/changes.ngc tests/integration/rack_config.json tests/integration/rack.tbl \
+  FATC_CONFIG_SET='{"path": "direct", "pocket_feed": 500, "chuck_seconds": 0.4, "blend_tolerance": 10}'
+run row_blended tests/bench/peer_changes.ngc tests/bench/rack_y.json tests/bench/rack_y.tbl \
+  FATC_CONFIG_SET='{"path": "direct", "blend_tolerance": 15}'
 for path in prototype direct; do
   run "demo_$path" nc_files/demo.ngc config/config.json config/sim/sim.tbl \
     FATC_CONFIG_SET="{\"path\": \"$path\"}"

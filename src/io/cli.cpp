@@ -297,6 +297,10 @@ void print_estimate(const Options& options, const Config& config, const ToolStat
       << seconds_text(other_time.seconds()) << " on the " << other_name << " path) " << parts
       << ", the operator not counted\n"
       << "  from safe: " << motion->source << ", " << estimate_costs_text(motion->timing) << "\n";
+  if (config.blend_tolerance > 0.0) {
+    out << "  blend_tolerance: a blended run counted as one step, its moves as exact stops; its "
+           "rounded corners save more\n";
+  }
   if (!options.ini_path) {
     out << "bound: --ini gives it (the machine's velocities and accelerations)\n";
     return;

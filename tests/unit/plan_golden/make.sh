@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Prints --plan for every change between tools 0-6 on each rack of the
-# tests, on both paths: what plan_golden compares with the committed
+# tests, on both paths and on the direct one with blend_tolerance 10: what plan_golden compares with the committed
 # *.golden (and, with --write, rewrites them). BINARY SOURCE_DIR [--write]
 set -euo pipefail
 binary=$(realpath "$1") source=$(realpath "$2") write=${3:-}
@@ -8,12 +8,14 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 status=0
 for rack in config/config.json tests/integration/rack_config.json tests/bench/rack_y.json; do
-  for path in prototype direct; do
+  for path in prototype direct blended; do
     name=$(basename "$rack" .json)-$path
     python3 - "$source/$rack" "$path" "$work/$name.json" <<'PY'
 import json, sys
 config = json.load(open(sys.argv[1]))
-config["path"] = sys.argv[2]
+config["path"] = "direct" if sys.argv[2] == "blended" else sys.argv[2]
+if sys.argv[2] == "blended":
+    config["blend_tolerance"] = 10
 json.dump(config, open(sys.argv[3], "w"), indent=1)
 PY
     out=$work/$name.golden
