@@ -155,7 +155,7 @@ inline const PinDeclaration kPins[] = {
    "at it to `step-via-x` `step-via-y`, 3 both; their corners rounded within `step-blend`"},
   {"step-via-x", &HalPins::step_via_x, HAL_OUT, "machine X the run crosses to"},
   {"step-via-y", &HalPins::step_via_y, HAL_OUT, "machine Y the run crosses to"},
-  {"step-via-z", &HalPins::step_via_z, HAL_OUT, "machine Z the run goes up to: safe Z"},
+  {"step-via-z", &HalPins::step_via_z, HAL_OUT, "machine Z the run goes up to (`step-via` 1, 3): safe Z"},
   {"step-blend", &HalPins::step_blend, HAL_OUT,
    "how far the run's corners may be cut (G64 P), the config's units"},
   {"units-inch", &HalPins::units_inch, HAL_OUT,

@@ -143,10 +143,14 @@ def rounded_at_safe_z(r, route, found, rack):
     """blend_tolerance: the route's stops at safe Z that the spindle did not
     stand at are corners it rounded. Each must lie between two rapids, and the
     path between the stops around it within blend_tolerance of the straight
-    moves through it (G64 P; outside_other_columns checks the rest). Returns the route without them, the stops the spindle
+    moves through it (G64 P; outside_other_columns checks the rest); beside a
+    way up or down, rounded where nothing moved up or down and across at
+    once, and only that far outside every keep-out column. Returns the route without them, the stops the spindle
     stood at, and the indexes of the moves between those that ran through a
     rounded corner."""
     blend, safe_z = rack.c["blend_tolerance"], rack.c["safe"]["z"]
+    margin = rack.c.get("rack_keepout_margin", math.hypot(rack.c["pocket_side_offset"]["x"],
+                                                          rack.c["pocket_side_offset"]["y"]) / 2.0)
     route = merged(route)
     samples = r["samples"]
     kept, rounded, through, j = [], set(), [], 0
@@ -170,6 +174,20 @@ def rounded_at_safe_z(r, route, found, rack):
             fail("the spindle did not stand at %s %s, and it is no corner at safe Z between two "
                  "rapids (stops so far: %s)" % (stop[0], stop[1], [k[0] for k in kept]))
         through.append(stop)
+        # Beside a way up or down the corner is rounded only that far outside every column.
+        vertical = any(abs(other[1][0] - stop[1][0]) < TOLERANCE and abs(other[1][1] - stop[1][1]) < TOLERANCE
+                       for other in (route[i - 1], route[i + 1]))
+        if vertical:
+            clear = min(math.hypot(max(abs(stop[1][0] - p[0]) - margin, 0.0), max(abs(stop[1][1] - p[1]) - margin, 0.0))
+                        for p in (rack.pocket(n) for n in rack.pockets))
+            if clear < blend - TOLERANCE:
+                fail("%s %s was rounded, but its way up or down lies %.3f outside a keep-out column, "
+                     "less than blend_tolerance %g" % (stop[0], stop[1], clear, blend))
+            if not any(math.dist(a["pos"], stop[1]) < 3 * blend
+                       and math.dist(a["pos"][:2], b["pos"][:2]) > TOLERANCE
+                       and abs(a["pos"][2] - b["pos"][2]) > TOLERANCE for a, b in zip(samples, samples[1:])):
+                fail("%s %s was not stood at, but nothing went up or down and across at once near it"
+                     % (stop[0], stop[1]))
     if not rounded:
         fail("blend_tolerance %g: every corner at safe Z was a stop, none rounded" % blend)
     # Rounded, not only stopped short: somewhere the spindle went up or down and across at once.

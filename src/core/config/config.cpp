@@ -400,33 +400,11 @@ std::string format_length(const Config& config, double length) {
 
 double Config::blend_room(std::string* why) const {
   double room = std::numeric_limits<double>::infinity();
-  const auto limit = [&](double value, const std::string& what) {
-    if (value >= room) return;
-    room = value;
-    if (why) *why = what;
-  };
-  const double margin = keepout_margin();
-  for (auto a = pockets.begin(); a != pockets.end(); ++a) {
-    const std::string name = "pocket " + std::to_string(a->first);
-    limit(safe.z - (a->second.at.z + pocket_above_clearance_offset_z),
-          "how far safe.z lies above " + name + "'s above-clearance");
-    if (a->second.approach == Approach::side) {
-      limit(std::hypot(a->second.side_offset.x, a->second.side_offset.y) - margin,
-            "how far " + name + "'s side lies outside its keep-out column");
-    }
-    for (auto b = pockets.begin(); b != pockets.end(); ++b) {
-      if (b == a) continue;
-      const std::string column = "pocket " + std::to_string(b->first) + "'s keep-out column";
-      const Point& at = a->second.at;
-      const Point& other = b->second.at;
-      limit(std::hypot(at.x - other.x, at.y - other.y) - margin,
-            "how far " + name + " lies from " + column);
-      if (a->second.approach == Approach::side) {
-        limit(std::hypot(at.x + a->second.side_offset.x - other.x,
-                         at.y + a->second.side_offset.y - other.y) -
-                  margin,
-              "how far " + name + "'s side lies from " + column);
-      }
+  for (const auto& [number, pocket] : pockets) {
+    const double above = safe.z - (pocket.at.z + pocket_above_clearance_offset_z);
+    if (above < room) {
+      room = above;
+      if (why) *why = "how far safe.z lies above pocket " + std::to_string(number) + "'s above-clearance";
     }
   }
   return std::max(room, 0.0);

@@ -121,11 +121,10 @@ struct Config {
   std::optional<int> first_pocket_of(int tool) const;
   double keepout_margin() const;
   /// The largest blend_tolerance the rack allows, and in `why` what limits
-  /// it. A rounded corner stays within the tolerance of its straight moves
-  /// (G64 P): of the crossing at safe Z, which must stay above every
-  /// pocket's above-clearance, and of the way up or down, which must stay out
-  /// of every other pocket's keep-out column (and, beside a side pocket, out
-  /// of its own).
+  /// it: how far safe Z lies above every pocket's above-clearance, since a
+  /// rounded corner stays within the tolerance of the crossing at safe Z
+  /// (G64 P). Where the way up or down beside it lies closer than that to a
+  /// keep-out column, the corner is not rounded (plan::blended).
   double blend_room(std::string* why = nullptr) const;
   /// How far above the holders' tops the rack's volume reaches.
   double keepout_above() const;

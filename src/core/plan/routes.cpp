@@ -1,6 +1,8 @@
 #include "routes.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "../rack/geometry.hpp"
 
@@ -229,31 +231,64 @@ namespace {
 bool rapid_on(const Step& step, unsigned axes) {
   return step.kind == StepKind::rapid && step.axes == axes;
 }
+
+/// How far the vertical line through `at` lies outside the nearest pocket's
+/// keep-out column, in XY (a column is a square).
+double outside_columns(const Config& c, const Point& at) {
+  const double m = c.keepout_margin();
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const auto& [number, pocket] : c.pockets) {
+    nearest = std::min(nearest, std::hypot(std::max(std::abs(at.x - pocket.at.x) - m, 0.0),
+                                           std::max(std::abs(at.y - pocket.at.y) - m, 0.0)));
+  }
+  return nearest;
+}
 }  // namespace
 
 Route blended(const Config& c, const Route& route, const Point& at, unsigned known_axes) {
   if (c.blend_tolerance <= 0.0) return route;
+  // A rounded corner stays within the tolerance of its two moves (G64 P):
+  // of the crossing at safe Z, which lies that much above every column's top
+  // (Config::blend_room), and of the way up or down, whose vertical must lie
+  // that much outside every column. A way into or out of a pocket's column
+  // keeps its corner.
+  const auto clear = [&](const Point& where) {
+    return outside_columns(c, where) >= c.blend_tolerance;
+  };
   Route runs;
-  bool at_safe = (known_axes & axis_z) && at.z == c.safe.z;
+  Point where = at;
+  unsigned known = known_axes;
   for (std::size_t i = 0; i < route.size(); ++i) {
-    // A corner is rounded only at safe Z and only into another rapid: a slow
-    // move, a probe or anything the changer decides on starts from standing.
-    const auto rapid_follows = [&] {
-      return i + 1 < route.size() && route[i + 1].kind == StepKind::rapid;
+    const auto next_is = [&](std::size_t k, unsigned axes) {
+      return k < route.size() && rapid_on(route[k], axes);
     };
+    const bool xy_known = (known & axis_xy) == axis_xy;
+    bool at_safe = (known & axis_z) && where.z == c.safe.z;
     std::vector<Step> before;
-    if (rapid_on(route[i], axis_z) && route[i].target.z == c.safe.z && rapid_follows()) {
+    // Up to safe Z, on into a crossing, where the way up is clear.
+    if (rapid_on(route[i], axis_z) && route[i].target.z == c.safe.z && next_is(i + 1, axis_xy) &&
+        xy_known && clear(where)) {
       before.push_back(route[i++]);
       at_safe = true;
     }
-    if (at_safe && rapid_on(route[i], axis_xy) && rapid_follows()) before.push_back(route[i++]);
+    // Across at safe Z, on into another crossing or into a way down that is clear.
+    if (at_safe && rapid_on(route[i], axis_xy) &&
+        (next_is(i + 1, axis_xy) || (next_is(i + 1, axis_z) && clear(route[i].target)))) {
+      before.push_back(route[i++]);
+    }
     Step step = route[i];
     if (!before.empty()) {
       step.before = std::move(before);
       step.blend = c.blend_tolerance;
     }
-    if (step.kind == StepKind::probe) at_safe = false;
-    if (is_motion(step.kind) && (step.axes & axis_z)) at_safe = step.target.z == c.safe.z;
+    for (const Step& move : moves_of(step)) {
+      if (!is_motion(move.kind)) continue;
+      if (move.axes & axis_x) where.x = move.target.x;
+      if (move.axes & axis_y) where.y = move.target.y;
+      if (move.axes & axis_z) where.z = move.target.z;
+      known |= move.axes;
+      if (move.kind == StepKind::probe) known &= ~static_cast<unsigned>(axis_z);
+    }
     runs.push_back(std::move(step));
   }
   return runs;

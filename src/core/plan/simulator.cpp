@@ -232,10 +232,13 @@ int Simulator::run(Changer& changer, int limit) {
     } else if (awaiting == Awaiting::motion && pending) {
       const bool moved = is_motion(pending->kind);
       if (moved) {
-        if (pending->axes & axis_x) rack.at.x = pending->target.x;
-        if (pending->axes & axis_y) rack.at.y = pending->target.y;
-        if (pending->axes & axis_z) rack.at.z = pending->target.z;
-        rack.known_axes |= pending->axes;
+        // A run of rapids ends where its last move does, on every axis its moves moved.
+        for (const Step& move : moves_of(*pending)) {
+          if (move.axes & axis_x) rack.at.x = move.target.x;
+          if (move.axes & axis_y) rack.at.y = move.target.y;
+          if (move.axes & axis_z) rack.at.z = move.target.z;
+          rack.known_axes |= move.axes;
+        }
       }
       pending.reset();
       waiting_since_ = clock;
