@@ -151,6 +151,12 @@ def rounded_at_safe_z(r, route, found, rack):
     blend, safe_z = rack.c["blend_tolerance"], rack.c["safe"]["z"]
     margin = rack.c.get("rack_keepout_margin", math.hypot(rack.c["pocket_side_offset"]["x"],
                                                           rack.c["pocket_side_offset"]["y"]) / 2.0)
+    top = rack.c["pocket_above_clearance_offset_z"]
+
+    def in_a_column(pos):
+        return any(abs(pos[0] - p[0]) < margin and abs(pos[1] - p[1]) < margin and pos[2] < p[2] + top
+                   for p in (rack.pocket(n) for n in rack.pockets))
+
     route = merged(route)
     samples = r["samples"]
     kept, rounded, through, j = [], set(), [], 0
@@ -164,6 +170,10 @@ def rounded_at_safe_z(r, route, found, rack):
                     if off > blend + TOLERANCE:
                         fail("rounding %s the spindle was %.3f off its moves at %.3f s (blend_tolerance %g)"
                              % (" and ".join(c[0] for c in through), off, s["t"], blend))
+                    # Inside a keep-out column nothing is rounded: the spindle is on its straight moves.
+                    if off > TOLERANCE and in_a_column(s["pos"]):
+                        fail("rounding %s the spindle was %.3f off its moves inside a keep-out column at "
+                             "%s, %.3f s" % (" and ".join(c[0] for c in through), off, s["pos"], s["t"]))
                 rounded.add(len(kept))
                 through = []
             kept.append(stop)
