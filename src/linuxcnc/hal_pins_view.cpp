@@ -50,11 +50,7 @@ void write_link(HalPins& pins, const LinkOutputs& out) {
   // A run of rapids: up to safe Z and across at it before the step's own move.
   *pins.step_via = static_cast<int>(via_of(out.step));
   Point via = out.step.target;
-  for (const Step& move : out.step.before) {
-    if (move.axes & axis_x) via.x = move.target.x;
-    if (move.axes & axis_y) via.y = move.target.y;
-    if (move.axes & axis_z) via.z = move.target.z;
-  }
+  for (const Step& move : out.step.before) via = moved_to(via, move);
   *pins.step_via_x = via.x;
   *pins.step_via_y = via.y;
   *pins.step_via_z = via.z;

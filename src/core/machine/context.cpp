@@ -21,9 +21,7 @@ void Context::publish(const Step& next) {
       return;
     }
     if (move.kind == StepKind::rapid || move.kind == StepKind::feed) {
-      if (move.axes & axis_x) along.x = move.target.x;
-      if (move.axes & axis_y) along.y = move.target.y;
-      if (move.axes & axis_z) along.z = move.target.z;
+      along = moved_to(along, move);
       known_along |= move.axes;
     }
   }

@@ -283,9 +283,7 @@ Route blended(const Config& c, const Route& route, const Point& at, unsigned kno
     }
     for (const Step& move : moves_of(step)) {
       if (!is_motion(move.kind)) continue;
-      if (move.axes & axis_x) where.x = move.target.x;
-      if (move.axes & axis_y) where.y = move.target.y;
-      if (move.axes & axis_z) where.z = move.target.z;
+      where = moved_to(where, move);
       known |= move.axes;
       if (move.kind == StepKind::probe) known &= ~static_cast<unsigned>(axis_z);
     }

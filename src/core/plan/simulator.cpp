@@ -234,9 +234,7 @@ int Simulator::run(Changer& changer, int limit) {
       if (moved) {
         // A run of rapids ends where its last move does, on every axis its moves moved.
         for (const Step& move : moves_of(*pending)) {
-          if (move.axes & axis_x) rack.at.x = move.target.x;
-          if (move.axes & axis_y) rack.at.y = move.target.y;
-          if (move.axes & axis_z) rack.at.z = move.target.z;
+          rack.at = moved_to(rack.at, move);
           rack.known_axes |= move.axes;
         }
       }

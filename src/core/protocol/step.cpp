@@ -22,6 +22,14 @@ bool is_motion(StepKind kind) {
   return kind == StepKind::rapid || kind == StepKind::feed || kind == StepKind::probe;
 }
 
+Point moved_to(const Point& from, const Step& move) {
+  Point to = from;
+  if (move.axes & axis_x) to.x = move.target.x;
+  if (move.axes & axis_y) to.y = move.target.y;
+  if (move.axes & axis_z) to.z = move.target.z;
+  return to;
+}
+
 std::vector<Step> moves_of(const Step& step) {
   std::vector<Step> moves;
   for (Step move : step.before) {

@@ -48,6 +48,8 @@ Step failure_step(std::string why);
 Step resync_step();
 
 bool is_motion(StepKind kind);
+/// Where `move` takes the spindle from `from`: its target on the axes it commands.
+Point moved_to(const Point& from, const Step& move);
 /// The moves `step` makes, in order: those of its run, then itself. In those
 /// of the run, `blend` says the corner after each is rounded.
 std::vector<Step> moves_of(const Step& step);

@@ -34,10 +34,7 @@ std::vector<std::string> check_move(const Config& config, const Point& from, uns
                                     const Step& step, const std::optional<SoftLimits>& limits) {
   std::vector<std::string> problems;
   if (!is_motion(step.kind)) return problems;
-  Point target = from;
-  if (step.axes & axis_x) target.x = step.target.x;
-  if (step.axes & axis_y) target.y = step.target.y;
-  if (step.axes & axis_z) target.z = step.target.z;
+  const Point target = moved_to(from, step);
   if (limits) {
     const char* names[] = {"X", "Y", "Z"};
     const double values[] = {target.x, target.y, target.z};
