@@ -6,7 +6,7 @@ costs the estimate adds per step and per change as this run measured them.
 Prints, never asserts.
    bench_estimate.py WORKDIR BINARY [OLD_BINARY]
 WORKDIR holds the runs as run_sim.sh left them (results.json, config.json,
-sim.ini): mill_direct/, mill_prototype/, slow_direct/ and quick_io_direct/. OLD_BINARY, when
+sim.ini): mill_direct/, mill_prototype/, slow_direct/ and usual_io_direct/. OLD_BINARY, when
 given, is a fixed_atc_probe from before the estimate counted acceleration and
 the changer's costs: its estimate is printed beside."""
 import json
@@ -22,7 +22,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 RUNS = [("mill_direct", "the simulated mill (200 mm/s, 2000 mm/s²), direct path"),
         ("mill_prototype", "the simulated mill, prototype path"),
         ("slow_direct", "the slow machine (gantry_mm.ini's 30 mm/s, 200 mm/s²), direct path"),
-        ("quick_io_direct", "the simulated mill with [EMCIO]CYCLE_TIME 0.01 s, direct path")]
+        ("usual_io_direct", "the simulated mill with [EMCIO]CYCLE_TIME 0.1 s (LinuxCNC's usual), direct path")]
 TIME = r"(?:(\d+) min )?([\d.]+) s"
 
 
