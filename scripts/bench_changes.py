@@ -8,7 +8,8 @@ sim.ini): prototype/ and direct/ (tests/bench/changes.ngc on the rack of
 rack_config.json), row_prototype/, row_direct/ and row_peer/
 (tests/bench/peer_changes.ngc on rack_y.json; the peer is LinuxCNC's
 rack-toolchange example), blended/ and row_blended/ (the direct path
-with blend_tolerance 10 and 15), demo_prototype/ and demo_direct/ (the demo
+with blend_tolerance 10 and 15), row_rapid_entry/ (row_blended with
+pocket_feed at the mill's rapid, the example's terms), demo_prototype/ and demo_direct/ (the demo
 program), spindown_true/ and spindown_false/ (tests/bench/spindown.ngc,
 moving while the spindle runs down and not), and the idle run
 (idle/results.json).
@@ -204,7 +205,8 @@ def print_table(title, columns, rows, changes):
 
 
 RATIOS = [("direct", "prototype"), ("direct", "bound"), ("prototype", "bound"), ("direct", "peer"),
-          ("prototype", "peer"), ("blended", "direct"), ("blended", "bound"), ("blended", "peer")]
+          ("prototype", "peer"), ("blended", "direct"), ("blended", "bound"), ("blended", "peer"),
+          ("rapid_entry", "peer")]
 
 
 def print_demo(work, binary):
@@ -244,6 +246,7 @@ def main():
     scenario, rack["blended"] = load(work, "blended", CHANGES)
     print_handshake("direct path, blended", scenario)
     row["blended"] = load(work, "row_blended", ROW_CHANGES)[1]
+    row["rapid_entry"] = load(work, "row_rapid_entry", ROW_CHANGES)[1]
     peer, row["peer"] = load(work, "row_peer", ROW_CHANGES)
     print_latency("LinuxCNC's rack-toolchange example", peer)
     rack["bound"] = bound(work, "direct", binary, CHANGES)
@@ -255,7 +258,8 @@ def main():
         print("the prototype's plan at the same limits: %.2f s (%.2f of the bound); the direct path "
               "with each run of rapids unstopped (more than blending could save): %.2f s (%.2f of the "
               "bound)" % (prototype, prototype / sum(rack["bound"]), blended, blended / sum(rack["bound"])))
-    print_table("peer_changes.ngc, top pockets", ("prototype", "direct", "blended", "peer", "bound"), row,
+    print_table("peer_changes.ngc, top pockets", ("prototype", "direct", "blended", "rapid_entry", "peer",
+                                                  "bound"), row,
                 ROW_CHANGES)
     print_demo(work, binary)
     print_spin_down(work, binary)

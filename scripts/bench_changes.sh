@@ -8,7 +8,8 @@
 #    along Y), on both paths and with LinuxCNC's own rack-toolchange remap
 #    example instead of the changer (tests/bench/peer_ini.py), the peer;
 #  - both programs again on the direct path with blend_tolerance 10 and 15, the
-#    corners at safe Z rounded;
+#    corners at safe Z rounded, and peer_changes.ngc once more with pocket_feed
+#    at the mill's rapid (12000), as the example goes into and out of a pocket;
 #  - the demo program, nc_files/demo.ngc, as the demo runs it, on both paths;
 #  - tests/bench/spindown.ngc on config/config.json, direct path: one change
 #    between two side pockets with the simulated spindle taking 3 s to stop
@@ -51,6 +52,9 @@ run blended tests/bench/changes.ngc tests/integration/rack_config.json tests/int
   FATC_CONFIG_SET='{"path": "direct", "pocket_feed": 500, "chuck_seconds": 0.4, "blend_tolerance": 10}'
 run row_blended tests/bench/peer_changes.ngc tests/bench/rack_y.json tests/bench/rack_y.tbl \
   FATC_CONFIG_SET='{"path": "direct", "blend_tolerance": 15}'
+# On the example's terms: into and out of a pocket at the mill's rapid.
+run row_rapid_entry tests/bench/peer_changes.ngc tests/bench/rack_y.json tests/bench/rack_y.tbl \
+  FATC_CONFIG_SET='{"path": "direct", "blend_tolerance": 15, "pocket_feed": 12000}'
 for path in prototype direct; do
   run "demo_$path" nc_files/demo.ngc config/config.json config/sim/sim.tbl \
     FATC_CONFIG_SET="{\"path\": \"$path\"}"
