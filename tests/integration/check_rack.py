@@ -144,14 +144,17 @@ def rounded_at_safe_z(r, route, found, rack):
     stand at are corners it rounded. Each must lie between two rapids, and the
     path between the stops around it within blend_tolerance of the straight
     moves through it (G64 P; outside_other_columns checks the rest); beside a
-    way up or down, rounded where nothing moved up or down and across at
-    once, and only that far outside every keep-out column. Returns the route without them, the stops the spindle
-    stood at, and the indexes of the moves between those that ran through a
-    rounded corner."""
+    way up or down, rounded where something moved up or down and across at
+    once, within blend_tolerance where that way lies that far outside every
+    keep-out column, else within a third of how far safe Z lies above the
+    columns' tops (a run within the least of its corners'). Returns the route
+    without them, the stops the spindle stood at, and the indexes of the moves
+    between those that ran through a rounded corner."""
     blend, safe_z = rack.c["blend_tolerance"], rack.c["safe"]["z"]
     margin = rack.c.get("rack_keepout_margin", math.hypot(rack.c["pocket_side_offset"]["x"],
                                                           rack.c["pocket_side_offset"]["y"]) / 2.0)
     top = rack.c["pocket_above_clearance_offset_z"]
+    over_columns = min(safe_z - (rack.pocket(n)[2] + top) for n in rack.pockets) / 3.0
 
     def in_a_column(pos):
         return any(abs(pos[0] - p[0]) < margin and abs(pos[1] - p[1]) < margin and pos[2] < p[2] + top
@@ -159,21 +162,23 @@ def rounded_at_safe_z(r, route, found, rack):
 
     route = merged(route)
     samples = r["samples"]
-    kept, rounded, through, j = [], set(), [], 0
+    kept, rounded, through, over_a_column, j = [], set(), [], [], 0
     for i, stop in enumerate(route):
         if j < len(found) and near(found[j][0], stop[1]):
             if through:
                 # The samples between the two stops stay near the moves through the corners.
-                line = [kept[-1][1]] + [c[1] for c in through] + [stop[1]]
+                line = [kept[-1][1]] + [c[1] for c, _ in through] + [stop[1]]
+                allowed = min(a for _, a in through)
+                names = " and ".join(c[0] for c, _ in through)
                 for s in samples[found[j - 1][2]:found[j][1] + 1]:
                     off = min(distance_to_segment(s["pos"], a, b) for a, b in zip(line, line[1:]))
-                    if off > blend + TOLERANCE:
-                        fail("rounding %s the spindle was %.3f off its moves at %.3f s (blend_tolerance %g)"
-                             % (" and ".join(c[0] for c in through), off, s["t"], blend))
+                    if off > allowed + TOLERANCE:
+                        fail("rounding %s the spindle was %.3f off its moves at %.3f s (allowed %.3f)"
+                             % (names, off, s["t"], allowed))
                     # Inside a keep-out column nothing is rounded: the spindle is on its straight moves.
                     if off > TOLERANCE and in_a_column(s["pos"]):
                         fail("rounding %s the spindle was %.3f off its moves inside a keep-out column at "
-                             "%s, %.3f s" % (" and ".join(c[0] for c in through), off, s["pos"], s["t"]))
+                             "%s, %.3f s" % (names, off, s["pos"], s["t"]))
                 rounded.add(len(kept))
                 through = []
             kept.append(stop)
@@ -183,23 +188,27 @@ def rounded_at_safe_z(r, route, found, rack):
                 or stop[2] or route[i + 1][2]:
             fail("the spindle did not stand at %s %s, and it is no corner at safe Z between two "
                  "rapids (stops so far: %s)" % (stop[0], stop[1], [k[0] for k in kept]))
-        through.append(stop)
-        # Beside a way up or down the corner is rounded only that far outside every column.
+        # Beside a way up or down lying closer than blend_tolerance to a column,
+        # or in one, the corner is rounded within a third of the room above the columns.
         vertical = any(abs(other[1][0] - stop[1][0]) < TOLERANCE and abs(other[1][1] - stop[1][1]) < TOLERANCE
                        for other in (route[i - 1], route[i + 1]))
+        allowed = blend
         if vertical:
             clear = min(math.hypot(max(abs(stop[1][0] - p[0]) - margin, 0.0), max(abs(stop[1][1] - p[1]) - margin, 0.0))
                         for p in (rack.pocket(n) for n in rack.pockets))
             if clear < blend - TOLERANCE:
-                fail("%s %s was rounded, but its way up or down lies %.3f outside a keep-out column, "
-                     "less than blend_tolerance %g" % (stop[0], stop[1], clear, blend))
-            if not any(math.dist(a["pos"], stop[1]) < 3 * blend
+                allowed = min(blend, over_columns)
+                over_a_column.append(stop[0])
+            if not any(math.dist(a["pos"], stop[1]) < 3 * allowed
                        and math.dist(a["pos"][:2], b["pos"][:2]) > TOLERANCE
                        and abs(a["pos"][2] - b["pos"][2]) > TOLERANCE for a, b in zip(samples, samples[1:])):
                 fail("%s %s was not stood at, but nothing went up or down and across at once near it"
                      % (stop[0], stop[1]))
+        through.append((stop, allowed))
     if not rounded:
         fail("blend_tolerance %g: every corner at safe Z was a stop, none rounded" % blend)
+    if not over_a_column:
+        fail("no corner over or beside a keep-out column was rounded: the run shows nothing of them")
     # Rounded, not only stopped short: somewhere the spindle went up or down and across at once.
     diagonal = sum(1 for a, b in zip(samples, samples[1:])
                    if math.dist(a["pos"][:2], b["pos"][:2]) > TOLERANCE
@@ -207,7 +216,9 @@ def rounded_at_safe_z(r, route, found, rack):
     if diagonal == 0:
         fail("no sample moved up or down and across at once: no corner was rounded")
     ok("%d moves ran through rounded corners at safe Z, each within blend_tolerance %g of its "
-       "straight moves; %d samples moved up or down and across at once" % (len(rounded), blend, diagonal))
+       "straight moves, %d corners over or beside a column within %.3f; %d samples moved up or "
+       "down and across at once" % (len(rounded), blend, len(over_a_column), min(blend, over_columns),
+                                    diagonal))
     return kept, rounded
 
 

@@ -124,7 +124,8 @@ struct Config {
   /// it: how far safe Z lies above every pocket's above-clearance, since a
   /// rounded corner stays within the tolerance of the crossing at safe Z
   /// (G64 P). Where the way up or down beside it lies closer than that to a
-  /// keep-out column, the corner is not rounded (plan::blended).
+  /// keep-out column, the corner is rounded within a third of this room
+  /// (plan::blended).
   double blend_room(std::string* why = nullptr) const;
   /// How far above the holders' tops the rack's volume reaches.
   double keepout_above() const;

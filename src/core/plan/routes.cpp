@@ -247,13 +247,19 @@ double outside_columns(const Config& c, const Point& at) {
 
 Route blended(const Config& c, const Route& route, const Point& at, unsigned known_axes) {
   if (c.blend_tolerance <= 0.0) return route;
-  // A rounded corner stays within the tolerance of its two moves (G64 P):
-  // of the crossing at safe Z, which lies that much above every column's top
-  // (Config::blend_room), and of the way up or down, whose vertical must lie
-  // that much outside every column. A way into or out of a pocket's column
-  // keeps its corner.
-  const auto clear = [&](const Point& where) {
-    return outside_columns(c, where) >= c.blend_tolerance;
+  // A rounded corner stays within the tolerance of its two moves (G64 P): of
+  // the crossing at safe Z, which lies that much above every column's top
+  // (Config::blend_room), and of the way up or down, whose vertical lies that
+  // much outside every column. A way up or down closer to a column, or into or
+  // out of one, gets a smaller tolerance: LinuxCNC's arc leaves a right angle
+  // 2.4 P along each line (blendmath.c: P cos 45° / (1 - sin 45°)), its
+  // parabolic blend about 2.8 P, so within a third of the room the whole
+  // corner stays above every column's top. A run takes its corners' least.
+  const double over_columns = c.blend_room() / 3.0;
+  const auto corner_beside = [&](const Point& vertical) {
+    return outside_columns(c, vertical) >= c.blend_tolerance
+               ? c.blend_tolerance
+               : std::min(c.blend_tolerance, over_columns);
   };
   Route runs;
   Point where = at;
@@ -265,21 +271,28 @@ Route blended(const Config& c, const Route& route, const Point& at, unsigned kno
     const bool xy_known = (known & axis_xy) == axis_xy;
     bool at_safe = (known & axis_z) && where.z == c.safe.z;
     std::vector<Step> before;
-    // Up to safe Z, on into a crossing, where the way up is clear.
+    double tolerance = c.blend_tolerance;
+    // Up to safe Z, on into a crossing.
     if (rapid_on(route[i], axis_z) && route[i].target.z == c.safe.z && next_is(i + 1, axis_xy) &&
-        xy_known && clear(where)) {
+        xy_known && corner_beside(where) > 0.0) {
+      tolerance = corner_beside(where);
       before.push_back(route[i++]);
       at_safe = true;
     }
-    // Across at safe Z, on into another crossing or into a way down that is clear.
-    if (at_safe && rapid_on(route[i], axis_xy) &&
-        (next_is(i + 1, axis_xy) || (next_is(i + 1, axis_z) && clear(route[i].target)))) {
-      before.push_back(route[i++]);
+    // Across at safe Z, on into another crossing or a way down.
+    if (at_safe && rapid_on(route[i], axis_xy)) {
+      const double next = next_is(i + 1, axis_xy)  ? c.blend_tolerance
+                          : next_is(i + 1, axis_z) ? corner_beside(route[i].target)
+                                                   : 0.0;
+      if (next > 0.0) {
+        tolerance = std::min(tolerance, next);
+        before.push_back(route[i++]);
+      }
     }
     Step step = route[i];
     if (!before.empty()) {
       step.before = std::move(before);
-      step.blend = c.blend_tolerance;
+      step.blend = tolerance;
     }
     for (const Step& move : moves_of(step)) {
       if (!is_motion(move.kind)) continue;

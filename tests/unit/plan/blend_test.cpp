@@ -66,38 +66,67 @@ TEST(Blend, shouldJoinUpToSafeZAndAcrossIntoTheRapidThatFollows) {
   EXPECT_TRUE(moves[2].before.empty());
 }
 
-TEST(Blend, shouldRoundNoCornerBesideAKeepOutColumnNorIntoASlowMove) {
+TEST(Blend, shouldRoundACornerOverOrBesideAColumnWithinAThirdOfTheRoom) {
+  // Safe Z lies 15 above the above-clearance: a corner whose way up or down
+  // is in a column or beside one is rounded within 5, so LinuxCNC's arc,
+  // which leaves the way down 2.4 P below the corner, stays above the column.
   const Config c = valid_config(R"("path": "direct", "blend_tolerance": 10)");
-  // Down over pocket 2 into its column: the corner above it stands, so the
-  // crossing cannot swing into the column below its top.
+  ASSERT_EQ(c.blend_room(), 15.0);
   const plan::Route fetch = plan::from_where_it_stands(c, plan::fetch_to_above_chuck(c, 2),
                                                        c.safe, axis_xyz);
-  for (const Step& step : plan::blended(c, fetch, c.safe, axis_xyz)) {
-    EXPECT_TRUE(step.before.empty()) << describe(step);
-  }
+  const plan::Route fetch_runs = plan::blended(c, fetch, c.safe, axis_xyz);
+  ASSERT_EQ(via_of(fetch_runs.front()), Via::across);
+  EXPECT_EQ(fetch_runs.front().before.front().label, "over pocket 2");
+  EXPECT_EQ(fetch_runs.front().blend, 5.0) << "down over pocket 2 into its column";
   const Config top = top_rack(R"("path": "direct", "blend_tolerance": 10)");
   const plan::Route down = plan::blended(top, plan::return_to_approach(top, 2), c.safe, axis_xyz);
-  ASSERT_EQ(down.size(), 2u);
-  EXPECT_EQ(via_of(down[0]), Via::up) << "up from safe XY and across: rounded";
-  EXPECT_EQ(down[0].label, "over pocket 2");
-  EXPECT_TRUE(down[1].before.empty()) << "the way down into the column starts standing";
-  // Beside a side 1 mm outside its pocket's column: that corner stands too.
+  ASSERT_EQ(down.size(), 1u);
+  EXPECT_EQ(via_of(down[0]), Via::up_and_across);
+  EXPECT_EQ(down[0].before.back().label, "over pocket 2");
+  EXPECT_EQ(down[0].blend, 5.0) << "up at safe XY within 10, down into the column within 5: the least";
+  // Up out of a side pocket's column after a return: within 5 as well.
+  const plan::Route up = plan::blended(c, plan::return_to_approach(c, 2), Point{0, 0, -60},
+                                       axis_xyz);
+  EXPECT_EQ(up.front().blend, 10.0) << "up at X0 Y0, across, down beside the rack: all clear";
+  // Beside a side 1 mm outside its pocket's column: within 5 instead of 12;
+  // with safe Z 50 above the above-clearance, a third of it is more than 12.
   auto j = nlohmann::json::parse(test::kValidConfig);
   j["path"] = "direct";
   j["blend_tolerance"] = 12;
-  j["safe"]["z"] = 30.0;
   j["rack_keepout_margin"] = 39;
   const Config narrow = parse_config(j.dump()).config.value();
   const plan::Route side = plan::blended(narrow, plan::return_to_approach(narrow, 2),
                                          narrow.safe, axis_xyz);
-  EXPECT_EQ(via_of(side.front()), Via::up);
-  EXPECT_EQ(side.front().label, "over the side of pocket 2");
+  EXPECT_EQ(via_of(side.front()), Via::up_and_across);
+  EXPECT_EQ(side.front().before.back().label, "over the side of pocket 2");
+  EXPECT_EQ(side.front().blend, 5.0);
+  j["safe"]["z"] = 30.0;
+  const Config roomy = parse_config(j.dump()).config.value();
+  ASSERT_EQ(roomy.blend_room(), 50.0);
+  EXPECT_EQ(plan::blended(roomy, plan::return_to_approach(roomy, 2), roomy.safe, axis_xyz)
+                .front()
+                .blend,
+            12.0);
   // Where Z is not known to be safe Z, nothing goes across on the way.
   const plan::Route across{plan::safe_xy(c), plan::safe_z(c)};
   EXPECT_TRUE(plan::blended(c, across, c.safe, axis_xy).front().before.empty());
   // Into a pocket from its side: the slow move starts from standing.
   for (const Step& step : plan::blended(c, plan::return_into_pocket(c, 2), c.safe, axis_xyz)) {
     EXPECT_TRUE(step.before.empty()) << describe(step);
+  }
+  // No room over the columns: a corner there stands (G64 P0 would round it
+  // as far as LinuxCNC likes).
+  auto flush = nlohmann::json::parse(test::kValidConfig);
+  flush["path"] = "direct";
+  flush["blend_tolerance"] = 0;
+  flush["safe"]["z"] = -20.0;
+  Config level = parse_config(flush.dump()).config.value();
+  ASSERT_EQ(level.blend_room(), 0.0);
+  level.blend_tolerance = 10;
+  for (const Step& step : plan::blended(level, fetch, level.safe, axis_xyz)) {
+    if (!step.before.empty()) {
+      EXPECT_GT(step.blend, 0.0) << describe(step);
+    }
   }
 }
 
@@ -116,6 +145,9 @@ TEST(Blend, shouldGoThroughTheSameWaypointsOnEveryChange) {
             << from << "->" << to;
         for (const Step& move : rounded.motion_steps()) {
           if (move.blend == 0.0) continue;
+          EXPECT_TRUE(move.blend == blended.blend_tolerance ||
+                      move.blend == blended.blend_room() / 3.0)
+              << from << "->" << to << ": " << describe(move);
           EXPECT_TRUE(move.kind == StepKind::rapid &&
                       (move.axes == axis_xy || move.target.z == blended.safe.z))
               << from << "->" << to << ": " << describe(move);
@@ -125,7 +157,7 @@ TEST(Blend, shouldGoThroughTheSameWaypointsOnEveryChange) {
         const auto fewer = change_time(rounded, blended.safe, machine).steps;
         const auto each = change_time(stopped, exact.safe, machine).steps;
         EXPECT_LE(fewer, each) << from << "->" << to;
-        if (from != to && blended.pockets.at(1).approach == Approach::side) {
+        if (from != to) {
           EXPECT_LT(fewer, each) << from << "->" << to;
         }
       }
