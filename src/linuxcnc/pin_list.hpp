@@ -157,8 +157,8 @@ inline const PinDeclaration kPins[] = {
   {"step-via-y", &HalPins::step_via_y, HAL_OUT, "machine Y the run crosses to"},
   {"step-via-z", &HalPins::step_via_z, HAL_OUT, "machine Z the run goes up to (`step-via` 1, 3): safe Z"},
   {"step-blend", &HalPins::step_blend, HAL_OUT,
-   "how far the run's corners may be cut (G64 P), the config's units: `blend_tolerance`, or a third "
-   "of safe Z's room over the columns where a way up or down is in or beside one"},
+   "how far the run's corners may be cut (G64 P), the config's units: `blend_tolerance`, or safe Z's "
+   "room over the columns divided by 3.5 where a way up or down is in or beside one"},
   {"units-inch", &HalPins::units_inch, HAL_OUT,
    "the config is in inches (the executor uses G20)"},
   {"return-to-xy", &HalPins::return_to_xy, HAL_IN,

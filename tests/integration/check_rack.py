@@ -146,23 +146,28 @@ def rounded_at_safe_z(r, route, found, rack):
     moves through it (G64 P; outside_other_columns checks the rest); beside a
     way up or down, rounded where something moved up or down and across at
     once, within blend_tolerance where that way lies that far outside every
-    keep-out column, else within a third of how far safe Z lies above the
-    columns' tops (a run within the least of its corners'). Returns the route
+    keep-out column, else within how far safe Z lies above the columns' tops
+    divided by 3.5 (a run within the least of its corners'). Returns the route
     without them, the stops the spindle stood at, and the indexes of the moves
     between those that ran through a rounded corner."""
     blend, safe_z = rack.c["blend_tolerance"], rack.c["safe"]["z"]
     margin = rack.c.get("rack_keepout_margin", math.hypot(rack.c["pocket_side_offset"]["x"],
                                                           rack.c["pocket_side_offset"]["y"]) / 2.0)
     top = rack.c["pocket_above_clearance_offset_z"]
-    over_columns = min(safe_z - (rack.pocket(n)[2] + top) for n in rack.pockets) / 3.0
+    room = min(safe_z - (rack.pocket(n)[2] + top) for n in rack.pockets)
+    over_columns = room / 3.5
+
+    def over_a_column_xy(pos):
+        return [p for p in (rack.pocket(n) for n in rack.pockets)
+                if abs(pos[0] - p[0]) < margin and abs(pos[1] - p[1]) < margin]
 
     def in_a_column(pos):
-        return any(abs(pos[0] - p[0]) < margin and abs(pos[1] - p[1]) < margin and pos[2] < p[2] + top
-                   for p in (rack.pocket(n) for n in rack.pockets))
+        return any(pos[2] < p[2] + top for p in over_a_column_xy(pos))
 
     route = merged(route)
     samples = r["samples"]
     kept, rounded, through, over_a_column, j = [], set(), [], [], 0
+    deepest = 0.0  # below safe Z, off the straight moves over a column's XY
     for i, stop in enumerate(route):
         if j < len(found) and near(found[j][0], stop[1]):
             if through:
@@ -176,6 +181,8 @@ def rounded_at_safe_z(r, route, found, rack):
                         fail("rounding %s the spindle was %.3f off its moves at %.3f s (allowed %.3f)"
                              % (names, off, s["t"], allowed))
                     # Inside a keep-out column nothing is rounded: the spindle is on its straight moves.
+                    if off > TOLERANCE and over_a_column_xy(s["pos"]):
+                        deepest = max(deepest, safe_z - s["pos"][2])
                     if off > TOLERANCE and in_a_column(s["pos"]):
                         fail("rounding %s the spindle was %.3f off its moves inside a keep-out column at "
                              "%s, %.3f s" % (names, off, s["pos"], s["t"]))
@@ -189,7 +196,7 @@ def rounded_at_safe_z(r, route, found, rack):
             fail("the spindle did not stand at %s %s, and it is no corner at safe Z between two "
                  "rapids (stops so far: %s)" % (stop[0], stop[1], [k[0] for k in kept]))
         # Beside a way up or down lying closer than blend_tolerance to a column,
-        # or in one, the corner is rounded within a third of the room above the columns.
+        # or in one, the corner is rounded within the room above the columns divided by 3.5.
         vertical = any(abs(other[1][0] - stop[1][0]) < TOLERANCE and abs(other[1][1] - stop[1][1]) < TOLERANCE
                        for other in (route[i - 1], route[i + 1]))
         allowed = blend
@@ -217,8 +224,9 @@ def rounded_at_safe_z(r, route, found, rack):
         fail("no sample moved up or down and across at once: no corner was rounded")
     ok("%d moves ran through rounded corners at safe Z, each within blend_tolerance %g of its "
        "straight moves, %d corners over or beside a column within %.3f; %d samples moved up or "
-       "down and across at once" % (len(rounded), blend, len(over_a_column), min(blend, over_columns),
-                                    diagonal))
+       "down and across at once; off its straight moves over a column at most %.3f below safe Z, "
+       "the columns' tops %.3f below it" % (len(rounded), blend, len(over_a_column),
+                                             min(blend, over_columns), diagonal, deepest, room))
     return kept, rounded
 
 

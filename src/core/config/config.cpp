@@ -410,6 +410,10 @@ double Config::blend_room(std::string* why) const {
   return std::max(room, 0.0);
 }
 
+double Config::blend_over_columns() const {
+  return std::min(blend_tolerance, blend_room() / 3.5);
+}
+
 double Config::check_tolerance() const {
   if (probe_check_tolerance) return *probe_check_tolerance;
   return units == Units::inch ? 0.004 : 0.1;

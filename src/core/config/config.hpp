@@ -124,9 +124,14 @@ struct Config {
   /// it: how far safe Z lies above every pocket's above-clearance, since a
   /// rounded corner stays within the tolerance of the crossing at safe Z
   /// (G64 P). Where the way up or down beside it lies closer than that to a
-  /// keep-out column, the corner is rounded within a third of this room
-  /// (plan::blended).
+  /// keep-out column, the corner is rounded within blend_over_columns().
   double blend_room(std::string* why = nullptr) const;
+  /// The tolerance of a corner whose way up or down is in or beside a
+  /// keep-out column: LinuxCNC's arc leaves a right angle 2.41 P down the
+  /// vertical (blendmath.c: P cos 45° / (1 - sin 45°)), its parabolic blend
+  /// 2.83 P and a trajectory cycle at the blend's speed (tp.c), so within the
+  /// room divided by 3.5 the whole corner stays above every column's top.
+  double blend_over_columns() const;
   /// How far above the holders' tops the rack's volume reaches.
   double keepout_above() const;
   double check_tolerance() const;

@@ -137,7 +137,7 @@ const std::vector<KeyDeclaration> kKeys = {
    "how far below safe Z M6 may round the corners of its rapids at safe Z (G64 P): up to safe Z, "
    "across and down run on without stopping at either corner; 0: every move ends standing. A "
    "corner whose way up or down lies closer than this to a pocket's keep-out column, or in one, is "
-   "rounded within a third of that room instead, so it stays above every column. Over the work the "
+   "rounded within that room divided by 3.5 instead, so it stays above every column. Over the work the "
    "machine must be clear this far below safe Z"},
   {"rack_keepout_margin", "half the side offset's length", kMargin,
    "from 0.04 in inch; below the side offset's length",

@@ -251,15 +251,11 @@ Route blended(const Config& c, const Route& route, const Point& at, unsigned kno
   // the crossing at safe Z, which lies that much above every column's top
   // (Config::blend_room), and of the way up or down, whose vertical lies that
   // much outside every column. A way up or down closer to a column, or into or
-  // out of one, gets a smaller tolerance: LinuxCNC's arc leaves a right angle
-  // 2.4 P along each line (blendmath.c: P cos 45° / (1 - sin 45°)), its
-  // parabolic blend about 2.8 P, so within a third of the room the whole
-  // corner stays above every column's top. A run takes its corners' least.
-  const double over_columns = c.blend_room() / 3.0;
+  // out of one, gets Config::blend_over_columns(), which keeps the whole
+  // corner above the columns. A run takes its corners' least.
   const auto corner_beside = [&](const Point& vertical) {
-    return outside_columns(c, vertical) >= c.blend_tolerance
-               ? c.blend_tolerance
-               : std::min(c.blend_tolerance, over_columns);
+    return outside_columns(c, vertical) >= c.blend_tolerance ? c.blend_tolerance
+                                                             : c.blend_over_columns();
   };
   Route runs;
   Point where = at;

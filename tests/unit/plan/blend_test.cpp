@@ -68,28 +68,30 @@ TEST(Blend, shouldJoinUpToSafeZAndAcrossIntoTheRapidThatFollows) {
 
 TEST(Blend, shouldRoundACornerOverOrBesideAColumnWithinAThirdOfTheRoom) {
   // Safe Z lies 15 above the above-clearance: a corner whose way up or down
-  // is in a column or beside one is rounded within 5, so LinuxCNC's arc,
-  // which leaves the way down 2.4 P below the corner, stays above the column.
+  // is in a column or beside one is rounded within 15 / 3.5, so LinuxCNC's
+  // arc, which leaves the way down 2.41 P below the corner, and its parabolic
+  // blend, 2.83 P, stay above the column.
   const Config c = valid_config(R"("path": "direct", "blend_tolerance": 10)");
   ASSERT_EQ(c.blend_room(), 15.0);
+  const double over_columns = 15.0 / 3.5;
+  ASSERT_EQ(c.blend_over_columns(), over_columns);
   const plan::Route fetch = plan::from_where_it_stands(c, plan::fetch_to_above_chuck(c, 2),
                                                        c.safe, axis_xyz);
   const plan::Route fetch_runs = plan::blended(c, fetch, c.safe, axis_xyz);
   ASSERT_EQ(via_of(fetch_runs.front()), Via::across);
   EXPECT_EQ(fetch_runs.front().before.front().label, "over pocket 2");
-  EXPECT_EQ(fetch_runs.front().blend, 5.0) << "down over pocket 2 into its column";
+  EXPECT_EQ(fetch_runs.front().blend, over_columns) << "down over pocket 2 into its column";
   const Config top = top_rack(R"("path": "direct", "blend_tolerance": 10)");
   const plan::Route down = plan::blended(top, plan::return_to_approach(top, 2), c.safe, axis_xyz);
   ASSERT_EQ(down.size(), 1u);
   EXPECT_EQ(via_of(down[0]), Via::up_and_across);
   EXPECT_EQ(down[0].before.back().label, "over pocket 2");
-  EXPECT_EQ(down[0].blend, 5.0) << "up at safe XY within 10, down into the column within 5: the least";
-  // Up out of a side pocket's column after a return: within 5 as well.
+  EXPECT_EQ(down[0].blend, over_columns) << "up at safe XY within 10, down into the column: the least";
   const plan::Route up = plan::blended(c, plan::return_to_approach(c, 2), Point{0, 0, -60},
                                        axis_xyz);
   EXPECT_EQ(up.front().blend, 10.0) << "up at X0 Y0, across, down beside the rack: all clear";
-  // Beside a side 1 mm outside its pocket's column: within 5 instead of 12;
-  // with safe Z 50 above the above-clearance, a third of it is more than 12.
+  // Beside a side 1 mm outside its pocket's column: within 15 / 3.5 instead
+  // of 12; with safe Z 50 above the above-clearance, 50 / 3.5 is more than 12.
   auto j = nlohmann::json::parse(test::kValidConfig);
   j["path"] = "direct";
   j["blend_tolerance"] = 12;
@@ -99,7 +101,7 @@ TEST(Blend, shouldRoundACornerOverOrBesideAColumnWithinAThirdOfTheRoom) {
                                          narrow.safe, axis_xyz);
   EXPECT_EQ(via_of(side.front()), Via::up_and_across);
   EXPECT_EQ(side.front().before.back().label, "over the side of pocket 2");
-  EXPECT_EQ(side.front().blend, 5.0);
+  EXPECT_EQ(side.front().blend, over_columns);
   j["safe"]["z"] = 30.0;
   const Config roomy = parse_config(j.dump()).config.value();
   ASSERT_EQ(roomy.blend_room(), 50.0);
@@ -146,7 +148,7 @@ TEST(Blend, shouldGoThroughTheSameWaypointsOnEveryChange) {
         for (const Step& move : rounded.motion_steps()) {
           if (move.blend == 0.0) continue;
           EXPECT_TRUE(move.blend == blended.blend_tolerance ||
-                      move.blend == blended.blend_room() / 3.0)
+                      move.blend == blended.blend_over_columns())
               << from << "->" << to << ": " << describe(move);
           EXPECT_TRUE(move.kind == StepKind::rapid &&
                       (move.axes == axis_xy || move.target.z == blended.safe.z))
