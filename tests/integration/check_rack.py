@@ -487,12 +487,33 @@ def check_rack_verify(r, rack, expected):
     ok("the state file still has T3 in the spindle, pocket 4 its but empty: a dry run records nothing")
 
 
+def check_blend_modal(r, rack, expected):
+    """A program cutting in G64 P0.02 Q0.01 gets them back after a blended M6:
+    neither the executor's G64 P (its blend_tolerance) nor its G61.1."""
+    no_fault(r)
+    snap = r.get("snapshot")
+    if not snap:
+        fail("the program never reached its M0 after M6")
+    codes = set(snap["gcodes"])
+    if 640 not in codes or 611 in codes:
+        fail("after M6: %s, expected the program's G64, not the executor's G61.1"
+             % sorted(c for c in codes if c > 0))
+    tolerances = (snap["path_tolerance"], snap["naive_cam_tolerance"])
+    if abs(tolerances[0] - 0.02) > 1e-9 or abs(tolerances[1] - 0.01) > 1e-9:
+        fail("after M6 G64 P%g Q%g, expected the program's P0.02 Q0.01 (blend_tolerance %g)"
+             % (tolerances + (rack.c["blend_tolerance"],)))
+    if r["samples"][-1]["tool_in_spindle"] != 7:
+        fail("T7 not in the spindle after M6")
+    ok("after a blended M6 the program's G64 P0.02 Q0.01 again (LinuxCNC says), T7 in the spindle")
+
+
 def load_t20(expected):
     expected.tools[3] = 20
 
 
 # What each scenario leaves in the rack, for the checks of those after it.
 ORDER = [("rack_changes", lambda e: [e.change(e.rack.safe(), t) for t in CHANGES]),
+         ("blend_modal", lambda e: None),  # the blend run's last
          ("rack_load", load_t20), ("rack_t20", lambda e: [e.change(e.rack.safe(), t) for t in T20]),
          ("rack_verify", None)]
 

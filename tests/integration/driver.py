@@ -469,6 +469,8 @@ def run_scenario(scenario):
                 perform(action, result, start)
             elif action["do"] == "snapshot_abort":
                 result["snapshot"] = {"gcodes": list(stat.gcodes),
+                                      "path_tolerance": stat.settings[3],
+                                      "naive_cam_tolerance": stat.settings[4],
                                       "tool_offset": list(stat.tool_offset[:3]),
                                       "program_units": stat.program_units,
                                       "pos": list(stat.actual_position[:3])}
