@@ -180,9 +180,9 @@ def rounded_at_safe_z(r, route, found, rack):
                     if off > allowed + TOLERANCE:
                         fail("rounding %s the spindle was %.3f off its moves at %.3f s (allowed %.3f)"
                              % (names, off, s["t"], allowed))
-                    # Inside a keep-out column nothing is rounded: the spindle is on its straight moves.
                     if off > TOLERANCE and over_a_column_xy(s["pos"]):
                         deepest = max(deepest, safe_z - s["pos"][2])
+                    # Inside a keep-out column nothing is rounded: the spindle is on its straight moves.
                     if off > TOLERANCE and in_a_column(s["pos"]):
                         fail("rounding %s the spindle was %.3f off its moves inside a keep-out column at "
                              "%s, %.3f s" % (names, off, s["pos"], s["t"]))
