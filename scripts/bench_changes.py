@@ -258,9 +258,8 @@ def main():
         print("the prototype's plan at the same limits: %.2f s (%.2f of the bound); the direct path "
               "with each run of rapids unstopped (more than blending could save): %.2f s (%.2f of the "
               "bound)" % (prototype, prototype / sum(rack["bound"]), blended, blended / sum(rack["bound"])))
-    print_table("peer_changes.ngc, top pockets", ("prototype", "direct", "blended", "rapid_entry", "peer",
-                                                  "bound"), row,
-                ROW_CHANGES)
+    print_table("peer_changes.ngc, top pockets",
+                ("prototype", "direct", "blended", "rapid_entry", "peer", "bound"), row, ROW_CHANGES)
     print_demo(work, binary)
     print_spin_down(work, binary)
 

@@ -37,14 +37,17 @@ class Rack:
         offset = self.pockets[t].get("side_offset", self.c["pocket_side_offset"])
         return [p[0] + offset["x"], p[1] + offset["y"], p[2]]
 
+    def keepout_margin(self):
+        """Half-width of each pocket's keep-out column: rack_keepout_margin, else
+        half the side offset's length."""
+        return self.c.get("rack_keepout_margin", math.hypot(self.c["pocket_side_offset"]["x"],
+                                                            self.c["pocket_side_offset"]["y"]) / 2.0)
+
     def column_edge(self, t):
         """Between pocket t's side and the pocket, where its keep-out column begins:
         the direct path's side approach is fast up to there."""
         p, side = self.pocket(t), self.side(t)
-        reach = math.dist(p, side)
-        margin = self.c.get("rack_keepout_margin", math.hypot(self.c["pocket_side_offset"]["x"],
-                                                              self.c["pocket_side_offset"]["y"]) / 2.0)
-        edge = margin / reach
+        edge = self.keepout_margin() / math.dist(p, side)
         return [p[k] + (side[k] - p[k]) * edge for k in range(3)]
 
     def top(self, t):

@@ -123,8 +123,7 @@ def outside_other_columns(r, rack):
     """No sample inside a pocket's keep-out column (rack_keepout_margin, default
     half the side offset, around it, up to above-clearance) except the pocket
     the component says it serves."""
-    margin = rack.c.get("rack_keepout_margin", math.hypot(rack.c["pocket_side_offset"]["x"],
-                                                          rack.c["pocket_side_offset"]["y"]) / 2.0)
+    margin = rack.keepout_margin()
     inside = 0
     for s in r["samples"]:
         x, y, z = s["pos"]
@@ -151,8 +150,7 @@ def rounded_at_safe_z(r, route, found, rack):
     without them, the stops the spindle stood at, and the indexes of the moves
     between those that ran through a rounded corner."""
     blend, safe_z = rack.c["blend_tolerance"], rack.c["safe"]["z"]
-    margin = rack.c.get("rack_keepout_margin", math.hypot(rack.c["pocket_side_offset"]["x"],
-                                                          rack.c["pocket_side_offset"]["y"]) / 2.0)
+    margin = rack.keepout_margin()
     top = rack.c["pocket_above_clearance_offset_z"]
     room = min(safe_z - (rack.pocket(n)[2] + top) for n in rack.pockets)
     over_columns = room / 3.5

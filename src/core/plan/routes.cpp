@@ -270,10 +270,12 @@ Route blended(const Config& c, const Route& route, const Point& at, unsigned kno
     double tolerance = c.blend_tolerance;
     // Up to safe Z, on into a crossing.
     if (rapid_on(route[i], axis_z) && route[i].target.z == c.safe.z && next_is(i + 1, axis_xy) &&
-        xy_known && corner_beside(where) > 0.0) {
-      tolerance = corner_beside(where);
-      before.push_back(route[i++]);
-      at_safe = true;
+        xy_known) {
+      if (const double up = corner_beside(where); up > 0.0) {
+        tolerance = up;
+        before.push_back(route[i++]);
+        at_safe = true;
+      }
     }
     // Across at safe Z, on into another crossing or a way down.
     if (at_safe && rapid_on(route[i], axis_xy)) {
