@@ -1,6 +1,7 @@
 #include "ini.hpp"
 
 #include <strings.h>
+#include <sys/stat.h>
 #include <sys/mman.h>
 #include <unistd.h>
 
@@ -438,6 +439,36 @@ std::vector<std::string> executor_problems(const IniFile& ini, const Config* con
     problems.push_back(where("STEP_TIMEOUT") + buffer);
   }
   return problems;
+}
+
+std::vector<int> user_m_codes(const IniFile& ini, const std::string& folder) {
+  std::vector<std::string> folders{ini.get("DISPLAY", "PROGRAM_PREFIX").value_or("nc_files")};
+  if (const auto path = ini.get("RS274NGC", "USER_M_PATH")) {
+    // emctask.cc: strtok on ':' (empty folders skipped), at most five.
+    std::size_t start = 0;
+    while (start <= path->size() && folders.size() < 6) {
+      const std::size_t colon = std::min(path->find(':', start), path->size());
+      if (colon > start) folders.push_back(path->substr(start, colon - start));
+      start = colon + 1;
+    }
+  }
+  const char* home = std::getenv("HOME");
+  for (std::string& each : folders) {
+    if (each.rfind("~/", 0) == 0 && home) each = home + each.substr(1);
+    if (each.empty() || each[0] != '/') each = folder + "/" + each;
+  }
+  std::vector<int> codes;
+  for (int code = 100; code <= 199; ++code) {
+    for (const std::string& each : folders) {
+      struct stat st;
+      const std::string path = each + "/M" + std::to_string(code);
+      if (::stat(path.c_str(), &st) == 0 && (st.st_mode & S_IXUSR)) {
+        codes.push_back(code);
+        break;
+      }
+    }
+  }
+  return codes;
 }
 
 }  // namespace fatc::io

@@ -72,4 +72,11 @@ std::optional<MotionLimits> motion_limits(const IniFile& ini, Units units, std::
 /// section at all (an INI checked for its limits only).
 std::vector<std::string> executor_problems(const IniFile& ini, const Config* config);
 
+/// The user M-codes (100-199) LinuxCNC's task finds for the INI, as it looks
+/// for them when it starts: an executable named M1nn in [DISPLAY]PROGRAM_PREFIX
+/// (else nc_files) or in one of the first five folders of
+/// [RS274NGC]USER_M_PATH (':' between, `~/` for $HOME), each from `folder`
+/// (the INI's, where LinuxCNC runs).
+std::vector<int> user_m_codes(const IniFile& ini, const std::string& folder);
+
 }  // namespace fatc::io

@@ -283,7 +283,9 @@ std::optional<Ending> run_child(const std::vector<std::string>& argv, const std:
       break;
     }
   }
-  if (ending.timed_out || ending.too_much_output || output.done()) ::kill(-child, SIGKILL);
+  if (ending.timed_out || ending.too_much_output || output.done() || Interruptible::signal() != 0) {
+    ::kill(-child, SIGKILL);
+  }
   for (const pollfd& fd : fds) {
     if (fd.fd >= 0) ::close(fd.fd);
   }
@@ -435,6 +437,15 @@ std::optional<program::InterpreterRun> run_interpreter(const InterpreterInput& i
     }
   }
   if (!stub_folder.empty()) folders += (folders.empty() ? "" : ":") + stub_folder;
+  const std::string stand_in_folder = scratch.path() + "/stand_ins";
+  if (::mkdir(stand_in_folder.c_str(), 0700) != 0) {
+    error = "cannot make " + stand_in_folder + " for the interpreter (" + std::strerror(errno) + ")";
+    return std::nullopt;
+  }
+  for (const program::StandIn& stand_in : program::preflight_stand_ins()) {
+    if (!scratch.write("stand_ins/" + stand_in.name + ".ngc", stand_in.text, error)) return std::nullopt;
+  }
+  folders += (folders.empty() ? "" : ":") + stand_in_folder;
   std::string ini_text;
   if (input.ini_path) {
     const auto text = read_small_file(*input.ini_path, error);

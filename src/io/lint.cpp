@@ -13,6 +13,8 @@
 #include <memory>
 #include <ostream>
 
+#include "core/plan/sequence_check.hpp"
+#include "core/program/interpreter_inputs.hpp"
 #include "core/program/keepout_check.hpp"
 #include "core/program/preflight.hpp"
 #include "core/program/tool_table.hpp"
@@ -34,16 +36,9 @@ struct MachineIni {
   std::optional<std::string> tool_table;  ///< [EMCIO]TOOL_TABLE, from the INI's folder
   std::optional<double> units_per_mm;     ///< [TRAJ]LINEAR_UNITS: the tool table's units
   bool return_to_xy = false;              ///< [FIXED_ATC_PROBE]RETURN_TO_XY
+  std::optional<SoftLimits> limits;       ///< [AXIS_n]MIN_LIMIT, MAX_LIMIT
+  std::string limits_error;               ///< why there are none
 };
-
-/// Whether a REMAP line (`M6 modalgroup=6 ngc=fixed_atc_probe_m6`) is this changer's M6.
-bool is_own_m6_remap(const std::string& remap) {
-  std::string upper;
-  for (const char c : remap) upper.push_back(static_cast<char>(std::toupper(static_cast<unsigned char>(c))));
-  const auto code_end = upper.find_first_of(" \t");
-  return upper.substr(0, code_end) == "M6" &&
-         upper.find("NGC=FIXED_ATC_PROBE_M6") != std::string::npos;
-}
 
 }  // namespace
 
@@ -109,11 +104,13 @@ bool read_ini(const Options& options, const Config& config, MachineIni& machine,
   const auto ini = IniFile::read(*options.ini_path, error);
   if (!ini) return false;
   const auto remaps = ini->get_all("RS274NGC", "REMAP");
-  machine.remaps_m6 = std::any_of(remaps.begin(), remaps.end(), is_own_m6_remap);
+  machine.remaps_m6 = std::any_of(remaps.begin(), remaps.end(),
+                                  [](const std::string& remap) { return program::is_own_m6_remap(remap); });
   if (const auto table = ini->get("EMCIO", "TOOL_TABLE")) {
     machine.tool_table = (*table)[0] == '/' ? *table : folder_of(*options.ini_path) + "/" + *table;
   }
   if (const auto units = ini->linear_units(); units && *units > 0.0) machine.units_per_mm = units;
+  machine.limits = soft_limits(*ini, config.units, machine.limits_error);
   if (const auto back = ini->get("FIXED_ATC_PROBE", "RETURN_TO_XY")) {
     machine.return_to_xy = *back == "1" || strcasecmp(back->c_str(), "true") == 0;
   }
@@ -320,6 +317,13 @@ int lint(const Options& options, std::ostream& out, std::ostream& err) {
   const auto first_change = std::find_if(run->uses.begin(), run->uses.end(), [](const auto& use) {
     return use.kind == program::ToolUse::Kind::change;
   });
+  // The config against the machine's soft limits, as --check has it: a
+  // change the program calls would stop there.
+  if (machine.limits) {
+    for (const SequenceViolation& violation : check_sequences(config, machine.limits).violations) {
+      problems.push_back(program::finding(shown_path(options.config_path), 0, describe(violation)));
+    }
+  }
   if (!machine.remaps_m6 && first_change != run->uses.end()) {
     problems.push_back({first_change->where,
                         "the INI remaps no M6: LinuxCNC's own M6 would run here, not "
@@ -332,6 +336,10 @@ int lint(const Options& options, std::ostream& out, std::ostream& err) {
     unknowns.push_back(program::finding(name, 0, "more than " + std::to_string(program::kMaxToolUses) +
                                        " tool changes and M61: the other " +
                                        std::to_string(run->uses_not_kept) + " are not counted"));
+  }
+  if (options.ini_path && !machine.limits) {
+    unknowns.push_back(program::finding(
+        name, 0, machine.limits_error + ": the config is not checked against the soft limits"));
   }
   sort_by_line(unknowns);
   if (table) {

@@ -136,6 +136,10 @@ def main():
         tripped(r)
         stopped_short(r, volume, 6, 5.0)
         said(r, "an MDI command would have entered the rack at pocket 3 with T6 (length 50")
+    elif name == "keepout_g53_after_m6":
+        # T2 M6 leaves G43 with 35 mm in force; G53 Z-20 is the nose's Z all the same.
+        spindle_holds(r, 2, "after T2 M6")
+        at(r, "after_g53", [120.0, 80.0, -20.0])
     elif name == "keepout_m6_after":
         spindle_holds(r, 1, "after T1 M6 following the stopped moves")
         at(r, "low_over_the_rack", [150.0, 20.0, -20.0])

@@ -173,6 +173,9 @@ def configs():
         "sensor_timeout_string.json": spoil(CONFIG, lambda j: j.update(sensor_timeout_seconds="1s")),
         "probe_window_zero.json": spoil(CONFIG, lambda j: j.update(probe_window=0)),
         "probe_window_below_tolerance.json": spoil(CONFIG, lambda j: j.update(probe_window=0.05)),
+        # the touch-off sensor in a pocket's column, with no probing after a change
+        "sensor_in_rack.json": spoil(CONFIG, lambda j: j.update(
+            probe_after_change="off", probe_limit={"x": 152.0, "y": 24.0, "z": -90.0})),
     }
     for name, content in cases.items():
         write("bad_configs", name, content)

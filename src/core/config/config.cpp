@@ -339,6 +339,22 @@ void check_geometry(Reader& reader, Config& config) {
                                       format_number(config.loading.z) + "), got " +
                                       format_number(config.probe_limit.z));
   }
+  // Load and measure-all probe there whatever probe_after_change says: a
+  // sensor in the rack would take the tool down between the holders.
+  const Point sensor = config.probe_limit;
+  for (const RackPart& part : rack_volume(config)) {
+    const Box& box = part.box;
+    if (sensor.x > box.low.x && sensor.x < box.high.x && sensor.y > box.low.y &&
+        sensor.y < box.high.y) {
+      reader.error("probe_limit", "the touch-off sensor at X" + format_number(sensor.x) + " Y" +
+                                      format_number(sensor.y) + " lies in the rack's keep-out at pocket " +
+                                      std::to_string(nearest_pocket(part, sensor)) +
+                                      " (rack_keepout_margin " +
+                                      format_number(config.keepout_margin()) +
+                                      "): place it clear of the rack");
+      break;
+    }
+  }
   if (const double floor = bounds_in(key("rack_keepout_margin"), config.units).min;
       !config.rack_keepout_margin && config.keepout_margin() < floor) {
     reader.error("rack_keepout_margin", "missing, and its default, half the side offset (" +

@@ -1,8 +1,11 @@
 #include "interpreter_inputs.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cstdio>
 #include <cstdlib>
+#include <optional>
+#include <set>
 #include <string_view>
 
 namespace fatc::program {
@@ -84,31 +87,104 @@ InterpreterTable any_tool_table() {
   return result;
 }
 
-std::string ini_for_preflight(std::string_view ini_text, const std::string& folders) {
+namespace {
+
+std::string upper(std::string_view text) {
+  std::string result;
+  for (const char c : text) result.push_back(static_cast<char>(std::toupper(static_cast<unsigned char>(c))));
+  return result;
+}
+
+std::string_view trimmed(std::string_view text) {
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.front()))) text.remove_prefix(1);
+  while (!text.empty() && std::isspace(static_cast<unsigned char>(text.back()))) text.remove_suffix(1);
+  return text;
+}
+
+/// The value of a `REMAP = ...` row; nullopt for any other row.
+std::optional<std::string_view> remap_value(std::string_view row) {
+  row = trimmed(row);
+  if (row.substr(0, 5) != "REMAP") return std::nullopt;
+  const std::string_view rest = trimmed(row.substr(5));
+  if (rest.empty() || rest.front() != '=') return std::nullopt;
+  return trimmed(rest.substr(1));
+}
+
+/// The code a REMAP value remaps, upper case: "M6".
+std::string remapped_code(std::string_view remap) {
+  return upper(remap.substr(0, remap.find_first_of(" \t")));
+}
+
+constexpr const char* kStandInM6 = "fixed_atc_probe_preflight_m6";
+constexpr const char* kStandInUserM = "fixed_atc_probe_preflight_user_m";
+
+}  // namespace
+
+bool is_own_m6_remap(std::string_view remap) {
+  const std::string words = upper(remap);
+  return remapped_code(remap) == "M6" && words.find("NGC=FIXED_ATC_PROBE_M6") != std::string::npos;
+}
+
+std::vector<StandIn> preflight_stand_ins() {
+  auto sub = [](const std::string& name, const std::string& body) {
+    return StandIn{name, "o<" + name + "> sub\n" + body + "o<" + name + "> endsub\nM2\n"};
+  };
+  return {sub(kStandInM6, "M6\nG43\n"), sub(kStandInUserM, "")};
+}
+
+std::string ini_for_preflight(std::string_view ini_text, const std::string& folders,
+                              const std::vector<int>& user_m_codes) {
   // One folder a line: LinuxCNC reads at most LINELEN (255) characters of
   // one, and joins a line ending in a backslash with the next.
   std::string path;
   for (const char c : folders) path += c == ':' ? std::string(":\\\n") : std::string(1, c);
-  const std::string line =
+  std::string lines =
       "HAL_PIN_VARS = 0\n" + (folders.empty() ? "" : "SUBROUTINE_PATH = " + path + "\n");
-  std::size_t start = 0;
-  while (start < ini_text.size()) {
+  std::vector<std::string_view> rows;
+  for (std::size_t start = 0; start < ini_text.size();) {
     std::size_t end = ini_text.find('\n', start);
     end = end == std::string_view::npos ? ini_text.size() : end + 1;
-    std::string_view row = ini_text.substr(start, end - start);
-    while (!row.empty() && std::isspace(static_cast<unsigned char>(row.front()))) {
-      row.remove_prefix(1);
-    }
-    if (row.rfind("[RS274NGC]", 0) == 0) {
-      std::string text(ini_text.substr(0, end));
-      if (text.back() != '\n') text += '\n';
-      return text + line + std::string(ini_text.substr(end));
-    }
+    rows.push_back(ini_text.substr(start, end - start));
     start = end;
   }
-  std::string text(ini_text);
-  if (!text.empty() && text.back() != '\n') text += '\n';
-  return text + "[RS274NGC]\n" + line;
+  auto is_section = [](std::string_view row) { return trimmed(row).substr(0, 1) == "["; };
+  auto is_rs274ngc = [](std::string_view row) { return trimmed(row).substr(0, 10) == "[RS274NGC]"; };
+  std::set<std::string> remapped;
+  bool in_rs274ngc = false;
+  for (const std::string_view row : rows) {
+    if (is_section(row)) in_rs274ngc = is_rs274ngc(row);
+    if (const auto remap = remap_value(row); in_rs274ngc && remap) remapped.insert(remapped_code(*remap));
+  }
+  for (const int code : user_m_codes) {
+    const std::string name = "M" + std::to_string(code);
+    if (remapped.count(name)) continue;  // LinuxCNC runs the remap
+    lines += "REMAP = " + name + " modalgroup=10 argspec=pq ngc=" + kStandInUserM + "\n";
+  }
+  std::string text;
+  bool inserted = false;
+  in_rs274ngc = false;
+  for (const std::string_view row : rows) {
+    if (is_section(row)) in_rs274ngc = is_rs274ngc(row);
+    const auto remap = remap_value(row);
+    if (in_rs274ngc && remap && is_own_m6_remap(*remap)) {
+      const std::size_t ngc = upper(*remap).find("NGC=") + 4;
+      const std::size_t name_end = std::min(remap->find_first_of(" \t", ngc), remap->size());
+      text += "REMAP = " + std::string(remap->substr(0, ngc)) + kStandInM6 +
+              std::string(remap->substr(name_end)) + "\n";
+      continue;
+    }
+    text += row;
+    if (in_rs274ngc && !inserted && is_rs274ngc(row)) {
+      if (text.back() != '\n') text += '\n';
+      text += lines;
+      inserted = true;
+    }
+  }
+  if (!inserted) {
+    if (!text.empty() && text.back() != '\n') text += '\n';
+    text += "[RS274NGC]\n" + lines;
+  }
+  return text;
 }
 
 }  // namespace fatc::program

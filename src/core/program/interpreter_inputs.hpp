@@ -34,6 +34,27 @@ std::string interpreter_parameters(std::string_view text, double length_scale);
 constexpr int kToolsWithoutTable = 1000;
 InterpreterTable any_tool_table();
 
+/// Whether a REMAP line's value (`M6 modalgroup=6 ngc=fixed_atc_probe_m6`)
+/// is this changer's M6.
+bool is_own_m6_remap(std::string_view remap);
+
+/// The subroutines the preflight's interpreter runs in place of the
+/// machine's, by name, each with its text (written to a folder of
+/// ini_for_preflight's `folders`):
+/// - fixed_atc_probe_preflight_m6, for this changer's M6: rs274 runs the
+///   remap's preview branch, which only tells the interpreter of the new
+///   tool, where the machine's run ends in G43. The stand-in does both, so
+///   every offset rs274 prints, and every move it works out through them
+///   (G53, G28, G92, G10 L20), is the machine's.
+/// - fixed_atc_probe_preflight_user_m, for a user M-code (M100-M199, an
+///   executable in [RS274NGC]USER_M_PATH): LinuxCNC's task runs it, not the
+///   interpreter (rs274 calls it unknown); the stand-in does nothing.
+struct StandIn {
+  std::string name;
+  std::string text;
+};
+std::vector<StandIn> preflight_stand_ins();
+
 /// The machine's INI text as the preflight's interpreter reads it: HAL pins
 /// off (`HAL_PIN_VARS = 0`: with a LinuxCNC running, rs274 would read its live
 /// pins, and a tool from a pin is known only when the program runs), and, when
@@ -41,8 +62,11 @@ InterpreterTable any_tool_table();
 /// first of a key, so the lines go first in [RS274NGC] (a new section when
 /// there is none), one folder a line (a line ending in a backslash goes on in
 /// the next: LinuxCNC reads at most 255 characters of a line). `folders` ends
-/// with the INI's own.
-std::string ini_for_preflight(std::string_view ini_text, const std::string& folders);
+/// with the INI's own. The changer's M6 remap runs its stand-in, and each of
+/// `user_m_codes` (100-199) the INI does not remap runs the user M-code's
+/// (preflight_stand_ins): LinuxCNC refuses a code remapped twice.
+std::string ini_for_preflight(std::string_view ini_text, const std::string& folders,
+                              const std::vector<int>& user_m_codes = {});
 
 /// The longest folder ini_for_preflight can give rs274 on a line of its own.
 constexpr std::size_t kMaxFolderLength = 250;

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <utility>
 
+#include "../machine/context.hpp"
 #include "../plan/simulator.hpp"
 #include "canonical_call.hpp"
 
@@ -17,6 +18,11 @@ using program::call_numbers;
 using program::starts_with;
 
 constexpr unsigned kX = 1, kY = 2, kZ = 4, kAll = 7;
+
+/// What rs274 prints of nc_files/fixed_atc_probe_chuck_release.ngc's first
+/// comment: the release, called by its M-code or by name, preview or not.
+constexpr std::string_view kReleaseMarker =
+    "COMMENT(\"Releases - opens - the chuck through fixed_atc_probe";
 
 /// How far a chord of an arc may lie inside it: the arc is checked as chords
 /// at most this far from it, in the config's units.
@@ -43,6 +49,15 @@ double mm_of(std::string_view units) {
   return 1.0;
 }
 
+/// "X150.000 Y20.000 Z-25.000", machine coordinates in the config's units.
+std::string machine_words(const Config& config, const Point& at) {
+  char words[112];
+  std::snprintf(words, sizeof words,
+                config.units == Units::inch ? "X%.4f Y%.4f Z%.4f" : "X%.3f Y%.3f Z%.3f", at.x,
+                at.y, at.z);
+  return words;
+}
+
 bool boxes_meet(const Box& a, const Box& b) {
   return a.low.x < b.high.x && b.low.x < a.high.x && a.low.y < b.high.y && b.low.y < a.high.y &&
          a.low.z < b.high.z && b.low.z < a.high.z;
@@ -54,7 +69,6 @@ KeepoutCheck::KeepoutCheck(KeepoutCheckInput input)
     : in_(std::move(input)), volume_(rack_volume(*in_.config)), spindle_(in_.tools.spindle) {
   const double config_mm = in_.config->units == Units::inch ? 25.4 : 1.0;
   rs274_.config_units_per_program_unit = 1.0 / config_mm;
-  machine_ = rs274_;
 }
 
 void KeepoutCheck::call(int line, bool numbered, std::string_view call) {
@@ -83,14 +97,27 @@ void KeepoutCheck::call(int line, bool numbered, std::string_view call) {
   } else if (starts_with(call, "USE_LENGTH_UNITS(")) {
     const double config_mm = in_.config->units == Units::inch ? 25.4 : 1.0;
     rs274_.config_units_per_program_unit = mm_of(call) / config_mm;
-    machine_.config_units_per_program_unit = rs274_.config_units_per_program_unit;
   } else if (starts_with(call, "SELECT_PLANE(")) {
     plane_ = call.find("XZ") != std::string_view::npos   ? 18
              : call.find("YZ") != std::string_view::npos ? 19
                                                          : 17;
   } else if (starts_with(call, "SET_XY_ROTATION(")) {
     const auto args = call_numbers(call);
-    if (!args.empty()) rs274_.xy_rotation_degrees = machine_.xy_rotation_degrees = args[0];
+    if (!args.empty()) rs274_.xy_rotation_degrees = args[0];
+  } else if (starts_with(call, "SET_TOOL_TABLE_ENTRY(")) {
+    // G10 L1, L10, L11: (row, tool, X Y Z A B C U V W, ...), the lengths in
+    // inches whatever the units, as rs274 reads its table.
+    const auto args = call_numbers(call);
+    const double config_mm = in_.config->units == Units::inch ? 25.4 : 1.0;
+    if (args.size() >= 5 && args[1] > 0 && std::isfinite(args[4])) {
+      set_lengths_[static_cast<int>(args[1])] = args[4] * 25.4 / config_mm;
+    }
+  } else if (starts_with(call, "START_SPINDLE_")) {
+    turning_ = true;
+  } else if (starts_with(call, "STOP_SPINDLE_TURNING(")) {
+    turning_ = false;
+  } else if (starts_with(call, kReleaseMarker)) {
+    chuck_release(line, numbered);
   } else {
     // Offsets, in the program's units when they are set (LinuxCNC keeps them in its own).
     const double k = rs274_.config_units_per_program_unit;
@@ -99,18 +126,18 @@ void KeepoutCheck::call(int line, bool numbered, std::string_view call) {
       return Point{args[first] * k, args[first + 1] * k, args[first + 2] * k};
     };
     if (starts_with(call, "SET_G5X_OFFSET(")) {
-      if (const auto o = offset(call_numbers(call), 1)) rs274_.g5x = machine_.g5x = *o;
+      if (const auto o = offset(call_numbers(call), 1)) rs274_.g5x = *o;
     } else if (starts_with(call, "SET_G92_OFFSET(")) {
-      if (const auto o = offset(call_numbers(call), 0)) rs274_.g92 = machine_.g92 = *o;
+      if (const auto o = offset(call_numbers(call), 0)) rs274_.g92 = *o;
     } else if (starts_with(call, "USE_TOOL_LENGTH_OFFSET(")) {
-      if (const auto o = offset(call_numbers(call), 0)) rs274_.tool_offset = machine_.tool_offset = *o;
+      if (const auto o = offset(call_numbers(call), 0)) rs274_.tool_offset = *o;
     }
   }
 }
 
 std::pair<Point, unsigned> KeepoutCheck::target(const Point& program_to) {
   const Point said = rs274_.machine(program_to);
-  Point to = machine_.machine(program_to);
+  Point to = said;
   unsigned known = kAll;
   // Where rs274's position is not the machine's (at the start, after an M6),
   // an axis the line leaves where rs274 has it is one the line does not
@@ -229,7 +256,7 @@ void KeepoutCheck::arc(int line, bool numbered, const std::vector<double>& args)
         axis(corner, axes[0]) = c1 + d1;
         axis(corner, axes[1]) = c2 + d2;
         axis(corner, axes[2]) = z;
-        const Point m = machine_.machine(corner);
+        const Point m = rs274_.machine(corner);
         around.low = {std::min(around.low.x, m.x), std::min(around.low.y, m.y),
                       std::min(around.low.z, m.z)};
         around.high = {std::max(around.high.x, m.x), std::max(around.high.y, m.y),
@@ -248,13 +275,13 @@ void KeepoutCheck::arc(int line, bool numbered, const std::vector<double>& args)
   const auto [to, known] = target(end);
   if (near_rack) {
     // Chords whose sagitta r (1 - cos(step / 2)) stays within the tolerance.
-    const double tolerance = arc_tolerance(*in_.config) / machine_.config_units_per_program_unit;
+    const double tolerance = arc_tolerance(*in_.config) / rs274_.config_units_per_program_unit;
     const double step =
         radius > tolerance ? 2.0 * std::acos(1.0 - tolerance / radius) : 2.0 * M_PI;
     const double chords = std::clamp(std::ceil(std::fabs(sweep) / step), 1.0, kMaxChords);
     Point from = nose_;
     for (double i = 1; i <= chords; ++i) {
-      const Point at = i == chords ? to : machine_.machine(program_at(i / chords));
+      const Point at = i == chords ? to : rs274_.machine(program_at(i / chords));
       if (!check(line, numbered, code, from, at)) break;
       from = at;
     }
@@ -297,20 +324,17 @@ bool KeepoutCheck::check(int line, bool numbered, const char* code, const Point&
   } else {
     held = "with T" + std::to_string(*spindle_) + " (no length known: counted as 0)";
   }
-  char where[112];
-  std::snprintf(where, sizeof where,
-                config.units == Units::inch ? "X%.4f Y%.4f Z%.4f" : "X%.3f Y%.3f Z%.3f",
-                entry->nose.x, entry->nose.y, entry->nose.z);
   problems_.push_back(program::finding(
       in_.program, line,
       std::string(code) + " would enter the rack at pocket " + std::to_string(entry->pocket) +
-          " " + held + ", the nose at machine " + where +
+          " " + held + ", the nose at machine " + machine_words(config, entry->nose) +
           (numbered ? "" : " (in a subroutine this line calls)")));
   return false;
 }
 
 std::optional<double> KeepoutCheck::table_length(int tool) const {
   if (tool == 0) return 0.0;
+  if (const auto set = set_lengths_.find(tool); set != set_lengths_.end()) return set->second;
   if (!in_.lengths) return std::nullopt;
   const auto found = in_.lengths->find(tool);
   if (found == in_.lengths->end()) return std::nullopt;
@@ -361,8 +385,29 @@ void KeepoutCheck::change(const program::ToolUse& use) {
     out_of_step_ = kAll;
   }
   spindle_ = use.tool;
-  // The remap ends in G43: the new tool's length is in force.
-  machine_.tool_offset = {0.0, 0.0, use.tool ? table_length(*use.tool).value_or(0.0) : 0.0};
+}
+
+void KeepoutCheck::chuck_release(int line, bool numbered) {
+  settle();
+  const Config& config = *in_.config;
+  std::string why;
+  if (turning_) {
+    why = "the spindle is on: M5 first";
+  } else if (spindle_ && *spindle_ != 0) {
+    const Point& loading = config.loading;
+    const double tolerance = loading_tolerance(config);
+    const bool at_loading = known_ == kAll && std::fabs(nose_.x - loading.x) <= tolerance &&
+                            std::fabs(nose_.y - loading.y) <= tolerance &&
+                            std::fabs(nose_.z - loading.z) <= tolerance;
+    if (!at_loading) {
+      why = "T" + std::to_string(*spindle_) + " is in the spindle and would drop: release it only at loading (machine " +
+            machine_words(config, loading) + ") or with the spindle empty";
+    }
+  }
+  if (why.empty()) return;
+  problems_.push_back(program::finding(in_.program, line,
+                                       "the chuck release would be refused: " + why +
+                                           (numbered ? "" : " (in a subroutine this line calls)")));
 }
 
 void KeepoutCheck::settle() {

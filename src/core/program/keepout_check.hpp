@@ -32,7 +32,8 @@ struct KeepoutCheckInput {
 /// program as LinuxCNC's interpreter (rs274) prints them, the spindle nose in
 /// machine coordinates and the tool below it, and names every line whose
 /// motion would enter the rack's volume (rack_volume, the one the realtime
-/// guard holds) raised by the length of the tool then in the spindle.
+/// guard holds) raised by the length of the tool then in the spindle, and
+/// every chuck release the changer would refuse.
 /// Keeps nothing of a move once it is checked.
 class KeepoutCheck : public program::CallListener {
  public:
@@ -53,6 +54,9 @@ class KeepoutCheck : public program::CallListener {
   void probe(int line, bool numbered, const Point& program_to);
   void rigid_tap(int line, bool numbered, const Point& program_to);
   void change(const program::ToolUse& use);
+  /// A chuck release (fixed_atc_probe_chuck_release): refused while the
+  /// spindle turns, or with a tool in it away from loading.
+  void chuck_release(int line, bool numbered);
   /// Puts the nose where the last change ends, once a move needs it.
   void settle();
   /// Checks the nose's straight way `from` → `to`; false once the line is named.
@@ -68,16 +72,20 @@ class KeepoutCheck : public program::CallListener {
 
   KeepoutCheckInput in_;
   std::vector<RackPart> volume_;
-  /// The coordinate system as rs274 has it, and as the running machine has
-  /// it: after an M6 the machine's has the new tool's length (the remap
-  /// ends in G43; rs274 runs its preview branch, which does not).
-  program::CoordinateSystem rs274_, machine_;
+  /// The coordinate system as rs274 has it: the machine's (its M6 runs the
+  /// stand-in that ends in G43 as the machine's remap does,
+  /// program::preflight_stand_ins).
+  program::CoordinateSystem rs274_;
   Point rs274_at_;           ///< where rs274 takes the nose to be (it starts at machine 0)
   Point nose_;               ///< where the machine's nose is, on the axes of `known_`
   unsigned known_ = 0;       ///< axes (1 X, 2 Y, 4 Z) of nose_ known
   unsigned out_of_step_ = 7; ///< axes where rs274's position is not the machine's
   int plane_ = 17;           ///< G17, G18, G19
   std::optional<int> spindle_;  ///< the tool in the spindle; nullopt: not known
+  bool turning_ = false;        ///< the spindle is on (M3, M4 until M5)
+  /// Lengths the program set (G10 L1, L10, L11), by tool, in the config's
+  /// units: they stand for the table's from that line on.
+  std::map<int, double> set_lengths_;
   /// An M6 whose end no move has needed yet.
   struct PendingChange {
     int line = 0;  ///< where the lint shows the change: its T word's line

@@ -122,6 +122,29 @@ TEST(Teach, shouldRoundToFiveDecimalsInInch) {
   EXPECT_EQ(declared_units(test::kValidConfig), Units::mm);
 }
 
+TEST(Teach, shouldRefuseTheSensorInAPocketsKeepOutWhateverTheProbingOptions) {
+  // Load and measure-all probe there even with no probing after a change.
+  std::string no_probing = test::kValidConfig;
+  no_probing.insert(no_probing.find('{') + 1, R"("probe_after_change": "off", )");
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const std::string& text : {std::string(test::kValidConfig), no_probing}) {
+    const TeachResult r = teach(text, kSensor, {152.0, 24.0, nan}, {});
+    EXPECT_FALSE(r.text);
+    EXPECT_NE(r.error.find(": not written: probe_limit: the touch-off sensor at X152 Y24 lies in "
+                           "the rack's keep-out at pocket 3 (rack_keepout_margin 20): place it "
+                           "clear of the rack"),
+              std::string::npos)
+        << r.error;
+  }
+  // A pocket taught over the sensor: the same line.
+  const TeachResult pocket = teach(no_probing, kPocket3, {25.0, 150.0, -80.0}, {});
+  EXPECT_FALSE(pocket.text);
+  EXPECT_NE(pocket.error.find("probe_limit: the touch-off sensor at X20 Y150 lies in the rack's "
+                              "keep-out at pocket 3"),
+            std::string::npos)
+      << pocket.error;
+}
+
 TEST(Teach, shouldRefuseAPocketThatDoesNotExist) {
   const TeachResult r = teach(test::kValidConfig, {Kind::pocket, 9}, {350.0, 20.0, -80.0}, {});
   EXPECT_FALSE(r.text);

@@ -1066,5 +1066,85 @@ TEST_F(Lint, shouldFindTheNoseUnderEveryOffsetAsLinuxCncDoes) {
               "mm), the nose at machine X200.000 Y20.000 Z-25.000\n");
 }
 
+// ---- what the program does to its own tools and machine (issue 32, class 2) ----
+
+TEST_F(Lint, shouldPutTheNoseAtAG53PositionWhateverTheOffsetOfTheM6) {
+  // T2 (35 mm) M6 ends in G43 on the machine; G53 takes the nose to Z-30
+  // all the same, its tip at Z-65: into pocket 3's column, not 35 mm above.
+  const auto with = [&](const std::string& moves) {
+    return lint(write("park.ngc", "T2 M6\n" + moves + "M2\n"),
+                {"--ini", kSimIni, "--state", state_with_lengths({2})});
+  };
+  const LintRun park = with("G53 G0 X150 Y60 Z-30\nG53 G1 Y20 F1000\n");
+  EXPECT_EQ(park.code, 1);
+  EXPECT_LINE(park,
+              "park.ngc: line 3: G1 would enter the rack at pocket 3 with T2 (length 35.0000 "
+              "mm), the nose at machine X150.000 Y40.000 Z-30.000\n");
+  // In program coordinates the M6's G43 counts: Z-30 is the tip, the nose at Z5.
+  EXPECT_EQ(with("G0 X150 Y60 Z-30\nG1 Y20 F1000\n").code, 0);
+  // The same without G53 and without the program's own G43: the tip at Z-60.
+  EXPECT_LINE(with("G0 X150 Y60 Z-40\nG0 Y20\nG0 Z-60\n"),
+              "park.ngc: line 4: G0 would enter the rack at pocket 3 with T2 (length 35.0000 "
+              "mm), the nose at machine X150.000 Y20.000 Z-20.000\n");
+}
+
+TEST_F(Lint, shouldCountAToolLengthTheProgramSetsFromThatLineOn) {
+  // T1 is 30 mm in sim.tbl: the nose at Z-10 over pocket 3 passes; at 80 mm
+  // (G10 L1, L10 or L11) its tip is 35 mm into the column.
+  const auto with = [&](const std::string& set) {
+    return lint(write("g10.ngc", "T1 M6\nG53 G0 X150 Y60 Z-10\n" + set + "G53 G0 Y20\nM2\n"),
+                {"--ini", kSimIni, "--state", state_with_lengths({1})});
+  };
+  EXPECT_EQ(with("").code, 0) << with("").out;
+  // L10: the length that makes the nose's Z (program Z-40) read Z-70: 60 mm.
+  EXPECT_LINE(with("G10 L10 P1 Z-70\n"),
+              "g10.ngc: line 4: G0 would enter the rack at pocket 3 with T1 (length 60.0000 mm)");
+  EXPECT_LINE(with("G20\nG10 L1 P1 Z3.1496\nG21\n"),
+              "g10.ngc: line 6: G0 would enter the rack at pocket 3 with T1 (length 79.9998 mm)");
+  EXPECT_LINE(with("G10 L1 P1 Z80\n"),
+              "g10.ngc: line 4: G0 would enter the rack at pocket 3 with T1 (length 80.0000 mm), "
+              "the nose at machine X150.000 Y40.000 Z-10.000\n");
+}
+
+TEST_F(Lint, shouldCheckTheConfigAgainstTheSoftLimitsOfTheIni) {
+  const LintRun r = lint(write("plain.ngc", "G0 X0\nM2\n"),
+                         {"--ini", FATC_BAD_CONFIGS "/narrow_limits.ini"});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r, "is outside the soft limits");
+  EXPECT_LINE(r, "  " + kConfig + ": ");
+}
+
+TEST_F(Lint, shouldTakeTheUserMCodesOfTheIniWithoutRunningThem) {
+  fs::create_directories(path("mcodes"));
+  const std::string ran = path("ran");
+  write("mcodes/M101", "#!/bin/sh\ntouch " + ran + "\n");
+  fs::permissions(path("mcodes/M101"), fs::perms::owner_all);
+  write("mcodes/M102", "#!/bin/sh\n");  // not executable: LinuxCNC does not take it
+  const std::string ini = write("user_m.ini", "[RS274NGC]\nUSER_M_PATH = mcodes\n[TRAJ]\n"
+                                              "LINEAR_UNITS = mm\n");
+  const LintRun r = lint(write("m101.ngc", "M101 P1 Q2\nG0 X0\nM102\nM2\n"), {"--ini", ini});
+  EXPECT_NO_LINE(r, "M101");
+  EXPECT_LINE(r, "m101.ngc: line 3: LinuxCNC stops the program here: Unknown m code used: M102\n");
+  EXPECT_FALSE(fs::exists(ran));
+}
+
+TEST_F(Lint, shouldNameAChuckReleaseTheChangerWouldRefuse) {
+  const auto with = [&](const std::string& text) {
+    return lint(write("release.ngc", text + "M311\nM2\n"),
+                {"--ini", kSimIni, "--state", state_with_lengths({1})});
+  };
+  EXPECT_LINE(with("M3 S1000\nM310\n"),
+              "release.ngc: line 2: the chuck release would be refused: the spindle is on: M5 "
+              "first\n");
+  EXPECT_LINE(with("T1 M6\nG53 G0 X100 Y100 Z-10\no<fixed_atc_probe_chuck_release> call\n"),
+              "release.ngc: line 3: the chuck release would be refused: T1 is in the spindle and "
+              "would drop: release it only at loading (machine X20.000 Y150.000 Z-10.000) or "
+              "with the spindle empty\n");
+  // At loading, or with the spindle empty and stopped: the changer opens it.
+  const LintRun at_loading = with("T1 M6\nG53 G0 X20 Y150 Z-10\nM310\n");
+  EXPECT_EQ(at_loading.code, 0) << at_loading.out;
+  EXPECT_EQ(with("M3 S1000\nM5\nM310\n").code, 0);
+}
+
 }  // namespace
 }  // namespace fatc

@@ -42,10 +42,19 @@ std::string traverse(int line, double x, double y, double z) {
   call << "STRAIGHT_TRAVERSE(" << x << ", " << y << ", " << z << ", 0.0000, 0.0000, 0.0000)";
   return on(line, call.str());
 }
-/// M6 T`tool` on `line`, through the remap as rs274 runs its preview branch.
-std::string change(int line, int tool) {
+std::string tool_offset(int line, double z) {
+  std::ostringstream call;
+  call.setf(std::ios::fixed);
+  call.precision(4);
+  call << "USE_TOOL_LENGTH_OFFSET(0.0000 0.0000 " << z
+       << ", 0.0000 0.0000 0.0000, 0.0000 0.0000 0.0000)";
+  return on(line, call.str());
+}
+/// M6 T`tool` on `line`, through the preflight's stand-in for the remap: M6
+/// and G43 with the table's `length`.
+std::string change(int line, int tool, double length = 0.0) {
   return on(line, "SELECT_TOOL(" + std::to_string(tool) + ")") + on(0, "START_CHANGE()") +
-         on(0, "CHANGE_TOOL(" + std::to_string(tool) + ")");
+         on(0, "CHANGE_TOOL(" + std::to_string(tool) + ")") + tool_offset(0, length);
 }
 
 struct Checked {
@@ -97,8 +106,9 @@ TEST(KeepoutCheck, shouldRaiseTheRackByTheLengthOfTheToolInTheSpindle) {
 }
 
 TEST(KeepoutCheck, shouldTakeTheProgramsZAsTheTipOfTheNewToolAfterM6) {
-  // The remap ends in G43 (rs274's preview branch does not): T1's 30 mm in force.
-  const Checked run = checked(change(1, 1) + traverse(2, 150, 20, -50) + traverse(3, 150, 20, -60));
+  // The stand-in ends in G43 as the remap does: T1's 30 mm in force.
+  const Checked run =
+      checked(change(1, 1, 30) + traverse(2, 150, 20, -50) + traverse(3, 150, 20, -60));
   EXPECT_EQ(run.text(),
             "line 3: G0 would enter the rack at pocket 3 with T1 (length 30.0000 mm), the nose "
             "at machine X150.000 Y20.000 Z-25.000\n");
@@ -133,7 +143,7 @@ TEST(KeepoutCheck, shouldCheckOnlyWhereTheFirstMoveEndsAndAxesOnceTheProgramSets
 
 TEST(KeepoutCheck, shouldGoOnFromWhereTheChangeEnds) {
   // Over pocket 3 before M6; the change ends at safe, and Z-70 there is clear of the rack.
-  const std::string program = traverse(1, 150, 20, -5) + change(2, 1) + traverse(3, 150, 20, -70);
+  const std::string program = traverse(1, 150, 20, -5) + change(2, 1, 30) + traverse(3, 150, 20, -70);
   EXPECT_EQ(checked(program).text(), "");
   // With RETURN_TO_XY the change ends back over pocket 3.
   EXPECT_EQ(checked(program, input(true)).text(),
@@ -170,6 +180,38 @@ TEST(KeepoutCheck, shouldCountAToolMissingFromTheTableWithNoLengthAndSaySoOnce) 
   EXPECT_EQ(run.unknowns[0].text,
             "T9 is not in the tool table sim.tbl: its moves are checked against the rack as if it "
             "had no length");
+}
+
+TEST(KeepoutCheck, shouldTakeALengthTheProgramSetsFromThatLineOn) {
+  // G10 L1 P1 Z80, as rs274 prints it (inches) for the tool's row and the spindle's.
+  const std::string set =
+      on(3, "SET_TOOL_TABLE_ENTRY(1, 1, 0.0000 0.0000 3.1496 0.0000 0.0000 0.0000 0.0000 0.0000 "
+            "0.0000, 0.0000, 0.0000, 0)") +
+      on(3, "SET_TOOL_TABLE_ENTRY(0, 1, 0.0000 0.0000 3.1496 0.0000 0.0000 0.0000 0.0000 0.0000 "
+            "0.0000, 0.0000, 0.0000, 0)");
+  const std::string over = change(1, 1, 30) + tool_offset(2, 0) + traverse(2, 150, 60, -10);
+  EXPECT_EQ(checked(over + traverse(4, 150, 20, -10)).text(), "");
+  EXPECT_EQ(checked(over + set + traverse(4, 150, 20, -10)).text(),
+            "line 4: G0 would enter the rack at pocket 3 with T1 (length 79.9998 mm), the nose "
+            "at machine X150.000 Y40.000 Z-10.000\n");
+}
+
+TEST(KeepoutCheck, shouldNameAChuckReleaseWhileTheSpindleTurnsOrAToolHangsAwayFromLoading) {
+  const std::string release =
+      "COMMENT(\"Releases - opens - the chuck through fixed_atc_probe, and leaves it open.\")";
+  EXPECT_EQ(checked(on(1, "START_SPINDLE_CLOCKWISE(0)") + on(0, release)).text(),
+            "line 1: the chuck release would be refused: the spindle is on: M5 first (in a "
+            "subroutine this line calls)\n");
+  EXPECT_EQ(checked(on(1, "START_SPINDLE_CLOCKWISE(0)") + on(2, "STOP_SPINDLE_TURNING(0)") +
+                    on(0, release))
+                .text(),
+            "");
+  const std::string t1 = change(1, 1, 30) + tool_offset(2, 0);
+  EXPECT_EQ(checked(t1 + traverse(3, 20, 150, -10) + on(4, release)).text(), "");
+  EXPECT_EQ(checked(t1 + traverse(3, 20, 150, -9) + on(4, release)).text(),
+            "line 4: the chuck release would be refused: T1 is in the spindle and would drop: "
+            "release it only at loading (machine X20.000 Y150.000 Z-10.000) or with the spindle "
+            "empty\n");
 }
 
 }  // namespace
