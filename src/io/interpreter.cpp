@@ -283,9 +283,7 @@ std::optional<Ending> run_child(const std::vector<std::string>& argv, const std:
       break;
     }
   }
-  if (ending.timed_out || ending.too_much_output || output.done() || Interruptible::signal() != 0) {
-    ::kill(-child, SIGKILL);
-  }
+  if (ending.timed_out || ending.too_much_output || output.done()) ::kill(-child, SIGKILL);
   for (const pollfd& fd : fds) {
     if (fd.fd >= 0) ::close(fd.fd);
   }
@@ -453,7 +451,11 @@ std::optional<program::InterpreterRun> run_interpreter(const InterpreterInput& i
     ini_text = *text;
   }
   const auto written =
-      scratch.write("machine.ini", program::ini_for_preflight(ini_text, folders), error);
+      scratch.write("machine.ini",
+                    program::ini_for_preflight(
+                        ini_text, folders,
+                        ini ? user_m_codes(*ini, machine_folder) : std::vector<int>{}),
+                    error);
   if (!written) return std::nullopt;
   const std::vector<std::string> argv = {
       input.rs274,     "-i", *written, "-t", *table_copy,  "-v",
