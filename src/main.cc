@@ -102,10 +102,14 @@ int run_component(const fatc::io::Options& options) {
   std::optional<fatc::SoftLimits> limits;
   if (const char* ini_path = std::getenv("INI_FILE_NAME")) {
     std::string error;
+  std::optional<std::string> tool_table;
     const auto ini = fatc::io::IniFile::read(ini_path, error);
     if (!ini) return fail(error);
     limits = fatc::io::soft_limits(*ini, config.units, error);
     if (!limits) return fail(error);
+    if (const auto table = ini->get("EMCIO", "TOOL_TABLE")) {
+      tool_table = fatc::io::beside(ini_path, *table);
+    }
     nml = fatc::linuxcnc::NmlLink::open(fatc::linuxcnc::nml_file_of(ini_path), error);
     if (!nml) return fail(error);
   }
@@ -125,7 +129,8 @@ int run_component(const fatc::io::Options& options) {
 
   // From here on, whatever fails leaves HAL as it found it.
   try {
-    fatc::linuxcnc::Component component(pins, config, options.config_path, state_path, nml.get());
+    fatc::linuxcnc::Component component(pins, config, options.config_path, state_path, nml.get(),
+                                        tool_table);
     component.soft_limits(limits);
     fatc::Changer changer(config, component, *tools.state);
     changer.soft_limits(limits);

@@ -92,6 +92,10 @@ bool read_regular(const std::string& path, std::size_t max_bytes, bool limit_siz
     return false;
   }
   // O_NONBLOCK: a FIFO swapped in after the stat cannot make open() wait.
+std::string beside(const std::string& ini_path, const std::string& path) {
+  return !path.empty() && path[0] == '/' ? path : folder_of(ini_path) + "/" + path;
+}
+
   const Descriptor file{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC)};
   if (file.fd < 0) {
     error = shown_path(path) + ": cannot open " + why(errno);

@@ -40,6 +40,9 @@ std::string not_a_regular_file(const std::string& path, mode_t mode);
 
 /// The folder of `path`: "." for a bare name, "/" for one at the root.
 std::string folder_of(const std::string& path);
+/// A path an INI file gives, as LinuxCNC takes it: absolute as it is, else
+/// from the folder of the INI file `ini_path`.
+std::string beside(const std::string& ini_path, const std::string& path);
 
 /// Reads and validates a config.json; every message starts with the file's path.
 ConfigResult load_config_file(const std::string& path);

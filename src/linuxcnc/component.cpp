@@ -11,11 +11,12 @@
 namespace fatc::linuxcnc {
 
 Component::Component(HalPins* pins, const Config& config, std::string config_path,
-                     std::string state_path, NmlLink* nml)
+                     std::string state_path, NmlLink* nml, std::optional<std::string> tool_table)
     : pins_(pins),
       nml_(nml),
       teacher_(std::move(config_path), *this),
       state_path_(std::move(state_path)),
+      lengths_(std::move(tool_table)),
       status_file_(state_path_ + ".status") {
   *pins_->units_inch = config.units == Units::inch;
 }
@@ -25,6 +26,8 @@ bool Component::active() const { return link_.active() || deadline_ || changer_-
 void Component::poll(Clock::time_point now, std::optional<bool> interpreter_idle) {
   now_ = now;
   read_machine(interpreter_idle);
+  // Before any request: each is rehearsed with the tools' lengths.
+  lengths_.poll(*changer_, nml_, *this);
   read_executor(interpreter_idle);
   read_operator();
   if (deadline_ && now >= *deadline_) {
@@ -34,7 +37,8 @@ void Component::poll(Clock::time_point now, std::optional<bool> interpreter_idle
   measure_all_press_.poll(*changer_, refuse_);
   start_executor_if_needed();
   if (task_free_) spindle_tool_.poll(now, *pins_->linuxcnc_tool, *changer_, *nml_, *this);
-  keepout_.poll(*pins_, *changer_, machine_ready_.value_or(false), nml_, *this);
+  keepout_.poll(*pins_, *changer_, machine_ready_.value_or(false), nml_, lengths_.spindle_length(),
+                *this);
   const Status status = changer_->status();
   write_link(*pins_, link_.write(status.phase == Phase::idle));
   write_status(*pins_, status, *changer_, link_.attached(), nml_ != nullptr);

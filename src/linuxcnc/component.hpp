@@ -11,6 +11,7 @@
 #include "core/config/teach.hpp"
 #include "io/status_file.hpp"
 #include "program_tools_job.hpp"
+#include "keepout_lengths.hpp"
 #include "rack_keepout.hpp"
 #include "spindle_tool_sync.hpp"
 
@@ -29,14 +30,18 @@ class Component : public Ports {
   /// `nml` may be null (no LinuxCNC task, as under halrun). `config` is the
   /// one the changer starts with; teaching writes `config_path` and hands the
   /// changer the new one.
+  /// `tool_table`: the tool table file the INI names, if any.
   Component(HalPins* pins, const Config& config, std::string config_path, std::string state_path,
-            NmlLink* nml);
+            NmlLink* nml, std::optional<std::string> tool_table = std::nullopt);
   // It hands out `this` (the changer's ports, refuse_): it stays where it was made.
   Component(const Component&) = delete;
   Component& operator=(const Component&) = delete;
   void attach(Changer* changer) { changer_ = changer; }
   /// The machine's soft limits, which a taught position must respect.
-  void soft_limits(std::optional<SoftLimits> limits) { teacher_.soft_limits(std::move(limits)); }
+  void soft_limits(const std::optional<SoftLimits>& limits) {
+    teacher_.soft_limits(limits);
+    lengths_.soft_limits(limits);
+  }
   /// `interpreter_idle`: LinuxCNC's interpreter state, when NML is available.
   void poll(Clock::time_point now, std::optional<bool> interpreter_idle);
   /// Whether the next poll should come soon: a sequence runs or a handshake is open.
@@ -87,6 +92,7 @@ class Component : public Ports {
   bool task_free_ = false;
   SpindleToolSync spindle_tool_;
   RackKeepout keepout_;
+  KeepoutLengths lengths_;
   io::StatusFile status_file_;
   MeasureAllPress measure_all_press_;
   const MeasureAllPress::Refuse refuse_ = [this](const std::string& why) {

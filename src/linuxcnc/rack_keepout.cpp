@@ -19,7 +19,7 @@ const std::vector<RackPart>& RackKeepout::volume(const Config& config) {
 }
 
 void RackKeepout::poll(HalPins& pins, const Changer& changer, bool machine_ready, NmlLink* nml,
-                       Ports& ports) {
+                       double tool_length, Ports& ports) {
   const Config& config = changer.config();
   const auto per_mm = nml ? nml->units_per_mm() : std::nullopt;
   state_ = keepout_state(config, {machine_ready, per_mm.has_value(), changer.status().busy(),
@@ -49,7 +49,7 @@ void RackKeepout::poll(HalPins& pins, const Changer& changer, bool machine_ready
     *pins.keepout_y_max[k] = box.high.y * scale;
     *pins.keepout_z_max[k] = box.high.z * scale;
   }
-  *pins.rack_keepout_tool_length = nml->spindle_tool_length();
+  *pins.rack_keepout_tool_length = tool_length * scale;
   const auto k = static_cast<std::size_t>(*pins.rack_keepout_box);
   if (!tripped || k >= parts.size()) return;
   const Point at{*pins.rack_keepout_at_x / scale, *pins.rack_keepout_at_y / scale,
@@ -58,7 +58,7 @@ void RackKeepout::poll(HalPins& pins, const Changer& changer, bool machine_ready
   nml->abort();
   ports.tell(MessageKind::error,
              keepout_refusal(config, what, nearest_pocket(parts[k], at), nml->spindle_tool(),
-                             nml->spindle_tool_length() / scale, at));
+                             tool_length, at));
 }
 
 }  // namespace fatc::linuxcnc

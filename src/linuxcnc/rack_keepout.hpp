@@ -19,8 +19,9 @@ class NmlLink;
 /// where, with which tool.
 class RackKeepout {
  public:
+  /// `tool_length`: the spindle tool's, as the keep-out counts it (config units).
   void poll(HalPins& pins, const Changer& changer, bool machine_ready, NmlLink* nml,
-            Ports& ports);
+            double tool_length, Ports& ports);
   KeepoutState state() const { return state_; }
 
  private:

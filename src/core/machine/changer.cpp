@@ -25,6 +25,17 @@ void Changer::soft_limits(std::optional<SoftLimits> limits) {
 
 void Changer::plan_only() { engine_->context.check_moves = false; }
 
+void Changer::start_at(const Point& at, unsigned known) {
+  engine_->context.position = at;
+  engine_->context.known_axes = known;
+}
+
+void Changer::keepout_lengths(ToolLengths lengths) {
+  engine_->context.keepout_lengths = std::move(lengths);
+}
+
+void Changer::rehearse_with(const Rehearsal* rehearsal) { engine_->context.rehearsal = rehearsal; }
+
 void Changer::task_availability(std::optional<std::string> why_busy) {
   engine_->context.task_busy = std::move(why_busy);
 }
@@ -67,6 +78,8 @@ void Changer::abort(const std::string& reason) { engine_->take(Abort{reason}); }
 void Changer::clear_fault(int spindle_tool, std::optional<bool> pocket_holds_tool) {
   engine_->take(ClearFault{spindle_tool, pocket_holds_tool});
 }
+
+unsigned Changer::configs_taken() const { return engine_->context.configs_taken; }
 
 bool Changer::reconfigure(Config config, std::string request) {
   const unsigned taken = engine_->context.configs_taken;

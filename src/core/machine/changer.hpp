@@ -8,6 +8,7 @@
 #include "events.hpp"
 #include "../rack/geometry.hpp"
 #include "ports.hpp"
+#include "rehearsal.hpp"
 #include "../rack/sensors.hpp"
 #include "status.hpp"
 #include "../rack/tool_state.hpp"
@@ -35,6 +36,15 @@ class Changer {
   void soft_limits(std::optional<SoftLimits> limits);
   /// Planning only: publish every move, safe or not, so that a plan shows all.
   void plan_only();
+  /// Planning only: the spindle stands at `at`, on the axes `known`.
+  void start_at(const Point& at, unsigned known);
+  /// The tool lengths every move is checked with (LinuxCNC's tool table,
+  /// the longest the config allows).
+  void keepout_lengths(ToolLengths lengths);
+  /// Every request the changer could take is first run on a copy by
+  /// `rehearsal` (which must outlive the changer), and refused where a move
+  /// of its sequence would break the keep-out or the soft limits.
+  void rehearse_with(const Rehearsal* rehearsal);
   /// Whether task could run the executor over MDI now; `why_busy` says why not.
   void task_availability(std::optional<std::string> why_busy);
   /// The spindle started (false) or stopped (true) turning.
@@ -79,6 +89,8 @@ class Changer {
   const ToolState& tools() const;
   /// The config the changer works with (its own copy).
   const Config& config() const;
+  /// How many taught configs it has taken since it started.
+  unsigned configs_taken() const;
 
   /// The state machine as Graphviz, generated from the transition tables.
   static std::string dot();

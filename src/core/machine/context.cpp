@@ -10,12 +10,17 @@ namespace fatc {
 void Context::publish(const Step& next) {
   // The second layer behind --check: every move, before it goes out.
   // A run of rapids (Step::before) is checked move by move.
-  const std::vector<Step> moves = moves_of(next);
+  // What the spindle holds now is what every move of the step carries.
+  Step held = next;
+  held.held = tools.spindle;
+  const std::vector<Step> moves = moves_of(held);
+  const double held_length = keepout_lengths.of(tools.spindle, tools.lengths).length;
   Point along = position;
   unsigned known_along = known_axes;
   for (const Step& move : moves) {
-    const auto problems = check_moves ? check_move(config, along, known_along, move, limits)
-                                      : std::vector<std::string>{};
+    const auto problems = check_moves
+                              ? check_move(config, along, known_along, move, limits, held_length)
+                              : std::vector<std::string>{};
     if (!problems.empty()) {
       refuse_step("unsafe step not sent: " + describe(move) + ": " + problems.front());
       return;
@@ -33,9 +38,14 @@ void Context::publish(const Step& next) {
   } else if (next.kind == StepKind::wait_operator || next.kind == StepKind::fail) {
     known_axes = 0;  // the operator may jog; a failed sequence may stop anywhere
   }
-  step = next;
+  step = held;
   sequence_step += static_cast<int>(moves.size());
-  ports.publish(next);
+  ports.publish(held);
+}
+
+std::optional<std::string> Context::rehearse(
+    const std::function<void(Changer&)>& request) const {
+  return rehearsal ? rehearsal->why_not(*this, request) : std::nullopt;
 }
 
 void Context::walk(plan::Route route) {

@@ -14,6 +14,7 @@
 #include "../protocol/step.hpp"
 #include "../rack/tool_state.hpp"
 #include "prompt.hpp"
+#include "rehearsal.hpp"
 
 namespace fatc {
 
@@ -46,6 +47,12 @@ class Context {
   /// Off only for planning (--check, --plan), which reports every violation of
   /// a whole sequence instead of stopping at the first.
   bool check_moves = true;
+  /// The lengths every move is checked with: a tool the spindle holds hangs
+  /// that far below the nose.
+  ToolLengths keepout_lengths;
+  /// Runs a request on a copy before it is taken, where set: its whole
+  /// sequence is checked before anything moves.
+  const Rehearsal* rehearsal = nullptr;
   /// Raises UnsafeStep in the machine (queued behind the current event).
   std::function<void(const std::string&)> refuse_step;
   /// Raises CheckFailed in the machine (queued behind the current event).
@@ -72,6 +79,9 @@ class Context {
   int sequence_step = 0;
 
   void publish(const Step& step);
+  /// Why `request`, made of a copy of this changer, would break the keep-out
+  /// or the soft limits on the way; nothing if it would not, or no rehearsal is set.
+  std::optional<std::string> rehearse(const std::function<void(Changer&)>& request) const;
   /// A phase walks `route`: its first waypoint is published now, each
   /// following one when the one before is reached (next_waypoint). The way
   /// at safe Z to where the spindle already stands is left out

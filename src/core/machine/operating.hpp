@@ -3,6 +3,7 @@
 // The machine on and homed: idle, or running one flow; the requests and
 // their refusals.
 
+#include "changer.hpp"
 #include "chuck.hpp"
 #include "flow_run.hpp"
 
@@ -28,20 +29,27 @@ inline std::string request_name(const ChuckRequest& e) {
 }
 inline std::string request_name(const ConfigChanged& e) { return e.request; }
 
+// A request the changer could take is rehearsed last: its whole sequence is
+// checked with the tools it carries before anything moves.
 inline std::optional<std::string> why_not(const Context& c, const ToolChange& e) {
-  return why_not_change(c, e.tool);
+  if (auto why = why_not_change(c, e.tool)) return why;
+  return c.rehearse([tool = e.tool](Changer& copy) { copy.tool_change(tool); });
 }
 inline std::optional<std::string> why_not(const Context& c, const LoadRequest& e) {
-  return why_not_load(c, e.tool, e.pocket);
+  if (auto why = why_not_load(c, e.tool, e.pocket)) return why;
+  return c.rehearse([e](Changer& copy) { copy.load(e.tool, e.pocket); });
 }
 inline std::optional<std::string> why_not(const Context& c, const MeasureRequest& e) {
-  return why_not_measure(c, e.tools);
+  if (auto why = why_not_measure(c, e.tools)) return why;
+  return c.rehearse([e](Changer& copy) { copy.measure_all(e.tools); });
 }
 inline std::optional<std::string> why_not(const Context& c, const UnloadRequest& e) {
-  return why_not_unload(c, e.tool);
+  if (auto why = why_not_unload(c, e.tool)) return why;
+  return c.rehearse([tool = e.tool](Changer& copy) { copy.unload(tool); });
 }
 inline std::optional<std::string> why_not(const Context& c, const VerifyRequest& e) {
-  return why_not_verify(c, e.pocket);
+  if (auto why = why_not_verify(c, e.pocket)) return why;
+  return c.rehearse([pocket = e.pocket](Changer& copy) { copy.verify(pocket); });
 }
 inline std::optional<std::string> why_not(const Context& c, const ChuckRequest& e) {
   return why_not_chuck(c, e);

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -23,20 +24,51 @@ struct SequenceViolation {
 /// "M6 T3 from empty, step 5 (rapid to side of pocket 3): passes through the rack at pocket 4".
 std::string describe(const SequenceViolation& violation);
 
-/// The violations of one planned sequence, named `sequence`.
+/// The violations of one planned sequence, named `sequence`, its moves
+/// checked with the lengths of the tools they carry.
 std::vector<SequenceViolation> check_sequence(const std::string& sequence, const Config& config,
                                               const Simulator& planned,
-                                              const std::optional<SoftLimits>& limits);
+                                              const std::optional<SoftLimits>& limits,
+                                              const ToolLengths& lengths = {});
+
+/// Where a pocket's sequences leave the least room below the nose for the
+/// tool they carry (tip_room): the longest tool they can carry.
+struct SequenceRoom {
+  double length = 0.0;
+  std::string sequence;
+  std::size_t step = 0;
+  Step move;
+  int holder = 0;  ///< the pocket whose holder that tool's tip would enter
+};
+
+/// "M6 T3 from empty (pocket 3), step 9 (rapid to safe Z) over pocket 4".
+std::string describe(const SequenceRoom& room);
 
 struct SequencesChecked {
   int sequences = 0;
   std::vector<SequenceViolation> violations;
+  /// By pocket, where its sequences carry a tool over a holder (a pocket
+  /// whose sequences never do is not in it).
+  std::map<int, SequenceRoom> room;
 };
 
 /// Plans every sequence the changer can run through each pocket (M6 to it
-/// with an empty spindle, M6 T0 from it, load, unload) and checks each move
-/// against the keep-out and the soft limits: what `--check` reports and what
-/// a taught position must pass.
-SequencesChecked check_sequences(const Config& config, const std::optional<SoftLimits>& limits);
+/// with an empty spindle, M6 T0 from it, load, unload, measure, verify) and
+/// checks each move against the keep-out and the soft limits, each tool
+/// carried with its length in `lengths` (none given: 0): what `--check`
+/// reports and what a taught position must pass.
+SequencesChecked check_sequences(const Config& config, const std::optional<SoftLimits>& limits,
+                                 const ToolLengths& lengths = {});
+
+/// The longest tool the config allows: the least room any pocket's
+/// sequences leave (`checked`), and no longer than the tool that crosses
+/// the holders with the nose at above-clearance
+/// (pocket_above_clearance_offset_z - pocket_above_chuck_offset_z).
+double longest_carried(const Config& config, const SequencesChecked& checked);
+
+/// The tool lengths of the tool table `table` (by tool), with the longest
+/// the config allows for those it gives no length of.
+ToolLengths carried_lengths(const Config& config, const std::optional<SoftLimits>& limits,
+                            std::map<int, double> table);
 
 }  // namespace fatc

@@ -311,15 +311,18 @@ struct Planning {
   bool runs_down = false;  ///< the spindle turns at the request, stands once awaited
 };
 
-/// The records of `request` made of a ready changer with `tools`.
+/// The records of `request` made of a ready changer with `tools`, the
+/// spindle standing at `at` on the axes `known`.
 Simulator planned(const Config& config, const ToolState& tools, const Planning& planning,
-                  const std::function<void(Changer&)>& request) {
+                  const std::function<void(Changer&)>& request, const Point& at = {},
+                  unsigned known = 0) {
   Simulator sim;
   sim.sensor_z = planning.sensor_z;
   sim.model_rack(config, tools);
   sim.rack.grips_failing = planning.grips_failing;
   Changer changer(config, sim, tools);
   changer.plan_only();
+  changer.start_at(at, known);
   sim.report_sensors(changer);
   changer.ready();
   if (planning.late) sim.answer_late(changer);
@@ -394,6 +397,11 @@ Simulator plan_unload(const Config& config, int tool, int from) {
 
 Simulator plan_unload(const Config& config, const ToolState& tools, int tool) {
   return planned(config, tools, {}, [tool](Changer& c) { c.unload(tool); });
+}
+
+Simulator plan_from(const Config& config, const ToolState& tools, const Point& at, unsigned known,
+                    const std::function<void(Changer&)>& request) {
+  return planned(config, tools, {config.probe_limit.z}, request, at, known);
 }
 
 double longest_executor_wait(const Config& config) {

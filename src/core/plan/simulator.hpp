@@ -1,5 +1,6 @@
 #pragma once
 
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -154,6 +155,12 @@ Simulator plan_load(const Config& config, const ToolState& tools, int tool, int 
 Simulator plan_unload(const Config& config, int tool, int from);
 /// The same from `tools`.
 Simulator plan_unload(const Config& config, const ToolState& tools, int tool);
+
+/// The records of `request` made of a changer with `tools` standing at `at`
+/// (on the axes `known`): the operator continues at every wait and the
+/// sensor touches as low as `probe_limit` lets it.
+Simulator plan_from(const Config& config, const ToolState& tools, const Point& at, unsigned known,
+                    const std::function<void(Changer&)>& request);
 
 /// The longest the changer may keep the executor waiting between two steps,
 /// in seconds: the most of every change, load and unload planned with the

@@ -34,6 +34,7 @@ std::vector<Step> moves_of(const Step& step) {
   std::vector<Step> moves;
   for (Step move : step.before) {
     move.blend = step.blend;
+    move.held = step.held;
     moves.push_back(std::move(move));
   }
   Step last = step;

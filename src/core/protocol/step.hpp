@@ -34,6 +34,9 @@ struct Step {
   double value = 0.0;     ///< tool length, for set_tool_length
   int pocket = 0;         ///< the pocket this move serves (its number), 0 if none
   bool approach = false;  ///< part of the way into or out of `pocket`: may enter its column
+  /// The tool the spindle holds during this move, 0 none: the keep-out
+  /// counts its length below the nose (set as the step is published).
+  int held = 0;
   std::string label;      ///< the machinist's name for the target ("side of pocket 3")
   /// A run of rapids published as one step (blend_tolerance): the rapids
   /// before this one, up to safe Z and across at it. Each of their corners,

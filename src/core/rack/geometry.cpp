@@ -3,8 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-
-#include "keepout.hpp"
+#include <limits>
 
 namespace fatc {
 namespace {
@@ -30,8 +29,39 @@ PocketWaypoints pocket_waypoints(const Config& config, int number) {
           {pocket.x + entry.side_offset.x * edge, pocket.y + entry.side_offset.y * edge, pocket.z}};
 }
 
+TipRoom tip_room(const Config& config, const Point& from, const Step& move) {
+  TipRoom least{std::numeric_limits<double>::infinity(), 0};
+  if (!is_motion(move.kind)) return least;
+  const Point to = moved_to(from, move);
+  const bool vertical = to.x == from.x && to.y == from.y;
+  if (vertical && to.z >= from.z) return least;
+  constexpr double kAllHeights = 1e12;
+  for (const auto& [number, pocket] : config.pockets) {
+    if (number == move.pocket && (move.approach || vertical)) continue;
+    Box footprint = pocket_column(config, pocket.at, 0.0);
+    footprint.low.z = -kAllHeights;
+    footprint.high.z = kAllHeights;
+    const auto enter = entry_along(from, to, footprint);
+    if (!enter) continue;
+    const auto enter_backwards = entry_along(to, from, footprint);
+    const double leave = enter_backwards ? 1.0 - *enter_backwards : 1.0;
+    // The nose is lowest over the column where the move enters or leaves it.
+    const double lowest =
+        std::min(from.z + (to.z - from.z) * *enter, from.z + (to.z - from.z) * leave);
+    const double room = lowest - (pocket.at.z + config.pocket_above_chuck_offset_z);
+    if (room < least.length) least = {room, number};
+  }
+  return least;
+}
+
+const char* tip_remedy() {
+  return "raise safe Z or pocket_above_clearance_offset_z, use the side approach, or place safe "
+         "away from over the rack";
+}
+
 std::vector<std::string> check_move(const Config& config, const Point& from, unsigned known,
-                                    const Step& step, const std::optional<SoftLimits>& limits) {
+                                    const Step& step, const std::optional<SoftLimits>& limits,
+                                    double held_length) {
   std::vector<std::string> problems;
   if (!is_motion(step.kind)) return problems;
   const Point target = moved_to(from, step);
@@ -58,27 +88,61 @@ std::vector<std::string> check_move(const Config& config, const Point& from, uns
       problems.push_back("passes through the rack at pocket " + std::to_string(number) +
                          (number == step.pocket ? " outside its approach" : ""));
     }
+    // An empty spindle, or a tool of no length, is the nose's check alone.
+    const bool carries = step.held != 0 && held_length > 0.0;
+    const TipRoom room = carries ? tip_room(config, from, step) : TipRoom{};
+    if (carries && held_length > room.length + 1e-9) {
+      problems.push_back("carries T" + std::to_string(step.held) + " (length " +
+                         format_length(config, held_length) + ") with its tip " +
+                         format_length(config, held_length - room.length) +
+                         " below the top of the holder at pocket " + std::to_string(room.pocket) +
+                         ": " + tip_remedy());
+    }
   }
   return problems;
 }
 
-std::vector<Violation> check_steps(const Config& config, const std::vector<Step>& steps,
-                                   const std::optional<SoftLimits>& limits) {
-  std::vector<Violation> violations;
-  Point position;
-  unsigned known = 0;  // axes whose position is known; the start position is not
+namespace {
+
+/// Calls `visit(index, from, known, move)` for each move of `steps`, from
+/// where the one before left the spindle.
+template <class Visit>
+void walk_moves(const std::vector<Step>& steps, const Point& at, unsigned known, Visit visit) {
+  Point position = at;
   for (std::size_t i = 0; i < steps.size(); ++i) {
     const Step& step = steps[i];
     if (!is_motion(step.kind)) continue;
-    for (auto& what : check_move(config, position, known, step, limits)) {
-      violations.push_back({i, std::move(what)});
-    }
-    if (step.axes & axis_x) position.x = step.target.x;
-    if (step.axes & axis_y) position.y = step.target.y;
-    if (step.axes & axis_z) position.z = step.target.z;
+    visit(i, position, known, step);
+    position = moved_to(position, step);
     known |= step.axes;
   }
+}
+
+}  // namespace
+
+std::vector<Violation> check_steps(const Config& config, const std::vector<Step>& steps,
+                                   const std::optional<SoftLimits>& limits,
+                                   const StepsFrom& from) {
+  std::vector<Violation> violations;
+  walk_moves(steps, from.at, from.known,
+             [&](std::size_t i, const Point& position, unsigned known, const Step& step) {
+               const double held_length = from.lengths.of(step.held, from.measured).length;
+               for (auto& what : check_move(config, position, known, step, limits, held_length)) {
+                 violations.push_back({i, std::move(what)});
+               }
+             });
   return violations;
+}
+
+StepRoom least_tip_room(const Config& config, const std::vector<Step>& steps) {
+  StepRoom least{{std::numeric_limits<double>::infinity(), 0}, 0};
+  walk_moves(steps, Point{}, 0,
+             [&](std::size_t i, const Point& position, unsigned known, const Step& step) {
+               if (step.held == 0 || known != axis_xyz) return;
+               const TipRoom room = tip_room(config, position, step);
+               if (room.length < least.room.length) least = {room, i};
+             });
+  return least;
 }
 
 }  // namespace fatc

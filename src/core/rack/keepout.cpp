@@ -136,6 +136,33 @@ const char* keepout_words(KeepoutState state) {
   return "rack keep-out not armed: the machine is not on and homed";
 }
 
+KeepoutLength ToolLengths::of(int tool, const std::map<int, double>& measured) const {
+  if (tool == 0) return {};
+  if (const auto z = table.find(tool); z != table.end() && z->second > 0.0) {
+    return {z->second, LengthSource::table};
+  }
+  if (const auto own = measured.find(tool); own != measured.end() && own->second > 0.0) {
+    return {own->second, LengthSource::measured};
+  }
+  return {longest, LengthSource::longest};
+}
+
+std::string keepout_length_words(const Config& config, const ToolLengths& lengths, int tool,
+                                 const std::map<int, double>& measured) {
+  const KeepoutLength counted = lengths.of(tool, measured);
+  if (counted.source == LengthSource::table || counted.source == LengthSource::none) return {};
+  const auto z = lengths.table.find(tool);
+  const std::string given =
+      z == lengths.table.end()
+          ? "LinuxCNC's tool table gives no length"
+          : "LinuxCNC's tool table gives Z" + format_length(config, z->second) +
+                ", no length below the spindle nose";
+  return "T" + std::to_string(tool) + ": " + given + "; the rack keep-out counts it as " +
+         format_length(config, counted.length) +
+         (counted.source == LengthSource::measured ? " (its length as the changer measured it)"
+                                                   : " (the longest tool the config allows)");
+}
+
 std::string held_words(const Config& config, int tool, double tool_length) {
   if (tool == 0) return "with an empty spindle";
   return "with T" + std::to_string(tool) + " (length " + format_length(config, tool_length) + ")";

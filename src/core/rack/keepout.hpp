@@ -1,5 +1,6 @@
 #pragma once
 
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,6 +23,42 @@ std::optional<double> entry_along(const Point& a, const Point& b, const Box& box
 /// it, no floor (tools hang below their holders down to the table), its top
 /// `top_offset` above the pocket's Z.
 Box pocket_column(const Config& config, const Point& pocket, double top_offset);
+
+/// Where the length the keep-out counts for a tool comes from.
+enum class LengthSource {
+  none,      ///< the spindle is empty
+  table,     ///< LinuxCNC's tool table: its Z is a length below the nose
+  measured,  ///< the changer's own measurement (the table's Z is none)
+  longest,   ///< neither: the longest tool the config allows
+};
+
+/// How long a tool hangs below the spindle nose, as the keep-out counts it.
+struct KeepoutLength {
+  double length = 0.0;
+  LengthSource source = LengthSource::none;
+};
+
+/// The tool lengths the keep-out knows of: what every move is checked with,
+/// the changer's own as much as the guard's.
+struct ToolLengths {
+  /// Z of LinuxCNC's tool table, by tool, in the config's units.
+  std::map<int, double> table;
+  /// The longest tool the config allows (plan::longest_carried).
+  double longest = 0.0;
+
+  /// `tool`'s length: the table's Z where it is a length below the nose
+  /// (above 0), else the changer's own measurement, else `longest`. A
+  /// negative or missing Z (tables written relative to a master tool) never
+  /// lowers the boundary.
+  KeepoutLength of(int tool, const std::map<int, double>& measured) const;
+};
+
+/// What the operator is told, once, of a tool whose table Z the keep-out
+/// does not take: "T5: LinuxCNC's tool table gives Z-12.000 mm, no length
+/// below the spindle nose; the rack keep-out counts it as 40.000 mm (the
+/// longest tool the config allows)". Empty where the table's Z is taken.
+std::string keepout_length_words(const Config& config, const ToolLengths& lengths, int tool,
+                                 const std::map<int, double>& measured);
 
 /// The most boxes the realtime guard (src/rt/fatc_rack_guard.comp) holds.
 constexpr std::size_t kGuardBoxes = 4;

@@ -260,7 +260,7 @@ TEST(RackChange, shouldReturnAToolFromOutsideToItsFreeFirstStartPocket) {
 
 TEST(RackChange, shouldPlanEverySequenceThroughEveryPocketWithinTheKeepOut) {
   const SequencesChecked checked = check_sequences(rack_config(), std::nullopt);
-  EXPECT_EQ(checked.sequences, 20);
+  EXPECT_EQ(checked.sequences, 30);
   EXPECT_TRUE(checked.violations.empty()) << describe(checked.violations.front());
 }
 

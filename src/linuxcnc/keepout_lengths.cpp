@@ -1,0 +1,67 @@
+#include "keepout_lengths.hpp"
+
+#include <sys/stat.h>
+
+#include "core/plan/sequence_check.hpp"
+#include "core/program/tool_table.hpp"
+#include "io/files.hpp"
+#include "nml_link.hpp"
+
+namespace fatc::linuxcnc {
+
+void KeepoutLengths::soft_limits(std::optional<SoftLimits> limits) {
+  limits_ = std::move(limits);
+  configs_taken_.reset();
+}
+
+void KeepoutLengths::read_table(const Config& config, double per_mm) {
+  struct stat about {};
+  if (!path_ || ::stat(path_->c_str(), &about) != 0) return;
+  if (table_changed_ && table_changed_->tv_sec == about.st_mtim.tv_sec &&
+      table_changed_->tv_nsec == about.st_mtim.tv_nsec) {
+    return;
+  }
+  std::string error;
+  const auto text = io::read_small_file(*path_, error);
+  if (!text) return;  // being rewritten: the next poll reads it
+  table_changed_ = about.st_mtim;
+  // The table is in machine units; the keep-out works in the config's.
+  const double scale = (config.units == Units::inch ? 25.4 : 1.0) * per_mm;
+  lengths_.table.clear();
+  for (const auto& [tool, entry] : parse_tool_table(*text).tools) {
+    if (entry.z) lengths_.table[tool] = *entry.z / scale;
+  }
+}
+
+void KeepoutLengths::poll(Changer& changer, const NmlLink* nml, Ports& ports) {
+  if (!rehearsing_) {
+    changer.rehearse_with(&dry_run_);
+    rehearsing_ = true;
+  }
+  const Config& config = changer.config();
+  if (configs_taken_ != changer.configs_taken()) {
+    configs_taken_ = changer.configs_taken();
+    lengths_.longest = longest_carried(config, check_sequences(config, limits_));
+  }
+  const auto per_mm = nml ? nml->units_per_mm() : std::nullopt;
+  if (per_mm) {
+    read_table(config, *per_mm);
+    if (const int tool = nml->spindle_tool(); tool > 0) {
+      const double scale = (config.units == Units::inch ? 25.4 : 1.0) * *per_mm;
+      lengths_.table[tool] = nml->spindle_tool_length() / scale;
+    }
+  }
+  if (!given_ || given_->table != lengths_.table || given_->longest != lengths_.longest) {
+    changer.keepout_lengths(lengths_);
+    given_ = lengths_;
+  }
+  const int spindle = nml ? nml->spindle_tool() : changer.tools().spindle;
+  spindle_length_ = lengths_.of(spindle, changer.tools().lengths).length;
+  // Told once the table is read: before, every length would look missing.
+  if (per_mm && spindle > 0 && told_.insert(spindle).second) {
+    const std::string words = keepout_length_words(config, lengths_, spindle, changer.tools().lengths);
+    if (!words.empty()) ports.tell(MessageKind::info, words);
+  }
+}
+
+}  // namespace fatc::linuxcnc
