@@ -227,7 +227,7 @@ TEST(Cli, shouldPlanAChangeWithEverySensorWiredAsTheRackWouldBehave) {
 TEST(Cli, shouldPassTheCheckOfTheSampleConfig) {
   const CliRun r = run({"--check", "--config", kConfig});
   EXPECT_EQ(r.code, 0) << r.out << r.err;
-  EXPECT_NE(r.out.find("24 sequences checked, 0 violations"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("36 sequences checked, 0 violations"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("above_clearance"), std::string::npos);
 }
 
@@ -334,14 +334,14 @@ TEST_F(CheckRun, shouldFailOnABadOrUnreadableStateEvenWhenTheConfigIsGood) {
   EXPECT_EQ(bad.err,
             state + ": line 1, column 31: invalid JSON: number overflow parsing '1e309'\n");
   EXPECT_EQ(bad.out,
-            "24 sequences checked against the rack keep-out, 0 violations\n"
+            "36 sequences checked against the rack keep-out, 0 violations\n"
             "state file not valid: where the tools are not checked\n");
   ASSERT_EQ(::mkfifo((folder_ + "/fifo").c_str(), 0600), 0);
   const CliRun fifo = run({"--check", "--config", kConfig, "--state", folder_ + "/fifo"});
   EXPECT_EQ(fifo.code, 1);
   EXPECT_EQ(fifo.err, folder_ + "/fifo: expected a regular file, got a FIFO\n");
   EXPECT_EQ(fifo.out,
-            "24 sequences checked against the rack keep-out, 0 violations\n"
+            "36 sequences checked against the rack keep-out, 0 violations\n"
             "state file unreadable: where the tools are not checked\n");
 }
 
@@ -378,7 +378,7 @@ TEST_F(CheckRun, shouldPassTheSampleConfigOnTheSimulatedMill) {
            "--state", folder_ + "/none.json"});
   EXPECT_EQ(r.code, 0) << r.err;
   EXPECT_NE(r.out.find("none.json: no state saved yet"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("24 sequences checked, 0 violations"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("36 sequences checked, 0 violations"), std::string::npos) << r.out;
 }
 
 /// The simulated mill's INI with `from` replaced by `to` in its text.
@@ -440,7 +440,7 @@ TEST_F(CheckRun, shouldSayTheSoftLimitsWereNotCheckedWhenTheIniIsUnreadable) {
   EXPECT_EQ(r.out, folder_ +
                        "/none.state: no state saved yet: the component starts with each pocket "
                        "holding its first-start tool\n"
-                       "24 sequences checked against the rack keep-out, 0 violations\n"
+                       "36 sequences checked against the rack keep-out, 0 violations\n"
                        "INI unreadable: soft limits not checked\n");
 }
 
@@ -449,7 +449,7 @@ TEST_F(CheckRun, shouldSayTheSoftLimitsWereNotCheckedWhenTheIniIsNotValid) {
   const CliRun r = run({"--check", "--config", kConfig, "--ini", ini});
   EXPECT_EQ(r.code, 1);
   EXPECT_EQ(r.out.substr(r.out.find('\n') + 1),
-            "24 sequences checked against the rack keep-out, 0 violations\n"
+            "36 sequences checked against the rack keep-out, 0 violations\n"
             "INI not valid: soft limits not checked\n");
 }
 
