@@ -7,6 +7,7 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <iostream>
 #include <memory>
@@ -22,6 +23,7 @@
 #include "io/files.hpp"
 #include "io/ini.hpp"
 #include "io/message_log.hpp"
+#include "io/standard_output.hpp"
 #include "linuxcnc/component.hpp"
 #include "linuxcnc/hal_pins.hpp"
 #include "linuxcnc/nml_link.hpp"
@@ -100,16 +102,16 @@ int run_component(const fatc::io::Options& options) {
   // Its soft limits are the second check of every move, behind --check.
   std::unique_ptr<fatc::linuxcnc::NmlLink> nml;
   std::optional<fatc::SoftLimits> limits;
+  std::optional<std::string> tool_table;
   if (const char* ini_path = std::getenv("INI_FILE_NAME")) {
     std::string error;
-  std::optional<std::string> tool_table;
     const auto ini = fatc::io::IniFile::read(ini_path, error);
     if (!ini) return fail(error);
-    limits = fatc::io::soft_limits(*ini, config.units, error);
-    if (!limits) return fail(error);
     if (const auto table = ini->get("EMCIO", "TOOL_TABLE")) {
       tool_table = fatc::io::beside(ini_path, *table);
     }
+    limits = fatc::io::soft_limits(*ini, config.units, error);
+    if (!limits) return fail(error);
     nml = fatc::linuxcnc::NmlLink::open(fatc::linuxcnc::nml_file_of(ini_path), error);
     if (!nml) return fail(error);
   }
@@ -172,7 +174,17 @@ int main(int argc, char** argv) {
       return 2;
     }
     if (options->mode == fatc::io::Options::Mode::component) return run_component(*options);
-    return fatc::io::run_tool_mode(*options, std::cout, std::cerr);
+    // A write that fails (a full disk, > /dev/full) is kept and said once, at the end.
+    fatc::io::StandardOutput written(STDOUT_FILENO);
+    std::ostream out(&written);
+    const int code = fatc::io::run_tool_mode(*options, out, std::cerr);
+    out.flush();
+    if (written.error() != 0) {
+      std::cerr << "fixed_atc_probe: cannot write to standard output ("
+                << std::strerror(written.error()) << "): what it printed is lost" << std::endl;
+      return 2;
+    }
+    return code;
   } catch (const std::bad_alloc&) {
     std::cerr << "fixed_atc_probe: out of memory" << std::endl;
   } catch (const std::exception& e) {

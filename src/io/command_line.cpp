@@ -2,9 +2,10 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <cctype>
-#include <cstdlib>
+#include <charconv>
+#include <cmath>
 #include <map>
+#include <string_view>
 
 #include "core/config/quote.hpp"
 
@@ -35,7 +36,9 @@ const std::vector<OptionDeclaration> kOptions = {
    ""},
   {"--subroutine-path", "DIR:DIR",
    "--lint: folders searched for subroutines before the INI's SUBROUTINE_PATH", ""},
-  {"--at", "X,Y,Z", "--teach: the machine position (G53, config.json's units)",
+  {"--at", "X,Y,Z", "--teach: the machine position (G53, config.json's units), three decimal "
+   "numbers with commas between, as 120.5,80,-5 (a sign, a leading point as .5 and an exponent "
+   "as 1e2 are read; hex, inf, nan, a decimal comma and anything else are refused)",
    "the machine position, G53"},
 };
 
@@ -139,18 +142,65 @@ std::optional<int> tool_argument(const std::string& text) {
   return std::stoi(text);
 }
 
-/// "X,Y,Z": three numbers, nothing else.
-std::optional<Point> position_argument(const std::string& text) {
+/// A number as a machinist types it: an optional sign, decimal digits with
+/// or without a point (12, -80.5, .5, 12.) and an optional exponent (1e2);
+/// never hex, inf, nan, a decimal comma or anything after it, whatever the
+/// locale says.
+std::optional<double> decimal_argument(std::string_view text) {
+  std::size_t at = 0;
+  const auto digits = [&] {
+    const std::size_t from = at;
+    while (at < text.size() && text[at] >= '0' && text[at] <= '9') ++at;
+    return at - from;
+  };
+  if (at < text.size() && (text[at] == '+' || text[at] == '-')) ++at;
+  const std::size_t number_at = at;
+  std::size_t mantissa = digits();
+  if (at < text.size() && text[at] == '.') {
+    ++at;
+    mantissa += digits();
+  }
+  if (mantissa == 0) return std::nullopt;
+  if (at < text.size() && (text[at] == 'e' || text[at] == 'E')) {
+    ++at;
+    if (at < text.size() && (text[at] == '+' || text[at] == '-')) ++at;
+    if (digits() == 0) return std::nullopt;
+  }
+  if (at != text.size()) return std::nullopt;
+  // from_chars reads the C locale's way and takes no '+'; out of range is no number.
+  double value = 0.0;
+  const char* first = text.data() + number_at;
+  const auto [end, failed] = std::from_chars(first, text.data() + text.size(), value);
+  if (failed != std::errc() || end != text.data() + text.size() || !std::isfinite(value)) {
+    return std::nullopt;
+  }
+  return text[0] == '-' ? -value : value;
+}
+
+/// "X,Y,Z": three decimal numbers, blanks around each allowed; nullopt and
+/// what is wrong in `error` otherwise.
+std::optional<Point> position_argument(const std::string& text, std::string& error) {
+  const char* const axes[] = {"X", "Y", "Z"};
   double values[3];
   std::size_t at = 0;
   for (int axis = 0; axis < 3; ++axis) {
-    const std::size_t end = axis < 2 ? text.find(',', at) : text.size();
-    if (end == std::string::npos) return std::nullopt;
-    const std::string part = text.substr(at, end - at);
-    if (part.empty() || std::isspace(static_cast<unsigned char>(part[0]))) return std::nullopt;
-    char* stop = nullptr;
-    values[axis] = std::strtod(part.c_str(), &stop);
-    if (stop != part.c_str() + part.size()) return std::nullopt;
+    const std::size_t comma = text.find(',', at);
+    if (axis < 2 && comma == std::string::npos) {
+      error = "expected X,Y,Z (three numbers with commas between), got " + quote(text);
+      return std::nullopt;
+    }
+    const std::size_t end = axis < 2 ? comma : text.size();
+    std::string_view part(text.data() + at, end - at);
+    while (!part.empty() && (part.front() == ' ' || part.front() == '\t')) part.remove_prefix(1);
+    while (!part.empty() && (part.back() == ' ' || part.back() == '\t')) part.remove_suffix(1);
+    const auto value = decimal_argument(part);
+    if (!value) {
+      error = std::string(axes[axis]) + " " +
+              (part.empty() ? std::string("is empty") : quote(part) + " is not a decimal number") +
+              " (expected X,Y,Z like 120.5,80,-5 in machine coordinates; got " + quote(text) + ")";
+      return std::nullopt;
+    }
+    values[axis] = *value;
     at = end + 1;
   }
   return Point{values[0], values[1], values[2]};
@@ -168,7 +218,8 @@ bool take_value(const std::string& arg, const std::string& text, Options& option
   if (tool) {
     const auto number = tool_argument(text);
     if (!number) {
-      error = arg + ": expected a tool number (0 for none), got " + quote(text);
+      error = arg + ": expected a tool number, at most 9 digits and nothing else (0 for none), got " +
+              quote(text);
       return false;
     }
     (arg == "--from" ? options.from_tool : arg == "--to" ? options.to_tool : options.spindle_tool) =
@@ -194,9 +245,10 @@ bool take_value(const std::string& arg, const std::string& text, Options& option
       return false;
     }
   } else if (arg == "--at") {
-    options.teach_at = position_argument(text);
+    std::string wrong;
+    options.teach_at = position_argument(text, wrong);
     if (!options.teach_at) {
-      error = "--at: expected X,Y,Z (three numbers, machine coordinates), got " + quote(text);
+      error = "--at: " + wrong;
       return false;
     }
   } else {
@@ -264,8 +316,21 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
                         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
     valued.push_back(o.name);
   }
+  // A value starting with one '-' (--at -.5,0,0) is the option's, as if given
+  // --at=-.5,0,0: CLI11 takes only what reads as a negative number as a value.
+  std::vector<std::string> joined;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const bool takes_value = std::find(valued.begin(), valued.end(), args[i]) != valued.end();
+    if (takes_value && i + 1 < args.size() && args[i + 1].rfind('-', 0) == 0 &&
+        args[i + 1].rfind("--", 0) != 0) {
+      joined.push_back(args[i] + "=" + args[i + 1]);
+      ++i;
+    } else {
+      joined.push_back(args[i]);
+    }
+  }
   try {
-    std::vector<std::string> reversed(args.rbegin(), args.rend());
+    std::vector<std::string> reversed(joined.rbegin(), joined.rend());
     app.parse(reversed);
   } catch (const CLI::ParseError& e) {
     error = e.what();

@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <climits>
 #include <cstdint>
+#include <cstdlib>
 #include <cstring>
 #include <stdexcept>
 #include <vector>
@@ -62,11 +64,36 @@ std::string not_a_regular_file(const std::string& path, mode_t mode) {
   return shown_path(path) + ": expected a regular file, got " + kind_of(mode);
 }
 
+std::optional<std::string> scratch_root(std::size_t longest, std::string& error) {
+  const char* given = std::getenv("TMPDIR");
+  std::string folder = given != nullptr && *given != '\0' ? given : "/tmp";
+  if (folder[0] != '/') {
+    std::vector<char> here(PATH_MAX);
+    if (::getcwd(here.data(), here.size()) == nullptr) {
+      error = "TMPDIR " + quote(folder, 200) + " is a relative folder and the current folder " +
+              "cannot be read " + why(errno) + ": set TMPDIR to an absolute folder";
+      return std::nullopt;
+    }
+    folder = std::string(here.data()) + "/" + folder;
+  }
+  if (folder.size() > longest) {
+    error = "TMPDIR " + quote(folder, 200) + " is " + std::to_string(folder.size()) +
+            " characters long, over the " + std::to_string(longest) +
+            " its scratch files' paths leave: set TMPDIR to a shorter folder";
+    return std::nullopt;
+  }
+  return folder;
+}
+
 std::string folder_of(const std::string& path) {
   const auto slash = path.rfind('/');
   if (slash == std::string::npos) return ".";
   if (slash == 0) return "/";
   return path.substr(0, slash);
+}
+
+std::string beside(const std::string& ini_path, const std::string& path) {
+  return !path.empty() && path[0] == '/' ? path : folder_of(ini_path) + "/" + path;
 }
 
 namespace {
@@ -92,10 +119,6 @@ bool read_regular(const std::string& path, std::size_t max_bytes, bool limit_siz
     return false;
   }
   // O_NONBLOCK: a FIFO swapped in after the stat cannot make open() wait.
-std::string beside(const std::string& ini_path, const std::string& path) {
-  return !path.empty() && path[0] == '/' ? path : folder_of(ini_path) + "/" + path;
-}
-
   const Descriptor file{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_NOCTTY | O_CLOEXEC)};
   if (file.fd < 0) {
     error = shown_path(path) + ": cannot open " + why(errno);

@@ -44,6 +44,12 @@ std::string folder_of(const std::string& path);
 /// from the folder of the INI file `ini_path`.
 std::string beside(const std::string& ini_path, const std::string& path);
 
+/// Where scratch files go: $TMPDIR (else /tmp) as an absolute folder, a
+/// relative one taken from the current folder (rs274 runs in another, the
+/// INI's). Nullopt and one line naming TMPDIR in `error` when it cannot be
+/// made absolute or is longer than `longest` characters.
+std::optional<std::string> scratch_root(std::size_t longest, std::string& error);
+
 /// Reads and validates a config.json; every message starts with the file's path.
 ConfigResult load_config_file(const std::string& path);
 

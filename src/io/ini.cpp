@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -39,9 +40,9 @@ namespace {
 std::shared_ptr<const linuxcnc::IniFile> read_with_linuxcnc(const std::string& text,
                                                            std::string& error) {
   static std::atomic<unsigned long> count{0};
-  const char* folder = std::getenv("TMPDIR");
-  std::string path = std::string(folder != nullptr && *folder != '\0' ? folder : "/tmp") +
-                     "/fixed_atc_probe-ini-" + std::to_string(::getpid()) + "-" +
+  const auto folder = scratch_root(PATH_MAX, error);
+  if (!folder) return nullptr;
+  std::string path = *folder + "/fixed_atc_probe-ini-" + std::to_string(::getpid()) + "-" +
                      std::to_string(++count) + "-XXXXXX.ini";
   const int fd = ::mkostemps(path.data(), 4, O_CLOEXEC);
   if (fd < 0) {

@@ -23,6 +23,7 @@
 #include "core/program/numbered_program.hpp"
 #include "files.hpp"
 #include "ini.hpp"
+#include "interruption.hpp"
 
 namespace fatc::io {
 namespace {
@@ -70,11 +71,15 @@ std::string absolute_folders(const std::string& folders) {
 class ScratchFolder {
  public:
   explicit ScratchFolder(std::string& error) {
-    const char* tmp = std::getenv("TMPDIR");
-    std::string pattern = std::string(tmp && *tmp ? tmp : "/tmp") + "/fatc_preflight_XXXXXX";
+    // Its undefined/ folder goes into the INI's SUBROUTINE_PATH, which LinuxCNC cuts.
+    const std::string name = "/fatc_preflight_XXXXXX";
+    const auto root =
+        scratch_root(program::kMaxFolderLength - name.size() - std::strlen("/undefined"), error);
+    if (!root) return;
+    std::string pattern = *root + name;
     if (::mkdtemp(pattern.data()) == nullptr) {
-      error = "cannot make a folder for the interpreter's files in " + folder_of(pattern) + " (" +
-              std::strerror(errno) + ")";
+      error = "cannot make a folder for the interpreter's files in " + shown_path(*root) + " (" +
+              std::strerror(errno) + "; TMPDIR chooses where)";
       return;
     }
     path_ = pattern;
@@ -259,6 +264,7 @@ std::optional<Ending> run_child(const std::vector<std::string>& argv, const std:
   std::vector<char> buffer(64 * 1024);
   // Both close when rs274 ends.
   while (fds[0].fd >= 0 || fds[1].fd >= 0) {
+    if (Interruptible::signal() != 0) break;
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
         deadline - std::chrono::steady_clock::now());
     if (left.count() <= 0) {
@@ -283,7 +289,9 @@ std::optional<Ending> run_child(const std::vector<std::string>& argv, const std:
       break;
     }
   }
-  if (ending.timed_out || ending.too_much_output || output.done()) ::kill(-child, SIGKILL);
+  if (ending.timed_out || ending.too_much_output || output.done() || Interruptible::signal() != 0) {
+    ::kill(-child, SIGKILL);
+  }
   for (const pollfd& fd : fds) {
     if (fd.fd >= 0) ::close(fd.fd);
   }
@@ -470,7 +478,14 @@ std::optional<program::InterpreterRun> run_interpreter(const InterpreterInput& i
   given.lines = numberer.lines();
   program::InterpreterOutput output(std::move(given), table.tool_of_row);
   output.listen(input.listener);
-  const auto ending = run_child(argv, machine_folder, scratch.path(), input, output, error);
+  // Interrupted while the copies were made: rs274 is not started.
+  const auto ending = Interruptible::signal() != 0
+                          ? std::nullopt
+                          : run_child(argv, machine_folder, scratch.path(), input, output, error);
+  if (const int signal = Interruptible::signal(); signal != 0) {
+    error = std::string("stopped by ") + signal_name(signal) + ": the program was not read to its end";
+    return std::nullopt;
+  }
   if (!ending) return std::nullopt;
   if (WIFEXITED(ending->status) && WEXITSTATUS(ending->status) >= 126) {
     error = shown_path(input.rs274) + ": cannot run it" +

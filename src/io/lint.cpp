@@ -21,6 +21,7 @@
 #include "files.hpp"
 #include "ini.hpp"
 #include "interpreter.hpp"
+#include "interruption.hpp"
 
 namespace fatc::io {
 namespace {
@@ -247,6 +248,8 @@ std::optional<std::vector<int>> program_tools(const std::string& program_path,
 }
 
 int lint(const Options& options, std::ostream& out, std::ostream& err) {
+  // Interrupted, it removes its copy of the program before it ends.
+  const Interruptible interruptible;
   const auto loaded = load_config_file(options.config_path);
   if (!loaded.config) {
     for (const auto& error : loaded.errors) err << error << "\n";

@@ -4,8 +4,10 @@
 #include <cstdio>
 #include <limits>
 #include <sstream>
+#include <string_view>
 #include <vector>
 
+#include "core/config/quote.hpp"
 #include "core/rack/geometry.hpp"
 
 namespace fatc::io {
@@ -18,25 +20,39 @@ constexpr double kTitle = 40.0;         ///< the title's band at the top
 constexpr double kLegend = 80.0;        ///< the legend's band at the bottom
 constexpr double kLegendWidth = 820.0;  ///< its longest line, with the margins
 
-std::string escaped(const std::string& text) {
+/// `text` as XML 1.0 character data: & < > and quotes as entities, and what
+/// XML forbids or a drawing would hide (control characters, U+FFFE, U+FFFF,
+/// bytes that are not UTF-8) as visible escapes: \x01, \u{fffe}.
+std::string escaped(std::string_view text) {
   std::string out;
-  for (const char c : text) {
-    switch (c) {
-      case '&':
-        out += "&amp;";
-        break;
-      case '<':
-        out += "&lt;";
-        break;
-      case '>':
-        out += "&gt;";
-        break;
-      case '"':
-        out += "&quot;";
-        break;
-      default:
-        out += c;
+  char buffer[16];
+  for (std::size_t at = 0; at < text.size();) {
+    const unsigned char c = static_cast<unsigned char>(text[at]);
+    char32_t code = c;
+    const std::size_t length = c < 0x80 ? 1 : decode_utf8(text, at, code);
+    if (length == 0 || code < 0x20 || code == 0x7F) {
+      std::snprintf(buffer, sizeof buffer, "\\x%02x", c);
+      out += buffer;
+      ++at;
+      continue;
     }
+    if (code == 0xFFFE || code == 0xFFFF) {
+      std::snprintf(buffer, sizeof buffer, "\\u{%04x}", static_cast<unsigned>(code));
+      out += buffer;
+    } else if (c == '&') {
+      out += "&amp;";
+    } else if (c == '<') {
+      out += "&lt;";
+    } else if (c == '>') {
+      out += "&gt;";
+    } else if (c == '"') {
+      out += "&quot;";
+    } else if (c == '\'') {
+      out += "&apos;";
+    } else {
+      out.append(text.substr(at, length));
+    }
+    at += length;
   }
   return out;
 }

@@ -3,9 +3,7 @@
 #include <cstdio>
 
 namespace fatc {
-namespace {
 
-/// The length of the valid UTF-8 sequence at `at` and its code point, or 0.
 std::size_t decode_utf8(std::string_view text, std::size_t at, char32_t& code) {
   const auto byte = [&](std::size_t i) { return static_cast<unsigned char>(text[i]); };
   const unsigned char lead = byte(at);
@@ -28,6 +26,8 @@ std::size_t decode_utf8(std::string_view text, std::size_t at, char32_t& code) {
   if (code < minimum || code > 0x10FFFF || (code >= 0xD800 && code <= 0xDFFF)) return 0;
   return length;
 }
+
+namespace {
 
 /// Characters a terminal would act on, or that show as nothing, hide or
 /// reorder text: C1 controls, Unicode's format characters (bidirectional

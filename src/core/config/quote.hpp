@@ -18,6 +18,11 @@ constexpr std::size_t kQuotedLength = 60;
 /// paths and file paths.
 std::string escape(std::string_view text, std::size_t max_chars = kQuotedLength);
 
+/// The length (2 to 4) of the valid UTF-8 sequence of a character beyond
+/// ASCII at `at` in `text`, its code point in `code`; 0 when the bytes there
+/// are none (ASCII, a stray byte, an overlong form, a surrogate).
+std::size_t decode_utf8(std::string_view text, std::size_t at, char32_t& code);
+
 /// escape() in double quotes, a double quote inside escaped: every piece of user text a message
 /// repeats (values, arguments, INI values) goes through here.
 std::string quote(std::string_view text, std::size_t max_chars = kQuotedLength);

@@ -114,7 +114,9 @@ void Simulator::model_rack(const Config& config, const ToolState& tools) {
       config.sensors.any() ||
       (config.rack_cover && (config.rack_cover->opened_sensor || config.rack_cover->closed_sensor));
   rack.spindle = tools.spindle;
+  // Unmodelled, nothing reads the pockets: a rack of 200 is not copied at each plan.
   for (const auto& entry : config.pockets) {
+    if (!rack.modelled) break;
     rack.pockets[entry.first] = tools.holds(entry.first) ? tools.tool_of(entry.first) : 0;
   }
   reported_.reset();
@@ -177,7 +179,7 @@ void Simulator::ask(const Prompt& prompt) {
 void Simulator::save(const ToolState& state) {
   Record record;
   record.kind = Record::Kind::save;
-  record.saved = state;
+  if (keeps_saved_states) record.saved = state;
   records.push_back(record);
   ++saves;
 }
@@ -309,6 +311,7 @@ struct Planning {
   bool late = false;      ///< Simulator::answer_late
   int grips_failing = 0;  ///< Rack::grips_failing
   bool runs_down = false;  ///< the spindle turns at the request, stands once awaited
+  bool saved_states = true;  ///< Simulator::keeps_saved_states
 };
 
 /// The records of `request` made of a ready changer with `tools`, the
@@ -318,6 +321,7 @@ Simulator planned(const Config& config, const ToolState& tools, const Planning& 
                   unsigned known = 0) {
   Simulator sim;
   sim.sensor_z = planning.sensor_z;
+  sim.keeps_saved_states = planning.saved_states;
   sim.model_rack(config, tools);
   sim.rack.grips_failing = planning.grips_failing;
   Changer changer(config, sim, tools);
@@ -370,6 +374,13 @@ Simulator plan_change(const Config& config, int from, int to, double sensor_z) {
 
 Simulator plan_change(const Config& config, const ToolState& tools, int to, double sensor_z) {
   return planned(config, tools, {sensor_z}, [to](Changer& c) { c.tool_change(to); });
+}
+
+Simulator plan_change_timed(const Config& config, const ToolState& tools, int to,
+                            double sensor_z) {
+  Planning timed{sensor_z};
+  timed.saved_states = false;
+  return planned(config, tools, timed, [to](Changer& c) { c.tool_change(to); });
 }
 
 Simulator plan_change_running_down(const Config& config, const ToolState& tools, int to,

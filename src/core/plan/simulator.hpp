@@ -71,6 +71,9 @@ class Simulator : public Ports {
   std::optional<Prompt> asked;  ///< the last question put to the operator
 
   std::vector<Record> records;
+  /// false: a save is recorded without the state it saved (a copy of the
+  /// whole rack each time, most of a long program's preflight).
+  bool keeps_saved_states = true;
   std::optional<double> sensor_z;
   bool chuck_open = false;
   bool timer_armed = false;
@@ -140,6 +143,10 @@ ToolState with_in_spindle(const Config& config, int tool);
 Simulator plan_change(const Config& config, int from, int to, double sensor_z);
 /// The same from the tools as `tools` has them (a saved state).
 Simulator plan_change(const Config& config, const ToolState& tools, int to, double sensor_z);
+/// The same for its time alone (change_time, the preflight's estimate): the
+/// saves recorded without their states.
+Simulator plan_change_timed(const Config& config, const ToolState& tools, int to,
+                            double sensor_z);
 /// The same with the spindle turning at the request, standing once the changer
 /// waits for it: the records before `spindle_stood` are what M6 did while it
 /// ran down (move_while_spindle_stops), without the wait itself.

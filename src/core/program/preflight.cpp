@@ -209,7 +209,7 @@ class Checker {
     resolved.in_progress.reset();
     if (const auto home = resolved.home_of(to); home && to != from)
       resolved.pockets[*home].holds = true;
-    const Simulator sim = plan_change(config_, resolved, to, touch);
+    const Simulator sim = plan_change_timed(config_, resolved, to, touch);
     PlannedChange planned;
     for (const Step& step : sim.steps()) {
       if (step.kind == StepKind::fail) planned.refused = step.label;

@@ -2,6 +2,10 @@
 // is what --help, the man page and docs/command-line.md say.
 #include <gtest/gtest.h>
 
+#include <clocale>
+#include <cstdio>
+
+#include "core/config/quote.hpp"
 #include "io/command_line.hpp"
 
 namespace fatc::io {
@@ -60,6 +64,86 @@ TEST(CommandLine, shouldSayWhichOptionAModeNeeds) {
   std::string error;
   EXPECT_FALSE(parse_options({"--plan", "--config", "c.json", "--from", "1"}, error));
   EXPECT_EQ(error, "--plan needs --to B (the tool M6 asks for)");
+}
+
+/// --teach safe --at `at`: the position read, or the line that refused it.
+std::string taught_at(const std::string& at) {
+  std::string error;
+  const auto teach = parse_options({"--teach", "safe", "--at", at, "--config", "c.json"}, error);
+  if (!teach) return error;
+  char read[96];
+  std::snprintf(read, sizeof read, "%.17g %.17g %.17g", teach->teach_at->x, teach->teach_at->y,
+                teach->teach_at->z);
+  return read;
+}
+
+TEST(CommandLine, shouldReadThePositionsAMachinistTypes) {
+  EXPECT_EQ(taught_at("120,80,-5"), "120 80 -5");
+  EXPECT_EQ(taught_at("+1.5,-.5,.25"), "1.5 -0.5 0.25");
+  EXPECT_EQ(taught_at("-.5,-1,-2"), "-0.5 -1 -2");
+  EXPECT_EQ(taught_at("12.,0,-0"), "12 0 -0");
+  EXPECT_EQ(taught_at("1e2,2.5E-1,-3e+1"), "100 0.25 -30");
+  EXPECT_EQ(taught_at(" 10 , 20\t, -80 "), "10 20 -80");
+  EXPECT_EQ(taught_at("0.1,0,0"), "0.10000000000000001 0 0");
+}
+
+TEST(CommandLine, shouldRefuseEveryOtherNumberNamingTheOptionAndTheAxis) {
+  const std::string form = " (expected X,Y,Z like 120.5,80,-5 in machine coordinates; got ";
+  EXPECT_EQ(taught_at("0x33,20,-80"), "--at: X \"0x33\" is not a decimal number" + form +
+                                          "\"0x33,20,-80\")");
+  EXPECT_EQ(taught_at("1,inf,0"), "--at: Y \"inf\" is not a decimal number" + form +
+                                      "\"1,inf,0\")");
+  EXPECT_EQ(taught_at("1,2,nan"), "--at: Z \"nan\" is not a decimal number" + form +
+                                      "\"1,2,nan\")");
+  EXPECT_EQ(taught_at("1,,3"), "--at: Y is empty" + form + "\"1,,3\")");
+  EXPECT_EQ(taught_at("1,2,"), "--at: Z is empty" + form + "\"1,2,\")");
+  EXPECT_EQ(taught_at("1,2"), "--at: expected X,Y,Z (three numbers with commas between), got "
+                              "\"1,2\"");
+  // Each of these is no decimal number a machinist means; X is the one named.
+  for (const std::string x : {"12mm", "1e999", "-1e400", "1e", "e5", ".", "+", "+-1", "1..2",
+                              "1.2.3", "0x1p3", "INF", "NaN", "infinity", "1 2", "\xe2\x88\x92" "5",
+                              "\xef\xbc\x91", "1_000", "١٢"}) {
+    EXPECT_EQ(taught_at(x + ",0,0").rfind("--at: X ", 0), 0u) << x << ": " << taught_at(x + ",0,0");
+  }
+  // A decimal comma (a German locale's 1,5) makes four fields, not 1.5.
+  EXPECT_EQ(taught_at("1,5,2,-80").rfind("--at: Z \"2,-80\" is not a decimal number", 0), 0u)
+      << taught_at("1,5,2,-80");
+}
+
+TEST(CommandLine, shouldReadNumbersTheSameWhateverTheLocale) {
+  // A program that calls setlocale (LinuxCNC's libraries may) must not read 1.5 as 1.
+  const char* before = std::setlocale(LC_NUMERIC, nullptr);
+  const std::string kept = before ? before : "C";
+  for (const char* locale : {"de_DE.UTF-8", "fr_FR.UTF-8", "C.UTF-8"}) {
+    if (std::setlocale(LC_NUMERIC, locale) == nullptr) continue;
+    EXPECT_EQ(taught_at("1.5,-2.25,3"), "1.5 -2.25 3") << locale;
+  }
+  std::setlocale(LC_NUMERIC, kept.c_str());
+}
+
+TEST(CommandLine, shouldTakeToolNumbersAsDigitsOnly) {
+  std::string error;
+  const auto plan = parse_options({"--plan", "--config", "c.json", "--from", "007", "--to", "0"},
+                                  error);
+  ASSERT_TRUE(plan) << error;
+  EXPECT_EQ(*plan->from_tool, 7);
+  EXPECT_EQ(*plan->to_tool, 0);
+  for (const std::string tool : {"+3", "-1", "3.0", "0x3", "3e0", "T3", " 3", "3 ", "inf", "nan",
+                                 "1234567890", "\xef\xbc\x93"}) {
+    EXPECT_FALSE(parse_options({"--plan", "--config", "c.json", "--from", "1", "--to", tool},
+                               error))
+        << tool;
+    EXPECT_EQ(error, "--to: expected a tool number, at most 9 digits and nothing else (0 for "
+                     "none), got " + quote(tool));
+  }
+  EXPECT_FALSE(parse_options({"--confirm", "--config", "c.json", "--spindle", "0x1"}, error));
+  EXPECT_EQ(error.rfind("--spindle: expected a tool number", 0), 0u) << error;
+  for (const std::string pocket : {"pocket:0x3", "pocket:+3", "pocket:3.0", "pocket:", "pocket:-1",
+                                   "pocket: 3", "pocket:1e1"}) {
+    EXPECT_FALSE(parse_options({"--teach", pocket, "--at", "1,2,3", "--config", "c.json"}, error))
+        << pocket;
+    EXPECT_EQ(error, "--teach: expected pocket:N, loading, safe or sensor, got " + quote(pocket));
+  }
 }
 
 }  // namespace

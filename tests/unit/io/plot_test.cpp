@@ -4,14 +4,17 @@
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include "cli_run.hpp"
+#include "core/config/quote.hpp"
 #include "core/plan/simulator.hpp"
 #include "temp_folder.hpp"
 #include "test_config.hpp"
@@ -161,6 +164,55 @@ TEST_F(PlotFiles, shouldRefuseADrawingLinkedElsewhere) {
                        "): not written, the link would become a file of its own; give the file it "
                        "points to\n");
   EXPECT_EQ(text(elsewhere), "someone else's");
+}
+
+/// Whether xmllint reads `path` as well-formed XML; what it said otherwise.
+std::string not_well_formed(const std::string& path) {
+  const std::string command = "xmllint --noout '" + path + "' 2>&1";
+  std::FILE* pipe = ::popen(command.c_str(), "r");
+  std::string said;
+  char buffer[512];
+  while (const std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) said.append(buffer, n);
+  const int status = ::pclose(pipe);
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? "" : said + " (xmllint)";
+}
+
+TEST(Plot, shouldEscapeWhatXmlForbidsInEveryTextItWrites) {
+  const Config config = valid_config();
+  // Markup, both quotes, C0 controls, DEL, U+FFFE and U+FFFF, a lone
+  // continuation byte, a cut sequence, an overlong '<', a UTF-16 surrogate.
+  const std::string nasty = std::string("a&b<c>d\"e'f\x01g\x1b[31mh\x7fi\xef\xbf\xbej\xef\xbf\xbfk") +
+                            "\x80l\xe2\x82m\xc0\xbcn\xed\xa0\x80o \xc3\xa9 \xe2\x86\x92 \xf0\x9f\x94\xa7";
+  const std::string svg = io::rack_svg(config, ToolState::fresh(config), nullptr, nasty);
+  EXPECT_NE(svg.find(">a&amp;b&lt;c&gt;d&quot;e&apos;f\\x01g\\x1b[31mh\\x7fi\\u{fffe}j\\u{ffff}k"
+                     "\\x80l\\xe2\\x82m\\xc0\\xbcn\\xed\\xa0\\x80o \xc3\xa9 \xe2\x86\x92 "
+                     "\xf0\x9f\x94\xa7</text>"),
+            std::string::npos)
+      << svg.substr(0, 1200);
+  const std::string path = ::testing::TempDir() + "fatc_nasty_title.svg";
+  std::ofstream(path) << svg;
+  EXPECT_EQ(not_well_formed(path), "");
+  std::remove(path.c_str());
+}
+
+TEST_F(PlotFiles, shouldWriteWellFormedXmlWhateverTheConfigsPathHolds) {
+  // Every byte a Linux file name may hold but '/' and NUL, a few at a time.
+  std::vector<std::string> names = {"a&b<c>d\"e'f",        "\x01\x02\t\n\r\x1b\x7f",
+                                    "\xef\xbf\xbe\xef\xbf\xbf", "\x80\xfe\xff\xc0\xbc",
+                                    "\xed\xa0\x80\xe2\x82",     "]]>&amp;<!--"};
+  for (int byte = 1; byte < 256; byte += 17) {
+    if (byte != '/') names.push_back(std::string("z") + static_cast<char>(byte));
+  }
+  for (const std::string& name : names) {
+    const std::string folder = folder_ + "/" + name;
+    std::filesystem::create_directories(folder);
+    const std::string config = folder + "/config.json";
+    std::ofstream(config) << test::kValidConfig;
+    const std::string svg = folder_ + "/rack.svg";
+    const auto r = test::run_cli({"--plot", svg, "--config", config, "--from", "1", "--to", "2"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(not_well_formed(svg), "") << escape(name);
+  }
 }
 
 }  // namespace

@@ -186,5 +186,26 @@ TEST(ChangeTime, shouldNeverEstimateAChangeBelowItsBound) {
   }
 }
 
+TEST(ChangeTime, shouldBeTheSameFromAPlanThatKeepsNoSavedStates) {
+  // The preflight plans each change without the rack's copy at every save.
+  const Config config = test::valid_config();
+  for (const auto& [from, to] : {std::pair{0, 3}, std::pair{2, 5}, std::pair{4, 0}}) {
+    const ToolState tools = with_in_spindle(config, from);
+    const Simulator full = plan_change(config, tools, to, -60.0);
+    const Simulator timed = plan_change_timed(config, tools, to, -60.0);
+    ASSERT_EQ(timed.records.size(), full.records.size());
+    EXPECT_EQ(timed.saves, full.saves);
+    for (std::size_t i = 0; i < full.records.size(); ++i) {
+      EXPECT_EQ(describe(timed.records[i]), describe(full.records[i])) << i;
+      if (full.records[i].kind == Record::Kind::save) {
+        EXPECT_EQ(timed.records[i].saved.pockets.size(), 0u);
+      }
+    }
+    const MachineTiming machine;
+    EXPECT_DOUBLE_EQ(change_time(timed, config.safe, machine).seconds(),
+                     change_time(full, config.safe, machine).seconds());
+  }
+}
+
 }  // namespace
 }  // namespace fatc

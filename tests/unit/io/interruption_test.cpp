@@ -1,0 +1,114 @@
+// An interrupted --lint (SIGINT, SIGTERM, SIGHUP) stops rs274, removes its
+// scratch folder with the copy of the program, and ends by that signal: the
+// real program, signalled while rs274 reads and while the copy is made.
+#include "io/interruption.hpp"
+
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "program_run.hpp"
+#include "temp_folder.hpp"
+
+namespace fatc {
+namespace {
+
+namespace fs = std::filesystem;
+using test::text_of;
+
+const std::string kConfig = FATC_SOURCE_DIR "/config/config.json";
+
+class Interrupted : public test::TempFolder {
+ protected:
+  void SetUp() override {
+    TempFolder::SetUp();
+    scratch_ = folder_ + "/tmp";
+    fs::create_directories(scratch_);
+  }
+
+  /// --lint of `program` with TMPDIR in the test's folder, signalled with
+  /// `signal` once `ready` is in its scratch folder; its wait status.
+  int lint_and_signal(const std::string& program, int signal, const std::string& ready) {
+    test::ProgramStart start;
+    start.args = {"--lint", program, "--config", kConfig, "--state", folder_ + "/none"};
+    start.env = {"TMPDIR=" + scratch_};
+    start.err = folder_ + "/err";
+    const pid_t lint = test::start_program(start);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+    while (!made(ready) && std::chrono::steady_clock::now() < deadline) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    }
+    EXPECT_TRUE(made(ready)) << "no " << ready << " in " << scratch_;
+    ::kill(lint, signal);
+    return test::wait_for(lint);
+  }
+
+  /// Whether a scratch folder holds `name`.
+  bool made(const std::string& name) const {
+    for (const auto& entry : fs::directory_iterator(scratch_)) {
+      if (fs::exists(entry.path() / name)) return true;
+    }
+    return false;
+  }
+
+  std::vector<std::string> left_behind() const {
+    std::vector<std::string> names;
+    for (const auto& entry : fs::recursive_directory_iterator(scratch_)) {
+      names.push_back(entry.path().string());
+    }
+    return names;
+  }
+
+  /// A program rs274 reads for its whole 15 s.
+  std::string endless() const {
+    const std::string path = folder_ + "/endless.ngc";
+    std::ofstream(path) << "T1 M6\no100 while [1]\nG0 X10\nG0 X20\no100 endwhile\nM2\n";
+    return path;
+  }
+
+  std::string scratch_;
+};
+
+TEST_F(Interrupted, shouldLeaveNoScratchFolderWhenStoppedWhileRs274Reads) {
+  for (const int signal : {SIGINT, SIGTERM, SIGHUP}) {
+    // machine.ini is the last file made before rs274 starts.
+    const int status = lint_and_signal(endless(), signal, "machine.ini");
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == signal)
+        << io::signal_name(signal) << ": status " << status;
+    EXPECT_EQ(left_behind(), std::vector<std::string>{}) << io::signal_name(signal);
+    EXPECT_EQ(text_of(folder_ + "/err"), std::string("stopped by ") + io::signal_name(signal) +
+                                             ": the program was not read to its end\n");
+  }
+}
+
+TEST_F(Interrupted, shouldLeaveNoScratchFolderWhenStoppedWhileTheProgramIsCopied) {
+  const std::string big = folder_ + "/big.ngc";
+  {
+    std::ofstream out(big);
+    for (int i = 0; i < 1500000; ++i) out << "G1 X" << i % 100 << " Y2 F100\n";
+    out << "M2\n";
+  }
+  for (const int signal : {SIGINT, SIGTERM, SIGHUP}) {
+    const int status = lint_and_signal(big, signal, "program.ngc");
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == signal)
+        << io::signal_name(signal) << ": status " << status;
+    EXPECT_EQ(left_behind(), std::vector<std::string>{}) << io::signal_name(signal);
+  }
+}
+
+TEST(Interruptible, shouldPutTheHandlersBackAndRaiseNothingWhenNoSignalCame) {
+  struct sigaction before, after;
+  ::sigaction(SIGTERM, nullptr, &before);
+  { const io::Interruptible quiet; }
+  ::sigaction(SIGTERM, nullptr, &after);
+  EXPECT_EQ(io::Interruptible::signal(), 0);
+  EXPECT_EQ(after.sa_handler, before.sa_handler);
+}
+
+}  // namespace
+}  // namespace fatc
