@@ -329,11 +329,11 @@ TEST_F(TeachCli, shouldExitTwoOnBadArgumentsAndUnreadableFiles) {
             "--teach: expected pocket:N, loading, safe or sensor, got \"\"");
   EXPECT_EQ(run({"--teach", "safe", "--config", config_}).err,
             "--teach needs --at X,Y,Z (the machine position, G53)");
-  for (const char* at : {"1,2", "1,2,3,4", "1,,3", " 1,2,3", "1,2,3 ", "x,2,3", ""}) {
+  // Blanks around a number are a machinist's ( 1,2,3); the rest is refused naming --at.
+  for (const char* at : {"1,2", "1,2,3,4", "1,,3", "x,2,3", ""}) {
     const CliRun r = run({"--teach", "safe", "--at", at, "--config", config_});
     EXPECT_EQ(r.code, 2) << at;
-    EXPECT_EQ(r.err.rfind("--at: expected X,Y,Z (three numbers, machine coordinates), got ", 0), 0u)
-        << r.err;
+    EXPECT_EQ(r.err.rfind("--at: ", 0), 0u) << r.err;
   }
   EXPECT_EQ(run({"--teach", "safe", "--at", "1,2,3"}).err, "--config FILE is required");
   EXPECT_EQ(run({"--check", "--config", config_, "--at", "1,2,3"}).err,
@@ -354,10 +354,10 @@ TEST_F(TeachCli, shouldExitTwoOnBadArgumentsAndUnreadableFiles) {
 }
 
 TEST_F(TeachCli, shouldRefuseNotANumberAndAConfigThatIsNotJson) {
+  // nan is no number a machinist types: refused where the command line is read.
   const CliRun nan = run({"--teach", "loading", "--at", "nan,150,-10", "--config", config_});
-  EXPECT_EQ(nan.code, 1);
-  EXPECT_EQ(nan.err,
-            config_ + ": teach loading at Xnan Y150 Z-10: not written: X is not a finite number\n");
+  EXPECT_EQ(nan.code, 2);
+  EXPECT_EQ(nan.err.rfind("--at: X \"nan\" is not a decimal number", 0), 0u) << nan.err;
   std::ofstream(config_) << "{\"units\": \"mm\",";
   const CliRun broken = run({"--teach", "loading", "--at", "20,150,-10", "--config", config_});
   EXPECT_EQ(broken.code, 1);
