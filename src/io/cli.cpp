@@ -20,6 +20,7 @@
 #include "core/plan/sequence_check.hpp"
 #include "core/plan/simulator.hpp"
 #include "core/program/preflight.hpp"
+#include "core/program/tool_table.hpp"
 #include "core/rack/geometry.hpp"
 #include "file_writer.hpp"
 #include "files.hpp"
@@ -55,10 +56,63 @@ std::string fault_of(const char* input, const std::string& path) {
 struct Loaded {
   std::optional<Config> config;
   std::optional<SoftLimits> limits;
+  /// LinuxCNC's tool table (--tool-table, else the INI's) in the config's
+  /// units: the lengths the sequences are checked with.
+  ToolLengths lengths;
+  std::optional<std::string> table_path;  ///< the table read, if any
+  /// Why the INI's tool table was not read (LinuxCNC starts without one).
+  std::optional<std::string> table_unread;
   int problems = 0;  ///< lines written to `err`
   /// What an input kept from being checked, "INI unreadable: soft limits not checked".
   std::vector<std::string> not_checked;
 };
+
+/// LinuxCNC's tool table as the keep-out reads it: --tool-table, else the
+/// INI's [EMCIO]TOOL_TABLE; each Z in `units` (the table is in the INI's).
+struct TableRead {
+  std::optional<std::string> path;  ///< none: no table named
+  std::map<int, double> lengths;
+  std::string error;  ///< why it could not be read, empty when it was
+};
+TableRead read_table(const Options& options, Units units) {
+  TableRead read;
+  std::string error;
+  const auto ini = options.ini_path ? IniFile::read(*options.ini_path, error) : std::nullopt;
+  read.path = options.tool_table_path;
+  if (!read.path && ini) {
+    if (const auto named = ini->get("EMCIO", "TOOL_TABLE")) {
+      read.path = beside(*options.ini_path, *named);
+    }
+  }
+  if (!read.path) return read;
+  const auto text = read_small_file(*read.path, read.error);
+  if (!text) return read;
+  const double per_mm = ini ? ini->linear_units().value_or(1.0) : 1.0;
+  const double scale = (units == Units::inch ? 25.4 : 1.0) * per_mm;
+  for (const auto& [tool, entry] : parse_tool_table(*text).tools) {
+    if (entry.z) read.lengths[tool] = *entry.z / scale;
+  }
+  return read;
+}
+
+/// The tool table's lengths into `loaded`. A --tool-table that cannot be
+/// read is a problem; the INI's is only said (LinuxCNC starts without it).
+void read_tool_lengths(const Options& options, Loaded& loaded, std::ostream& err) {
+  const Config& config = *loaded.config;
+  TableRead table = read_table(options, config.units);
+  if (!table.path) return;
+  if (table.error.empty()) {
+    loaded.lengths = carried_lengths(config, loaded.limits, std::move(table.lengths));
+    loaded.table_path = table.path;
+  } else if (!options.tool_table_path) {
+    loaded.table_unread = table.error + ": the tools' lengths not checked";
+  } else {
+    err << table.error << "\n";
+    ++loaded.problems;
+    loaded.not_checked.push_back(fault_of("tool table", *table.path) +
+                                 ": the tools' lengths not checked");
+  }
+}
 
 /// Reads the config and, if given, the INI; every problem one line on `err`.
 Loaded load(const Options& options, std::ostream& err) {
@@ -81,6 +135,7 @@ Loaded load(const Options& options, std::ostream& err) {
                                    ": soft limits not checked");
     }
   }
+  if (loaded.config) read_tool_lengths(options, loaded, err);
   return loaded;
 }
 
@@ -162,6 +217,42 @@ int partial_verdict(const Loaded& loaded, std::ostream& out) {
   return 1;
 }
 
+/// Which tools of the tool table the rack cannot carry across, and how
+/// long it counts those whose Z is no length. A tool too long for the pocket
+/// it starts in is a violation already; one too long for another pocket can
+/// still be loaded elsewhere or handed over as a manual tool.
+void report_carried(const Config& config, const Loaded& loaded, const SequencesChecked& checked,
+                    std::ostream& out) {
+  const ToolLengths& lengths = loaded.lengths;
+  out << "\ntools of " << shown_path(*loaded.table_path)
+      << " carried across the rack (the longest the config allows: "
+      << format_length(config, lengths.longest) << "):\n";
+  int fit = 0;
+  for (const auto& [tool, z] : lengths.table) {
+    const KeepoutLength counted = lengths.of(tool, {});
+    if (counted.source != LengthSource::table) {
+      out << "  " << keepout_length_words(config, lengths, tool, {}) << "\n";
+      continue;
+    }
+    std::vector<int> too_short;
+    const SequenceRoom* least = nullptr;
+    for (const auto& [pocket, room] : checked.room) {
+      if (counted.length <= room.length + 1e-9) continue;
+      too_short.push_back(pocket);
+      if (!least || room.length < least->length) least = &room;
+    }
+    if (!least) {
+      ++fit;
+      continue;
+    }
+    out << "  T" << tool << " (length " << format_length(config, counted.length)
+        << ") cannot be carried through " << pocket_list(too_short) << ": "
+        << describe(*least) << " leaves " << format_length(config, least->length)
+        << " below the nose; " << tip_remedy() << "\n";
+  }
+  out << "  " << fit << (fit == 1 ? " tool" : " tools") << " of the table fit every pocket\n";
+}
+
 int check(const Options& options, std::ostream& out, std::ostream& err) {
   Loaded loaded = load(options, err);
   int problems = loaded.problems + check_state(options, loaded, out, err);
@@ -208,10 +299,12 @@ int check(const Options& options, std::ostream& out, std::ostream& err) {
   }
   out << "\nchecking every sequence against the rack keep-out"
       << (loaded.limits ? " and the soft limits" : "") << ":\n";
-  const SequencesChecked checked = check_sequences(config, loaded.limits);
+  const SequencesChecked checked = check_sequences(config, loaded.limits, loaded.lengths);
   const int violations = report(checked.violations, out);
   out << checked.sequences << " sequences checked, " << violations << " violation"
       << (violations == 1 ? "" : "s") << "\n";
+  if (loaded.table_path) report_carried(config, loaded, checked, out);
+  if (loaded.table_unread) out << "\n" << *loaded.table_unread << "\n";
   return violations == 0 && problems == 0 ? 0 : 1;
 }
 
@@ -354,7 +447,9 @@ int plan(const Options& options, std::ostream& out, std::ostream& err) {
     std::snprintf(prefix, sizeof prefix, "%3d  ", ++number);
     out << prefix << describe(record) << "\n";
   }
-  const int violations = report(check_sequence("M6", config, sim, loaded.limits), out);
+  const int violations =
+      report(check_sequence("M6", config, sim, loaded.limits, {{}, 0, loaded.lengths, tools.lengths}),
+             out);
   const bool refused = refusal(sim).has_value();
   if (!refused) print_estimate(options, config, tools, to, sim, out);
   return refused || violations != 0 ? 1 : 0;
@@ -382,7 +477,15 @@ int teach_position(const Options& options, std::ostream& out, std::ostream& err)
       limits = read_limits(*options.ini_path, declared_units(*text), err);
       if (!limits) return 2;
     }
-    const TeachResult taught = teach(*text, *options.teach_target, *options.teach_at, limits);
+    TableRead table = read_table(options, declared_units(*text));
+    if (!table.error.empty() && options.tool_table_path) {
+      err << table.error << "\n";
+      return 2;
+    }
+    ToolLengths lengths;
+    lengths.table = std::move(table.lengths);
+    const TeachResult taught =
+        teach(*text, *options.teach_target, *options.teach_at, limits, lengths);
     if (!taught.text) {
       err << shown_path(options.config_path) << ": " << taught.error << "\n";
       return 1;

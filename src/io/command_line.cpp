@@ -32,7 +32,8 @@ const std::vector<OptionDeclaration> kOptions = {
   {"--spindle", "N", "--confirm: the tool the spindle holds, as found (0: empty)",
    "0: the spindle is empty"},
   {"--pocket", "yes|no", "--confirm: whether the cut-off pocket holds its tool", ""},
-  {"--tool-table", "FILE", "--lint: LinuxCNC's tool table (else the INI's [EMCIO]TOOL_TABLE)",
+  {"--tool-table", "FILE",
+   "--lint, --check, --plan, --teach: LinuxCNC's tool table (else the INI's [EMCIO]TOOL_TABLE)",
    ""},
   {"--subroutine-path", "DIR:DIR",
    "--lint: folders searched for subroutines before the INI's SUBROUTINE_PATH", ""},
@@ -48,19 +49,22 @@ const std::vector<ModeDeclaration> kModes = {
    "operator's pins. A bad config, a corrupt state file or no LinuxCNC to talk to ends it at "
    "once with one line per problem and exit status 1, before hal_ready, so loadusr -W never "
    "hangs"},
-  {Mode::check, "--check", "", {"--config"}, {"--ini", "--state"},
+  {Mode::check, "--check", "", {"--config"}, {"--ini", "--state", "--tool-table"},
    "check config, state, INI and rack geometry",
    "check the config, the state file (--state or its default) and, with --ini, the machine INI "
    "(read by LinuxCNC's own reader: its soft limits and, when it has the section, "
    "[FIXED_ATC_PROBE]: every key there, the motion pin numbers two digits, three different "
    "analog outputs, STEP_TIMEOUT longer than the longest wait between steps the plans report), "
    "print the pockets and waypoints and check every sequence against the rack keep-out and the "
-   "soft limits; one line for each problem in each file. When one input cannot be read or is "
+   "soft limits, each tool carried with its length in LinuxCNC's tool table (--tool-table, "
+   "else [EMCIO]TOOL_TABLE; a Z of 0 or below counts as the longest tool the config allows), "
+   "and say which tools of the table the rack cannot carry across its holders; one line for "
+   "each problem in each file. When one input cannot be read or is "
    "not valid, its error line is followed only by how many sequences were still checked "
    "against the rack keep-out and, last, what was not checked (\"INI unreadable: soft limits "
    "not checked\"). Config, state and INI must be regular files of at most 1 MiB. Exit 0 "
    "valid, 1 invalid, 2 usage"},
-  {Mode::plan, "--plan", "", {"--config", "--from", "--to"}, {"--ini", "--state"},
+  {Mode::plan, "--plan", "", {"--config", "--from", "--to"}, {"--ini", "--state", "--tool-table"},
    "print the steps of M6 TB with TA in the spindle",
    "print the steps of M6 TB with TA in the spindle (the tools where --state has them, else "
    "the first-start map), then its estimated time on the config's path and on the other one "
@@ -94,7 +98,8 @@ const std::vector<ModeDeclaration> kModes = {
    "problem); it is given at most 64 MiB of G-code. Exit 0 clean, 1 problems found, 2 usage, "
    "an input it cannot read "
    "(program, config, state, tool table, INI) or rs274 not installed"},
-  {Mode::teach, "--teach", "pocket:N|loading|safe|sensor", {"--config", "--at"}, {"--ini"},
+  {Mode::teach, "--teach", "pocket:N|loading|safe|sensor", {"--config", "--at"},
+   {"--ini", "--tool-table"},
    "write a jogged-to machine position (G53) into config.json",
    "write a machine position (G53, in config.json's units), where the spindle was jogged to, "
    "into config.json: pocket:N the x, y and z of pockets.\"N\" (the pocket must be there "

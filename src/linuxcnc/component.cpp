@@ -26,8 +26,10 @@ bool Component::active() const { return link_.active() || deadline_ || changer_-
 void Component::poll(Clock::time_point now, std::optional<bool> interpreter_idle) {
   now_ = now;
   read_machine(interpreter_idle);
-  // Before any request: each is rehearsed with the tools' lengths.
+  // Before any request: each is rehearsed with the tools' lengths, from
+  // where the spindle stands.
   lengths_.poll(*changer_, nml_, *this);
+  changer_->machine_at(position());
   read_executor(interpreter_idle);
   read_operator();
   if (deadline_ && now >= *deadline_) {

@@ -27,7 +27,7 @@ void ConfigTeacher::teach(Changer& changer, const TeachTarget& target, bool linu
     ports_.tell(MessageKind::error, refused + error);
     return;
   }
-  const TeachResult taught = fatc::teach(*text, target, *at, limits_);
+  const TeachResult taught = fatc::teach(*text, target, *at, limits_, changer.keepout_lengths());
   if (!taught.text) {
     ports_.tell(MessageKind::error, taught.error);
     return;

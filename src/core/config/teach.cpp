@@ -168,7 +168,7 @@ std::string format_config_json(const OrderedJson& root) {
 }
 
 TeachResult teach(const std::string& config_text, const TeachTarget& target, const Point& at,
-                  const std::optional<SoftLimits>& limits) {
+                  const std::optional<SoftLimits>& limits, const ToolLengths& lengths) {
   const bool sensor = target.kind == TeachTarget::Kind::sensor;
   const char* const axes[] = {"x", "y", "z"};
   const double values[] = {at.x, at.y, at.z};
@@ -253,7 +253,7 @@ TeachResult teach(const std::string& config_text, const TeachTarget& target, con
   std::string text = format_config_json(root);
   const ConfigResult parsed = parse_config(text);
   if (!parsed.config) return refuse(parsed.errors.front());
-  const SequencesChecked checked = check_sequences(*parsed.config, limits);
+  const SequencesChecked checked = check_sequences(*parsed.config, limits, lengths);
   if (!checked.violations.empty()) return refuse(describe(checked.violations.front()));
   result.text = std::move(text);
   return result;

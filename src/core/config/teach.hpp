@@ -41,8 +41,9 @@ struct TeachResult {
 /// (given `limits`) within the soft limits, as `--check` demands; otherwise
 /// `error` names the target, the position and the first problem. A pocket
 /// that `pockets` does not have is refused: teaching does not add pockets.
+/// The tools the sequences carry count as long as `lengths` says.
 TeachResult teach(const std::string& config_text, const TeachTarget& target, const Point& at,
-                  const std::optional<SoftLimits>& limits);
+                  const std::optional<SoftLimits>& limits, const ToolLengths& lengths = {});
 
 /// The units the config text declares (`units`); mm when it says nothing or
 /// cannot be read. The machine's soft limits are read in these.

@@ -34,7 +34,11 @@ void Changer::keepout_lengths(ToolLengths lengths) {
   engine_->context.keepout_lengths = std::move(lengths);
 }
 
+const ToolLengths& Changer::keepout_lengths() const { return engine_->context.keepout_lengths; }
+
 void Changer::rehearse_with(const Rehearsal* rehearsal) { engine_->context.rehearsal = rehearsal; }
+
+void Changer::machine_at(std::optional<Point> at) { engine_->context.machine_position = at; }
 
 void Changer::task_availability(std::optional<std::string> why_busy) {
   engine_->context.task_busy = std::move(why_busy);

@@ -41,10 +41,13 @@ class Changer {
   /// The tool lengths every move is checked with (LinuxCNC's tool table,
   /// the longest the config allows).
   void keepout_lengths(ToolLengths lengths);
+  const ToolLengths& keepout_lengths() const;
   /// Every request the changer could take is first run on a copy by
   /// `rehearsal` (which must outlive the changer), and refused where a move
   /// of its sequence would break the keep-out or the soft limits.
   void rehearse_with(const Rehearsal* rehearsal);
+  /// Where LinuxCNC says the spindle stands (none: not known); a rehearsal starts there.
+  void machine_at(std::optional<Point> at);
   /// Whether task could run the executor over MDI now; `why_busy` says why not.
   void task_availability(std::optional<std::string> why_busy);
   /// The spindle started (false) or stopped (true) turning.

@@ -53,6 +53,10 @@ class Context {
   /// Runs a request on a copy before it is taken, where set: its whole
   /// sequence is checked before anything moves.
   const Rehearsal* rehearsal = nullptr;
+  /// Where LinuxCNC says the spindle stands, when the adapter knows: a
+  /// rehearsal starts there (a sequence of its own starts from nowhere
+  /// known, begin_sequence, and is checked move by move as it goes).
+  std::optional<Point> machine_position;
   /// Raises UnsafeStep in the machine (queued behind the current event).
   std::function<void(const std::string&)> refuse_step;
   /// Raises CheckFailed in the machine (queued behind the current event).

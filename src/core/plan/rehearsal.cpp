@@ -7,9 +7,11 @@ namespace fatc {
 
 std::optional<std::string> DryRun::why_not(const Context& ctx,
                                            const std::function<void(Changer&)>& request) const {
-  const Simulator planned = plan_from(ctx.config, ctx.tools, ctx.position, ctx.known_axes, request);
+  const Point at = ctx.machine_position.value_or(ctx.position);
+  const unsigned known = ctx.machine_position ? axis_xyz : ctx.known_axes;
+  const Simulator planned = plan_from(ctx.config, ctx.tools, at, known, request);
   const std::vector<Step> steps = planned.steps();
-  StepsFrom from{ctx.position, ctx.known_axes, ctx.keepout_lengths, ctx.tools.lengths};
+  StepsFrom from{at, known, ctx.keepout_lengths, ctx.tools.lengths};
   const auto violations = check_steps(ctx.config, steps, ctx.limits, from);
   if (violations.empty()) return std::nullopt;
   const Violation& first = violations.front();

@@ -19,11 +19,9 @@ std::string describe(const SequenceRoom& room) {
 std::vector<SequenceViolation> check_sequence(const std::string& sequence, const Config& config,
                                               const Simulator& planned,
                                               const std::optional<SoftLimits>& limits,
-                                              const ToolLengths& lengths) {
+                                              const StepsFrom& from) {
   const auto steps = planned.steps();
   std::vector<SequenceViolation> found;
-  StepsFrom from;
-  from.lengths = lengths;
   for (auto& v : check_steps(config, steps, limits, from)) {
     found.push_back({sequence, v.step, steps[v.step], std::move(v.what)});
   }
@@ -33,13 +31,14 @@ std::vector<SequenceViolation> check_sequence(const std::string& sequence, const
 SequencesChecked check_sequences(const Config& config, const std::optional<SoftLimits>& limits,
                                  const ToolLengths& lengths) {
   SequencesChecked checked;
+  const StepsFrom from_safe{config.safe, axis_xyz, lengths, {}};
   auto add = [&](int number, const std::string& sequence, const Simulator& planned) {
-    auto found = check_sequence(sequence, config, planned, limits, lengths);
+    auto found = check_sequence(sequence, config, planned, limits, from_safe);
     checked.violations.insert(checked.violations.end(), std::make_move_iterator(found.begin()),
                               std::make_move_iterator(found.end()));
     ++checked.sequences;
     const auto steps = planned.steps();
-    const StepRoom least = least_tip_room(config, steps);
+    const StepRoom least = least_tip_room(config, steps, config.safe);
     if (least.room.pocket == 0) return;
     const auto known = checked.room.find(number);
     if (known == checked.room.end() || least.room.length < known->second.length) {
@@ -64,16 +63,18 @@ SequencesChecked check_sequences(const Config& config, const std::optional<SoftL
     free.pockets[number] = {};
     const std::string t = "T" + std::to_string(tool);
     const std::string at = " (pocket " + std::to_string(number) + ")";
-    const double z = config.probe_limit.z;
-    add(number, "M6 " + t + " from empty" + at, plan_change(config, full, tool, z));
-    add(number, "M6 T0 from " + t + at, plan_change(config, in_spindle, 0, z));
+    auto from_safe = [&](const ToolState& tools, const std::function<void(Changer&)>& request) {
+      return plan_from(config, tools, config.safe, axis_xyz, request);
+    };
+    add(number, "M6 " + t + " from empty" + at,
+        from_safe(full, [tool](Changer& c) { c.tool_change(tool); }));
+    add(number, "M6 T0 from " + t + at, from_safe(in_spindle, [](Changer& c) { c.tool_change(0); }));
     add(number, "load " + t + " into pocket " + std::to_string(number),
-        plan_load(config, free, tool, number, z));
-    add(number, "unload " + t + at, plan_unload(config, full, tool));
-    add(number, "measure " + t + at,
-        plan_from(config, full, {}, 0, [tool](Changer& c) { c.measure_all({tool}); }));
+        from_safe(free, [tool, number](Changer& c) { c.load(tool, number); }));
+    add(number, "unload " + t + at, from_safe(full, [tool](Changer& c) { c.unload(tool); }));
+    add(number, "measure " + t + at, from_safe(full, [tool](Changer& c) { c.measure_all({tool}); }));
     add(number, "verify of pocket " + std::to_string(number) + " with " + t,
-        plan_from(config, in_spindle, {}, 0, [number](Changer& c) { c.verify(number); }));
+        from_safe(in_spindle, [number](Changer& c) { c.verify(number); }));
   }
   return checked;
 }

@@ -24,12 +24,12 @@ struct SequenceViolation {
 /// "M6 T3 from empty, step 5 (rapid to side of pocket 3): passes through the rack at pocket 4".
 std::string describe(const SequenceViolation& violation);
 
-/// The violations of one planned sequence, named `sequence`, its moves
-/// checked with the lengths of the tools they carry.
+/// The violations of one planned sequence, named `sequence`, from where it
+/// starts and with the lengths of the tools its moves carry (`from`).
 std::vector<SequenceViolation> check_sequence(const std::string& sequence, const Config& config,
                                               const Simulator& planned,
                                               const std::optional<SoftLimits>& limits,
-                                              const ToolLengths& lengths = {});
+                                              const StepsFrom& from = {});
 
 /// Where a pocket's sequences leave the least room below the nose for the
 /// tool they carry (tip_room): the longest tool they can carry.
@@ -53,7 +53,8 @@ struct SequencesChecked {
 };
 
 /// Plans every sequence the changer can run through each pocket (M6 to it
-/// with an empty spindle, M6 T0 from it, load, unload, measure, verify) and
+/// with an empty spindle, M6 T0 from it, load, unload, measure, verify),
+/// each from `safe`, where the sequence before left the spindle, and
 /// checks each move against the keep-out and the soft limits, each tool
 /// carried with its length in `lengths` (none given: 0): what `--check`
 /// reports and what a taught position must pass.

@@ -134,9 +134,9 @@ std::vector<Violation> check_steps(const Config& config, const std::vector<Step>
   return violations;
 }
 
-StepRoom least_tip_room(const Config& config, const std::vector<Step>& steps) {
+StepRoom least_tip_room(const Config& config, const std::vector<Step>& steps, const Point& at) {
   StepRoom least{{std::numeric_limits<double>::infinity(), 0}, 0};
-  walk_moves(steps, Point{}, 0,
+  walk_moves(steps, at, axis_xyz,
              [&](std::size_t i, const Point& position, unsigned known, const Step& step) {
                if (step.held == 0 || known != axis_xyz) return;
                const TipRoom room = tip_room(config, position, step);

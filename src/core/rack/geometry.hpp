@@ -85,11 +85,12 @@ std::vector<Violation> check_steps(const Config& config, const std::vector<Step>
                                    const StepsFrom& from = {});
 
 /// The least tip room (tip_room) of the moves of `steps` that carry a tool,
-/// and the step it is least at: the longest tool those moves can carry.
+/// starting at `at`, and the step it is least at: the longest tool those
+/// moves can carry.
 struct StepRoom {
   TipRoom room;
   std::size_t step = 0;
 };
-StepRoom least_tip_room(const Config& config, const std::vector<Step>& steps);
+StepRoom least_tip_room(const Config& config, const std::vector<Step>& steps, const Point& at);
 
 }  // namespace fatc

@@ -481,8 +481,7 @@ TEST_F(Lint, shouldExitTwoOnUsageMistakes) {
   EXPECT_EQ(run({"--lint", "a.ngc"}).err, "--config FILE is required");
   EXPECT_EQ(run({"--lint", "a.ngc", "--config", kConfig, "--from", "1"}).err,
             "--from is not used by --lint");
-  EXPECT_EQ(run({"--check", "--config", kConfig, "--tool-table", "t"}).err,
-            "--tool-table is not used by --check");
+  EXPECT_EQ(run({"--dot", "--tool-table", "t"}).err, "--tool-table is not used by --dot");
   EXPECT_EQ(run({"--lint", "a.ngc", "--lint", "b.ngc"}).err, "--lint given twice");
   EXPECT_EQ(run({"--lint", "", "--config", kConfig}).err,
             "--lint: expected a file path, got nothing");
