@@ -27,7 +27,7 @@ PINS = ["fixed_atc_probe.chuck", "fixed_atc_probe.waiting-for-operator", "fixed_
         "fixed_atc_probe.rack-cover-opened", "fixed_atc_probe.rack-cover-closed",
         "fixed_atc_probe.air-blast", "fixed_atc_probe.chuck-held", "motion.feed-inhibit",
         "spindle.0.inhibit", "fixed_atc_probe.rack-keepout", "fatc-rack-guard.tripped", "fatc-rack-guard.trips",
-        "motion.jog-is-active", "fixed_atc_probe.zero-speed",
+        "motion.jog-is-active", "fixed_atc_probe.zero-speed", "fixed_atc_probe.rack-keepout-tool-length",
         "motion.digital-out-02"]  # the benchmark programs' mark between two changes
 COMPONENT = "fixed_atc_probe"
 
