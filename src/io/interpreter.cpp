@@ -474,7 +474,6 @@ std::optional<program::InterpreterRun> run_interpreter(const InterpreterInput& i
   given.numbered_path = program_copy;
   given.stub_folder = stub_folder;
   given.input_lines = numberer.input_lines();
-  given.call_lines = numberer.call_lines();
   given.lines = numberer.lines();
   program::InterpreterOutput output(std::move(given), table.tool_of_row);
   output.listen(input.listener);

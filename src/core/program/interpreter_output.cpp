@@ -104,12 +104,10 @@ void InterpreterOutput::canonical_call(std::string_view line) {
   }
   while (at < line.size() && line[at] == ' ') ++at;
   const std::string_view call = line.substr(at);
-  if (listener_ && numbered) {
-    listener_->call(line_, true, call);
-  } else if (listener_) {
-    if (caller_.first != line_) caller_ = {line_, program_.call_lines.next_after(line_)};
-    listener_->call(caller_.second > 0 ? caller_.second : line_, false, call);
+  if (numbered && starts_with(call, "COMMENT(\"") && call.substr(9, kRunsSubroutine.size()) == kRunsSubroutine) {
+    return;
   }
+  if (listener_) listener_->call(line_, numbered, call);
   if (const auto tool = argument_of(call, "SELECT_TOOL")) {
     any_selected_ = true;
     selected_ = static_cast<int>(*tool);

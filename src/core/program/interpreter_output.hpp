@@ -26,7 +26,6 @@ struct ProgramGiven {
   /// find (LineNumberer::undefined_calls); empty when there is none.
   std::string stub_folder;
   LineSet input_lines;  ///< LineNumberer's
-  LineSet call_lines;   ///< LineNumberer's
   int lines = 0;        ///< LineNumberer's
 };
 
@@ -37,9 +36,8 @@ class CallListener {
   virtual ~CallListener() = default;
   /// A call without its line number and count (`STRAIGHT_TRAVERSE(1.0000, ...)`),
   /// on `line`: its own, or, for a call of a subroutine file (`numbered`
-  /// false), the program's line that called it: the first line calling a
-  /// subroutine after the last line a call named (that line when none does;
-  /// a remapped code's own moves are shown so too, on the next call's line).
+  /// false), the program's line that ran it: the last line a call named
+  /// (LineNumberer's kRunsSubroutine names the line before its subroutine runs).
   virtual void call(int line, bool numbered, std::string_view call) = 0;
   /// An M6 or M61 as InterpreterOutput reads it, kept or not.
   virtual void tool_use(const ToolUse& use) = 0;
@@ -82,8 +80,6 @@ class InterpreterOutput {
   std::vector<int> tool_of_row_;
   InterpreterRun run_;
   int line_ = 0;                   ///< of the last call that named one
-  /// The line that called the subroutine file whose calls come now, for line_.
-  std::pair<int, int> caller_{-1, 0};
   std::optional<int> selected_;    ///< the last T, nullopt when it is not known
   int selected_line_ = 0;          ///< its line, 0 in a subroutine file
   bool any_selected_ = false;

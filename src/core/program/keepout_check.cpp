@@ -58,6 +58,20 @@ std::string machine_words(const Config& config, const Point& at) {
   return words;
 }
 
+/// The length a G10 line wrote, in the program's units (`program_mm` mm
+/// each), from the inches rs274 prints it in, to 4 decimals: the shortest
+/// decimal that prints so. A length written to 0.01 mm comes back as written
+/// (80, not 79.9998); beyond, within the 0.00127 mm rs274 leaves.
+double written_length(double printed_inches, double program_mm) {
+  const double length = printed_inches * 25.4 / program_mm;
+  const double half_printed_step = 0.00005 * 25.4 / program_mm;
+  for (double scale = 1; scale <= 1e4; scale *= 10) {
+    const double shortest = std::round(length * scale) / scale;
+    if (std::fabs(shortest - length) <= half_printed_step) return shortest;
+  }
+  return length;
+}
+
 bool boxes_meet(const Box& a, const Box& b) {
   return a.low.x < b.high.x && b.low.x < a.high.x && a.low.y < b.high.y && b.low.y < a.high.y &&
          a.low.z < b.high.z && b.low.z < a.high.z;
@@ -105,19 +119,20 @@ void KeepoutCheck::call(int line, bool numbered, std::string_view call) {
     const auto args = call_numbers(call);
     if (!args.empty()) rs274_.xy_rotation_degrees = args[0];
   } else if (starts_with(call, "SET_TOOL_TABLE_ENTRY(")) {
-    // G10 L1, L10, L11: (row, tool, X Y Z A B C U V W, ...), the lengths in
-    // inches whatever the units, as rs274 reads its table.
+    // G10 L1, L10, L11: (row, tool, X Y Z A B C U V W, ...).
     const auto args = call_numbers(call);
-    const double config_mm = in_.config->units == Units::inch ? 25.4 : 1.0;
     if (args.size() >= 5 && args[1] > 0 && std::isfinite(args[4])) {
-      set_lengths_[static_cast<int>(args[1])] = args[4] * 25.4 / config_mm;
+      const double config_mm = in_.config->units == Units::inch ? 25.4 : 1.0;
+      const double program_mm = rs274_.config_units_per_program_unit * config_mm;
+      set_lengths_[static_cast<int>(args[1])] =
+          written_length(args[4], program_mm) * program_mm / config_mm;
     }
   } else if (starts_with(call, "START_SPINDLE_")) {
     turning_ = true;
   } else if (starts_with(call, "STOP_SPINDLE_TURNING(")) {
     turning_ = false;
   } else if (starts_with(call, kReleaseMarker)) {
-    chuck_release(line, numbered);
+    chuck_release(line);
   } else {
     // Offsets, in the program's units when they are set (LinuxCNC keeps them in its own).
     const double k = rs274_.config_units_per_program_unit;
@@ -387,7 +402,7 @@ void KeepoutCheck::change(const program::ToolUse& use) {
   spindle_ = use.tool;
 }
 
-void KeepoutCheck::chuck_release(int line, bool numbered) {
+void KeepoutCheck::chuck_release(int line) {
   settle();
   const Config& config = *in_.config;
   std::string why;
@@ -405,9 +420,8 @@ void KeepoutCheck::chuck_release(int line, bool numbered) {
     }
   }
   if (why.empty()) return;
-  problems_.push_back(program::finding(in_.program, line,
-                                       "the chuck release would be refused: " + why +
-                                           (numbered ? "" : " (in a subroutine this line calls)")));
+  problems_.push_back(
+      program::finding(in_.program, line, "the chuck release would be refused: " + why));
 }
 
 void KeepoutCheck::settle() {

@@ -54,9 +54,10 @@ class KeepoutCheck : public program::CallListener {
   void probe(int line, bool numbered, const Point& program_to);
   void rigid_tap(int line, bool numbered, const Point& program_to);
   void change(const program::ToolUse& use);
-  /// A chuck release (fixed_atc_probe_chuck_release): refused while the
-  /// spindle turns, or with a tool in it away from loading.
-  void chuck_release(int line, bool numbered);
+  /// A chuck release (fixed_atc_probe_chuck_release) run from `line`, by
+  /// itself or through a subroutine: refused while the spindle turns, or
+  /// with a tool in it away from loading.
+  void chuck_release(int line);
   /// Puts the nose where the last change ends, once a move needs it.
   void settle();
   /// Checks the nose's straight way `from` → `to`; false once the line is named.

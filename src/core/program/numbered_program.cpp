@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
 #include <iterator>
 
 namespace fatc::program {
@@ -56,6 +57,36 @@ bool file_name(std::string_view name) {
   });
 }
 
+/// Whether an M-code is one LinuxCNC's interpreter runs itself (M6 and M61
+/// are shown on their T word's line whatever runs them).
+bool built_in_m_code(long code) {
+  return (code >= 0 && code <= 9) || code == 19 || code == 30 || (code >= 48 && code <= 53) ||
+         (code >= 60 && code <= 73) || code == 98 || code == 99;
+}
+
+/// Whether packed words hold an M word an INI may remap to a subroutine
+/// (`m310`, `m[#1]`; not `m3`, nor `#<_m310>`).
+bool holds_remappable_m_word(std::string_view words) {
+  int depth = 0;  // inside a parameter's name
+  for (std::size_t at = 0; at + 1 < words.size(); ++at) {
+    if (words[at] == '<') ++depth;
+    if (words[at] == '>' && depth > 0) --depth;
+    if (depth > 0 || words[at] != 'm' ||
+        (at > 0 && std::isalpha(static_cast<unsigned char>(words[at - 1])))) {
+      continue;
+    }
+    const char next = words[at + 1];
+    if (next == '[' || next == '#') return true;  // known only when it runs
+    if (!std::isdigit(static_cast<unsigned char>(next))) continue;
+    std::size_t end = at + 1;
+    while (end < words.size() && std::isdigit(static_cast<unsigned char>(words[end]))) ++end;
+    if (!built_in_m_code(std::strtol(std::string(words.substr(at + 1, end - at - 1)).c_str(), nullptr, 10))) {
+      return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace
 
 void LineSet::insert(int line) {
@@ -68,13 +99,6 @@ void LineSet::insert(int line) {
 bool LineSet::contains(int line) const {
   return line >= 0 && static_cast<std::size_t>(line) < bits_.size() &&
          bits_[static_cast<std::size_t>(line)];
-}
-
-int LineSet::next_after(int line) const {
-  for (std::size_t at = static_cast<std::size_t>(std::max(line, -1) + 1); at < bits_.size(); ++at) {
-    if (bits_[at]) return static_cast<int>(at);
-  }
-  return 0;
 }
 
 void LineNumberer::add(std::string_view piece) {
@@ -134,10 +158,16 @@ void LineNumberer::line_of_code(std::string_view line) {
     text_.append(line);
     return;
   }
-  note_subroutine(line);
   const std::size_t size_before = text_.size();
+  if (note_subroutine(line)) {
+    // Skipped with the line under block delete.
+    const auto [word, end] = own_line_number(line);
+    if (line.substr(0, word).find('/') != std::string_view::npos) text_ += '/';
+    text_ += "N" + std::to_string(kFirstLineNumber + lines_) + " (" + std::string(kRunsSubroutine) + ")\n";
+  }
+  const std::size_t line_start = text_.size();
   append_numbered(line, lines_);
-  if (text_.size() - size_before > kMaxLineLength) {
+  if (text_.size() - line_start > kMaxLineLength) {
     // Left unnumbered, and without an N word of its own, which could name another line.
     text_.resize(size_before);
     const auto [word, end] = own_line_number(line);
@@ -176,7 +206,7 @@ void LineNumberer::append_numbered(std::string_view line, int number) {
   text_.append(line.substr(end));
 }
 
-void LineNumberer::note_subroutine(std::string_view line) {
+bool LineNumberer::note_subroutine(std::string_view line) {
   const std::string words = packed(line);
   std::size_t at = words.rfind('/', 0) == 0 ? 1 : 0;
   if (at < words.size() && words[at] == 'n') {
@@ -185,12 +215,12 @@ void LineNumberer::note_subroutine(std::string_view line) {
            (words[at] == '.' || std::isdigit(static_cast<unsigned char>(words[at]))))
       ++at;
   }
-  if (at >= words.size() || words[at] != 'o') return;
+  if (at >= words.size() || words[at] != 'o') return holds_remappable_m_word(words);
   ++at;
   std::string name;
   if (at < words.size() && words[at] == '<') {
     const std::size_t close = words.find('>', at);
-    if (close == std::string::npos) return;
+    if (close == std::string::npos) return false;
     name = words.substr(at + 1, close - at - 1);
     at = close + 1;
   } else {
@@ -198,13 +228,14 @@ void LineNumberer::note_subroutine(std::string_view line) {
     while (at < words.size() && std::isdigit(static_cast<unsigned char>(words[at]))) ++at;
     name = words.substr(start, at - start);
   }
-  if (!file_name(name)) return;
   const std::string_view rest = std::string_view(words).substr(at);
-  if (rest.rfind("call", 0) == 0) call_lines_.insert(lines_);
-  std::set<std::string>* names = rest.rfind("call", 0) == 0  ? &called_
+  const bool calls = rest.rfind("call", 0) == 0;
+  if (!file_name(name)) return calls;
+  std::set<std::string>* names = calls                       ? &called_
                                  : rest.rfind("sub", 0) == 0 ? &defined_
                                                              : nullptr;
   if (names != nullptr && names->size() < kMaxSubroutineNames) names->insert(std::move(name));
+  return calls;
 }
 
 void LineNumberer::finish(bool cut) {

@@ -24,14 +24,18 @@ constexpr int kMaxLines = 1000000000;
 /// calls beyond are left to rs274's own search.
 constexpr std::size_t kMaxSubroutineNames = 10000;
 
+/// The comment LineNumberer puts on a line of its own, numbered as the line
+/// after it, before a line that may run a subroutine (an o-call, or an M-code
+/// an INI may remap, M310, M101): its subroutine's calls, which rs274 prints without a
+/// number, come after it and so are shown on its line.
+constexpr std::string_view kRunsSubroutine = "fixed_atc_probe: this line runs a subroutine";
+
 /// A set of line numbers, one bit a line up to the highest: bounded by the
 /// program's lines whatever the program.
 class LineSet {
  public:
   void insert(int line);
   bool contains(int line) const;
-  /// The first line of the set after `line`; 0 when there is none.
-  int next_after(int line) const;
 
  private:
   std::vector<bool> bits_;
@@ -41,7 +45,8 @@ class LineSet {
 /// file is read (neither the program nor its numbered copy is ever whole in
 /// memory): each line that holds code starts with the N word kFirstLineNumber
 /// + its line number, so that the canonical calls and the errors rs274 prints
-/// name their line (it prints the N word of the line, not its number). An N
+/// name their line (it prints the N word of the line, not its number), and a
+/// line that may run a subroutine has kRunsSubroutine before it. An N
 /// word the line had is replaced; N words change nothing else in LinuxCNC. An
 /// M2 on a line after the last ends a program that has no end of its own
 /// (rs274 -n 0 would repeat its error for ever, and a stopped rs274 loses what
@@ -64,8 +69,6 @@ class LineNumberer {
   /// Lines that read #5399, where M66 puts the input it waited for: known
   /// only on the running machine (rs274 reads 0).
   const LineSet& input_lines() const { return input_lines_; }
-  /// Lines that call a subroutine (`o<name> call`, `o100 call`).
-  const LineSet& call_lines() const { return call_lines_; }
   int lines() const { return lines_; }
   /// Bytes of the whole lines read (what the interpreter is given of a cut file).
   std::uint64_t bytes() const { return whole_bytes_; }
@@ -84,7 +87,8 @@ class LineNumberer {
   static std::pair<std::size_t, std::size_t> own_line_number(std::string_view line);
   /// The line with `number` as its N word in place of its own.
   void append_numbered(std::string_view line, int number);
-  void note_subroutine(std::string_view line);
+  /// Notes the subroutine the line calls or defines; whether it may run one.
+  bool note_subroutine(std::string_view line);
 
   std::string text_;
   std::string line_;        ///< the line under way while it may still be numbered
@@ -95,7 +99,6 @@ class LineNumberer {
   bool ended_ = false;  ///< a NUL byte, kMaxLines or finish(): nothing more is taken
   std::optional<LineNote> nul_;
   LineSet input_lines_;
-  LineSet call_lines_;
   std::set<std::string> called_;
   std::set<std::string> defined_;
 };

@@ -343,6 +343,36 @@ TEST(LineNumberer, shouldListTheSubroutinesTheProgramCallsAndNeverDefines) {
             (std::vector<std::string>{"100", "nosuch", "two"}));
 }
 
+TEST(LineNumberer, shouldNoteBeforeALineThatMayRunASubroutineThatItDoes) {
+  // An o-call and an M-code an INI may remap; not LinuxCNC's own M-codes,
+  // nor a parameter named like one. The note goes under block delete with its line.
+  const std::string note = "(" + std::string(kRunsSubroutine) + ")\n";
+  EXPECT_EQ(number("M3 S1000\nM310\no<x> call\n/M101 P1\n#<_m310> = 1\nM5 M9\nM2\n").text,
+            "N1000000001 M3 S1000\nN1000000002 " + note + "N1000000002 M310\nN1000000003 " + note +
+                "N1000000003 o<x> call\n/N1000000004 " + note +
+                "/N1000000004 M101 P1\nN1000000005 #<_m310> = 1\nN1000000006 M5 M9\n"
+                "N1000000007 M2\nN1000000008 M2\n");
+}
+
+TEST(InterpreterOutput, shouldShowASubroutinesCallsOnTheLineThatRunsIt) {
+  // M3 on line 1, M310 on line 2 runs the remap's subroutine: its calls are line 2's.
+  struct Heard : CallListener {
+    std::vector<std::pair<int, std::string>> calls;
+    void call(int line, bool, std::string_view call) override { calls.emplace_back(line, call); }
+    void tool_use(const ToolUse&) override {}
+  } heard;
+  ProgramGiven given;
+  given.name = "p.ngc";
+  given.lines = 3;
+  InterpreterOutput output(given, {0});
+  output.listen(&heard);
+  output.canonical_call("  7 N1000000001 START_SPINDLE_CLOCKWISE(0)");
+  output.canonical_call("  8 N1000000002 COMMENT(\"" + std::string(kRunsSubroutine) + "\")");
+  output.canonical_call("  9 N..... COMMENT(\"Releases\")");
+  EXPECT_EQ(heard.calls, (std::vector<std::pair<int, std::string>>{
+                             {1, "START_SPINDLE_CLOCKWISE(0)"}, {2, "COMMENT(\"Releases\")"}}));
+}
+
 TEST(LineSet, shouldHoldTheLinesInsertedOnly) {
   LineSet lines;
   lines.insert(5);

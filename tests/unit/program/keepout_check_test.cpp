@@ -69,14 +69,17 @@ struct Checked {
   }
 };
 
-/// `calls` through InterpreterOutput; `call_lines`: the lines that call a subroutine.
-Checked checked(const std::string& calls, KeepoutCheckInput in = input(),
-                std::vector<int> call_lines = {}) {
+/// LineNumberer's note, as rs274 prints it, that `line` runs a subroutine.
+std::string runs_subroutine(int line) {
+  return on(line, "COMMENT(\"" + std::string(program::kRunsSubroutine) + "\")");
+}
+
+/// `calls` through InterpreterOutput.
+Checked checked(const std::string& calls, KeepoutCheckInput in = input()) {
   KeepoutCheck keepout(std::move(in));
   program::ProgramGiven given;
   given.name = "p.ngc";
   given.lines = 1000;
-  for (const int line : call_lines) given.call_lines.insert(line);
   program::InterpreterOutput output(given, {0, 1, 2, 3, 4, 5, 6, 7, 9});
   output.listen(&keepout);
   std::istringstream lines(calls);
@@ -154,7 +157,7 @@ TEST(KeepoutCheck, shouldGoOnFromWhereTheChangeEnds) {
 TEST(KeepoutCheck, shouldNameAMoveOfASubroutineFileWithTheLineThatCallsIt) {
   // Line 2 sets a parameter (nothing printed), line 3 calls dip.ngc.
   const Checked run =
-      checked(traverse(1, 150, 20, -5) + traverse(0, 150, 20, -70), input(), {3, 7});
+      checked(traverse(1, 150, 20, -5) + runs_subroutine(3) + traverse(0, 150, 20, -70));
   EXPECT_EQ(run.text(),
             "line 3: G0 would enter the rack at pocket 3 with an empty spindle, the nose at "
             "machine X150.000 Y20.000 Z-55.000 (in a subroutine this line calls)\n");
@@ -192,6 +195,15 @@ TEST(KeepoutCheck, shouldTakeALengthTheProgramSetsFromThatLineOn) {
   const std::string over = change(1, 1, 30) + tool_offset(2, 0) + traverse(2, 150, 60, -10);
   EXPECT_EQ(checked(over + traverse(4, 150, 20, -10)).text(), "");
   EXPECT_EQ(checked(over + set + traverse(4, 150, 20, -10)).text(),
+            "line 4: G0 would enter the rack at pocket 3 with T1 (length 80.0000 mm), the nose "
+            "at machine X150.000 Y40.000 Z-10.000\n");
+  // Written in inches, 3.1496 is what the line wrote: not rounded to 80 mm.
+  const std::string inch_set =
+      on(3, "USE_LENGTH_UNITS(CANON_UNITS_INCHES)") +
+      on(3, "SET_TOOL_TABLE_ENTRY(1, 1, 0.0000 0.0000 3.1496 0.0000 0.0000 0.0000 0.0000 0.0000 "
+            "0.0000, 0.0000, 0.0000, 0)") +
+      on(3, "USE_LENGTH_UNITS(CANON_UNITS_MM)");
+  EXPECT_EQ(checked(over + inch_set + traverse(4, 150, 20, -10)).text(),
             "line 4: G0 would enter the rack at pocket 3 with T1 (length 79.9998 mm), the nose "
             "at machine X150.000 Y40.000 Z-10.000\n");
 }
@@ -199,9 +211,8 @@ TEST(KeepoutCheck, shouldTakeALengthTheProgramSetsFromThatLineOn) {
 TEST(KeepoutCheck, shouldNameAChuckReleaseWhileTheSpindleTurnsOrAToolHangsAwayFromLoading) {
   const std::string release =
       "COMMENT(\"Releases - opens - the chuck through fixed_atc_probe, and leaves it open.\")";
-  EXPECT_EQ(checked(on(1, "START_SPINDLE_CLOCKWISE(0)") + on(0, release)).text(),
-            "line 1: the chuck release would be refused: the spindle is on: M5 first (in a "
-            "subroutine this line calls)\n");
+  EXPECT_EQ(checked(on(1, "START_SPINDLE_CLOCKWISE(0)") + runs_subroutine(2) + on(0, release)).text(),
+            "line 2: the chuck release would be refused: the spindle is on: M5 first\n");
   EXPECT_EQ(checked(on(1, "START_SPINDLE_CLOCKWISE(0)") + on(2, "STOP_SPINDLE_TURNING(0)") +
                     on(0, release))
                 .text(),
