@@ -79,7 +79,10 @@ std::vector<std::string> check_move(const Config& config, const Point& from, uns
     }
   }
   // The keep-out needs the start of the move: only once every axis is known.
-  if (known == axis_xyz) {
+  // Straight up enters nothing: it is the way out of a column a sequence cut
+  // off in a pocket left the spindle in.
+  const bool straight_up = target.x == from.x && target.y == from.y && target.z >= from.z;
+  if (known == axis_xyz && !straight_up) {
     for (const auto& [number, pocket] : config.pockets) {
       // Touching a face, as at above_clearance, is no entry.
       const Box column = pocket_column(config, pocket.at, config.pocket_above_clearance_offset_z);

@@ -237,6 +237,16 @@ TEST(CarriedByTheChanger, shouldRefuseLoadUnloadAndMeasureTheSameWay) {
   }
 }
 
+TEST(CarriedByTheChanger, shouldRehearseTheWayStraightUpOutOfAPocketAfterAFault) {
+  // A sequence cut off in pocket 2 left the spindle in its column: the next
+  // change leaves straight up, which enters nothing.
+  TopRig rig(30.0);
+  rig.changer->machine_at(Point{100.0, 20.0, -70.0});
+  rig.changer->tool_change(1);
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.changer->tools().spindle, 1) << errors(rig.sim);
+}
+
 TEST(CarriedByTheChanger, shouldStopAtTheMoveWhenNothingRehearsedIt) {
   // The second layer: the move itself is checked as it is published.
   TopRig rig(80.0, false);
