@@ -297,6 +297,8 @@ int lint(const Options& options, std::ostream& out, std::ostream& err) {
     }
     rack.table_name = table_name;
   }
+  ToolLengths carried;
+  carried.table = rack.lengths.value_or(std::map<int, double>{});
   KeepoutCheck keepout(std::move(rack));
   auto run = interpret(options, config, table_path, error, &keepout);
   if (!run) {
@@ -311,19 +313,28 @@ int lint(const Options& options, std::ostream& out, std::ostream& err) {
   input.table = table && options.tool_table_path ? &*table : nullptr;
   input.table_name = table_name;
   input.machine = machine.motion.timing;
+  const auto first_change = std::find_if(run->uses.begin(), run->uses.end(), [](const auto& use) {
+    return use.kind == program::ToolUse::Kind::change;
+  });
+  // The changer's own moves as --check plans them, when the INI's soft limits
+  // or a change need them: what the config allows the tools it carries.
+  std::optional<SequencesChecked> sequences;
+  if (machine.limits || first_change != run->uses.end()) {
+    sequences = check_sequences(config, machine.limits);
+    carried.longest = longest_carried(config, *sequences);
+  }
+  input.lengths = std::move(carried);
+  input.lengths_set = keepout.lengths_set();
   const Preflight checked = preflight(run->uses, input);
 
   std::vector<program::Finding> problems = run->problems;
   problems.insert(problems.end(), checked.problems.begin(), checked.problems.end());
   const auto entries = keepout.problems();
   problems.insert(problems.end(), entries.begin(), entries.end());
-  const auto first_change = std::find_if(run->uses.begin(), run->uses.end(), [](const auto& use) {
-    return use.kind == program::ToolUse::Kind::change;
-  });
   // The config against the machine's soft limits, as --check has it: a
   // change the program calls would stop there.
   if (machine.limits) {
-    for (const SequenceViolation& violation : check_sequences(config, machine.limits).violations) {
+    for (const SequenceViolation& violation : sequences->violations) {
       problems.push_back(program::finding(shown_path(options.config_path), 0, describe(violation)));
     }
   }

@@ -182,6 +182,7 @@ void InterpreterOutput::error(int line, const std::string& message, std::string_
     } else if (holds_m6(text)) {
       ToolUse change;
       change.where = {program_.name, line};
+      change.ran = false;
       unknown_changes_.push_back(change);
     }
     return;

@@ -124,8 +124,16 @@ void KeepoutCheck::call(int line, bool numbered, std::string_view call) {
     if (args.size() >= 5 && args[1] > 0 && std::isfinite(args[4])) {
       const double config_mm = in_.config->units == Units::inch ? 25.4 : 1.0;
       const double program_mm = rs274_.config_units_per_program_unit * config_mm;
-      set_lengths_[static_cast<int>(args[1])] =
-          written_length(args[4], program_mm) * program_mm / config_mm;
+      const int tool = static_cast<int>(args[1]);
+      const double length = written_length(args[4], program_mm) * program_mm / config_mm;
+      set_lengths_[tool] = length;
+      // rs274 prints the tool's row and the spindle's: one a tool between two uses.
+      if (!lengths_set_.empty() && lengths_set_.back().before_use == uses_told_ &&
+          lengths_set_.back().tool == tool) {
+        lengths_set_.back().length = length;
+      } else if (uses_told_ <= program::kMaxToolUses) {
+        lengths_set_.push_back({uses_told_, tool, length});
+      }
     }
   } else if (starts_with(call, "START_SPINDLE_")) {
     turning_ = true;
@@ -382,6 +390,7 @@ double KeepoutCheck::tool_length(int line) {
 }
 
 void KeepoutCheck::tool_use(const program::ToolUse& use) {
+  ++uses_told_;
   if (use.kind == program::ToolUse::Kind::set) {
     spindle_ = use.tool;  // M61: LinuxCNC is told; nothing moves
     return;

@@ -13,6 +13,7 @@
 #include "../rack/tool_state.hpp"
 #include "coordinate_system.hpp"
 #include "interpreter_output.hpp"
+#include "preflight.hpp"
 #include "tool_use.hpp"
 
 namespace fatc {
@@ -47,6 +48,9 @@ class KeepoutCheck : public program::CallListener {
   std::vector<program::Finding> problems() const;
   /// What the check could not know: a tool with no length, a spline's path.
   const std::vector<program::Finding>& unknowns() const { return unknowns_; }
+  /// The lengths the program set (G10 L1, L10, L11), for the preflight's
+  /// check of the changes after them: the last of a tool between two tool uses.
+  const std::vector<LengthSet>& lengths_set() const { return lengths_set_; }
 
  private:
   void move(int line, bool numbered, const char* code, const Point& program_to);
@@ -87,6 +91,8 @@ class KeepoutCheck : public program::CallListener {
   /// Lengths the program set (G10 L1, L10, L11), by tool, in the config's
   /// units: they stand for the table's from that line on.
   std::map<int, double> set_lengths_;
+  std::vector<LengthSet> lengths_set_;
+  std::size_t uses_told_ = 0;  ///< tool uses told so far (tool_use)
   /// An M6 whose end no move has needed yet.
   struct PendingChange {
     int line = 0;  ///< where the lint shows the change: its T word's line

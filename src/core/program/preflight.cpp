@@ -9,6 +9,9 @@
 #include <tuple>
 #include <utility>
 
+#include "../plan/sequence_check.hpp"
+#include "interpreter_output.hpp"
+
 namespace fatc {
 
 namespace {
@@ -20,16 +23,24 @@ struct PlannedChange {
   double seconds = 0.0;
   int operator_waits = 0;
   std::string refused;  ///< the changer's reason when it refuses the change
+  std::vector<Step> steps;
 };
 
 class Checker {
  public:
-  explicit Checker(const PreflightInput& input) : in_(input), config_(*input.config) {
+  explicit Checker(const PreflightInput& input)
+      : in_(input), config_(*input.config), lengths_(input.lengths) {
     tools_ = input.tools;
   }
 
   Preflight run(const std::vector<program::ToolUse>& uses) {
+    auto set = in_.lengths_set.begin();
+    std::size_t ran = 0;
     for (const auto& use : uses) {
+      for (; set != in_.lengths_set.end() && set->before_use <= ran && use.ran; ++set) {
+        lengths_.table[set->tool] = set->length;
+      }
+      ran += use.ran ? 1 : 0;
       PreflightRow row;
       row.use = use;
       if (use.kind == program::ToolUse::Kind::change) {
@@ -105,6 +116,7 @@ class Checker {
         row.seconds = planned.seconds;
         result_.seconds += planned.seconds;
         result_.operator_waits += planned.operator_waits;
+        carried(use, planned.steps);
       }
     }
     // The rack after the change: the old tool home, the new one in the spindle.
@@ -185,6 +197,21 @@ class Checker {
     return "never measured";
   }
 
+  /// Each move of a planned change with the length of the tool it carries:
+  /// a tip that would enter a holder is a problem on the change's line.
+  void carried(const program::ToolUse& use, const std::vector<Step>& steps) {
+    const std::string sequence = "M6 " + tool_word(*use.tool) + " from " +
+                                 (tools_.spindle == 0 ? "empty" : tool_word(tools_.spindle));
+    const StepsFrom from{config_.safe, axis_xyz, lengths_, tools_.lengths};
+    for (Violation& violation : check_steps(config_, steps, std::nullopt, from)) {
+      std::string text = describe(
+          {sequence, violation.step, steps[violation.step], std::move(violation.what)});
+      if (named_.size() < program::kMaxErrors && named_.insert({use.where.line, text}).second) {
+        problem(use.where, std::move(text));
+      }
+    }
+  }
+
   /// The probe touches at the stored length, or at its limit when none is known.
   double sensor_z(int tool) const {
     const auto stored = tools_.lengths.find(tool);
@@ -217,12 +244,16 @@ class Checker {
     const ChangeTime time = change_time(sim, config_.safe, in_.machine);
     planned.seconds = time.seconds();
     planned.operator_waits = time.operator_waits;
-    return plans_.emplace(key, planned).first->second;
+    planned.steps = sim.steps();
+    return plans_.emplace(key, std::move(planned)).first->second;
   }
 
   const PreflightInput& in_;
   const Config& config_;
   ToolState tools_;
+  ToolLengths lengths_;  ///< the input's, with what the program set so far
+  /// Lines and the problems named on them: a change in a loop is named once.
+  std::set<std::pair<int, std::string>> named_;
   bool spindle_known_ = true;
   bool said_uncertain_ = false;
   std::set<int> never_measured_;

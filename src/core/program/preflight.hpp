@@ -9,10 +9,18 @@
 #include "tool_use.hpp"
 #include "../plan/simulator.hpp"
 #include "../plan/timing.hpp"
+#include "../rack/keepout.hpp"
 #include "../rack/tool_state.hpp"
 #include "tool_table.hpp"
 
 namespace fatc {
+
+/// A tool length the program sets (G10 L1, L10, L11), in the config's units.
+struct LengthSet {
+  std::size_t before_use = 0;  ///< how many of the uses rs274 ran (ToolUse::ran) came before it
+  int tool = 0;
+  double length = 0.0;
+};
 
 struct PreflightInput {
   const Config* config = nullptr;
@@ -21,6 +29,12 @@ struct PreflightInput {
   const ToolTable* table = nullptr;  ///< LinuxCNC's tool table, when given
   std::string table_name;
   MachineTiming machine;  ///< for the estimate (change_time)
+  /// What each move of a planned change is checked with for the tool it
+  /// carries: LinuxCNC's tool table (the INI's or --tool-table) and the
+  /// longest the config allows (carried_lengths), and what the program sets
+  /// before the change, in the order rs274 ran it.
+  ToolLengths lengths;
+  std::vector<LengthSet> lengths_set;
 };
 
 /// One M6 or M61 of the program, as the changer would meet it.
@@ -49,7 +63,8 @@ struct Preflight {
 /// Follows the program's tool uses, as LinuxCNC's interpreter ran them,
 /// through the rack (ToolState), the lengths (state file, or the tool table
 /// when given) and the planned steps of each change (plan_change, the --plan
-/// path).
+/// path), each move of which must keep the tip of the tool it carries out
+/// of the holders (check_steps, from safe as --check plans it).
 Preflight preflight(const std::vector<program::ToolUse>& uses, const PreflightInput& input);
 
 }  // namespace fatc

@@ -34,6 +34,9 @@ struct ToolUse {
   /// An M6's T word's line (a remapped M6 runs in its subroutine), an
   /// M61's own; 0 in a subroutine file of the program's.
   Site where;
+  /// false: an M6 on a line rs274 could not run (a HAL pin), put where a
+  /// program without loops would have it; a CallListener was not told of it.
+  bool ran = true;
 };
 
 /// What LinuxCNC's interpreter made of a program.

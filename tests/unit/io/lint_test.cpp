@@ -1145,5 +1145,48 @@ TEST_F(Lint, shouldNameAChuckReleaseTheChangerWouldRefuse) {
   EXPECT_EQ(with("M3 S1000\nM5\nM310\n").code, 0);
 }
 
+// ---- the changer's own moves with the tools they carry (issue 32, class 1 in the preflight) ----
+
+/// Pockets 1-4 entered from the top, T1-T4 in them, safe between pockets 2
+/// and 3 5 mm over every above-clearance: the sequences leave 45 mm below
+/// the nose over the holders (tests/unit/rack/carried_tool_test.cpp's rack).
+const char* const kTopRack = R"({
+  "probe_length_compensation_offset": -95.0,
+  "probe_retract_offset_z": 5.0,
+  "pocket_side_offset": {"x": 0.0, "y": 40.0},
+  "pocket_above_chuck_offset_z": 20.0,
+  "pocket_above_clearance_offset_z": 60.0,
+  "chuck_seconds": 0.5,
+  "path": "direct",
+  "loading": {"x": 20.0, "y": 150.0, "z": -10.0},
+  "probe_limit": {"x": 20.0, "y": 150.0, "z": -90.0},
+  "safe": {"x": 125.0, "y": 20.0, "z": -15.0},
+  "pocket_default": {"y": 20.0, "z": -80.0, "approach": "top"},
+  "pockets": {"1": {"x": 50.0}, "2": {"x": 100.0}, "3": {"x": 150.0}, "4": {"x": 200.0}}
+})";
+
+TEST_F(Lint, shouldNameAChangeWhoseOwnMovesWouldCarryAToolsTipIntoAHolder) {
+  const auto with = [&](const std::string& table, const std::string& program) {
+    return run({"--lint", write("carry.ngc", program), "--config", write("top.json", kTopRack),
+                "--state", no_state(), "--tool-table", write("tools.tbl", table)});
+  };
+  // T1 80 mm in the table: fetched from pocket 1, carried to safe over pocket 2's holder.
+  const LintRun long_tool = with("T1 P1 Z80\nT2 P2 Z30\n", "T1 M6\nM2\n");
+  EXPECT_EQ(long_tool.code, 1) << long_tool.out;
+  EXPECT_LINE(long_tool, "carry.ngc: line 1: M6 T1 from empty, step ");
+  EXPECT_LINE(long_tool, "): carries T1 (length 80.0000 mm) with its tip ");
+  EXPECT_LINE(long_tool, "below the top of the holder at pocket ");
+  // 30 mm clears; a Z of 0 or below counts as the longest the config allows (40 mm).
+  EXPECT_EQ(with("T1 P1 Z30\nT2 P2 Z-12\n", "T1 M6\nT2 M6\nM2\n").code, 0);
+  EXPECT_EQ(with("T1 P1 Z30\n", "G10 L1 P1 Z0\nT1 M6\nM2\n").code, 0);
+  // A length the program sets counts for the changes after it: T1 taken
+  // at 30 mm, lengthened to 80 and carried back by the next change.
+  const LintRun set = with("T1 P1 Z30\nT2 P2 Z30\n", "T1 M6\nG10 L1 P1 Z80\nT2 M6\nM2\n");
+  EXPECT_EQ(set.code, 1) << set.out;
+  EXPECT_NO_LINE(set, "carry.ngc: line 1: M6");
+  EXPECT_LINE(set, "carry.ngc: line 3: M6 T2 from T1, step ");
+  EXPECT_LINE(set, "): carries T1 (length 80.0000 mm)");
+}
+
 }  // namespace
 }  // namespace fatc
