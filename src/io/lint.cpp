@@ -297,6 +297,15 @@ int lint(const Options& options, std::ostream& out, std::ostream& err) {
     }
     rack.table_name = table_name;
   }
+  // The changer's own moves as --check plans them, once the INI's soft
+  // limits, a change or a tool of no length need them: what the config
+  // allows the tools it carries.
+  std::optional<SequencesChecked> sequences;
+  const auto sequences_checked = [&]() -> const SequencesChecked& {
+    if (!sequences) sequences = check_sequences(config, machine.limits);
+    return *sequences;
+  };
+  rack.longest = [&] { return longest_carried(config, sequences_checked()); };
   ToolLengths carried;
   carried.table = rack.lengths.value_or(std::map<int, double>{});
   KeepoutCheck keepout(std::move(rack));
@@ -316,13 +325,7 @@ int lint(const Options& options, std::ostream& out, std::ostream& err) {
   const auto first_change = std::find_if(run->uses.begin(), run->uses.end(), [](const auto& use) {
     return use.kind == program::ToolUse::Kind::change;
   });
-  // The changer's own moves as --check plans them, when the INI's soft limits
-  // or a change need them: what the config allows the tools it carries.
-  std::optional<SequencesChecked> sequences;
-  if (machine.limits || first_change != run->uses.end()) {
-    sequences = check_sequences(config, machine.limits);
-    carried.longest = longest_carried(config, *sequences);
-  }
+  if (first_change != run->uses.end()) carried.longest = longest_carried(config, sequences_checked());
   input.lengths = std::move(carried);
   input.lengths_set = keepout.lengths_set();
   const Preflight checked = preflight(run->uses, input);
@@ -334,7 +337,7 @@ int lint(const Options& options, std::ostream& out, std::ostream& err) {
   // The config against the machine's soft limits, as --check has it: a
   // change the program calls would stop there.
   if (machine.limits) {
-    for (const SequenceViolation& violation : sequences->violations) {
+    for (const SequenceViolation& violation : sequences_checked().violations) {
       problems.push_back(program::finding(shown_path(options.config_path), 0, describe(violation)));
     }
   }

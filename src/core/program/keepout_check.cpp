@@ -342,7 +342,7 @@ bool KeepoutCheck::check(int line, bool numbered, const char* code, const Point&
   std::string held;
   if (!spindle_) {
     held = "with a tool known only when the program runs (counted with no length)";
-  } else if (*spindle_ == 0 || table_length(*spindle_)) {
+  } else if (*spindle_ == 0 || in_.lengths) {
     held = held_words(config, *spindle_, length);
   } else {
     held = "with T" + std::to_string(*spindle_) + " (no length known: counted as 0)";
@@ -373,20 +373,30 @@ double KeepoutCheck::tool_length(int line) {
     }
     return 0.0;
   }
-  if (const auto length = table_length(*spindle_)) return *length;
+  if (*spindle_ == 0) return 0.0;
   if (!in_.lengths) {
     if (!said_no_table_) {
       said_no_table_ = true;
       unknown(line, "no tool table (--tool-table, or the INI's [EMCIO]TOOL_TABLE): the moves "
                     "are checked against the rack with no tool length");
     }
-  } else if (said_no_length_.size() < program::kMaxErrors &&
-             said_no_length_.insert(*spindle_).second) {
-    unknown(line, "T" + std::to_string(*spindle_) + " is not in the tool table " +
-                      in_.table_name +
-                      ": its moves are checked against the rack as if it had no length");
+    return 0.0;
   }
-  return 0.0;
+  // A Z of 0 or below, or none, never lowers the boundary: the guard's rule.
+  ToolLengths lengths;
+  if (const auto z = table_length(*spindle_)) lengths.table[*spindle_] = *z;
+  if (lengths.of(*spindle_, in_.tools.lengths).source == LengthSource::longest) {
+    if (!longest_) longest_ = in_.longest ? in_.longest() : 0.0;
+    lengths.longest = *longest_;
+  }
+  if (said_no_length_.size() < program::kMaxErrors &&
+      lengths.of(*spindle_, in_.tools.lengths).source != LengthSource::table &&
+      said_no_length_.insert(*spindle_).second) {
+    // A length G10 set is the running table's, not the file's.
+    unknown(line, keepout_length_words(*in_.config, lengths, *spindle_, in_.tools.lengths) +
+                      (set_lengths_.count(*spindle_) ? "" : " (tool table " + in_.table_name + ")"));
+  }
+  return lengths.of(*spindle_, in_.tools.lengths).length;
 }
 
 void KeepoutCheck::tool_use(const program::ToolUse& use) {

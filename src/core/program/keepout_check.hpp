@@ -1,5 +1,6 @@
 #pragma once
 
+#include <functional>
 #include <map>
 #include <optional>
 #include <set>
@@ -25,6 +26,10 @@ struct KeepoutCheckInput {
   /// LinuxCNC's tool table: each tool's length (Z) in the config's units;
   /// nullopt without a table.
   std::optional<std::map<int, double>> lengths;
+  /// The longest tool the config allows (longest_carried), asked once a tool
+  /// needs it: with a table, a tool whose Z is 0 or below or missing counts
+  /// as its measured length (`tools`), else as that, as the guard counts it.
+  std::function<double()> longest;
   std::string table_name;     ///< as messages show it
   bool return_to_xy = false;  ///< [FIXED_ATC_PROBE]RETURN_TO_XY: M6 ends over where it was called
 };
@@ -68,7 +73,8 @@ class KeepoutCheck : public program::CallListener {
   bool check(int line, bool numbered, const char* code, const Point& from, const Point& to);
   /// The nose's machine position for the program's `to`, and which of its axes are known.
   std::pair<Point, unsigned> target(const Point& program_to);
-  /// The length of the tool in the spindle, 0 when none is known (said once, at `line`).
+  /// The length of the tool in the spindle as the guard counts it
+  /// (ToolLengths::of); without a table, 0 (said once, at `line`).
   double tool_length(int line);
   /// The table's length of `tool`; nullopt when the table has none.
   std::optional<double> table_length(int tool) const;
@@ -107,6 +113,7 @@ class KeepoutCheck : public program::CallListener {
   std::vector<program::Finding> problems_;
   std::vector<program::Finding> unknowns_;
   std::set<int> said_no_length_;  ///< tools said to have no length in the table
+  std::optional<double> longest_;  ///< in_.longest's, once asked
   bool said_no_table_ = false;
   bool said_unknown_tool_ = false;
   bool said_spline_ = false;

@@ -24,6 +24,9 @@ struct PlannedChange {
   int operator_waits = 0;
   std::string refused;  ///< the changer's reason when it refuses the change
   std::vector<Step> steps;
+  /// What check_steps found on them, by the lengths of the tool it takes
+  /// back and the one it fetches: a long program repeats its changes.
+  std::map<std::pair<double, double>, std::vector<Violation>> carried;
 };
 
 class Checker {
@@ -106,7 +109,7 @@ class Checker {
     if (!spindle_known_) {
       ++result_.not_estimated;
     } else {
-      const PlannedChange& planned = plan(tools_.spindle, tool);
+      PlannedChange& planned = plan(tools_.spindle, tool);
       if (!planned.refused.empty()) {
         // The changer stops the program there; the lint reads on with the spindle as it was.
         row.where = "refused: " + row.where;
@@ -116,7 +119,7 @@ class Checker {
         row.seconds = planned.seconds;
         result_.seconds += planned.seconds;
         result_.operator_waits += planned.operator_waits;
-        carried(use, planned.steps);
+        carried(use, planned);
       }
     }
     // The rack after the change: the old tool home, the new one in the spindle.
@@ -199,13 +202,19 @@ class Checker {
 
   /// Each move of a planned change with the length of the tool it carries:
   /// a tip that would enter a holder is a problem on the change's line.
-  void carried(const program::ToolUse& use, const std::vector<Step>& steps) {
+  void carried(const program::ToolUse& use, PlannedChange& planned) {
+    const std::pair<double, double> held{lengths_.of(tools_.spindle, tools_.lengths).length,
+                                         lengths_.of(*use.tool, tools_.lengths).length};
+    auto checked = planned.carried.find(held);
+    if (checked == planned.carried.end()) {
+      const StepsFrom from{config_.safe, axis_xyz, lengths_, tools_.lengths};
+      checked = planned.carried.emplace(held, check_steps(config_, planned.steps, std::nullopt, from)).first;
+    }
     const std::string sequence = "M6 " + tool_word(*use.tool) + " from " +
                                  (tools_.spindle == 0 ? "empty" : tool_word(tools_.spindle));
-    const StepsFrom from{config_.safe, axis_xyz, lengths_, tools_.lengths};
-    for (Violation& violation : check_steps(config_, steps, std::nullopt, from)) {
-      std::string text = describe(
-          {sequence, violation.step, steps[violation.step], std::move(violation.what)});
+    for (const Violation& violation : checked->second) {
+      std::string text =
+          describe({sequence, violation.step, planned.steps[violation.step], violation.what});
       if (named_.size() < program::kMaxErrors && named_.insert({use.where.line, text}).second) {
         problem(use.where, std::move(text));
       }
@@ -221,7 +230,7 @@ class Checker {
   }
 
   /// M6 T`to` from the rack as it is now (`from` in the spindle).
-  const PlannedChange& plan(int from, int to) {
+  PlannedChange& plan(int from, int to) {
     const double touch = sensor_z(to);
     // The same change plans the same while the pockets involved are the same.
     const auto key =

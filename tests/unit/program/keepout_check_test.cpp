@@ -26,6 +26,7 @@ KeepoutCheckInput input(bool return_to_xy = false) {
   in.lengths = std::map<int, double>{{1, 30.0}, {2, 35.0}, {3, 40.0}, {4, 25.0},
                                      {5, 45.0}, {6, 50.0}, {7, 20.0}};
   in.table_name = "sim.tbl";
+  in.longest = [] { return 40.0; };
   in.return_to_xy = return_to_xy;
   return in;
 }
@@ -172,17 +173,37 @@ TEST(KeepoutCheck, shouldTakeAnInchProgramOnAMmConfig) {
             "machine X150.000 Y20.000 Z-55.000\n");
 }
 
-TEST(KeepoutCheck, shouldCountAToolMissingFromTheTableWithNoLengthAndSaySoOnce) {
+TEST(KeepoutCheck, shouldCountAToolOfNoLengthAsTheGuardDoesAndSaySoOnce) {
+  // T9 is not in the table: the longest the config allows (40 mm here), as
+  // the guard counts it, never 0: its tip reaches the holders' tops from Z-15.
   const Checked run =
-      checked(change(1, 9) + traverse(2, 150, 20, -30) + traverse(3, 150, 20, -60));
+      checked(change(1, 9) + traverse(2, 150, 20, -10) + traverse(3, 150, 20, -20));
   EXPECT_EQ(run.text(),
-            "line 3: G0 would enter the rack at pocket 3 with T9 (no length known: counted as 0), "
-            "the nose at machine X150.000 Y20.000 Z-55.000\n");
+            "line 3: G0 would enter the rack at pocket 3 with T9 (length 40.0000 mm), the nose "
+            "at machine X150.000 Y20.000 Z-15.000\n");
   ASSERT_EQ(run.unknowns.size(), 1u);
   EXPECT_EQ(run.unknowns[0].where.line, 2);
   EXPECT_EQ(run.unknowns[0].text,
-            "T9 is not in the tool table sim.tbl: its moves are checked against the rack as if it "
-            "had no length");
+            "T9: LinuxCNC's tool table gives no length; the rack keep-out counts it as 40.0000 mm "
+            "(the longest tool the config allows) (tool table sim.tbl)");
+  // A Z of 0 or below, in the table or set by G10, is no length either; the
+  // changer's measured length counts before the longest.
+  KeepoutCheckInput measured = input();
+  (*measured.lengths)[4] = -12.0;
+  measured.tools.lengths[4] = 33.0;
+  EXPECT_EQ(checked(change(1, 4) + traverse(2, 150, 20, -10) + traverse(3, 150, 20, -30),
+                    std::move(measured))
+                .text(),
+            "line 3: G0 would enter the rack at pocket 3 with T4 (length 33.0000 mm), the nose "
+            "at machine X150.000 Y20.000 Z-22.000\n");
+  const std::string set_below =
+      on(2, "SET_TOOL_TABLE_ENTRY(1, 1, 0.0000 0.0000 -3.1496 0.0000 0.0000 0.0000 0.0000 0.0000 "
+            "0.0000, 0.0000, 0.0000, 0)");
+  EXPECT_EQ(checked(change(1, 1, 30) + tool_offset(2, 0) + set_below + traverse(3, 150, 20, -10) +
+                    traverse(4, 150, 20, -20))
+                .text(),
+            "line 4: G0 would enter the rack at pocket 3 with T1 (length 40.0000 mm), the nose "
+            "at machine X150.000 Y20.000 Z-15.000\n");
 }
 
 TEST(KeepoutCheck, shouldTakeALengthTheProgramSetsFromThatLineOn) {
