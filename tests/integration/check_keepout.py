@@ -140,6 +140,10 @@ def main():
         # T2 M6 leaves G43 with 35 mm in force; G53 Z-20 is the nose's Z all the same.
         spindle_holds(r, 2, "after T2 M6")
         at(r, "after_g53", [120.0, 80.0, -20.0])
+    elif name == "keepout_offsets_after_m6":
+        # G20, G55 turned 90 degrees, and the M6's G43 with 35 mm: where the lint puts the nose.
+        spindle_holds(r, 2, "after T2 M6")
+        at(r, "after_offsets", [101.6, 76.2, -28.5])
     elif name == "keepout_m6_after":
         spindle_holds(r, 1, "after T1 M6 following the stopped moves")
         at(r, "low_over_the_rack", [150.0, 20.0, -20.0])

@@ -1087,6 +1087,21 @@ TEST_F(Lint, shouldPutTheNoseAtAG53PositionWhateverTheOffsetOfTheM6) {
               "mm), the nose at machine X150.000 Y20.000 Z-20.000\n");
 }
 
+TEST_F(Lint, shouldPutTheNoseWhereLinuxCncDoesUnderInchesARotatedG55AndTheM6sG43) {
+  // tests/integration/offsets_after_m6.ngc to its last move, where the real
+  // LinuxCNC stood at X101.6 Y76.2 Z-28.5 (integration_keepout_offsets_after_m6);
+  // from there, program X-1.2126 is machine Y20, over pocket 2.
+  std::ifstream file(FATC_SOURCE_DIR "/tests/integration/offsets_after_m6.ngc");
+  std::string program, line;
+  while (std::getline(file, line) && line != "G0 Z-2.5") program += line + "\n";
+  const LintRun r = lint(write("offsets.ngc", program + "G0 Z-2.5\nG0 X-1.2126\nM2\n"),
+                         {"--ini", kSimIni, "--state", state_with_lengths({2})});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r,
+              "offsets.ngc: line 13: G0 would enter the rack at pocket 2 with T2 (length 35.0000 "
+              "mm), the nose at machine X101.600 Y40.000 Z-28.500\n");
+}
+
 TEST_F(Lint, shouldCountAToolLengthTheProgramSetsFromThatLineOn) {
   // T1 is 30 mm in sim.tbl: the nose at Z-10 over pocket 3 passes; at 80 mm
   // (G10 L1, L10 or L11) its tip is 35 mm into the column.
