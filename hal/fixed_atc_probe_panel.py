@@ -29,7 +29,7 @@ PULSE_MS = 100
 GAP_MS = 60
 
 # The component's codes (docs/sequences.md#codes), as src/core/machine/status.hpp and
-# src/core/protocol/step.hpp have them; tests/unit/protocol/codes_test.cpp fails when they differ.
+# src/core/motion/step.hpp have them; tests/unit/protocol/codes_test.cpp fails when they differ.
 # The `state` pin: Phase.
 PHASE_NOT_READY = 0
 PHASE_IDLE = 1

@@ -12,7 +12,7 @@
 #    LinuxCNC's usual, instead of the sim's 0.01 s.
 # Each run is its own LinuxCNC start, some eight minutes in all. Prints the
 # figures and the costs the estimate adds (kStepSeconds, kIocontrolCycles,
-# kChangeSeconds in src/core/plan/timing.hpp) as measured; never asserts.
+# kChangeSeconds in src/core/dry_run/timing.hpp) as measured; never asserts.
 #   scripts/bench_estimate.sh [WORKDIR]   (ctest: ctest --test-dir build -R bench_estimate -V)
 set -euo pipefail
 cd "$(dirname "$0")/.."

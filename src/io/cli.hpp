@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "core/rack/point.hpp"
-#include "core/config/teach.hpp"
+#include "core/motion/point.hpp"
+#include "core/dry_run/teach.hpp"
 
 namespace fatc::io {
 

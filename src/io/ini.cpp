@@ -17,7 +17,7 @@
 #include <limits>
 
 #include "core/config/quote.hpp"
-#include "core/plan/simulator.hpp"
+#include "core/dry_run/simulator.hpp"
 #include "files.hpp"
 
 #if FATC_LINUXCNC_INI_CLASS

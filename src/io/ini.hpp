@@ -8,7 +8,7 @@
 
 #include "core/config/config.hpp"
 #include "core/rack/geometry.hpp"
-#include "core/plan/timing.hpp"
+#include "core/dry_run/timing.hpp"
 
 namespace fatc::io {
 

@@ -13,7 +13,7 @@
 #include <memory>
 #include <ostream>
 
-#include "core/plan/sequence_check.hpp"
+#include "core/dry_run/sequence_check.hpp"
 #include "core/program/interpreter_inputs.hpp"
 #include "core/program/keepout_check.hpp"
 #include "core/program/preflight.hpp"

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "cli.hpp"
-#include "core/plan/timing.hpp"
+#include "core/dry_run/timing.hpp"
 
 namespace fatc::io {
 

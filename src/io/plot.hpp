@@ -3,7 +3,7 @@
 #include <string>
 
 #include "core/config/config.hpp"
-#include "core/plan/simulator.hpp"
+#include "core/dry_run/simulator.hpp"
 #include "core/rack/tool_state.hpp"
 
 namespace fatc::io {

@@ -8,7 +8,7 @@
 #include "core/machine/changer.hpp"
 #include "core/protocol/executor_link.hpp"
 #include "core/machine/ports.hpp"
-#include "core/config/teach.hpp"
+#include "core/dry_run/teach.hpp"
 #include "io/status_file.hpp"
 #include "program_tools_job.hpp"
 #include "keepout_lengths.hpp"

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "core/machine/changer.hpp"
-#include "core/config/teach.hpp"
+#include "core/dry_run/teach.hpp"
 
 namespace fatc::linuxcnc {
 

@@ -2,7 +2,7 @@
 
 #include <sys/stat.h>
 
-#include "core/plan/sequence_check.hpp"
+#include "core/dry_run/sequence_check.hpp"
 #include "core/program/tool_table.hpp"
 #include "io/files.hpp"
 #include "nml_link.hpp"

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "core/machine/changer.hpp"
-#include "core/plan/rehearsal.hpp"
+#include "core/dry_run/dry_run.hpp"
 
 namespace fatc::linuxcnc {
 

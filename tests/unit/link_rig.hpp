@@ -10,7 +10,7 @@
 
 #include "core/machine/changer.hpp"
 #include "core/protocol/executor_link.hpp"
-#include "core/plan/simulator.hpp"
+#include "core/dry_run/simulator.hpp"
 
 namespace fatc::test {
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "core/plan/simulator.hpp"
+#include "core/dry_run/simulator.hpp"
 
 namespace fatc::test {
 

@@ -5,7 +5,7 @@
 #include <memory>
 
 #include "core/machine/changer.hpp"
-#include "core/plan/simulator.hpp"
+#include "core/dry_run/simulator.hpp"
 #include "sim_lines.hpp"
 
 namespace fatc::test {

@@ -9,7 +9,7 @@
 #include <set>
 #include <sstream>
 
-#include "../rack/keepout.hpp"
+#include "rack_volume.hpp"
 #include "json_text.hpp"
 #include "reader.hpp"
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "../rack/point.hpp"
+#include "../motion/point.hpp"
 
 namespace fatc {
 

@@ -11,7 +11,7 @@
 #include "../plan/routes.hpp"
 #include "ports.hpp"
 #include "../rack/sensors.hpp"
-#include "../protocol/step.hpp"
+#include "../motion/step.hpp"
 #include "../rack/tool_state.hpp"
 #include "prompt.hpp"
 #include "rehearsal.hpp"

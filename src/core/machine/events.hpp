@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "../config/config.hpp"
-#include "../rack/point.hpp"
+#include "../motion/point.hpp"
 
 namespace fatc {
 

@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "../protocol/step.hpp"
+#include "../motion/step.hpp"
 #include "../rack/tool_state.hpp"
 #include "prompt.hpp"
 

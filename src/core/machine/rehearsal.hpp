@@ -13,7 +13,7 @@ class Context;
 /// nothing moving: every move of its whole sequence is checked with the
 /// length of the tool it carries, so a change that would carry a tip into a
 /// holder is refused before its first move, not at the move. The machine
-/// declares it; planning (plan/rehearsal) carries it out.
+/// declares it; the Simulator's DryRun carries it out.
 class Rehearsal {
  public:
   virtual ~Rehearsal() = default;

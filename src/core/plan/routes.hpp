@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "../config/config.hpp"
-#include "../protocol/step.hpp"
+#include "../motion/step.hpp"
 
 namespace fatc::plan {
 

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "../rack/point.hpp"
+#include "../motion/point.hpp"
 
 namespace fatc::program {
 

@@ -8,7 +8,7 @@
 #include <utility>
 
 #include "../machine/context.hpp"
-#include "../plan/simulator.hpp"
+#include "../dry_run/simulator.hpp"
 #include "canonical_call.hpp"
 
 namespace fatc {

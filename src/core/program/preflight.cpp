@@ -9,7 +9,7 @@
 #include <tuple>
 #include <utility>
 
-#include "../plan/sequence_check.hpp"
+#include "../dry_run/sequence_check.hpp"
 #include "interpreter_output.hpp"
 
 namespace fatc {

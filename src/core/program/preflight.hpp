@@ -5,10 +5,10 @@
 #include <vector>
 
 #include "../config/config.hpp"
-#include "../rack/point.hpp"
+#include "../motion/point.hpp"
 #include "tool_use.hpp"
-#include "../plan/simulator.hpp"
-#include "../plan/timing.hpp"
+#include "../dry_run/simulator.hpp"
+#include "../dry_run/timing.hpp"
 #include "../rack/keepout.hpp"
 #include "../rack/tool_state.hpp"
 #include "tool_table.hpp"

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "step.hpp"
+#include "../motion/step.hpp"
 
 namespace fatc {
 

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "../config/config.hpp"
-#include "../protocol/step.hpp"
+#include "../motion/step.hpp"
 #include "keepout.hpp"
 
 namespace fatc {

@@ -459,7 +459,7 @@ TEST_F(Lint, shouldSayAToolFromAnM66InputIsNotKnown) {
               "only when the program runs on the machine (rs274 reads 0)\n");
 }
 
-// ---- the estimate (its model: tests/unit/plan/timing_test.cpp) ----
+// ---- the estimate (its model: tests/unit/dry_run/timing_test.cpp) ----
 
 TEST_F(Lint, shouldEstimateTheChangeTimeFromThePlannedSteps) {
   const LintRun r =

@@ -15,7 +15,7 @@
 
 #include "cli_run.hpp"
 #include "core/config/quote.hpp"
-#include "core/plan/simulator.hpp"
+#include "core/dry_run/simulator.hpp"
 #include "temp_folder.hpp"
 #include "test_config.hpp"
 

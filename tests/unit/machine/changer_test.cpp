@@ -5,7 +5,7 @@
 #include <functional>
 #include <memory>
 
-#include "core/plan/simulator.hpp"
+#include "core/dry_run/simulator.hpp"
 #include "sim_lines.hpp"
 #include "test_config.hpp"
 

@@ -6,7 +6,7 @@
 
 #include "core/machine/changer.hpp"
 #include "core/protocol/executor_link.hpp"
-#include "core/plan/simulator.hpp"
+#include "core/dry_run/simulator.hpp"
 #include "sim_rig.hpp"
 #include "test_config.hpp"
 

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "core/machine/changer.hpp"
-#include "core/plan/simulator.hpp"
+#include "core/dry_run/simulator.hpp"
 #include "sim_rig.hpp"
 #include "test_config.hpp"
 

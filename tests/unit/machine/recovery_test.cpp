@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "core/machine/changer.hpp"
-#include "core/plan/simulator.hpp"
+#include "core/dry_run/simulator.hpp"
 #include "io/cli.hpp"
 #include "io/files.hpp"
 #include "test_config.hpp"

@@ -13,7 +13,7 @@
 #include <sstream>
 
 #include "core/machine/changer.hpp"
-#include "core/plan/simulator.hpp"
+#include "core/dry_run/simulator.hpp"
 #include "io/status_file.hpp"
 #include "test_config.hpp"
 

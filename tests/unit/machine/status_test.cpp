@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "core/machine/changer.hpp"
-#include "core/plan/simulator.hpp"
+#include "core/dry_run/simulator.hpp"
 #include "test_config.hpp"
 
 namespace fatc {

@@ -6,7 +6,7 @@
 
 #include "core/machine/changer.hpp"
 #include "core/config/config.hpp"
-#include "core/plan/simulator.hpp"
+#include "core/dry_run/simulator.hpp"
 #include "core/rack/tool_state.hpp"
 #include "sim_rig.hpp"
 #include "test_config.hpp"

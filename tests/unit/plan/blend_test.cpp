@@ -8,9 +8,9 @@
 
 #include "core/config/config.hpp"
 #include "core/plan/routes.hpp"
-#include "core/plan/sequence_check.hpp"
-#include "core/plan/simulator.hpp"
-#include "core/plan/timing.hpp"
+#include "core/dry_run/sequence_check.hpp"
+#include "core/dry_run/simulator.hpp"
+#include "core/dry_run/timing.hpp"
 #include "sim_lines.hpp"
 #include "test_config.hpp"
 

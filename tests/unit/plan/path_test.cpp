@@ -11,8 +11,8 @@
 #include "core/rack/geometry.hpp"
 #include "core/program/preflight.hpp"
 #include "core/plan/routes.hpp"
-#include "core/plan/simulator.hpp"
-#include "core/plan/timing.hpp"
+#include "core/dry_run/simulator.hpp"
+#include "core/dry_run/timing.hpp"
 #include "sim_lines.hpp"
 #include "test_config.hpp"
 

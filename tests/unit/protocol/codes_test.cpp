@@ -9,7 +9,7 @@
 
 #include "core/protocol/executor_link.hpp"
 #include "core/machine/status.hpp"
-#include "core/protocol/step.hpp"
+#include "core/motion/step.hpp"
 
 // The numeric codes the core shares with the NGC step executor and the panel
 // are written once in each language; these tests hold the copies to the C++

@@ -9,9 +9,9 @@
 
 #include "core/config/config.hpp"
 #include "core/machine/changer.hpp"
-#include "core/plan/rehearsal.hpp"
-#include "core/plan/sequence_check.hpp"
-#include "core/plan/simulator.hpp"
+#include "core/dry_run/dry_run.hpp"
+#include "core/dry_run/sequence_check.hpp"
+#include "core/dry_run/simulator.hpp"
 #include "core/rack/geometry.hpp"
 #include "core/rack/keepout.hpp"
 

@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "core/rack/geometry.hpp"
-#include "core/plan/simulator.hpp"
+#include "core/dry_run/simulator.hpp"
 #include "test_config.hpp"
 
 namespace fatc {

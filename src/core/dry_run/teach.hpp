@@ -4,9 +4,9 @@
 #include <optional>
 #include <string>
 
-#include "config.hpp"
+#include "../config/config.hpp"
 #include "../rack/geometry.hpp"
-#include "../rack/point.hpp"
+#include "../motion/point.hpp"
 
 namespace fatc {
 

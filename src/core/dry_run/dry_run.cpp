@@ -1,4 +1,4 @@
-#include "rehearsal.hpp"
+#include "dry_run.hpp"
 
 #include "../machine/context.hpp"
 #include "simulator.hpp"

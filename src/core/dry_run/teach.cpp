@@ -4,9 +4,9 @@
 #include <cstdio>
 #include <vector>
 
-#include "json_text.hpp"
-#include "quote.hpp"
-#include "../plan/sequence_check.hpp"
+#include "../config/json_text.hpp"
+#include "../config/quote.hpp"
+#include "sequence_check.hpp"
 
 namespace fatc {
 namespace {

@@ -1,4 +1,4 @@
-#include "core/config/teach.hpp"
+#include "core/dry_run/teach.hpp"
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>

@@ -1,8 +1,8 @@
-// The motion and time model of src/core/plan/timing.hpp: each move as an
+// The motion and time model of src/core/dry_run/timing.hpp: each move as an
 // exact stop with a trapezoidal profile, the bound at the machine's limits,
 // and the estimate --plan and --lint print (LinuxCNC's planner, the dwells, the
 // changer's costs per step and per change). Each figure worked out by hand.
-#include "core/plan/timing.hpp"
+#include "core/dry_run/timing.hpp"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@
 #include <limits>
 #include <utility>
 
-#include "core/plan/simulator.hpp"
+#include "core/dry_run/simulator.hpp"
 #include "test_config.hpp"
 
 namespace fatc {

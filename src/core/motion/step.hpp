@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "../rack/point.hpp"
+#include "point.hpp"
 
 namespace fatc {
 

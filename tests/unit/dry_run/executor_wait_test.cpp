@@ -3,7 +3,7 @@
 // themselves report, with every sensor answering as late as it may.
 #include <gtest/gtest.h>
 
-#include "core/plan/simulator.hpp"
+#include "core/dry_run/simulator.hpp"
 #include "test_config.hpp"
 
 namespace fatc {

@@ -9,7 +9,7 @@
 #include "../config/config.hpp"
 #include "../rack/geometry.hpp"
 #include "simulator.hpp"
-#include "../protocol/step.hpp"
+#include "../motion/step.hpp"
 
 namespace fatc {
 
