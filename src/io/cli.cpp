@@ -60,6 +60,8 @@ struct Loaded {
   /// units: the lengths the sequences are checked with.
   ToolLengths lengths;
   std::optional<std::string> table_path;  ///< the table read, if any
+  std::vector<std::string> table_skipped;  ///< its lines LinuxCNC skips
+  std::map<int, double> measured;          ///< the state file's measured lengths
   /// Why the INI's tool table was not read (LinuxCNC starts without one).
   std::optional<std::string> table_unread;
   int problems = 0;  ///< lines written to `err`
@@ -73,6 +75,7 @@ struct TableRead {
   std::optional<std::string> path;  ///< none: no table named
   std::map<int, double> lengths;
   std::string error;  ///< why it could not be read, empty when it was
+  std::vector<std::string> skipped;  ///< lines LinuxCNC skips, as "line N: why"
 };
 TableRead read_table(const Options& options, Units units) {
   TableRead read;
@@ -87,10 +90,16 @@ TableRead read_table(const Options& options, Units units) {
   if (!read.path) return read;
   const auto text = read_small_file(*read.path, read.error);
   if (!text) return read;
-  const double per_mm = ini ? ini->linear_units().value_or(1.0) : 1.0;
+  // Without an INI the table is taken in the config's units.
+  const double per_mm = (ini ? ini->linear_units() : std::nullopt)
+                            .value_or(units == Units::inch ? 1.0 / 25.4 : 1.0);
   const double scale = (units == Units::inch ? 25.4 : 1.0) * per_mm;
-  for (const auto& [tool, entry] : parse_tool_table(*text).tools) {
+  const ToolTable table = parse_tool_table(*text);
+  for (const auto& [tool, entry] : table.tools) {
     if (entry.z) read.lengths[tool] = *entry.z / scale;
+  }
+  for (const LineNote& note : table.problems) {
+    read.skipped.push_back("line " + std::to_string(note.line) + ": " + note.text);
   }
   return read;
 }
@@ -104,6 +113,7 @@ void read_tool_lengths(const Options& options, Loaded& loaded, std::ostream& err
   if (table.error.empty()) {
     loaded.lengths = carried_lengths(config, loaded.limits, std::move(table.lengths));
     loaded.table_path = table.path;
+    loaded.table_skipped = std::move(table.skipped);
   } else if (!options.tool_table_path) {
     loaded.table_unread = table.error + ": the tools' lengths not checked";
   } else {
@@ -225,14 +235,16 @@ void report_carried(const Config& config, const Loaded& loaded, const SequencesC
                     std::ostream& out) {
   const ToolLengths& lengths = loaded.lengths;
   out << "\ntools of " << shown_path(*loaded.table_path)
-      << " carried across the rack (the longest the config allows: "
-      << format_length(config, lengths.longest) << "):\n";
+      << " carried across the rack (a tool of no known length counts as "
+      << format_length(config, lengths.longest) << ", the longest the config allows):\n";
+  for (const std::string& line : loaded.table_skipped) {
+    out << "  not read, as LinuxCNC skips it: " << line << "\n";
+  }
   int fit = 0;
   for (const auto& [tool, z] : lengths.table) {
-    const KeepoutLength counted = lengths.of(tool, {});
+    const KeepoutLength counted = lengths.of(tool, loaded.measured);
     if (counted.source != LengthSource::table) {
-      out << "  " << keepout_length_words(config, lengths, tool, {}) << "\n";
-      continue;
+      out << "  " << keepout_length_words(config, lengths, tool, loaded.measured) << "\n";
     }
     std::vector<int> too_short;
     const SequenceRoom* least = nullptr;
@@ -299,7 +311,11 @@ int check(const Options& options, std::ostream& out, std::ostream& err) {
   }
   out << "\nchecking every sequence against the rack keep-out"
       << (loaded.limits ? " and the soft limits" : "") << ":\n";
-  const SequencesChecked checked = check_sequences(config, loaded.limits, loaded.lengths);
+  if (const auto saved = load_state_file(options.state_path, config); saved.state) {
+    loaded.measured = saved.state->lengths;
+  }
+  const SequencesChecked checked =
+      check_sequences(config, loaded.limits, loaded.lengths, loaded.measured);
   const int violations = report(checked.violations, out);
   out << checked.sequences << " sequences checked, " << violations << " violation"
       << (violations == 1 ? "" : "s") << "\n";

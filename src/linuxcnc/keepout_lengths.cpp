@@ -23,7 +23,14 @@ void KeepoutLengths::read_table(const Config& config, double per_mm) {
   }
   std::string error;
   const auto text = io::read_small_file(*path_, error);
-  if (!text) return;  // being rewritten: the next poll reads it
+  // LinuxCNC rewrites the file in place: one changed while it was read is
+  // read again at the next poll, whole.
+  struct stat after {};
+  if (!text || ::stat(path_->c_str(), &after) != 0 ||
+      after.st_mtim.tv_sec != about.st_mtim.tv_sec ||
+      after.st_mtim.tv_nsec != about.st_mtim.tv_nsec || after.st_size != about.st_size) {
+    return;
+  }
   table_changed_ = about.st_mtim;
   // The table is in machine units; the keep-out works in the config's.
   const double scale = (config.units == Units::inch ? 25.4 : 1.0) * per_mm;

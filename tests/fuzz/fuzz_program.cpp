@@ -1,6 +1,7 @@
 // Any bytes as what reads a program for --lint: the program numbered piece by
 // piece (pieces of a size the input chooses) the same as whole, every line of
-// code numbered with its own number or left unnumbered, never made too long
+// code numbered with its own number or left unnumbered (a line that may run a
+// subroutine has a note of that number before it), never made too long
 // for LinuxCNC; the same bytes as rs274's output (calls and
 // errors) and as a tool table, each read within its bounds. run.sh runs it
 // under a memory limit (libFuzzer's -rss_limit_mb and -malloc_limit_mb): the
@@ -29,6 +30,18 @@ std::string numbered(std::string_view text, std::size_t piece, LineNumberer& num
   }
   numberer.finish(false);
   return out + numberer.take_text();
+}
+
+/// LineNumberer's note before a line that may run a subroutine, and nothing
+/// else: "N1000000007 (fixed_atc_probe: this line runs a subroutine)", after
+/// a block delete where the line has one.
+bool is_note(std::string_view line) {
+  std::size_t at = !line.empty() && line[0] == '/' ? 1 : 0;
+  if (at >= line.size() || line[at] != 'N') return false;
+  ++at;
+  const std::size_t digits = at;
+  while (at < line.size() && line[at] >= '0' && line[at] <= '9') ++at;
+  return at > digits && line.substr(at) == " (" + std::string(kRunsSubroutine) + ")";
 }
 
 void check_numbering(std::string_view text, std::size_t piece) {
@@ -62,6 +75,15 @@ void check_numbering(std::string_view text, std::size_t piece) {
     if (end == std::string::npos)
       fatc::fuzz::broken("the copy ends with a line end", once.substr(start, 200));
     const std::string_view got(once.data() + start, end - start);
+    if (is_note(got)) {
+      // The note before a line that may run a subroutine: no line of the
+      // program's own, numbered with the number of the line it stands before.
+      if (line_of(got) != line + 1) {
+        fatc::fuzz::broken("a note numbered with its line's number", std::string(got.substr(0, 200)));
+      }
+      start = end + 1;
+      continue;
+    }
     ++line;
     const int number = line_of(got);
     if (number != 0 && number != line) {

@@ -29,9 +29,10 @@ std::vector<SequenceViolation> check_sequence(const std::string& sequence, const
 }
 
 SequencesChecked check_sequences(const Config& config, const std::optional<SoftLimits>& limits,
-                                 const ToolLengths& lengths) {
+                                 const ToolLengths& lengths,
+                                 const std::map<int, double>& measured) {
   SequencesChecked checked;
-  const StepsFrom from_safe{config.safe, axis_xyz, lengths, {}};
+  const StepsFrom from_safe{config.safe, axis_xyz, lengths, measured};
   auto add = [&](int number, const std::string& sequence, const Simulator& planned) {
     auto found = check_sequence(sequence, config, planned, limits, from_safe);
     checked.violations.insert(checked.violations.end(), std::make_move_iterator(found.begin()),

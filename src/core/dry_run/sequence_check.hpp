@@ -56,10 +56,12 @@ struct SequencesChecked {
 /// with an empty spindle, M6 T0 from it, load, unload, measure, verify),
 /// each from `safe`, where the sequence before left the spindle, and
 /// checks each move against the keep-out and the soft limits, each tool
-/// carried with its length in `lengths` (none given: 0): what `--check`
+/// carried with its length in `lengths` and the changer's `measured` ones
+/// (ToolLengths::of; none given: 0): what `--check`
 /// reports and what a taught position must pass.
 SequencesChecked check_sequences(const Config& config, const std::optional<SoftLimits>& limits,
-                                 const ToolLengths& lengths = {});
+                                 const ToolLengths& lengths = {},
+                                 const std::map<int, double>& measured = {});
 
 /// The longest tool the config allows: the least room any pocket's
 /// sequences leave (`checked`), and no longer than the tool that crosses

@@ -342,7 +342,7 @@ bool KeepoutCheck::check(int line, bool numbered, const char* code, const Point&
   std::string held;
   if (!spindle_) {
     held = "with a tool known only when the program runs (counted with no length)";
-  } else if (*spindle_ == 0 || in_.lengths) {
+  } else if (*spindle_ == 0 || in_.lengths || set_lengths_.count(*spindle_)) {
     held = held_words(config, *spindle_, length);
   } else {
     held = "with T" + std::to_string(*spindle_) + " (no length known: counted as 0)";
@@ -374,7 +374,7 @@ double KeepoutCheck::tool_length(int line) {
     return 0.0;
   }
   if (*spindle_ == 0) return 0.0;
-  if (!in_.lengths) {
+  if (!in_.lengths && !set_lengths_.count(*spindle_)) {
     if (!said_no_table_) {
       said_no_table_ = true;
       unknown(line, "no tool table (--tool-table, or the INI's [EMCIO]TOOL_TABLE): the moves "

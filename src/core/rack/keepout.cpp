@@ -53,12 +53,16 @@ const char* keepout_words(KeepoutState state) {
 
 KeepoutLength ToolLengths::of(int tool, const std::map<int, double>& measured) const {
   if (tool == 0) return {};
-  if (const auto z = table.find(tool); z != table.end() && z->second > 0.0) {
-    return {z->second, LengthSource::table};
-  }
-  if (const auto own = measured.find(tool); own != measured.end() && own->second > 0.0) {
+  const auto z = table.find(tool);
+  const auto own = measured.find(tool);
+  const bool in_table = z != table.end() && z->second > 0.0;
+  const bool measured_here = own != measured.end() && own->second > 0.0;
+  // A table written relative to a master tool gives a longer tool a small Z:
+  // the changer's own measurement, where longer, is the tool's.
+  if (measured_here && (!in_table || own->second > z->second)) {
     return {own->second, LengthSource::measured};
   }
+  if (in_table) return {z->second, LengthSource::table};
   return {longest, LengthSource::longest};
 }
 
@@ -71,7 +75,8 @@ std::string keepout_length_words(const Config& config, const ToolLengths& length
       z == lengths.table.end()
           ? "LinuxCNC's tool table gives no length"
           : "LinuxCNC's tool table gives Z" + format_length(config, z->second) +
-                ", no length below the spindle nose";
+                (z->second > 0.0 ? ", shorter than the changer measured it"
+                                 : ", no length below the spindle nose");
   return "T" + std::to_string(tool) + ": " + given + "; the rack keep-out counts it as " +
          format_length(config, counted.length) +
          (counted.source == LengthSource::measured ? " (its length as the changer measured it)"

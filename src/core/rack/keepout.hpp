@@ -30,13 +30,13 @@ struct KeepoutLength {
 struct ToolLengths {
   /// Z of LinuxCNC's tool table, by tool, in the config's units.
   std::map<int, double> table;
-  /// The longest tool the config allows (plan::longest_carried).
+  /// The longest tool the config allows (longest_carried in dry_run/sequence_check.hpp).
   double longest = 0.0;
 
   /// `tool`'s length: the table's Z where it is a length below the nose
-  /// (above 0), else the changer's own measurement, else `longest`. A
-  /// negative or missing Z (tables written relative to a master tool) never
-  /// lowers the boundary.
+  /// (above 0), the changer's own measurement where that is longer or the
+  /// table gives none, else `longest`. A negative or missing Z (tables
+  /// written relative to a master tool) never lowers the boundary.
   KeepoutLength of(int tool, const std::map<int, double>& measured) const;
 };
 

@@ -80,6 +80,11 @@ TEST(KeepoutLength, shouldTakeTheTablesLengthOnlyWhereItIsOneBelowTheNose) {
   EXPECT_DOUBLE_EQ(lengths.of(3, measured).length, 45.0);
   EXPECT_EQ(lengths.of(9, measured).source, LengthSource::longest) << "not in the table";
   EXPECT_DOUBLE_EQ(lengths.of(0, measured).length, 0.0) << "an empty spindle";
+  // A table relative to a master tool gives a longer tool a small positive Z.
+  lengths.table[4] = 5.0;
+  EXPECT_DOUBLE_EQ(lengths.of(4, {{4, 85.0}}).length, 85.0) << "the measurement, longer";
+  EXPECT_EQ(lengths.of(4, {{4, 85.0}}).source, LengthSource::measured);
+  EXPECT_DOUBLE_EQ(lengths.of(1, {{1, 29.9}}).length, 30.0) << "the table's, longer";
 }
 
 TEST(KeepoutLength, shouldSayWhatItCountsWhereTheTablesZIsNoLength) {
