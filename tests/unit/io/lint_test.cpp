@@ -25,6 +25,7 @@
 #include "io/cli.hpp"
 #include "io/files.hpp"
 #include "io/interpreter.hpp"
+#include "test_config.hpp"
 
 namespace fatc {
 namespace {
@@ -1162,27 +1163,10 @@ TEST_F(Lint, shouldNameAChuckReleaseTheChangerWouldRefuse) {
 
 // ---- the changer's own moves with the tools they carry (issue 32, class 1 in the preflight) ----
 
-/// Pockets 1-4 entered from the top, T1-T4 in them, safe between pockets 2
-/// and 3 5 mm over every above-clearance: the sequences leave 45 mm below
-/// the nose over the holders (tests/unit/rack/carried_tool_test.cpp's rack).
-const char* const kTopRack = R"({
-  "probe_length_compensation_offset": -95.0,
-  "probe_retract_offset_z": 5.0,
-  "pocket_side_offset": {"x": 0.0, "y": 40.0},
-  "pocket_above_chuck_offset_z": 20.0,
-  "pocket_above_clearance_offset_z": 60.0,
-  "chuck_seconds": 0.5,
-  "path": "direct",
-  "loading": {"x": 20.0, "y": 150.0, "z": -10.0},
-  "probe_limit": {"x": 20.0, "y": 150.0, "z": -90.0},
-  "safe": {"x": 125.0, "y": 20.0, "z": -15.0},
-  "pocket_default": {"y": 20.0, "z": -80.0, "approach": "top"},
-  "pockets": {"1": {"x": 50.0}, "2": {"x": 100.0}, "3": {"x": 150.0}, "4": {"x": 200.0}}
-})";
-
 TEST_F(Lint, shouldNameAChangeWhoseOwnMovesWouldCarryAToolsTipIntoAHolder) {
   const auto with = [&](const std::string& table, const std::string& program) {
-    return run({"--lint", write("carry.ngc", program), "--config", write("top.json", kTopRack),
+    return run({"--lint", write("carry.ngc", program), "--config",
+                write("top.json", test::kTopRack),
                 "--state", no_state(), "--tool-table", write("tools.tbl", table)});
   };
   // T1 80 mm in the table: fetched from pocket 1, carried to safe over pocket 2's holder.

@@ -14,30 +14,14 @@
 #include "core/dry_run/simulator.hpp"
 #include "core/rack/geometry.hpp"
 #include "core/rack/keepout.hpp"
+#include "test_config.hpp"
 
 namespace fatc {
 namespace {
 
-/// Pockets entered from the top, safe placed between pockets 2 and 3 at a Z
-/// the nose clears (5 mm over every above-clearance): a tool longer than
-/// 45 mm drags its tip through the holders on the way back to safe.
-const char* const kTopRack = R"({
-  "probe_length_compensation_offset": -95.0,
-  "probe_retract_offset_z": 5.0,
-  "pocket_side_offset": {"x": 0.0, "y": 40.0},
-  "pocket_above_chuck_offset_z": 20.0,
-  "pocket_above_clearance_offset_z": 60.0,
-  "chuck_seconds": 0.5,
-  "path": "direct",
-  "loading": {"x": 20.0, "y": 150.0, "z": -10.0},
-  "probe_limit": {"x": 20.0, "y": 150.0, "z": -90.0},
-  "safe": {"x": 125.0, "y": 20.0, "z": -15.0},
-  "pocket_default": {"y": 20.0, "z": -80.0, "approach": "top"},
-  "pockets": {"1": {"x": 50.0}, "2": {"x": 100.0}, "3": {"x": 150.0}, "4": {"x": 200.0}}
-})";
 
 Config top_rack() {
-  const auto parsed = parse_config(kTopRack);
+  const auto parsed = parse_config(test::kTopRack);
   EXPECT_TRUE(parsed.errors.empty()) << parsed.errors.front();
   return *parsed.config;
 }
