@@ -93,11 +93,8 @@ TableRead read_table(const Options& options, Units units) {
   // Without an INI the table is taken in the config's units.
   const double per_mm = (ini ? ini->linear_units() : std::nullopt)
                             .value_or(units == Units::inch ? 1.0 / 25.4 : 1.0);
-  const double scale = (units == Units::inch ? 25.4 : 1.0) * per_mm;
   const ToolTable table = parse_tool_table(*text);
-  for (const auto& [tool, entry] : table.tools) {
-    if (entry.z) read.lengths[tool] = *entry.z / scale;
-  }
+  read.lengths = tool_lengths(table, units, per_mm);
   for (const LineNote& note : table.problems) {
     read.skipped.push_back("line " + std::to_string(note.line) + ": " + note.text);
   }
@@ -227,42 +224,19 @@ int partial_verdict(const Loaded& loaded, std::ostream& out) {
   return 1;
 }
 
-/// Which tools of the tool table the rack cannot carry across, and how
-/// long it counts those whose Z is no length. A tool too long for the pocket
-/// it starts in is a violation already; one too long for another pocket can
-/// still be loaded elsewhere or handed over as a manual tool.
+/// The tools of the table the rack cannot carry across (carried_tools),
+/// after the lines of the table LinuxCNC skips.
 void report_carried(const Config& config, const Loaded& loaded, const SequencesChecked& checked,
                     std::ostream& out) {
-  const ToolLengths& lengths = loaded.lengths;
   out << "\ntools of " << shown_path(*loaded.table_path)
       << " carried across the rack (a tool of no known length counts as "
-      << format_length(config, lengths.longest) << ", the longest the config allows):\n";
+      << format_length(config, loaded.lengths.longest) << ", the longest the config allows):\n";
   for (const std::string& line : loaded.table_skipped) {
     out << "  not read, as LinuxCNC skips it: " << line << "\n";
   }
-  int fit = 0;
-  for (const auto& [tool, z] : lengths.table) {
-    const KeepoutLength counted = lengths.of(tool, loaded.measured);
-    if (counted.source != LengthSource::table) {
-      out << "  " << keepout_length_words(config, lengths, tool, loaded.measured) << "\n";
-    }
-    std::vector<int> too_short;
-    const SequenceRoom* least = nullptr;
-    for (const auto& [pocket, room] : checked.room) {
-      if (counted.length <= room.length + 1e-9) continue;
-      too_short.push_back(pocket);
-      if (!least || room.length < least->length) least = &room;
-    }
-    if (!least) {
-      ++fit;
-      continue;
-    }
-    out << "  T" << tool << " (length " << format_length(config, counted.length)
-        << ") cannot be carried through " << pocket_list(too_short) << ": "
-        << describe(*least) << " leaves " << format_length(config, least->length)
-        << " below the nose; " << tip_remedy() << "\n";
+  for (const std::string& line : carried_tools(config, loaded.lengths, loaded.measured, checked)) {
+    out << "  " << line << "\n";
   }
-  out << "  " << fit << (fit == 1 ? " tool" : " tools") << " of the table fit every pocket\n";
 }
 
 int check(const Options& options, std::ostream& out, std::ostream& err) {

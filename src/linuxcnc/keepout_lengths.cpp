@@ -32,12 +32,7 @@ void KeepoutLengths::read_table(const Config& config, double per_mm) {
     return;
   }
   table_changed_ = about.st_mtim;
-  // The table is in machine units; the keep-out works in the config's.
-  const double scale = (config.units == Units::inch ? 25.4 : 1.0) * per_mm;
-  lengths_.table.clear();
-  for (const auto& [tool, entry] : parse_tool_table(*text).tools) {
-    if (entry.z) lengths_.table[tool] = *entry.z / scale;
-  }
+  lengths_.table = tool_lengths(parse_tool_table(*text), config.units, per_mm);
 }
 
 void KeepoutLengths::poll(Changer& changer, const NmlLink* nml, Ports& ports) {
@@ -54,8 +49,7 @@ void KeepoutLengths::poll(Changer& changer, const NmlLink* nml, Ports& ports) {
   if (per_mm) {
     read_table(config, *per_mm);
     if (const int tool = nml->spindle_tool(); tool > 0) {
-      const double scale = (config.units == Units::inch ? 25.4 : 1.0) * *per_mm;
-      lengths_.table[tool] = nml->spindle_tool_length() / scale;
+      lengths_.table[tool] = nml->spindle_tool_length() / machine_per_unit(config.units, *per_mm);
     }
   }
   if (!given_ || given_->table != lengths_.table || given_->longest != lengths_.longest) {

@@ -38,7 +38,7 @@ void RackKeepout::poll(HalPins& pins, const Changer& changer, bool machine_ready
   trips_ = trips;
   if (!per_mm) return;
   // Config units to machine units: the guard compares with axis.L.pos-cmd.
-  const double scale = (config.units == Units::inch ? 25.4 : 1.0) * *per_mm;
+  const double scale = machine_per_unit(config.units, *per_mm);
   const auto& parts = volume(config);
   *pins.rack_keepout_boxes = static_cast<int>(std::min(parts.size(), kGuardBoxes));
   for (std::size_t k = 0; k < kGuardBoxes; ++k) {

@@ -397,6 +397,10 @@ void check_geometry(Reader& reader, Config& config) {
 
 const char* units_name(Units units) { return units == Units::mm ? "mm" : "inch"; }
 
+double machine_per_unit(Units units, double machine_per_mm) {
+  return (units == Units::inch ? 25.4 : 1.0) * machine_per_mm;
+}
+
 const char* approach_name(Approach approach) { return approach == Approach::top ? "top" : "side"; }
 
 std::optional<int> Config::first_pocket_of(int tool) const {

@@ -153,6 +153,9 @@ struct ConfigResult {
 ConfigResult parse_config(const std::string& json_text);
 
 const char* units_name(Units units);
+/// Machine units to one unit of `units`, on a machine of `machine_per_mm`
+/// units to the mm (LinuxCNC's linear units: 1 mm, 1/25.4 inch).
+double machine_per_unit(Units units, double machine_per_mm);
 const char* approach_name(Approach approach);
 /// A length for a message, with the config's unit: "25.0012 mm".
 std::string format_length(const Config& config, double length);

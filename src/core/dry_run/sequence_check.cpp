@@ -80,6 +80,37 @@ SequencesChecked check_sequences(const Config& config, const std::optional<SoftL
   return checked;
 }
 
+std::vector<std::string> carried_tools(const Config& config, const ToolLengths& lengths,
+                                       const std::map<int, double>& measured,
+                                       const SequencesChecked& checked) {
+  std::vector<std::string> lines;
+  int fit = 0;
+  for (const auto& [tool, z] : lengths.table) {
+    const KeepoutLength counted = lengths.of(tool, measured);
+    if (counted.source != LengthSource::table) {
+      lines.push_back(keepout_length_words(config, lengths, tool, measured));
+    }
+    std::vector<int> too_short;
+    const SequenceRoom* least = nullptr;
+    for (const auto& [pocket, room] : checked.room) {
+      if (counted.length <= room.length + 1e-9) continue;
+      too_short.push_back(pocket);
+      if (!least || room.length < least->length) least = &room;
+    }
+    if (!least) {
+      ++fit;
+      continue;
+    }
+    lines.push_back("T" + std::to_string(tool) + " (length " +
+                    format_length(config, counted.length) + ") cannot be carried through " +
+                    pocket_list(too_short) + ": " + describe(*least) + " leaves " +
+                    format_length(config, least->length) + " below the nose; " + tip_remedy());
+  }
+  lines.push_back(std::to_string(fit) + (fit == 1 ? " tool" : " tools") +
+                  " of the table fit every pocket");
+  return lines;
+}
+
 double longest_carried(const Config& config, const SequencesChecked& checked) {
   double longest = config.pocket_above_clearance_offset_z - config.pocket_above_chuck_offset_z;
   for (const auto& [pocket, room] : checked.room) longest = std::min(longest, room.length);

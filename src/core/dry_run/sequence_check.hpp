@@ -69,6 +69,16 @@ SequencesChecked check_sequences(const Config& config, const std::optional<SoftL
 /// (pocket_above_clearance_offset_z - pocket_above_chuck_offset_z).
 double longest_carried(const Config& config, const SequencesChecked& checked);
 
+/// What --check says of each tool of `lengths`' table, one line each: what
+/// a Z of no length counts as, and which pockets' sequences cannot carry the
+/// tool across their holders (where the room is least); last, how many fit
+/// every pocket. A tool too long for the pocket it starts in is a violation
+/// already; one too long for another pocket can still be loaded elsewhere or
+/// handed over as a manual tool.
+std::vector<std::string> carried_tools(const Config& config, const ToolLengths& lengths,
+                                       const std::map<int, double>& measured,
+                                       const SequencesChecked& checked);
+
 /// The tool lengths of the tool table `table` (by tool), with the longest
 /// the config allows for those it gives no length of.
 ToolLengths carried_lengths(const Config& config, const std::optional<SoftLimits>& limits,

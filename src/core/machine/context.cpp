@@ -11,9 +11,9 @@ void Context::publish(const Step& next) {
   // The second layer behind --check: every move, before it goes out.
   // A run of rapids (Step::before) is checked move by move.
   // What the spindle holds now is what every move of the step carries.
-  Step held = next;
-  held.held = tools.spindle;
-  const std::vector<Step> moves = moves_of(held);
+  Step published = next;
+  published.held = tools.spindle;
+  const std::vector<Step> moves = moves_of(published);
   const double held_length = keepout_lengths.of(tools.spindle, tools.lengths).length;
   Point along = position;
   unsigned known_along = known_axes;
@@ -38,9 +38,9 @@ void Context::publish(const Step& next) {
   } else if (next.kind == StepKind::wait_operator || next.kind == StepKind::fail) {
     known_axes = 0;  // the operator may jog; a failed sequence may stop anywhere
   }
-  step = held;
+  step = published;
   sequence_step += static_cast<int>(moves.size());
-  ports.publish(held);
+  ports.publish(published);
 }
 
 std::optional<std::string> Context::rehearse(

@@ -133,4 +133,13 @@ ToolTable parse_tool_table(std::string_view text) {
   return table;
 }
 
+std::map<int, double> tool_lengths(const ToolTable& table, Units units, double machine_per_mm) {
+  const double scale = machine_per_unit(units, machine_per_mm);
+  std::map<int, double> lengths;
+  for (const auto& [tool, entry] : table.tools) {
+    if (entry.z) lengths[tool] = *entry.z / scale;
+  }
+  return lengths;
+}
+
 }  // namespace fatc

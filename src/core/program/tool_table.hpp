@@ -6,6 +6,8 @@
 #include <string_view>
 #include <vector>
 
+#include "../config/config.hpp"
+
 namespace fatc {
 
 /// Something said of one line of a file (0: the file as a whole).
@@ -35,5 +37,10 @@ struct ToolTable {
 /// U V W I J Q, either case) and a number read with sscanf; a line with a bad
 /// field is skipped whole, and so is one whose numbers mean nothing. Never throws.
 ToolTable parse_tool_table(std::string_view text);
+
+/// The Z of each tool `table` gives one, in `units`: the table is in the
+/// machine's units, `machine_per_mm` of them to the mm. The keep-out's
+/// lengths (ToolLengths::table), for --check, --plan, --teach and the component.
+std::map<int, double> tool_lengths(const ToolTable& table, Units units, double machine_per_mm);
 
 }  // namespace fatc
