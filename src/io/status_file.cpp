@@ -9,30 +9,6 @@ namespace {
 
 constexpr std::size_t kMessagesKept = 8;
 
-const char* phase_word(Phase phase) {
-  switch (phase) {
-    case Phase::not_ready:
-      return "not ready";
-    case Phase::idle:
-      return "idle";
-    case Phase::changing:
-      return "changing";
-    case Phase::loading:
-      return "loading";
-    case Phase::unloading:
-      return "unloading";
-    case Phase::measuring:
-      return "measuring";
-    case Phase::verifying:
-      return "verifying";
-    case Phase::chuck:
-      return "chuck";
-    case Phase::fault:
-      return "fault";
-  }
-  return "?";
-}
-
 const char* kind_word(MessageKind kind) {
   switch (kind) {
     case MessageKind::info:

@@ -1,6 +1,7 @@
 #include "changer.hpp"
 
 #include "engine.hpp"
+#include "flows.hpp"
 
 namespace fatc {
 
@@ -101,12 +102,14 @@ bool active(const machine::Engine& engine) {
 Phase phase_of(const machine::Engine& engine) {
   namespace flag = machine::flag;
   if (active<flag::Faulted>(engine)) return Phase::fault;
-  if (active<flag::Changing>(engine)) return Phase::changing;
-  if (active<flag::Loading>(engine)) return Phase::loading;
-  if (active<flag::Unloading>(engine)) return Phase::unloading;
-  if (active<flag::Measuring>(engine)) return Phase::measuring;
-  if (active<flag::Verifying>(engine)) return Phase::verifying;
-  if (active<flag::Chucking>(engine)) return Phase::chuck;
+  Phase phase = Phase::not_ready;
+  if (machine::Flows::any([&](auto flow) {
+        using Flow = decltype(flow);
+        phase = Flow::phase;
+        return active<Flow>(engine);
+      })) {
+    return phase;
+  }
   if (active<flag::Idle>(engine)) return Phase::idle;
   return Phase::not_ready;
 }
@@ -157,6 +160,26 @@ std::string activity_of(const Status& status, const Context& c) {
 }
 
 }  // namespace
+
+const char* phase_word(Phase phase) {
+  switch (phase) {
+    case Phase::not_ready:
+      return "not ready";
+    case Phase::idle:
+      return "idle";
+    case Phase::fault:
+      return "fault";
+    default:
+      break;
+  }
+  const char* word = "?";
+  machine::Flows::any([&](auto flow) {
+    using Flow = decltype(flow);
+    word = Flow::word;
+    return Flow::phase == phase;
+  });
+  return word;
+}
 
 Status Changer::status() const {
   const machine::Engine& engine = *engine_;

@@ -37,13 +37,7 @@ namespace flag {
 struct NotReady {};
 struct Idle {};
 struct Faulted {};
-struct Busy {};          ///< a flow runs
-struct Changing {};      ///< the M6 flow
-struct Loading {};       ///< the load-and-probe flow
-struct Unloading {};     ///< the unload flow
-struct Measuring {};     ///< the measure-all flow
-struct Verifying {};     ///< the dry run through a pocket
-struct Chucking {};      ///< a chuck atom from G-code: release or clamp
+struct Busy {};          ///< a flow runs (its kind, flows.hpp, is a flag too)
 struct AwaitsMotion {};  ///< the executor performs a move or a command
 struct AwaitsProbe {};   ///< the executor performs a probe move
 struct AwaitsTimer {};
@@ -57,7 +51,7 @@ struct EndedFailed {};       ///< a flow cannot go on
 template <class... Flags>
 struct List {};
 /// The flags a state inside a flow may carry: what FlowRun::flagged answers
-/// (Busy and the flow's own are on Running<Flow>, the rest on the machine above).
+/// (Busy and the flow's kind are on Running<Flow>, the rest on the machine above).
 using InFlows = List<AwaitsMotion, AwaitsProbe, AwaitsTimer, AwaitsSpindle, AwaitsSensor,
                      AwaitsOperator, HoldsProgram, EndedFinished, EndedCancelled, EndedFailed>;
 }  // namespace flag

@@ -7,8 +7,8 @@
 
 namespace fatc::machine {
 
-/// The machine with its context, behind the Changer. Each event goes to the
-/// running flow first (a machine of its own, flow_run.hpp), then to the
+/// The machine with its context, behind the Changer. Each event a flow can
+/// take goes to the running flow first (a machine of its own, flow_run.hpp), then to the
 /// machine above, as Boost.MSM hands a submachine's events on; a flow's end
 /// is taken there as FlowFinished, FlowCancelled or FlowFailed.
 class Engine {
@@ -46,7 +46,10 @@ void Engine::take(const Event& e) {
   }
   taking_ = true;
   namespace back = boost::msm::back;
-  const back::HandledEnum by_flow = flow() ? flow()->take(boost::any(e)) : back::HANDLED_FALSE;
+  back::HandledEnum by_flow = back::HANDLED_FALSE;
+  if constexpr (flow_takes<Event>) {
+    if (flow()) by_flow = flow()->take(e);
+  }
   take_flow_end();
   if (!(by_flow & (back::HANDLED_TRUE | back::HANDLED_DEFERRED))) {
     fsm.flow_declined = by_flow == back::HANDLED_GUARD_REJECT;

@@ -1,9 +1,11 @@
 #pragma once
 
-// run_flow for one flow; included only by that flow's own file.
+// The run of one flow; included only by that flow's own file, where its
+// event dispatch is generated (for the events of FlowEvent) and nowhere else.
 
 #include "common.hpp"
 #include "flow_run.hpp"
+#include "flows.hpp"
 
 namespace fatc::machine {
 
@@ -15,8 +17,8 @@ class FlowRunOf final : public FlowRun {
     fsm_.ctx = &ctx;
     fsm_.start(request);
   }
-  boost::msm::back::HandledEnum take(const boost::any& event) override {
-    return fsm_.process_any_event(event);
+  boost::msm::back::HandledEnum take(const FlowEvent& event) override {
+    return std::visit([this](const auto& e) { return fsm_.process_event(e); }, event);
   }
   bool flagged(std::type_index flag) const override { return flagged(flag, flag::InFlows{}); }
   FlowEnd take_end() override {
@@ -40,18 +42,4 @@ class FlowRunOf final : public FlowRun {
   bool told_ = false;
 };
 
-template <class Front, class Request>
-std::unique_ptr<FlowRun> run_flow(Context& ctx, const Request& request) {
-  return std::make_unique<FlowRunOf<Front>>(ctx, request);
-}
-
 }  // namespace fatc::machine
-
-/// A flow's event dispatch (favor_compile_time), generated in its own file.
-#define FATC_FLOW_DISPATCH(Front) \
-  BOOST_MSM_BACK_GENERATE_PROCESS_EVENT(fatc::machine::Machine_of<fatc::machine::Front>)
-/// A flow's start (run_flow), in its own file or beside its dispatch.
-#define FATC_FLOW_RUN(Front, Request)                                                   \
-  template std::unique_ptr<fatc::machine::FlowRun>                                      \
-  fatc::machine::run_flow<fatc::machine::Front, fatc::Request>(fatc::Context&,          \
-                                                               const fatc::Request&);

@@ -62,7 +62,7 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
   struct DryRun {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      return fsm.template is_flag_active<flag::Verifying>();
+      return fsm.template is_flag_active<Verify>();
     }
   };
   struct SpindleUncertain {
@@ -224,14 +224,14 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
   /// Operating is on its way out to a fault. It waits and is offered again
   /// after the next event: taken once the cover reads closed, refused by
   /// Faulted (the cover's timeout) or MachineNotReady.
-  using waits_for_the_changer = boost::mpl::vector<
-  Internal < ToolChange      , msmf::Defer                , Not<IsBusy> >,
-  Internal < LoadRequest     , msmf::Defer                , Not<IsBusy> >,
-  Internal < UnloadRequest   , msmf::Defer                , Not<IsBusy> >,
-  Internal < MeasureRequest  , msmf::Defer                , Not<IsBusy> >,
-  Internal < VerifyRequest   , msmf::Defer                , Not<IsBusy> >,
-  Internal < ChuckRequest    , msmf::Defer                , Not<IsBusy> >
-  >;
+  template <class List>
+  struct Waiting;
+  template <class... Each>
+  struct Waiting<FlowList<Each...>> {
+    using type =
+        boost::mpl::vector<Internal<typename Each::request, msmf::Defer, Not<IsBusy>>...>;
+  };
+  using waits_for_the_changer = typename Waiting<Flows>::type;
   /// What no state above answers: a request while a flow runs (Idle and the
   /// other states answer every request themselves), the operator pressed a
   /// button that has nothing to act on, or the spindle or a sensor changed

@@ -18,6 +18,9 @@ enum class Phase {
   chuck = 8,      ///< a chuck atom from G-code releases or clamps the chuck
 };
 
+/// The phase in words ("changing"), as the status file shows it.
+const char* phase_word(Phase phase);
+
 /// What the changer waits for now; the value of the `awaiting` pin.
 enum class Awaiting {
   nothing = 0,
@@ -50,9 +53,9 @@ struct Status {
   int batch_done = 0;   ///< measure all: tools measured (or tried) so far
   int batch_total = 0;  ///< measure all: tools it measures; 0 when none runs
 
+  /// A flow runs: every phase but these three is a flow's.
   bool busy() const {
-    return phase == Phase::changing || phase == Phase::loading || phase == Phase::unloading ||
-           phase == Phase::measuring || phase == Phase::verifying || phase == Phase::chuck;
+    return phase != Phase::not_ready && phase != Phase::idle && phase != Phase::fault;
   }
   bool awaits_operator() const { return awaiting == Awaiting::operator_choice; }
 };
