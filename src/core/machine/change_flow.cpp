@@ -16,7 +16,7 @@ std::optional<std::string> Change::why_not(const Context& c, const ToolChange& e
 }
 
 std::string Change::busy(const Context& c) {
-  return "the changer is busy changing to tool " + std::to_string(c.requested_tool);
+  return "the changer is busy changing to tool " + std::to_string(c.request.tool);
 }
 
 std::unique_ptr<FlowRun> Change::run(Context& c, const ToolChange& e) {

@@ -21,7 +21,7 @@ namespace fatc::machine {
 struct ChangeFlow_ : Flow<ChangeFlow_> {
   /// The requested tool is in the rack: a fetch follows the return.
   static bool fetch_follows_return(const Context& c) {
-    return c.tools.pocket_holding(c.requested_tool).has_value();
+    return c.tools.pocket_holding(c.request.tool).has_value();
   }
 
   /// The route M6's first leg walks: the return of the spindle's rack tool,
@@ -32,8 +32,8 @@ struct ChangeFlow_ : Flow<ChangeFlow_> {
       const auto pocket = c.return_pocket(c.tools.spindle);
       return pocket ? plan::return_to_approach(c.config, *pocket) : plan::Route{};
     }
-    const auto pocket = c.tools.pocket_holding(c.requested_tool);
-    if (c.requested_tool == 0 || !pocket) return {};
+    const auto pocket = c.tools.pocket_holding(c.request.tool);
+    if (c.request.tool == 0 || !pocket) return {};
     return plan::fetch_to_above_chuck(c.config, *pocket);
   }
   /// Up to safe Z and across toward the first leg's pocket while the spindle
@@ -59,9 +59,9 @@ struct ChangeFlow_ : Flow<ChangeFlow_> {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       const Context& c = *fsm.ctx;
-      fsm.ctx->fault_reason = "the spindle did not stop within spindle_stop_timeout_seconds";
+      fsm.ctx->activity.fault_reason = "the spindle did not stop within spindle_stop_timeout_seconds";
       if (c.config.sensors.zero_speed && !c.sensors.zero_speed) {
-        fsm.ctx->fault_reason += " (zero-speed off)";
+        fsm.ctx->activity.fault_reason += " (zero-speed off)";
       }
     }
   };

@@ -11,42 +11,42 @@ Changer::Changer(const Config& config, Ports& ports, ToolState tools)
 Changer::~Changer() = default;
 
 void Changer::ready() {
-  engine_->context.machine_ready = true;
+  engine_->context.machine.ready = true;
   engine_->take(Ready{});
 }
 
 void Changer::not_ready() {
-  engine_->context.machine_ready = false;
+  engine_->context.machine.ready = false;
   engine_->take(NotReady{});
 }
 
 void Changer::soft_limits(std::optional<SoftLimits> limits) {
-  engine_->context.limits = std::move(limits);
+  engine_->context.machine.limits = std::move(limits);
 }
 
-void Changer::plan_only() { engine_->context.check_moves = false; }
+void Changer::plan_only() { engine_->context.motion.check_moves = false; }
 
 void Changer::start_at(const Point& at, unsigned known) {
-  engine_->context.position = at;
-  engine_->context.known_axes = known;
+  engine_->context.motion.position = at;
+  engine_->context.motion.known_axes = known;
 }
 
 void Changer::keepout_lengths(ToolLengths lengths) {
-  engine_->context.keepout_lengths = std::move(lengths);
+  engine_->context.motion.keepout_lengths = std::move(lengths);
 }
 
-const ToolLengths& Changer::keepout_lengths() const { return engine_->context.keepout_lengths; }
+const ToolLengths& Changer::keepout_lengths() const { return engine_->context.motion.keepout_lengths; }
 
-void Changer::rehearse_with(const Rehearsal* rehearsal) { engine_->context.rehearsal = rehearsal; }
+void Changer::rehearse_with(const Rehearsal* rehearsal) { engine_->context.motion.rehearsal = rehearsal; }
 
-void Changer::machine_at(std::optional<Point> at) { engine_->context.machine_position = at; }
+void Changer::machine_at(std::optional<Point> at) { engine_->context.machine.position = at; }
 
 void Changer::task_availability(std::optional<std::string> why_busy) {
-  engine_->context.task_busy = std::move(why_busy);
+  engine_->context.machine.task_busy = std::move(why_busy);
 }
 
 void Changer::spindle_stopped(bool stopped) {
-  engine_->context.spindle_stopped = stopped;
+  engine_->context.machine.spindle_stopped = stopped;
   engine_->take(SensorReport{});
 }
 
@@ -84,12 +84,12 @@ void Changer::clear_fault(int spindle_tool, std::optional<bool> pocket_holds_too
   engine_->take(ClearFault{spindle_tool, pocket_holds_tool});
 }
 
-unsigned Changer::configs_taken() const { return engine_->context.configs_taken; }
+unsigned Changer::configs_taken() const { return engine_->context.configs_taken(); }
 
 bool Changer::reconfigure(Config config, std::string request) {
-  const unsigned taken = engine_->context.configs_taken;
+  const unsigned taken = engine_->context.configs_taken();
   engine_->take(ConfigChanged{std::move(config), std::move(request)});
-  return engine_->context.configs_taken != taken;
+  return engine_->context.configs_taken() != taken;
 }
 
 namespace {
@@ -130,29 +130,29 @@ std::string activity_of(const Status& status, const Context& c) {
     case Phase::not_ready:
       return "machine off, not homed or in estop";
     case Phase::idle:
-      if (status.awaiting == Awaiting::sensor) return c.dwell;
+      if (status.awaiting == Awaiting::sensor) return c.activity.dwell;
       return why_chuck_held_open(c).value_or("idle");
     case Phase::fault:
-      return "fault: " + c.fault_reason;
+      return "fault: " + c.activity.fault_reason;
     default:
       break;
   }
   switch (status.awaiting) {
     case Awaiting::motion:
     case Awaiting::probe:
-      if (c.step.kind == StepKind::set_spindle_tool) {
-        return "telling LinuxCNC the spindle holds tool " + std::to_string(c.step.tool);
+      if (c.motion.step.kind == StepKind::set_spindle_tool) {
+        return "telling LinuxCNC the spindle holds tool " + std::to_string(c.motion.step.tool);
       }
-      if (c.step.kind == StepKind::set_tool_length) {
-        return "writing the length of tool " + std::to_string(c.step.tool) + " to the tool table";
+      if (c.motion.step.kind == StepKind::set_tool_length) {
+        return "writing the length of tool " + std::to_string(c.motion.step.tool) + " to the tool table";
       }
-      return std::string(step_kind_name(c.step.kind)) + " to " + c.step.label;
+      return std::string(step_kind_name(c.motion.step.kind)) + " to " + c.motion.step.label;
     case Awaiting::timer:
     case Awaiting::spindle:
     case Awaiting::sensor:
-      return c.dwell;
+      return c.activity.dwell;
     case Awaiting::operator_choice:
-      return words(c.prompt);
+      return words(c.activity.prompt);
     case Awaiting::nothing:
       break;
   }
@@ -188,16 +188,16 @@ Status Changer::status() const {
   status.phase = phase_of(engine);
   status.awaiting = awaiting_of(engine);
   // Inside M6 an operator's answer holds the program, and only Stop ends a probe.
-  const bool in_program = c.in_program;
+  const bool in_program = c.request.in_program;
   status.holds_program = active<machine::flag::HoldsProgram>(engine) ||
                          (active<machine::flag::AwaitsOperator>(engine) && in_program);
   status.probe_cancellable = active<machine::flag::AwaitsProbe>(engine) && !in_program;
   status.over_mdi = status.busy() && !in_program;
   status.accepting = status.phase == Phase::idle && status.awaiting == Awaiting::nothing &&
-                     !c.task_busy && !c.chuck_open;
-  status.chuck_held = c.chuck_open && (status.phase == Phase::idle || status.phase == Phase::chuck);
-  status.last_length = c.last_length;
-  status.step_number = status.busy() ? c.sequence_step : 0;
+                     !c.machine.task_busy && !c.outputs.chuck_open;
+  status.chuck_held = c.outputs.chuck_open && (status.phase == Phase::idle || status.phase == Phase::chuck);
+  status.last_length = c.activity.last_length;
+  status.step_number = status.busy() ? c.motion.sequence_step : 0;
   status.pocket = status.busy() ? c.sequence_pocket() : 0;
   if (status.phase == Phase::measuring) {
     const machine::BatchCount batch = engine_->flow()->batch();

@@ -65,7 +65,7 @@ struct WaitingToOpenChuck : msmf::state<> {
   void on_entry(const Event&, Fsm& fsm) {
     Context& c = *fsm.ctx;
     if (ChuckMayOpen::holds(c, fsm)) {
-      c.recheck_sensors();
+      c.raise.sensor_report();
     } else if (!c.spindle_at_standstill()) {
       c.await_sensor(c.config.spindle_stop_timeout_seconds,
                      "waiting for the spindle to stop before the chuck opens " + Where::where(fsm));
@@ -90,7 +90,7 @@ struct ChuckMayNotOpen {
     std::string why;
     if (!c.air_ok()) why = "air pressure low (air-pressure-ok off)";
     if (!c.spindle_at_standstill()) {
-      std::string seen = c.spindle_stopped ? "" : "spindle-stopped off";
+      std::string seen = c.machine.spindle_stopped ? "" : "spindle-stopped off";
       if (c.config.sensors.zero_speed && !c.sensors.zero_speed) {
         seen += std::string(seen.empty() ? "" : ", ") + "zero-speed off";
       }

@@ -66,7 +66,7 @@ struct LegDone {
 struct Finished;
 struct Failed;
 struct Cancelled;
-/// A leg or a flow cannot go on; ctx.fault_reason says why.
+/// A leg or a flow cannot go on; ctx.activity.fault_reason says why.
 struct FlowFailed {
   using ends_at = Failed;  ///< where the diagram draws it from
   FlowFailed() = default;
@@ -111,7 +111,7 @@ struct Flow : msmf::state_machine_def<Derived> {
     tool = Derived::served_tool(*ctx);
     pocket = Derived::served_pocket(*ctx, tool, parent);
   }
-  static int served_tool(const Context& ctx) { return ctx.requested_tool; }
+  static int served_tool(const Context& ctx) { return ctx.request.tool; }
   template <class Parent>
   static int served_pocket(const Context& ctx, int tool, const Parent&) {
     return ctx.tools.pocket_holding(tool).value_or(0);
@@ -215,8 +215,8 @@ struct AskingOperator : msmf::state<> {
   template <class Event, class Fsm>
   void on_entry(const Event&, Fsm& fsm) {
     Prompt prompt = Question{}(*fsm.ctx, fsm);
-    if (fsm.ctx->in_program) {
-      prompt.m6_tool = fsm.ctx->requested_tool;
+    if (fsm.ctx->request.in_program) {
+      prompt.m6_tool = fsm.ctx->request.tool;
     } else {
       Step pause;
       pause.kind = StepKind::wait_operator;
@@ -301,13 +301,13 @@ struct SpindleHoldsTool {
 struct RequestedToolInSpindle {
   template <class Event, class Fsm, class Source, class Target>
   bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-    return fsm.ctx->tools.spindle == fsm.ctx->requested_tool;
+    return fsm.ctx->tools.spindle == fsm.ctx->request.tool;
   }
 };
 struct SpindleHoldsOtherTool {
   template <class Event, class Fsm, class Source, class Target>
   bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-    return fsm.ctx->tools.spindle != 0 && fsm.ctx->tools.spindle != fsm.ctx->requested_tool;
+    return fsm.ctx->tools.spindle != 0 && fsm.ctx->tools.spindle != fsm.ctx->request.tool;
   }
 };
 /// The spindle holds a tool that has a pocket to go back to.
@@ -327,19 +327,19 @@ struct SpindleHoldsManualTool {
 struct RequestedRackTool {
   template <class Event, class Fsm, class Source, class Target>
   bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-    return fsm.ctx->requested_tool != 0 && fsm.ctx->tools.home_of(fsm.ctx->requested_tool);
+    return fsm.ctx->request.tool != 0 && fsm.ctx->tools.home_of(fsm.ctx->request.tool);
   }
 };
 struct RequestedManualTool {
   template <class Event, class Fsm, class Source, class Target>
   bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-    return fsm.ctx->requested_tool != 0 && !fsm.ctx->tools.home_of(fsm.ctx->requested_tool);
+    return fsm.ctx->request.tool != 0 && !fsm.ctx->tools.home_of(fsm.ctx->request.tool);
   }
 };
 struct ToolRequested {
   template <class Event, class Fsm, class Source, class Target>
   bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-    return fsm.ctx->requested_tool != 0;
+    return fsm.ctx->request.tool != 0;
   }
 };
 

@@ -14,15 +14,15 @@ void Context::publish(const Step& next) {
   Step published = next;
   published.held = tools.spindle;
   const std::vector<Step> moves = moves_of(published);
-  const double held_length = keepout_lengths.of(tools.spindle, tools.lengths).length;
-  Point along = position;
-  unsigned known_along = known_axes;
+  const double held_length = motion.keepout_lengths.of(tools.spindle, tools.lengths).length;
+  Point along = motion.position;
+  unsigned known_along = motion.known_axes;
   for (const Step& move : moves) {
-    const auto problems = check_moves
-                              ? check_move(config, along, known_along, move, limits, held_length)
+    const auto problems = motion.check_moves
+                              ? check_move(config, along, known_along, move, machine.limits, held_length)
                               : std::vector<std::string>{};
     if (!problems.empty()) {
-      refuse_step("unsafe step not sent: " + describe(move) + ": " + problems.front());
+      raise.unsafe_step("unsafe step not sent: " + describe(move) + ": " + problems.front());
       return;
     }
     if (move.kind == StepKind::rapid || move.kind == StepKind::feed) {
@@ -31,28 +31,28 @@ void Context::publish(const Step& next) {
     }
   }
   if (next.kind == StepKind::rapid || next.kind == StepKind::feed) {
-    position = along;
-    known_axes = known_along;
+    motion.position = along;
+    motion.known_axes = known_along;
   } else if (next.kind == StepKind::probe) {
-    known_axes &= ~static_cast<unsigned>(axis_z);  // the probe stops wherever it touches
+    motion.known_axes &= ~static_cast<unsigned>(axis_z);  // the probe stops wherever it touches
   } else if (next.kind == StepKind::wait_operator || next.kind == StepKind::fail) {
-    known_axes = 0;  // the operator may jog; a failed sequence may stop anywhere
+    motion.known_axes = 0;  // the operator may jog; a failed sequence may stop anywhere
   }
-  step = published;
-  sequence_step += static_cast<int>(moves.size());
+  motion.step = published;
+  motion.sequence_step += static_cast<int>(moves.size());
   ports.publish(published);
 }
 
 std::optional<std::string> Context::rehearse(
     const std::function<void(Changer&)>& request) const {
-  return rehearsal ? rehearsal->why_not(*this, request) : std::nullopt;
+  return motion.rehearsal ? motion.rehearsal->why_not(*this, request) : std::nullopt;
 }
 
 void Context::walk(plan::Route route) {
   if (route.empty()) throw std::logic_error("a phase with no waypoints");
   route_ = plan::blended(
-      config, plan::from_where_it_stands(config, std::move(route), position, known_axes),
-      position, known_axes);
+      config, plan::from_where_it_stands(config, std::move(route), motion.position, motion.known_axes),
+      motion.position, motion.known_axes);
   route_next_ = 1;
   publish(route_.front());
 }
@@ -71,15 +71,15 @@ void Context::stop_walking() {
 }
 
 void Context::open_chuck() {
-  ++sequence_step;
-  chuck_open = true;
+  ++motion.sequence_step;
+  outputs.chuck_open = true;
   ports.set_chuck_open(true);
   blow_if_due();
 }
 
 void Context::close_chuck() {
-  ++sequence_step;
-  chuck_open = false;
+  ++motion.sequence_step;
+  outputs.chuck_open = false;
   blow_if_due();
   ports.set_chuck_open(false);
 }
@@ -87,7 +87,7 @@ void Context::close_chuck() {
 void Context::blow_if_due() {
   // The taper is cleaned only at a pocket: at `loading` the operator's hand
   // is at the spindle.
-  const bool due = config.air_blast && chuck_open && tools.spindle == 0 && tools.in_progress &&
+  const bool due = config.air_blast && outputs.chuck_open && tools.spindle == 0 && tools.in_progress &&
                    tools.in_progress->pocket != 0;
   if (due == blowing) return;
   blowing = due;
@@ -95,49 +95,49 @@ void Context::blow_if_due() {
 }
 
 void Context::open_cover() {
-  if (!config.rack_cover || cover_open) return;
-  cover_open = true;
-  cover_settled = false;
-  cover_closing = false;
-  ++sequence_step;
+  if (!config.rack_cover || outputs.cover_open) return;
+  outputs.cover_open = true;
+  outputs.cover_settled = false;
+  outputs.cover_closing = false;
+  ++motion.sequence_step;
   ports.set_rack_cover_open(true);
 }
 
 void Context::close_cover() {
-  if (!config.rack_cover || !cover_open) return;
-  cover_open = false;
-  cover_closing = config.rack_cover->closed_sensor;
-  ++sequence_step;
+  if (!config.rack_cover || !outputs.cover_open) return;
+  outputs.cover_open = false;
+  outputs.cover_closing = config.rack_cover->closed_sensor;
+  ++motion.sequence_step;
   ports.set_rack_cover_open(false);
 }
 
 bool Context::cover_reads_open() const {
   if (!config.rack_cover) return true;
-  if (!cover_open) return false;
-  return config.rack_cover->opened_sensor ? sensors.rack_cover_opened : cover_settled;
+  if (!outputs.cover_open) return false;
+  return config.rack_cover->opened_sensor ? sensors.rack_cover_opened : outputs.cover_settled;
 }
 
 bool Context::cover_still_closing() const {
   // The cover's own disagreement is one of those disagreements() names.
-  return cover_closing && config.rack_cover && config.rack_cover->closed_sensor && !cover_open &&
+  return outputs.cover_closing && config.rack_cover && config.rack_cover->closed_sensor && !outputs.cover_open &&
          !sensors.rack_cover_closed && disagreements().size() == 1;
 }
 
 void Context::wait(double seconds, std::string what) {
-  dwell = std::move(what);
-  ++sequence_step;
+  activity.dwell = std::move(what);
+  ++motion.sequence_step;
   ports.start_timer(seconds);
 }
 
 void Context::ask_operator(const Prompt& question) {
-  prompt = question;
+  activity.prompt = question;
   ports.ask(question);
 }
 
 void Context::begin_sequence(const std::string& sequence) {
   // Between sequences a program, MDI or a jog may have moved the machine.
-  known_axes = 0;
-  sequence_step = 0;
+  motion.known_axes = 0;
+  motion.sequence_step = 0;
   tools.in_progress = InProgress{sequence, "starting", 0};
   ports.save(tools);
 }
@@ -150,7 +150,7 @@ void Context::record_progress(const std::string& step, int pocket) {
 }
 
 void Context::end_sequence() {
-  sequence_step = 0;
+  motion.sequence_step = 0;
   if (!tools.in_progress) return;
   tools.in_progress.reset();
   ports.save(tools);
@@ -182,7 +182,7 @@ void Context::record_out_of_machine(int tool) {
 
 void Context::record_length(int tool, double length) {
   tools.lengths[tool] = length;
-  last_length = length;
+  activity.last_length = length;
   ports.save(tools);
 }
 
@@ -203,7 +203,7 @@ std::string Context::whereabouts() const {
 }
 
 bool Context::spindle_at_standstill() const {
-  return spindle_stopped && (!config.sensors.zero_speed || sensors.zero_speed);
+  return machine.spindle_stopped && (!config.sensors.zero_speed || sensors.zero_speed);
 }
 
 bool Context::air_ok() const { return !config.sensors.air_pressure || sensors.air_pressure_ok; }
@@ -230,9 +230,9 @@ std::vector<std::string> Context::disagreements() const {
   // A released chuck holds nothing for certain: the operator may be taking
   // the tool out. tool-present is compared again once it is clamped.
   SensorConfig compared = config.sensors;
-  if (chuck_open) compared.tool_present = false;
+  if (outputs.chuck_open) compared.tool_present = false;
   auto found = sensor_disagreements(compared, sensors, tools);
-  if (config.rack_cover && config.rack_cover->closed_sensor && !cover_open &&
+  if (config.rack_cover && config.rack_cover->closed_sensor && !outputs.cover_open &&
       !sensors.rack_cover_closed) {
     found.push_back("the rack cover is not closed (rack-cover-closed off)");
   }
@@ -251,12 +251,12 @@ std::string Context::drawbar_words() const {
 }
 
 void Context::await_sensor(double seconds, std::string what) {
-  dwell = std::move(what);
+  activity.dwell = std::move(what);
   ports.start_timer(seconds);
 }
 
 void Context::fail_check(std::string reason, bool uncertain) {
-  raise_check_failed(CheckFailed{std::move(reason), uncertain});
+  raise.check_failed(CheckFailed{std::move(reason), uncertain});
 }
 
 namespace {
@@ -288,7 +288,7 @@ std::optional<std::string> why_no_air(const Context& ctx) {
 }
 
 std::optional<std::string> why_not_ready(const Context& ctx) {
-  if (!ctx.machine_ready) return std::string("the machine is not on and homed, or is in estop");
+  if (!ctx.machine.ready) return std::string("the machine is not on and homed, or is in estop");
   if (ctx.tools.uncertain) return "the spindle contents are uncertain: " + ctx.whereabouts();
   return std::nullopt;
 }
@@ -368,7 +368,7 @@ LoadPocket choose_load_pocket(const Context& ctx, int tool, int asked) {
 }
 
 std::optional<std::string> why_not_load(const Context& ctx, int tool, int pocket) {
-  if (ctx.task_busy) return ctx.task_busy;
+  if (ctx.machine.task_busy) return ctx.machine.task_busy;
   if (tool <= 0) return "load needs a tool number above 0, got " + std::to_string(tool);
   if (pocket < 0)
     return "pocket-number must be 0 (chosen) or a pocket, got " + std::to_string(pocket);
@@ -401,7 +401,7 @@ std::vector<int> measurable_tools(const Context& ctx, const std::vector<int>& as
 }
 
 std::optional<std::string> why_not_measure(const Context& ctx, const std::vector<int>& asked) {
-  if (ctx.task_busy) return ctx.task_busy;
+  if (ctx.machine.task_busy) return ctx.machine.task_busy;
   if (auto busy = why_not_busy(ctx)) return busy;
   if (!ctx.spindle_at_standstill()) return std::string("the spindle is turning; stop it first");
   if (auto air = why_no_air(ctx)) return air;
@@ -414,7 +414,7 @@ std::optional<std::string> why_not_measure(const Context& ctx, const std::vector
 }
 
 std::optional<std::string> why_not_unload(const Context& ctx, int tool) {
-  if (ctx.task_busy) return ctx.task_busy;
+  if (ctx.machine.task_busy) return ctx.machine.task_busy;
   if (tool <= 0) return "unload needs a tool number above 0, got " + std::to_string(tool);
   if (auto busy = why_not_busy(ctx)) return busy;
   if (!ctx.spindle_at_standstill()) return std::string("the spindle is turning; stop it first");
@@ -425,7 +425,7 @@ std::optional<std::string> why_not_unload(const Context& ctx, int tool) {
 }
 
 std::optional<std::string> why_not_verify(const Context& ctx, int pocket) {
-  if (ctx.task_busy) return ctx.task_busy;
+  if (ctx.machine.task_busy) return ctx.machine.task_busy;
   std::vector<int> numbers;
   for (const auto& [number, entry] : ctx.config.pockets) numbers.push_back(number);
   if (!ctx.config.has_pocket(pocket)) {
@@ -445,7 +445,7 @@ std::optional<std::string> why_not_verify(const Context& ctx, int pocket) {
 }
 
 std::optional<std::string> why_chuck_held_open(const Context& ctx) {
-  if (!ctx.chuck_open) return std::nullopt;
+  if (!ctx.outputs.chuck_open) return std::nullopt;
   return std::string(
       "the chuck is open (released from G-code); clamp it first (o<fixed_atc_probe_chuck_clamp> "
       "call, or the M-code the INI remaps to it)");
@@ -458,7 +458,7 @@ double loading_tolerance(const Config& config) {
 std::optional<std::string> why_not_chuck(const Context& ctx, const ChuckRequest& request) {
   if (auto not_ready = why_not_ready(ctx)) return not_ready;
   if (request.action == ChuckRequest::Action::clamp) return std::nullopt;
-  if (!ctx.spindle_stopped) return std::string("the spindle is on; stop it first (M5)");
+  if (!ctx.machine.spindle_stopped) return std::string("the spindle is on; stop it first (M5)");
   if (auto air = why_no_air(ctx)) return air;
   const int held = ctx.tools.spindle;
   if (held == 0) return std::nullopt;
@@ -480,10 +480,10 @@ std::optional<std::string> why_not_reconfigure(const Context& ctx, bool idle,
                                                bool comparing_sensors) {
   // A position taken while a program or MDI moves the machine is nowhere in particular.
   if (!idle) return std::string("only while the changer is idle");
-  if (ctx.task_busy) {
+  if (ctx.machine.task_busy) {
     return std::string("a program or MDI command is running; teach once it stopped");
   }
-  if (comparing_sensors) return ctx.dwell;
+  if (comparing_sensors) return ctx.activity.dwell;
   return why_chuck_held_open(ctx);
 }
 

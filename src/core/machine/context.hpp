@@ -18,32 +18,36 @@
 
 namespace fatc {
 
-/// What every state of the machine shares: the validated config, the ports
-/// to the world, the tool state and the request being served.
-class Context {
- public:
-  Context(Config config, Ports& ports, ToolState tools)
-      : config(std::move(config)), ports(ports), tools(std::move(tools)) {}
-
-  /// The machine's own copy: only a ConfigChanged taken while idle replaces
-  /// it, so nothing changes under a running flow.
-  Config config;
-  unsigned configs_taken = 0;  ///< ConfigChanged events taken since the start
-  Ports& ports;
-  ToolState tools;
-
-  int requested_tool = 0;  ///< the tool the current request is about
+/// The request being served.
+struct RequestServed {
+  int tool = 0;  ///< the tool the current request is about
   /// The flow under way runs inside a G-code program (M6, a chuck atom): the
   /// operator's answers hold the program, and only LinuxCNC's Stop ends a probe.
   bool in_program = false;
-  bool machine_ready = false;   ///< latest Ready/NotReady
+};
+
+/// What LinuxCNC says of the machine; the adapter keeps it current.
+struct MachineFacts {
+  bool ready = false;           ///< latest Ready/NotReady
   bool spindle_stopped = true;  ///< LinuxCNC's spindle is off (`spindle-stopped`)
-  SensorReadings sensors;       ///< what the optional sensors read
   /// Why task cannot run the executor over MDI now (a program runs, no NML), if it cannot.
   std::optional<std::string> task_busy;
-  std::string fault_reason;
   /// The running machine's soft limits, when the adapter knows them.
   std::optional<SoftLimits> limits;
+  /// Where LinuxCNC says the spindle stands, when the adapter knows: a
+  /// rehearsal starts there (a sequence of its own starts from nowhere
+  /// known, begin_sequence, and is checked move by move as it goes).
+  std::optional<Point> position;
+};
+
+/// The moves: where the published ones lead, and what each is checked with.
+struct Motion {
+  Point position;           ///< where the last published moves lead
+  unsigned known_axes = 0;  ///< which axes of `position` are known
+  Step step;                ///< the last published step
+  /// Steps taken in the current sequence (moves, chuck actions, dwells),
+  /// numbered as --plan prints them; 0 between sequences.
+  int sequence_step = 0;
   /// Off only for planning (--check, --plan), which reports every violation of
   /// a whole sequence instead of stopping at the first.
   bool check_moves = true;
@@ -53,34 +57,66 @@ class Context {
   /// Runs a request on a copy before it is taken, where set: its whole
   /// sequence is checked before anything moves.
   const Rehearsal* rehearsal = nullptr;
-  /// Where LinuxCNC says the spindle stands, when the adapter knows: a
-  /// rehearsal starts there (a sequence of its own starts from nowhere
-  /// known, begin_sequence, and is checked move by move as it goes).
-  std::optional<Point> machine_position;
-  /// Raises UnsafeStep in the machine (queued behind the current event).
-  std::function<void(const std::string&)> refuse_step;
-  /// Raises CheckFailed in the machine (queued behind the current event).
-  std::function<void(const CheckFailed&)> raise_check_failed;
-  /// Raises SensorReport in the machine (queued behind the current event):
-  /// a state that waits for a sensor looks at it once on entry this way.
-  std::function<void()> recheck_sensors;
-  bool chuck_open = false;    ///< as last commanded
-  bool cover_open = false;    ///< the rack cover, as last commanded
+};
+
+/// The outputs the changer drives, as last commanded.
+struct Outputs {
+  bool chuck_open = false;
+  bool cover_open = false;    ///< the rack cover
   bool cover_settled = true;  ///< an unsensed cover has had `rack_cover.seconds` to move
   /// The changer commanded the cover closed after its last sequence and waits
   /// for `rack-cover-closed` (Operating's ComparingSensors clears it on exit).
   bool cover_closing = false;
-  Point position;             ///< where the last published moves lead
-  unsigned known_axes = 0;    ///< which axes of `position` are known
+};
 
-  // What the status view's activity is derived from.
-  Step step;                          ///< the last published step
+/// What the status view shows of the work under way, beside the machine's flags.
+struct Activity {
   std::string dwell;                  ///< what the running timer waits for
   Prompt prompt;                      ///< the last question put to the operator
   std::optional<double> last_length;  ///< the last length a probe measured
-  /// Steps taken in the current sequence (moves, chuck actions, dwells),
-  /// numbered as --plan prints them; 0 between sequences.
-  int sequence_step = 0;
+  std::string fault_reason;
+};
+
+/// Events a part raises in the machine, each queued behind the current event
+/// (the Engine sets them).
+struct Raise {
+  /// UnsafeStep: a move was refused.
+  std::function<void(const std::string&)> unsafe_step;
+  /// CheckFailed: a sensor check failed.
+  std::function<void(const CheckFailed&)> check_failed;
+  /// SensorReport: a state that waits for a sensor looks at it once on entry this way.
+  std::function<void()> sensor_report;
+};
+
+/// What every state of the machine shares, in its parts: the validated
+/// config, the ports to the world, the tool state, the request being served,
+/// what LinuxCNC and the sensors say, the moves, the outputs and what the
+/// status shows. An action names the part it touches.
+class Context {
+ public:
+  Context(Config config, Ports& ports, ToolState tools)
+      : config(std::move(config)), ports(ports), tools(std::move(tools)) {}
+
+  /// The machine's own copy: only a ConfigChanged taken while idle replaces
+  /// it (take_config), so nothing changes under a running flow.
+  Config config;
+  Ports& ports;
+  ToolState tools;
+  RequestServed request;
+  MachineFacts machine;
+  SensorReadings sensors;  ///< what the optional sensors read
+  Motion motion;
+  Outputs outputs;
+  Activity activity;
+  Raise raise;
+
+  /// A taught config: the changer works with it from the next request on.
+  void take_config(Config taught) {
+    config = std::move(taught);
+    ++configs_taken_;
+  }
+  /// ConfigChanged events taken since the start.
+  unsigned configs_taken() const { return configs_taken_; }
 
   void publish(const Step& step);
   /// Why `request`, made of a copy of this changer, would break the keep-out
@@ -167,6 +203,7 @@ class Context {
 
  private:
   void blow_if_due();
+  unsigned configs_taken_ = 0;
   plan::Route route_;          ///< the waypoints the phase under way walks
   std::size_t route_next_ = 0;  ///< the index of the waypoint to publish next
   bool blowing = false;

@@ -19,7 +19,7 @@ struct OpeningCover : msmf::state<> {
     Context& c = *fsm.ctx;
     c.open_cover();
     if (c.cover_reads_open()) {
-      c.recheck_sensors();
+      c.raise.sensor_report();
     } else if (c.config.rack_cover->opened_sensor) {
       c.await_sensor(c.config.rack_cover->timeout_seconds,
                      "waiting for the rack cover to open (rack-cover-opened)");
@@ -41,8 +41,8 @@ struct OpeningCover : msmf::state<> {
   struct Settle {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      fsm.ctx->cover_settled = true;
-      fsm.ctx->recheck_sensors();
+      fsm.ctx->outputs.cover_settled = true;
+      fsm.ctx->raise.sensor_report();
     }
   };
   using internal_transition_table =

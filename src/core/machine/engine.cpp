@@ -1,12 +1,18 @@
+// The machine behind the Changer, and Operating's event dispatch, generated
+// here and nowhere else (favor_compile_time, see Machine_of in common.hpp):
+// the flows' tables are dispatched in their own files (flow_run_of.hpp).
+
 #include "engine.hpp"
+
+BOOST_MSM_BACK_GENERATE_PROCESS_EVENT(fatc::machine::Operating)
 
 namespace fatc::machine {
 
 Engine::Engine(const Config& config, Ports& ports, ToolState tools)
     : context(config, ports, std::move(tools)), fsm(&context) {
-  context.refuse_step = [this](const std::string& why) { take(UnsafeStep{why}); };
-  context.raise_check_failed = [this](const CheckFailed& e) { take(e); };
-  context.recheck_sensors = [this] { take(SensorReport{}); };
+  context.raise.unsafe_step = [this](const std::string& why) { take(UnsafeStep{why}); };
+  context.raise.check_failed = [this](const CheckFailed& e) { take(e); };
+  context.raise.sensor_report = [this] { take(SensorReport{}); };
   fsm.start();
 }
 

@@ -41,7 +41,7 @@ struct AnswerChuckDone {
   template <class Event, class Fsm, class Source, class Target>
   void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
     Context& c = *fsm.ctx;
-    if (c.chuck_open) {
+    if (c.outputs.chuck_open) {
       c.record_progress(kChuckHeldOpen, 0);
     } else {
       c.end_sequence();
@@ -56,7 +56,7 @@ struct StopProgram {
   void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
     Context& c = *fsm.ctx;
     c.end_sequence();
-    const std::string why = "M6 T" + std::to_string(c.requested_tool) +
+    const std::string why = "M6 T" + std::to_string(c.request.tool) +
                             " cancelled by the operator; " + c.whereabouts();
     Step fail = failure_step(why);
     fail.tool = c.tools.spindle;

@@ -35,7 +35,7 @@ struct InsertLeg_ : Flow<InsertLeg_> {
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       fsm.ctx->tell(MessageKind::error,
                     "tool " + std::to_string(fsm.tool) +
-                        " is not in the spindle (tool-present off): " + words(fsm.ctx->prompt));
+                        " is not in the spindle (tool-present off): " + words(fsm.ctx->activity.prompt));
     }
   };
 
@@ -80,7 +80,7 @@ struct RemoveLeg_ : Flow<RemoveLeg_> {
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       fsm.ctx->tell(MessageKind::error,
                     "tool " + std::to_string(fsm.tool) +
-                        " is still in the spindle (tool-present on): " + words(fsm.ctx->prompt));
+                        " is still in the spindle (tool-present on): " + words(fsm.ctx->activity.prompt));
     }
   };
 

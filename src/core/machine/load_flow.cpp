@@ -19,7 +19,7 @@ std::optional<std::string> Load::why_not(const Context& c, const LoadRequest& e)
 }
 
 std::string Load::busy(const Context& c) {
-  return "the changer is busy loading tool " + std::to_string(c.requested_tool);
+  return "the changer is busy loading tool " + std::to_string(c.request.tool);
 }
 
 std::unique_ptr<FlowRun> Load::run(Context& c, const LoadRequest& e) {

@@ -27,7 +27,7 @@ struct LoadFlow_ : Flow<LoadFlow_> {
     Prompt operator()(const Context& c, const Leg&) const {
       Prompt jog;
       jog.kind = Prompt::Kind::jog_to_sensor;
-      jog.tool = c.requested_tool;
+      jog.tool = c.request.tool;
       return jog;
     }
   };
@@ -35,7 +35,7 @@ struct LoadFlow_ : Flow<LoadFlow_> {
   struct SayCancelled {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      fsm.ctx->tell(MessageKind::info, "load of tool " + std::to_string(fsm.ctx->requested_tool) +
+      fsm.ctx->tell(MessageKind::info, "load of tool " + std::to_string(fsm.ctx->request.tool) +
                                            " cancelled, nothing measured; " +
                                            fsm.ctx->whereabouts());
     }
@@ -47,11 +47,11 @@ struct LoadFlow_ : Flow<LoadFlow_> {
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       const Context& c = *fsm.ctx;
       char length[64] = "";
-      if (c.last_length) {
-        std::snprintf(length, sizeof length, " measured %.3f %s,", *c.last_length,
+      if (c.activity.last_length) {
+        std::snprintf(length, sizeof length, " measured %.3f %s,", *c.activity.last_length,
                       units_name(c.config.units));
       }
-      fsm.ctx->tell(MessageKind::info, "tool " + std::to_string(c.requested_tool) + length +
+      fsm.ctx->tell(MessageKind::info, "tool " + std::to_string(c.request.tool) + length +
                                            " in pocket " + std::to_string(fsm.load_pocket));
     }
   };

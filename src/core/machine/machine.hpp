@@ -29,7 +29,7 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
     template <class Event, class Fsm>
     void on_entry(const Event&, Fsm& fsm) {
       Context& c = *fsm.ctx;
-      if (!c.chuck_open) return;
+      if (!c.outputs.chuck_open) return;
       c.close_chuck();
       c.tools.uncertain = true;
       c.ports.save(c.tools);
@@ -46,8 +46,8 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
       Context& c = *fsm.ctx;
       c.close_chuck();
       // An executor still waiting for its next step aborts the program on this.
-      c.publish(failure_step(c.fault_reason));
-      c.tell(MessageKind::error, "fault: " + c.fault_reason + "; " + c.whereabouts() +
+      c.publish(failure_step(c.activity.fault_reason));
+      c.tell(MessageKind::error, "fault: " + c.activity.fault_reason + "; " + c.whereabouts() +
                                      ". Check the spindle and the rack, then clear the fault.");
     }
   };
@@ -74,7 +74,7 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
   struct MachineIsReady {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      return fsm.ctx->machine_ready;
+      return fsm.ctx->machine.ready;
     }
   };
   /// A flow was cut off: what the spindle holds is no longer a fact.
@@ -83,10 +83,10 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
     void operator()(const Event& e, Fsm& fsm, Source&, Target&) const {
       Context& c = *fsm.ctx;
       if constexpr (std::is_same_v<Event, Abort> || std::is_same_v<Event, InternalError>) {
-        c.fault_reason = e.reason;
+        c.activity.fault_reason = e.reason;
       }
       if constexpr (std::is_same_v<Event, NotReady>) {
-        c.fault_reason = "the machine went off, lost homing or entered estop during a sequence";
+        c.activity.fault_reason = "the machine went off, lost homing or entered estop during a sequence";
       }
       c.tools.uncertain = true;
       c.ports.save(c.tools);
@@ -98,7 +98,7 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
     template <class Fsm, class Source, class Target>
     void operator()(const CheckFailed& e, Fsm& fsm, Source&, Target&) const {
       Context& c = *fsm.ctx;
-      c.fault_reason = e.reason;
+      c.activity.fault_reason = e.reason;
       if (e.uncertain) {
         c.tools.uncertain = true;
         c.ports.save(c.tools);
@@ -108,21 +108,21 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
   struct RecordUnsafeStep {
     template <class Fsm, class Source, class Target>
     void operator()(const UnsafeStep& e, Fsm& fsm, Source&, Target&) const {
-      fsm.ctx->fault_reason = e.reason;
+      fsm.ctx->activity.fault_reason = e.reason;
     }
   };
   struct SayUncertain {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       const auto& cut_off = fsm.ctx->tools.in_progress;
-      fsm.ctx->fault_reason =
+      fsm.ctx->activity.fault_reason =
           cut_off && cut_off->step == kChuckHeldOpen
               ? "the chuck was held open by G-code when the machine went off or the component "
                 "stopped (the saved tool state is uncertain)"
               : "the last sequence was cut off (the saved tool state is uncertain)";
       // What the wired sensors read helps the operator answer.
       for (const auto& disagreement : fsm.ctx->disagreements()) {
-        fsm.ctx->fault_reason += "; " + disagreement;
+        fsm.ctx->activity.fault_reason += "; " + disagreement;
       }
     }
   };
@@ -139,13 +139,13 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
       // contradicted by an answer is taken at its word (only while the
       // machine is on: its sensors may have no power otherwise).
       std::string adopted;
-      if (c.machine_ready) {
+      if (c.machine.ready) {
         for (const auto& change :
              adopt_pocket_sensors(c.config.sensors, c.sensors, answered, c.tools)) {
           adopted += change + "; ";
         }
       }
-      c.fault_reason.clear();
+      c.activity.fault_reason.clear();
       c.ports.save(c.tools);
       c.tell(MessageKind::info, "fault cleared; " + adopted + c.whereabouts());
     }

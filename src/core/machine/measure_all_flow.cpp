@@ -8,7 +8,7 @@
 
 namespace fatc::machine {
 
-int MeasureAll::tool(const Context& c, const MeasureRequest&) { return c.requested_tool; }
+int MeasureAll::tool(const Context& c, const MeasureRequest&) { return c.request.tool; }
 
 std::string MeasureAll::name(const MeasureRequest& e) {
   return "measure all (" + std::to_string(e.tools.size()) + " tools)";
@@ -20,7 +20,7 @@ std::optional<std::string> MeasureAll::why_not(const Context& c, const MeasureRe
 }
 
 std::string MeasureAll::busy(const Context& c) {
-  return "the changer is busy measuring tool " + std::to_string(c.requested_tool);
+  return "the changer is busy measuring tool " + std::to_string(c.request.tool);
 }
 
 std::unique_ptr<FlowRun> MeasureAll::run(Context& c, const MeasureRequest& e) {

@@ -60,7 +60,7 @@ struct MeasureAllFlow_ : Flow<MeasureAllFlow_> {
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       Context& c = *fsm.ctx;
       const int tool = fsm.batch.tools[fsm.batch.done];
-      c.requested_tool = tool;
+      c.request.tool = tool;
       const auto stored = c.tools.lengths.find(tool);
       fsm.batch.stored =
           stored == c.tools.lengths.end() ? std::nullopt : std::optional<double>(stored->second);
@@ -73,9 +73,9 @@ struct MeasureAllFlow_ : Flow<MeasureAllFlow_> {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       Context& c = *fsm.ctx;
-      const double now = *c.last_length;
+      const double now = *c.activity.last_length;
       std::string line =
-          "T" + std::to_string(c.requested_tool) + " " + format_length(c.config, now);
+          "T" + std::to_string(c.request.tool) + " " + format_length(c.config, now);
       if (fsm.batch.stored) {
         char change[32];
         std::snprintf(change, sizeof change, "%+.4f", now - *fsm.batch.stored);
@@ -91,7 +91,7 @@ struct MeasureAllFlow_ : Flow<MeasureAllFlow_> {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       Context& c = *fsm.ctx;
-      fsm.batch.report.push_back("T" + std::to_string(c.requested_tool) +
+      fsm.batch.report.push_back("T" + std::to_string(c.request.tool) +
                                " not measured: " + fsm.template get_state<Probe&>().problem);
       ++fsm.batch.done;
     }
@@ -115,7 +115,7 @@ struct MeasureAllFlow_ : Flow<MeasureAllFlow_> {
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       fsm.batch.cancel = true;
       fsm.ctx->tell(MessageKind::info, "measure all stops once tool " +
-                                           std::to_string(fsm.ctx->requested_tool) +
+                                           std::to_string(fsm.ctx->request.tool) +
                                            " is back in its pocket");
     }
   };

@@ -57,7 +57,7 @@ struct BecauseNotReady {
 struct BecauseFaulted {
   template <class Fsm, class Request>
   std::string operator()(Fsm& fsm, const Request&) const {
-    return "the changer is in fault (" + fsm.ctx->fault_reason + "); clear it first";
+    return "the changer is in fault (" + fsm.ctx->activity.fault_reason + "); clear it first";
   }
 };
 struct BecauseBusy {
@@ -194,14 +194,14 @@ struct Operating_ : Flow<Operating_> {
     }
     template <class Event, class Fsm>
     void on_exit(const Event& e, Fsm& fsm) {
-      fsm.ctx->cover_closing = false;
+      fsm.ctx->outputs.cover_closing = false;
       AwaitingSensor::on_exit(e, fsm);
     }
   };
   struct SaySensorsDisagree {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event& e, Fsm& fsm, Source&, Target&) const {
-      fsm.ctx->fault_reason = BecauseSensorsDisagree{}(fsm, e);
+      fsm.ctx->activity.fault_reason = BecauseSensorsDisagree{}(fsm, e);
     }
   };
 
@@ -217,8 +217,8 @@ struct Operating_ : Flow<Operating_> {
       // What the flow itself needs of the request it takes on entry.
       using Flow = kind_of<Request>;
       Context& c = *fsm.ctx;
-      c.in_program = Flow::in_program;
-      c.requested_tool = Flow::tool(c, e);
+      c.request.in_program = Flow::in_program;
+      c.request.tool = Flow::tool(c, e);
       c.begin_sequence(request_name(e));
     }
   };
@@ -226,8 +226,7 @@ struct Operating_ : Flow<Operating_> {
   struct TakeConfig {
     template <class Fsm, class Source, class Target>
     void operator()(const ConfigChanged& e, Fsm& fsm, Source&, Target&) const {
-      fsm.ctx->config = e.config;
-      ++fsm.ctx->configs_taken;
+      fsm.ctx->take_config(e.config);
     }
   };
 

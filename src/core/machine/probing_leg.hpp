@@ -84,7 +84,7 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
     bool operator()(const ProbeResult& e, Fsm& fsm, Source&, Target&) const {
       const Context& c = *fsm.ctx;
       const auto stored = c.tools.lengths.find(fsm.tool);
-      if (!c.in_program || stored == c.tools.lengths.end()) return false;
+      if (!c.request.in_program || stored == c.tools.lengths.end()) return false;
       const double expected = stored->second + c.config.probe_length_compensation_offset;
       return std::abs(e.z - expected) > c.config.window();
     }
@@ -93,7 +93,7 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       const Context& c = *fsm.ctx;
-      return !c.in_program || c.config.probe_after_change != ProbeAfterChange::check ||
+      return !c.request.in_program || c.config.probe_after_change != ProbeAfterChange::check ||
              c.tools.lengths.count(fsm.tool) == 0;
     }
   };
@@ -107,7 +107,7 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
     template <class Fsm, class Source, class Target>
     void operator()(const ProbeResult& e, Fsm& fsm, Source&, Target&) const {
       fsm.latched_z = e.z;
-      fsm.ctx->last_length = e.z - fsm.ctx->config.probe_length_compensation_offset;
+      fsm.ctx->activity.last_length = e.z - fsm.ctx->config.probe_length_compensation_offset;
     }
   };
   struct RecordLength {
@@ -159,7 +159,7 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
   struct CancelStopsProbe {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      return !fsm.ctx->in_program;
+      return !fsm.ctx->request.in_program;
     }
   };
 
@@ -195,7 +195,7 @@ struct MeasureLeg_ : Flow<MeasureLeg_> {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       const Context& c = *fsm.ctx;
-      return std::abs(*c.last_length - c.tools.lengths.at(fsm.tool)) > c.config.check_tolerance();
+      return std::abs(*c.activity.last_length - c.tools.lengths.at(fsm.tool)) > c.config.check_tolerance();
     }
   };
   struct SayMeasured {
@@ -203,7 +203,7 @@ struct MeasureLeg_ : Flow<MeasureLeg_> {
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       const Context& c = *fsm.ctx;
       fsm.ctx->tell(MessageKind::info, "tool " + std::to_string(fsm.tool) + " measures " +
-                                           format_length(c.config, *c.last_length) + ", stored " +
+                                           format_length(c.config, *c.activity.last_length) + ", stored " +
                                            format_length(c.config, c.tools.lengths.at(fsm.tool)));
     }
   };
@@ -211,9 +211,9 @@ struct MeasureLeg_ : Flow<MeasureLeg_> {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       Context& c = *fsm.ctx;
-      c.fault_reason =
+      c.activity.fault_reason =
           "tool " + std::to_string(fsm.tool) + " measures " +
-          format_length(c.config, *c.last_length) + " but its stored length is " +
+          format_length(c.config, *c.activity.last_length) + " but its stored length is " +
           format_length(c.config, c.tools.lengths.at(fsm.tool)) + " (probe_check_tolerance " +
           format_length(c.config, c.config.check_tolerance()) + "): tool broken or pulled out?";
     }
@@ -221,7 +221,7 @@ struct MeasureLeg_ : Flow<MeasureLeg_> {
   struct SayNotMeasured {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      fsm.ctx->fault_reason =
+      fsm.ctx->activity.fault_reason =
           "tool " + std::to_string(fsm.tool) +
           " could not be measured after the change (probe_after_change): " +
           fsm.template get_state<Probe&>().problem;

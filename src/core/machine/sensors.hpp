@@ -149,7 +149,7 @@ struct AwaitingSensor : msmf::state<> {
   template <class Event, class Fsm>
   void on_entry(const Event&, Fsm& fsm) {
     if (Condition::holds(*fsm.ctx, fsm)) {
-      fsm.ctx->recheck_sensors();
+      fsm.ctx->raise.sensor_report();
     } else {
       fsm.ctx->await_sensor(Timeout{}(fsm.ctx->config), Condition::awaited(*fsm.ctx));
     }

@@ -18,7 +18,7 @@ std::optional<std::string> Unload::why_not(const Context& c, const UnloadRequest
 }
 
 std::string Unload::busy(const Context& c) {
-  return "the changer is busy unloading tool " + std::to_string(c.requested_tool);
+  return "the changer is busy unloading tool " + std::to_string(c.request.tool);
 }
 
 std::unique_ptr<FlowRun> Unload::run(Context& c, const UnloadRequest& e) {

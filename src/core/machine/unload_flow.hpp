@@ -17,7 +17,7 @@ struct UnloadFlow_ : Flow<UnloadFlow_> {
   struct SayCancelled {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      fsm.ctx->tell(MessageKind::info, "unload of tool " + std::to_string(fsm.ctx->requested_tool) +
+      fsm.ctx->tell(MessageKind::info, "unload of tool " + std::to_string(fsm.ctx->request.tool) +
                                            " cancelled; " + fsm.ctx->whereabouts());
     }
   };

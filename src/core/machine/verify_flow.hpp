@@ -45,8 +45,8 @@ struct VerifyFlow_ : Flow<VerifyFlow_> {
       stop.stop = static_cast<int>(leg.reached) + 1;
       stop.stops = static_cast<int>(leg.route.size()) - 1;
       stop.waypoint = leg.route.at(leg.reached).label;
-      stop.at = c.position;
-      stop.known_axes = c.known_axes;
+      stop.at = c.motion.position;
+      stop.known_axes = c.motion.known_axes;
       return stop;
     }
   };
@@ -55,12 +55,12 @@ struct VerifyFlow_ : Flow<VerifyFlow_> {
   /// "side of pocket 3 (X=120.000 Y=40.000 Z=-50.000)": what the spindle
   /// reached last, and where that is.
   std::string where(const Context& c) const {
-    return waypoint_words(route.at(reached).label, c.position, c.known_axes);
+    return waypoint_words(route.at(reached).label, c.motion.position, c.motion.known_axes);
   }
   /// Below the pocket's clearance height, where only its own approach is safe.
   bool inside_rack(const Context& c) const {
-    return (c.known_axes & axis_z) &&
-           c.position.z < pocket_waypoints(c.config, pocket).above_clearance.z - 1e-9;
+    return (c.motion.known_axes & axis_z) &&
+           c.motion.position.z < pocket_waypoints(c.config, pocket).above_clearance.z - 1e-9;
   }
 
   struct LastWaypoint {
