@@ -1,5 +1,6 @@
 #include "changer.hpp"
 
+#include "admission.hpp"
 #include "engine.hpp"
 #include "flows.hpp"
 

@@ -13,7 +13,7 @@
 
 #include "events.hpp"
 #include "../rack/geometry.hpp"
-#include "context.hpp"
+#include "admission.hpp"
 #include "flow_run.hpp"
 
 namespace fatc::machine {

@@ -209,41 +209,4 @@ class Context {
   bool blowing = false;
 };
 
-/// Why M6 to `tool` cannot start now, or nothing if it can.
-std::optional<std::string> why_not_change(const Context& ctx, int tool);
-/// The pocket a load of `tool` puts it in: `asked` if given, else its own
-/// pocket, else its first-start pocket if free, else the free pocket nearest
-/// to `loading`. 0 and `why` when there is none.
-struct LoadPocket {
-  int pocket = 0;
-  std::string why;
-};
-LoadPocket choose_load_pocket(const Context& ctx, int tool, int asked);
-/// Why loading tool `tool` by hand (into pocket `pocket`, 0: chosen) cannot
-/// start now, or nothing if it can.
-std::optional<std::string> why_not_load(const Context& ctx, int tool, int pocket);
-/// The tools of `asked` that measure all can fetch (in the rack, or in the
-/// spindle with a pocket to go to), in order, once each; `skipped` names the others.
-std::vector<int> measurable_tools(const Context& ctx, const std::vector<int>& asked,
-                                  std::string& skipped);
-/// Why measuring `tools` one after another cannot start now, or nothing if it can.
-std::optional<std::string> why_not_measure(const Context& ctx, const std::vector<int>& tools);
-/// Why unloading tool `tool` cannot start now, or nothing if it can.
-std::optional<std::string> why_not_unload(const Context& ctx, int tool);
-/// Why a dry run through pocket `pocket` cannot start now, or nothing if it can.
-std::optional<std::string> why_not_verify(const Context& ctx, int pocket);
-/// A chuck atom left the chuck released: no other work until it is clamped.
-std::optional<std::string> why_chuck_held_open(const Context& ctx);
-/// How close to `loading` the machine must stand for a release with a tool
-/// in the spindle: 0.05 mm, or 0.002 inch.
-double loading_tolerance(const Config& config);
-/// Why a chuck atom cannot run now, or nothing if it can. A release drops
-/// whatever the spindle holds: with a tool recorded in it, only at `loading`.
-std::optional<std::string> why_not_chuck(const Context& ctx, const ChuckRequest& request);
-/// Why a taught config cannot be taken now (ConfigChanged), or nothing if it
-/// can: only while `idle`, with task free and the chuck clamped; while the
-/// idle changer compares its sensors (`comparing_sensors`), it says what it waits for.
-std::optional<std::string> why_not_reconfigure(const Context& ctx, bool idle,
-                                               bool comparing_sensors);
-
 }  // namespace fatc

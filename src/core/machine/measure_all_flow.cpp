@@ -1,12 +1,53 @@
-// MeasureAll: its words, its admission and its run. The flow's event dispatch is
-// generated here and nowhere else (flow_run_of.hpp): a compiler run reads
-// only the tables this flow dispatches.
+// Measure all: the words of its request, whether it can start (its own rule, then
+// the rehearsal) and its run. The flow's event dispatch is generated here
+// and nowhere else (flow_run_of.hpp): a compiler run reads only its tables.
 
 #include "measure_all_flow.hpp"
+
+#include <algorithm>
+#include <cmath>
+
 #include "changer.hpp"
+#include "admission.hpp"
 #include "flow_run_of.hpp"
 
+namespace fatc {
+
+std::vector<int> measurable_tools(const Context& ctx, const std::vector<int>& asked,
+                                  std::string& skipped) {
+  std::vector<int> tools;
+  for (const int tool : asked) {
+    if (std::find(tools.begin(), tools.end(), tool) != tools.end()) continue;
+    const bool in_spindle = tool != 0 && tool == ctx.tools.spindle && ctx.return_pocket(tool);
+    if (ctx.tools.pocket_holding(tool) || in_spindle) {
+      tools.push_back(tool);
+    } else if (tool != 0) {
+      skipped += (skipped.empty() ? "" : ", ") + ("T" + std::to_string(tool));
+    }
+  }
+  return tools;
+}
+
+}  // namespace fatc
+
 namespace fatc::machine {
+
+namespace {
+
+std::optional<std::string> why_not_measure(const Context& ctx, const std::vector<int>& asked) {
+  if (ctx.machine.task_busy) return ctx.machine.task_busy;
+  if (auto busy = why_not_busy(ctx)) return busy;
+  if (!ctx.spindle_at_standstill()) return std::string("the spindle is turning; stop it first");
+  if (auto air = why_no_air(ctx)) return air;
+  std::string skipped;
+  if (measurable_tools(ctx, asked, skipped).empty()) {
+    return "no tool to measure in the rack" +
+           (skipped.empty() ? std::string() : " (not in the rack: " + skipped + ")");
+  }
+  return why_spindle_cannot_be_emptied(ctx, false);
+}
+
+}  // namespace
 
 int MeasureAll::tool(const Context& c, const MeasureRequest&) { return c.request.tool; }
 

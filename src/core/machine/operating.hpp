@@ -3,6 +3,7 @@
 // The machine on and homed: idle, or running one flow; the requests and
 // their refusals.
 
+#include "admission.hpp"
 #include "changer.hpp"
 #include "chuck.hpp"
 #include "flow_run.hpp"

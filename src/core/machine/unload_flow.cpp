@@ -1,12 +1,28 @@
-// Unload: its words, its admission and its run. The flow's event dispatch is
-// generated here and nowhere else (flow_run_of.hpp): a compiler run reads
-// only the tables this flow dispatches.
+// Unload: the words of its request, whether it can start (its own rule, then
+// the rehearsal) and its run. The flow's event dispatch is generated here
+// and nowhere else (flow_run_of.hpp): a compiler run reads only its tables.
 
 #include "unload_flow.hpp"
 #include "changer.hpp"
+#include "admission.hpp"
 #include "flow_run_of.hpp"
 
 namespace fatc::machine {
+
+namespace {
+
+std::optional<std::string> why_not_unload(const Context& ctx, int tool) {
+  if (ctx.machine.task_busy) return ctx.machine.task_busy;
+  if (tool <= 0) return "unload needs a tool number above 0, got " + std::to_string(tool);
+  if (auto busy = why_not_busy(ctx)) return busy;
+  if (!ctx.spindle_at_standstill()) return std::string("the spindle is turning; stop it first");
+  if (auto air = why_no_air(ctx)) return air;
+  if (ctx.tools.spindle == tool) return std::nullopt;
+  if (!ctx.tools.pocket_holding(tool)) return tool_name(tool) + " is not in the rack";
+  return why_spindle_cannot_be_emptied(ctx, false);
+}
+
+}  // namespace
 
 std::string Unload::name(const UnloadRequest& e) {
   return "unload of tool " + std::to_string(e.tool);

@@ -1,12 +1,37 @@
-// Verify: its words, its admission and its run. The flow's event dispatch is
-// generated here and nowhere else (flow_run_of.hpp): a compiler run reads
-// only the tables this flow dispatches.
+// Verify a pocket: the words of its request, whether it can start (its own rule, then
+// the rehearsal) and its run. The flow's event dispatch is generated here
+// and nowhere else (flow_run_of.hpp): a compiler run reads only its tables.
 
 #include "verify_flow.hpp"
 #include "changer.hpp"
+#include "admission.hpp"
 #include "flow_run_of.hpp"
 
 namespace fatc::machine {
+
+namespace {
+
+std::optional<std::string> why_not_verify(const Context& ctx, int pocket) {
+  if (ctx.machine.task_busy) return ctx.machine.task_busy;
+  std::vector<int> numbers;
+  for (const auto& [number, entry] : ctx.config.pockets) numbers.push_back(number);
+  if (!ctx.config.has_pocket(pocket)) {
+    return "pocket-number " + std::to_string(pocket) + " is not a pocket of the config (" +
+           pocket_list(numbers) + ")";
+  }
+  if (auto busy = why_not_busy(ctx)) return busy;
+  if (!ctx.spindle_at_standstill()) return std::string("the spindle is turning; stop it first");
+  // The spindle goes where the tool would sit: only an empty pocket can be
+  // driven into (a wired pocket sensor that disagrees stops all work before this).
+  if (ctx.tools.holds(pocket)) {
+    const std::string tool = std::to_string(ctx.tools.tool_of(pocket));
+    return "pocket " + std::to_string(pocket) + " holds tool " + tool + "; fetch it first (M6 T" +
+           tool + ") to verify with it in the spindle";
+  }
+  return std::nullopt;
+}
+
+}  // namespace
 
 int Verify::tool(const Context& c, const VerifyRequest&) { return c.tools.spindle; }
 

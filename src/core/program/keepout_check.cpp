@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <utility>
 
-#include "../machine/context.hpp"
+#include "../machine/admission.hpp"
 #include "../dry_run/simulator.hpp"
 #include "canonical_call.hpp"
 

@@ -1,0 +1,74 @@
+#include "admission.hpp"
+
+#include <cstdio>
+
+namespace fatc {
+
+std::string tool_name(int tool) { return "tool " + std::to_string(tool); }
+
+/// The tool in the spindle must be able to go home before anything else; a
+/// manual tool only can when M6 may hand it out at `loading` (`manual_tools`).
+std::optional<std::string> why_spindle_cannot_be_emptied(const Context& ctx, bool hand_out) {
+  const int held = ctx.tools.spindle;
+  if (held == 0) return std::nullopt;
+  const auto pocket = ctx.return_pocket(held);
+  if (!pocket) {
+    if (hand_out) return std::nullopt;
+    return tool_name(held) + " in the spindle has no pocket to go to; unload it first";
+  }
+  if (ctx.tools.holds(*pocket)) {
+    return "pocket " + std::to_string(*pocket) + " is recorded full, yet " + tool_name(held) +
+           " that belongs in it is in the spindle; check the rack";
+  }
+  return std::nullopt;
+}
+
+/// Every sequence opens the chuck: no air, no start (the legs check again
+/// before each opening).
+std::optional<std::string> why_no_air(const Context& ctx) {
+  if (ctx.air_ok()) return std::nullopt;
+  return std::string("air pressure is low (air-pressure-ok off): the chuck cannot open");
+}
+
+std::optional<std::string> why_not_ready(const Context& ctx) {
+  if (!ctx.machine.ready) return std::string("the machine is not on and homed, or is in estop");
+  if (ctx.tools.uncertain) return "the spindle contents are uncertain: " + ctx.whereabouts();
+  return std::nullopt;
+}
+
+std::optional<std::string> why_not_busy(const Context& ctx) {
+  if (auto not_ready = why_not_ready(ctx)) return not_ready;
+  return why_chuck_held_open(ctx);
+}
+
+/// "X20.000 Y150.000 Z-10.000 mm", machine coordinates.
+std::string position_words(const Config& config, const Point& at) {
+  char buffer[96];
+  std::snprintf(buffer, sizeof buffer, "X%.3f Y%.3f Z%.3f %s", at.x, at.y, at.z,
+                units_name(config.units));
+  return buffer;
+}
+
+std::optional<std::string> why_chuck_held_open(const Context& ctx) {
+  if (!ctx.outputs.chuck_open) return std::nullopt;
+  return std::string(
+      "the chuck is open (released from G-code); clamp it first (o<fixed_atc_probe_chuck_clamp> "
+      "call, or the M-code the INI remaps to it)");
+}
+
+double loading_tolerance(const Config& config) {
+  return config.units == Units::inch ? 0.002 : 0.05;
+}
+
+std::optional<std::string> why_not_reconfigure(const Context& ctx, bool idle,
+                                               bool comparing_sensors) {
+  // A position taken while a program or MDI moves the machine is nowhere in particular.
+  if (!idle) return std::string("only while the changer is idle");
+  if (ctx.machine.task_busy) {
+    return std::string("a program or MDI command is running; teach once it stopped");
+  }
+  if (comparing_sensors) return ctx.activity.dwell;
+  return why_chuck_held_open(ctx);
+}
+
+}  // namespace fatc
