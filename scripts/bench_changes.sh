@@ -2,7 +2,7 @@
 # The tool-change benchmark (issue 11), on the simulated mill at its own
 # speeds with default feeds (pocket_feed 500) and 0.4 s dwells, each run its
 # own LinuxCNC start:
-#  - tests/bench/changes.ngc on the rack of tests/integration/rack_config.json
+#  - tests/bench/changes.ngc on the rack of tests/integration/rack/rack_config.json
 #    (side pockets and a top pocket), on the prototype's path and the direct one;
 #  - tests/bench/peer_changes.ngc on tests/bench/rack_y.json (six top pockets
 #    along Y), on both paths and with LinuxCNC's own rack-toolchange remap
@@ -32,23 +32,23 @@ run() {
   chmod 644 "$work/$name.json"
   env "$@" FATC_BINARY="$binary" FATC_SCENARIOS="$work/$name.json" FATC_RESULTS="$work/$name/results.json" \
     FATC_CONFIG="$PWD/$config" FATC_TOOL_TABLE="$PWD/$table" \
-    tests/integration/run_sim.sh "$work/$name" "$PWD/tests/integration/driver.py" > "$work/$name.log" 2>&1 || {
+    tests/integration/harness/run_sim.sh "$work/$name" "$PWD/tests/integration/harness/driver.py" > "$work/$name.log" 2>&1 || {
     echo "LinuxCNC failed; its output is in $work/$name.log"; exit 1; }
 }
 
 # The component alone for a minute first: its CPU and memory doing nothing.
 FATC_BINARY="$binary" FATC_RESULTS="$work/idle/results.json" \
-  tests/integration/run_sim.sh "$work/idle" "$PWD/tests/bench/idle_bench.py" > "$work/idle.log" 2>&1 || {
+  tests/integration/harness/run_sim.sh "$work/idle" "$PWD/tests/bench/idle_bench.py" > "$work/idle.log" 2>&1 || {
   echo "LinuxCNC failed; its output is in $work/idle.log"; exit 1; }
 for path in prototype direct; do
-  run "$path" tests/bench/changes.ngc tests/integration/rack_config.json tests/integration/rack.tbl \
+  run "$path" tests/bench/changes.ngc tests/integration/rack/rack_config.json tests/integration/rack/rack.tbl \
     FATC_CONFIG_SET="{\"path\": \"$path\", \"pocket_feed\": 500, \"chuck_seconds\": 0.4}"
   run "row_$path" tests/bench/peer_changes.ngc tests/bench/rack_y.json tests/bench/rack_y.tbl \
     FATC_CONFIG_SET="{\"path\": \"$path\"}"
 done
 # Blended runs: blend_tolerance as much as each rack allows (Config::blend_room):
 # 10 on rack_config.json (pocket 5's side to pocket 4's column), 15 on rack_y.json.
-run blended tests/bench/changes.ngc tests/integration/rack_config.json tests/integration/rack.tbl \
+run blended tests/bench/changes.ngc tests/integration/rack/rack_config.json tests/integration/rack/rack.tbl \
   FATC_CONFIG_SET='{"path": "direct", "pocket_feed": 500, "chuck_seconds": 0.4, "blend_tolerance": 10}'
 run row_blended tests/bench/peer_changes.ngc tests/bench/rack_y.json tests/bench/rack_y.tbl \
   FATC_CONFIG_SET='{"path": "direct", "blend_tolerance": 15}'

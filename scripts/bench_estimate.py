@@ -36,7 +36,7 @@ def lint_rows(binary, run):
     out = subprocess.run([binary, "--lint", os.path.join(ROOT, "tests/bench/changes.ngc"),
                           "--config", run + "/config.json", "--ini", run + "/sim.ini",
                           "--state", run + "/no_state_yet.json",
-                          "--tool-table", os.path.join(ROOT, "tests/integration/rack.tbl")],
+                          "--tool-table", os.path.join(ROOT, "tests/integration/rack/rack.tbl")],
                          capture_output=True, text=True).stdout
     rows = [line for line in out.splitlines() if re.match(r"^\s+\d+\s+\d+\s+M6", line)]
     return [seconds_of(re.search(TIME + "$", row).group(0)) for row in rows]

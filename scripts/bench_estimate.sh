@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The change-time estimate against the real LinuxCNC (issue 22): what
 # `fixed_atc_probe --lint` estimates for each change of tests/bench/changes.ngc
-# (the rack of tests/integration/rack_config.json, pocket_feed 500, 0.4 s
+# (the rack of tests/integration/rack/rack_config.json, pocket_feed 500, 0.4 s
 # dwells) beside what the change took, chip to chip, on
 #  - the simulated mill at its own speeds (axes 200 mm/s, 2000 mm/s^2), on the
 #    direct path and the prototype's;
@@ -32,9 +32,9 @@ run() {
   printf '[{"name": "changes", "program": "tests/bench/changes.ngc", "timeout": 900}]\n' > "$work/$name.json"
   chmod 644 "$work/$name.json"
   env "$@" FATC_BINARY="$binary" FATC_SCENARIOS="$work/$name.json" FATC_RESULTS="$work/$name/results.json" \
-    FATC_CONFIG="$PWD/tests/integration/rack_config.json" FATC_TOOL_TABLE="$PWD/tests/integration/rack.tbl" \
+    FATC_CONFIG="$PWD/tests/integration/rack/rack_config.json" FATC_TOOL_TABLE="$PWD/tests/integration/rack/rack.tbl" \
     FATC_CONFIG_SET="{\"path\": \"$path\", \"pocket_feed\": 500, \"chuck_seconds\": 0.4}" \
-    tests/integration/run_sim.sh "$work/$name" "$PWD/tests/integration/driver.py" > "$work/$name.log" 2>&1 || {
+    tests/integration/harness/run_sim.sh "$work/$name" "$PWD/tests/integration/harness/driver.py" > "$work/$name.log" 2>&1 || {
     echo "LinuxCNC failed; its output is in $work/$name.log"; exit 1; }
 }
 

@@ -9,6 +9,6 @@ scripts/setup.sh >/dev/null
 work=$(mktemp -d /tmp/fixed_atc_bench.XXXXXX)
 chmod 755 "$work"
 FATC_BENCH_REPEATS=${1:-10} FATC_RESULTS="$work/run/results.json" \
-  tests/integration/run_sim.sh "$work/run" "$PWD/tests/bench/probe_bench.py" > "$work/linuxcnc.log" 2>&1 || {
+  tests/integration/harness/run_sim.sh "$work/run" "$PWD/tests/bench/probe_bench.py" > "$work/linuxcnc.log" 2>&1 || {
   echo "LinuxCNC failed; its output is in $work/linuxcnc.log"; exit 1; }
 python3 scripts/bench_probe.py "$work/run/results.json"

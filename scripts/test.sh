@@ -10,6 +10,6 @@ ctest --test-dir build --output-on-failure -LE bench "$@" || status=$?
 # The fault matrices, as tables (ctest shows a passing test's output only with -V).
 for results in build/tests/integration/fault_matrix/results.json \
                build/tests/integration/fault_matrix_restarts.json; do
-  if [ -f "$results" ]; then python3 tests/integration/fault_matrix_check.py "$results" --table || true; fi
+  if [ -f "$results" ]; then python3 tests/integration/faults/fault_matrix_check.py "$results" --table || true; fi
 done
 exit "$status"

@@ -2,7 +2,7 @@
 """Draws one tool change as LinuxCNC reported it: machine X, Y and Z over
 time, one panel each, and below them when the chuck was open, as an SVG.
    timeline_svg.py RESULTS.json OUT.svg [N]
-RESULTS.json: what tests/integration/driver.py wrote (the demo's run, or one
+RESULTS.json: what tests/integration/harness/driver.py wrote (the demo's run, or one
 scenario's file of RESULTS.json.d). N: the change to draw, counted from 1
 among the spans the changer was busy; default the first that returns one
 tool and fetches another."""

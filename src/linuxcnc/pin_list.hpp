@@ -2,7 +2,7 @@
 
 // The component's HAL pins, declared once. create_pins makes them from this
 // list; the pin references (the man page's PINS, docs/pins.md) and
-// tests/integration/pins.golden are generated from it (fatc_docs), and a
+// tests/integration/pins/pins.golden are generated from it (fatc_docs), and a
 // test fails when a generated file is stale.
 
 #include <string>

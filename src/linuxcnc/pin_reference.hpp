@@ -11,7 +11,7 @@ std::string pins_markdown();
 std::string pins_man();
 /// What `show pin fixed_atc_probe` lists right after `loadusr -W` with a
 /// config of `pockets`: type, direction, value (the heartbeat's `*`) and name,
-/// sorted by name as halcmd sorts them (tests/integration/pins.golden).
+/// sorted by name as halcmd sorts them (tests/integration/pins/pins.golden).
 std::string pins_golden(const std::vector<int>& pockets);
 
 }  // namespace fatc::linuxcnc

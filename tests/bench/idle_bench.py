@@ -9,7 +9,7 @@ import os
 import sys
 import time
 
-sys.path.insert(0, os.path.join(os.environ["FATC_ROOT"], "tests", "integration"))
+sys.path.insert(0, os.path.join(os.environ["FATC_ROOT"], "tests", "integration", "harness"))
 import driver  # noqa: E402  (bring-up shared with the integration runs)
 from driver import hal  # noqa: E402
 

@@ -14,7 +14,7 @@ import subprocess
 import sys
 import time
 
-sys.path.insert(0, os.path.join(os.environ["FATC_ROOT"], "tests", "integration"))
+sys.path.insert(0, os.path.join(os.environ["FATC_ROOT"], "tests", "integration", "harness"))
 import driver  # noqa: E402  (bring-up and waits shared with the integration runs)
 from driver import command, hal, linuxcnc, stat, wait_for  # noqa: E402
 

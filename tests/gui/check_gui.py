@@ -11,7 +11,7 @@ import json
 import os
 import sys
 
-sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "integration"))
+sys.path.insert(0, os.path.join(os.path.dirname(__file__), "..", "integration", "harness"))
 from check import fail, measured_to_truth, ok  # noqa: E402
 
 CONFIG = os.path.join(os.path.dirname(__file__), "..", "..", "config", "config.json")

@@ -29,7 +29,7 @@ import Xlib.protocol.event  # noqa: E402
 import Xlib.error  # noqa: E402
 from Xlib import X, display  # noqa: E402
 
-sys.path.insert(0, os.path.join(os.environ["FATC_ROOT"], "tests", "integration"))
+sys.path.insert(0, os.path.join(os.environ["FATC_ROOT"], "tests", "integration", "harness"))
 import driver  # noqa: E402  (bring-up and waits shared with the integration runs)
 import linuxcnc  # noqa: E402
 from driver import hal, stat, wait_for  # noqa: E402

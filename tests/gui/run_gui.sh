@@ -40,7 +40,7 @@ for _ in $(seq 1 300); do [ -e "/tmp/.X11-unix/X$n" ] && break; sleep 0.1; done
 # panel's buttons through AT-SPI there.
 FATC_APP="$here/gui_driver.py" FATC_WRAP="dbus-run-session --" FATC_INI_FILTER="$filter" \
   FATC_RESULTS="$work/results.json" FATC_ARTIFACTS="$work" FATC_BINARY="$2" \
-  "$root/tests/integration/run_sim.sh" "$work/sim" "$gui" > "$work/linuxcnc.log" 2>&1 || true
+  "$root/tests/integration/harness/run_sim.sh" "$work/sim" "$gui" > "$work/linuxcnc.log" 2>&1 || true
 [ -s "$work/results.json" ] || {
   touch "$work/FAILED"; echo "FAIL: no results; LinuxCNC said:"; tail -40 "$work/linuxcnc.log"; exit 1; }
 echo "ok: $gui ran with the panel; results and screenshots in $work"

@@ -73,7 +73,7 @@ chmod 644 "$work/scenarios.json"
 FATC_INSTALLED=/usr/share/fixed_atc_probe FATC_BINARY=/usr/bin/fixed_atc_probe \
   FATC_INI_SED="${FATC_INI_SED:-}" FATC_CONFIG_SET="${FATC_CONFIG_SET:-}" \
   FATC_SCENARIOS="$work/scenarios.json" FATC_RESULTS="$work/run/results.json" \
-  "$root/tests/integration/run_sim.sh" "$work/run" "$root/tests/integration/driver.py" > "$work/linuxcnc.log" 2>&1 || {
+  "$root/tests/integration/harness/run_sim.sh" "$work/run" "$root/tests/integration/harness/driver.py" > "$work/linuxcnc.log" 2>&1 || {
   echo "FAIL: LinuxCNC failed; its output is in $work/linuxcnc.log"; exit 1; }
 python3 - "$work/run/results.json" <<'PY'
 import json, sys

@@ -18,9 +18,9 @@ generate docs/pins.md pins-md
 generate docs/config.md config-md
 generate docs/command-line.md cli-md
 generate docs/fixed_atc_probe.1 man "$root/docs/fixed_atc_probe.1.in"
-generate tests/integration/pins.golden pins-golden "$root/config/config.json"
+generate tests/integration/pins/pins.golden pins-golden "$root/config/config.json"
 stale=0
-for file in docs/pins.md docs/config.md docs/command-line.md docs/fixed_atc_probe.1 tests/integration/pins.golden; do
+for file in docs/pins.md docs/config.md docs/command-line.md docs/fixed_atc_probe.1 tests/integration/pins/pins.golden; do
   if [ "$mode" = write ]; then
     cp "$work/$file" "$root/$file"
   elif ! cmp -s "$work/$file" "$root/$file"; then

@@ -993,7 +993,7 @@ TEST_F(Lint, shouldNameTheLineOfTheKeepoutScenarioProgram) {
   ToolState tools = ToolState::fresh(config);
   tools.put_in_spindle(1);
   io::save_state_file(path("t1.state"), tools, io::kCommandLineWait);
-  const LintRun r = lint(FATC_SOURCE_DIR "/tests/integration/keepout_program.ngc",
+  const LintRun r = lint(FATC_SOURCE_DIR "/tests/integration/keepout/keepout_program.ngc",
                          {"--ini", kSimIni, "--state", path("t1.state")});
   EXPECT_EQ(r.code, 1);
   EXPECT_LINE(r,
@@ -1089,10 +1089,10 @@ TEST_F(Lint, shouldPutTheNoseAtAG53PositionWhateverTheOffsetOfTheM6) {
 }
 
 TEST_F(Lint, shouldPutTheNoseWhereLinuxCncDoesUnderInchesARotatedG55AndTheM6sG43) {
-  // tests/integration/offsets_after_m6.ngc to its last move, where the real
+  // tests/integration/keepout/offsets_after_m6.ngc to its last move, where the real
   // LinuxCNC stood at X101.6 Y76.2 Z-28.5 (integration_keepout_offsets_after_m6);
   // from there, program X-1.2126 is machine Y20, over pocket 2.
-  std::ifstream file(FATC_SOURCE_DIR "/tests/integration/offsets_after_m6.ngc");
+  std::ifstream file(FATC_SOURCE_DIR "/tests/integration/keepout/offsets_after_m6.ngc");
   std::string program, line;
   while (std::getline(file, line) && line != "G0 Z-2.5") program += line + "\n";
   const LintRun r = lint(write("offsets.ngc", program + "G0 Z-2.5\nG0 X-1.2126\nM2\n"),

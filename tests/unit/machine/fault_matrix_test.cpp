@@ -3,7 +3,7 @@
 // faulted with the chuck closed, the spindle flagged uncertain (saved so),
 // M6 and the operator flows refused until the operator confirms, and the
 // confirmation must give an idle changer that believes what it was told.
-// The real LinuxCNC runs the same matrix in tests/integration/fault_matrix.py.
+// The real LinuxCNC runs the same matrix in tests/integration/faults/fault_matrix.py.
 #include <gtest/gtest.h>
 
 #include <functional>

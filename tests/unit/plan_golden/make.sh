@@ -7,7 +7,7 @@ binary=$(realpath "$1") source=$(realpath "$2") write=${3:-}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 status=0
-for rack in config/config.json tests/integration/rack_config.json tests/bench/rack_y.json; do
+for rack in config/config.json tests/integration/rack/rack_config.json tests/bench/rack_y.json; do
   for path in prototype direct blended; do
     name=$(basename "$rack" .json)-$path
     python3 - "$source/$rack" "$path" "$work/$name.json" <<'PY'

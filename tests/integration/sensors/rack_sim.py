@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """The simulated mill's rack and spindle sensors, for the sensors run
-(tests/integration/rack_sim.hal): a userspace HAL component `fatc-rack-sim`
+(tests/integration/sensors/rack_sim.hal): a userspace HAL component `fatc-rack-sim`
 that knows where every tool is and feeds fixed_atc_probe's optional sensor
 inputs from that, as a real rack's switches would.
 

@@ -9,9 +9,11 @@ faults the change with nothing entered.
 Prints what it checked; exits 1 on the first failed expectation."""
 import json
 import math
+import os
 import sys
 
-from check import TOLERANCE, fail, load_results, near, ok, said, scenario
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "harness"))
+from check import TOLERANCE, fail, load_results, near, ok, said, scenario  # noqa: E402
 
 ZERO = "fixed_atc_probe.zero-speed"
 DID_NOT_STOP = "the spindle did not stop within spindle_stop_timeout_seconds (zero-speed off)"

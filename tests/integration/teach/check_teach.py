@@ -14,7 +14,8 @@ import subprocess
 import sys
 import tempfile
 
-from check import (Rack, chuck_only_at_pockets, fail, handshake_complete, no_fault, ok, said,
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "harness"))
+from check import (Rack, chuck_only_at_pockets, fail, handshake_complete, no_fault, ok, said,  # noqa: E402
                    scenario, spindle_holds, visits_in_order)
 
 # mm: teaching rounds to 4 decimals, and reads the actual position a moment

@@ -8,9 +8,11 @@ said it served, and the state file.
 Prints what it checked; exits 1 on the first failed expectation."""
 import json
 import math
+import os
 import sys
 
-from check import (TOLERANCE, Rack, distance_to_segment, distinct, fail, load_results, measured_to_truth, near, no_fault, ok,
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "harness"))
+from check import (TOLERANCE, Rack, distance_to_segment, distinct, fail, load_results, measured_to_truth, near, no_fault, ok,  # noqa: E402
                    stops)
 
 SERVED = "fixed_atc_probe.pocket-served"

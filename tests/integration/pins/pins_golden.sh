@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
 # Locks the HAL interface: `loadusr -W fixed_atc_probe; show pin` under halrun
-# must match tests/integration/pins.golden. Also: a bad config makes loadusr -W
+# must match tests/integration/pins/pins.golden. Also: a bad config makes loadusr -W
 # fail at once with one line naming the problem, not hang.
 #   pins_golden.sh BINARY
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
-root=$(cd "$here/../.." && pwd)
+root=$(cd "$here/../../.." && pwd)
 binary=$(readlink -f "$1")
 # One LinuxCNC (or halrun) per machine: wait for a run_sim.sh run to end.
 exec 9>>/tmp/fixed_atc_probe-linuxcnc.lock

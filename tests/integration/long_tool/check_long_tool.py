@@ -6,10 +6,12 @@ to safe, so M6 T1 is refused before anything moves; T2 (30 mm) changes; T3,
 whose Z is no length (-12), counts as the longest the config allows and
 changes, the operator told so, and the guard gets that length.
    check_long_tool.py RESULTS.json CONFIG.json SCENARIO"""
+import os
 import sys
 
-from check import fail, in_pockets, load_results, no_fault, nothing_moved, ok, said, scenario, \
-    spindle_holds
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "harness"))
+from check import (fail, in_pockets, load_results, no_fault, nothing_moved, ok, said, scenario,  # noqa: E402
+                   spindle_holds)
 
 
 def chuck_never_opened(r):

@@ -23,7 +23,7 @@ import subprocess
 import sys
 import time
 
-sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "harness"))
 import driver as d  # noqa: E402  (shares its LinuxCNC channels and HAL helpers)
 import hal  # noqa: E402
 import linuxcnc  # noqa: E402

@@ -7,9 +7,11 @@ M6 still changes tools; lifting the keep-out lets the spindle in.
    check_keepout.py RESULTS.json CONFIG.json SCENARIO"""
 import json
 import math
+import os
 import sys
 
-from check import fail, load_results, no_fault, ok, said, spindle_holds
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "harness"))
+from check import fail, load_results, no_fault, ok, said, spindle_holds  # noqa: E402
 
 TOLERANCE = 0.01  # mm: the sim follows its commands exactly
 

@@ -7,10 +7,12 @@ batch-done / batch-total / state pins, its messages, its state and status files.
 CONFIG.json is the run's config (three pockets, T1 to T3)."""
 import json
 import math
+import os
 import re
 import sys
 
-from check import (Rack, distinct, load_results, fail, measured_to_truth, no_fault, ok, said, scenario,
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "harness"))
+from check import (Rack, distinct, load_results, fail, measured_to_truth, no_fault, ok, said, scenario,  # noqa: E402
                    sensor_truth, spindle_holds, tool_table_length, visits_in_order)
 
 P = "fixed_atc_probe."

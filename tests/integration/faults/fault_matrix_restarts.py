@@ -27,7 +27,7 @@ while True:
                FATC_MATRIX_PENDING=json.dumps(pending) if pending else "")
     if steps is not None:
         env["FATC_MATRIX_STEPS"] = steps
-    run = subprocess.run([os.path.join(here, "run_sim.sh"), work, os.path.join(here, "fault_matrix.py")],
+    run = subprocess.run([os.path.join(here, "..", "harness", "run_sim.sh"), work, os.path.join(here, "fault_matrix.py")],
                          env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                          timeout=600)
     results["starts"] += 1

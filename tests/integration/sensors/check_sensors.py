@@ -8,7 +8,8 @@ import json
 import os
 import sys
 
-from check import Rack, distinct, fail, in_pockets, load_results, near, ok, rising_samples, said, scenario
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "harness"))
+from check import Rack, distinct, fail, in_pockets, load_results, near, ok, rising_samples, said, scenario  # noqa: E402
 
 GRIP_FAULT = "tool 2 not in the spindle after the chuck closed at pocket 2 (tool-present off, retried once)"
 AIR_FAULT = "air pressure low (air-pressure-ok off) before the chuck opened to flush it; it stayed closed"

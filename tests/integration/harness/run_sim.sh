@@ -5,7 +5,7 @@
 set -euo pipefail
 # FATC_INSTALLED: the machine from an installed package's files (its
 # share/fixed_atc_probe) instead of this checkout's.
-root=${FATC_INSTALLED:-$(cd "$(dirname "$0")/../.." && pwd)}
+root=${FATC_INSTALLED:-$(cd "$(dirname "$0")/../../.." && pwd)}
 work=$1
 display=$2
 user=${FATC_SIM_USER:-fatc}
