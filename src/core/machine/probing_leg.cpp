@@ -1,8 +1,0 @@
-// The event dispatch of this submachine, generated here and nowhere else
-// (favor_compile_time, see Machine_of in common.hpp): a compiler run reads
-// only the tables it dispatches.
-
-#include "probing_leg.hpp"
-
-BOOST_MSM_BACK_GENERATE_PROCESS_EVENT(fatc::machine::ProbingLeg)
-BOOST_MSM_BACK_GENERATE_PROCESS_EVENT(fatc::machine::MeasureLeg)
