@@ -18,8 +18,8 @@ std::optional<std::string> DryRun::why_not(const Context& ctx,
   const Step& move = steps[first.step];
   std::string why = "its step " + std::to_string(first.step + 1) + " (" +
                     step_kind_name(move.kind) + " to " + move.label + "): " + first.what;
-  if (const std::string counted = keepout_length_words(ctx.config, ctx.motion.keepout_lengths, move.held,
-                                                       ctx.tools.lengths);
+  if (const std::string counted = keepout_length_words(ctx.config, ctx.motion.keepout_lengths,
+                                                       move.held, ctx.tools.lengths);
       !counted.empty()) {
     why += " (" + counted + ")";
   }

@@ -3,8 +3,9 @@
 // and nowhere else (flow_run_of.hpp): a compiler run reads only its tables.
 
 #include "change_flow.hpp"
-#include "changer.hpp"
+
 #include "admission.hpp"
+#include "changer.hpp"
 #include "flow_run_of.hpp"
 
 namespace fatc::machine {

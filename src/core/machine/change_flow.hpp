@@ -59,7 +59,8 @@ struct ChangeFlow_ : Flow<ChangeFlow_> {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       const Context& c = *fsm.ctx;
-      fsm.ctx->activity.fault_reason = "the spindle did not stop within spindle_stop_timeout_seconds";
+      fsm.ctx->activity.fault_reason =
+          "the spindle did not stop within spindle_stop_timeout_seconds";
       if (c.config.sensors.zero_speed && !c.sensors.zero_speed) {
         fsm.ctx->activity.fault_reason += " (zero-speed off)";
       }

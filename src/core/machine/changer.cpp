@@ -36,9 +36,13 @@ void Changer::keepout_lengths(ToolLengths lengths) {
   engine_->context.motion.keepout_lengths = std::move(lengths);
 }
 
-const ToolLengths& Changer::keepout_lengths() const { return engine_->context.motion.keepout_lengths; }
+const ToolLengths& Changer::keepout_lengths() const {
+  return engine_->context.motion.keepout_lengths;
+}
 
-void Changer::rehearse_with(const Rehearsal* rehearsal) { engine_->context.motion.rehearsal = rehearsal; }
+void Changer::rehearse_with(const Rehearsal* rehearsal) {
+  engine_->context.motion.rehearsal = rehearsal;
+}
 
 void Changer::machine_at(std::optional<Point> at) { engine_->context.machine.position = at; }
 
@@ -145,7 +149,8 @@ std::string activity_of(const Status& status, const Context& c) {
         return "telling LinuxCNC the spindle holds tool " + std::to_string(c.motion.step.tool);
       }
       if (c.motion.step.kind == StepKind::set_tool_length) {
-        return "writing the length of tool " + std::to_string(c.motion.step.tool) + " to the tool table";
+        return "writing the length of tool " + std::to_string(c.motion.step.tool) +
+               " to the tool table";
       }
       return std::string(step_kind_name(c.motion.step.kind)) + " to " + c.motion.step.label;
     case Awaiting::timer:
@@ -196,7 +201,8 @@ Status Changer::status() const {
   status.over_mdi = status.busy() && !in_program;
   status.accepting = status.phase == Phase::idle && status.awaiting == Awaiting::nothing &&
                      !c.machine.task_busy && !c.outputs.chuck_open;
-  status.chuck_held = c.outputs.chuck_open && (status.phase == Phase::idle || status.phase == Phase::chuck);
+  status.chuck_held =
+      c.outputs.chuck_open && (status.phase == Phase::idle || status.phase == Phase::chuck);
   status.last_length = c.activity.last_length;
   status.step_number = status.busy() ? c.motion.sequence_step : 0;
   status.pocket = status.busy() ? c.sequence_pocket() : 0;

@@ -3,17 +3,17 @@
 // Building blocks shared by every table: the flow base, the kinds of state
 // (moving, timed, waiting for the operator), targets, guards and actions.
 
+#include <algorithm>
 #include <boost/msm/back/favor_compile_time.hpp>
 #include <boost/msm/back/state_machine.hpp>
 #include <boost/msm/front/functor_row.hpp>
 #include <boost/msm/front/state_machine_def.hpp>
-#include <algorithm>
 #include <cstdio>
 #include <type_traits>
 
-#include "events.hpp"
 #include "../rack/geometry.hpp"
 #include "admission.hpp"
+#include "events.hpp"
 #include "flow_run.hpp"
 
 namespace fatc::machine {
@@ -42,12 +42,12 @@ struct AwaitsMotion {};  ///< the executor performs a move or a command
 struct AwaitsProbe {};   ///< the executor performs a probe move
 struct AwaitsTimer {};
 struct AwaitsSpindle {};
-struct AwaitsSensor {};      ///< a wired sensor must confirm a change (drawbar, tool, air)
-struct AwaitsOperator {};    ///< Continue or Cancel
-struct HoldsProgram {};      ///< an operator wait inside M6: the program holds
-struct EndedFinished {};     ///< a flow reached its end
-struct EndedCancelled {};    ///< a flow ended early: the operator cancelled
-struct EndedFailed {};       ///< a flow cannot go on
+struct AwaitsSensor {};    ///< a wired sensor must confirm a change (drawbar, tool, air)
+struct AwaitsOperator {};  ///< Continue or Cancel
+struct HoldsProgram {};    ///< an operator wait inside M6: the program holds
+struct EndedFinished {};   ///< a flow reached its end
+struct EndedCancelled {};  ///< a flow ended early: the operator cancelled
+struct EndedFailed {};     ///< a flow cannot go on
 template <class... Flags>
 struct List {};
 /// The flags a state inside a flow may carry: what FlowRun::flagged answers

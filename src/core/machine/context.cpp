@@ -18,9 +18,9 @@ void Context::publish(const Step& next) {
   Point along = motion.position;
   unsigned known_along = motion.known_axes;
   for (const Step& move : moves) {
-    const auto problems = motion.check_moves
-                              ? check_move(config, along, known_along, move, machine.limits, held_length)
-                              : std::vector<std::string>{};
+    const auto problems = motion.check_moves ? check_move(config, along, known_along, move,
+                                                          machine.limits, held_length)
+                                             : std::vector<std::string>{};
     if (!problems.empty()) {
       raise.unsafe_step("unsafe step not sent: " + describe(move) + ": " + problems.front());
       return;
@@ -43,15 +43,15 @@ void Context::publish(const Step& next) {
   ports.publish(published);
 }
 
-std::optional<std::string> Context::rehearse(
-    const std::function<void(Changer&)>& request) const {
+std::optional<std::string> Context::rehearse(const std::function<void(Changer&)>& request) const {
   return motion.rehearsal ? motion.rehearsal->why_not(*this, request) : std::nullopt;
 }
 
 void Context::walk(plan::Route route) {
   if (route.empty()) throw std::logic_error("a phase with no waypoints");
   route_ = plan::blended(
-      config, plan::from_where_it_stands(config, std::move(route), motion.position, motion.known_axes),
+      config,
+      plan::from_where_it_stands(config, std::move(route), motion.position, motion.known_axes),
       motion.position, motion.known_axes);
   route_next_ = 1;
   publish(route_.front());
@@ -87,8 +87,8 @@ void Context::close_chuck() {
 void Context::blow_if_due() {
   // The taper is cleaned only at a pocket: at `loading` the operator's hand
   // is at the spindle.
-  const bool due = config.air_blast && outputs.chuck_open && tools.spindle == 0 && tools.in_progress &&
-                   tools.in_progress->pocket != 0;
+  const bool due = config.air_blast && outputs.chuck_open && tools.spindle == 0 &&
+                   tools.in_progress && tools.in_progress->pocket != 0;
   if (due == blowing) return;
   blowing = due;
   ports.set_air_blast(due);
@@ -119,8 +119,8 @@ bool Context::cover_reads_open() const {
 
 bool Context::cover_still_closing() const {
   // The cover's own disagreement is one of those disagreements() names.
-  return outputs.cover_closing && config.rack_cover && config.rack_cover->closed_sensor && !outputs.cover_open &&
-         !sensors.rack_cover_closed && disagreements().size() == 1;
+  return outputs.cover_closing && config.rack_cover && config.rack_cover->closed_sensor &&
+         !outputs.cover_open && !sensors.rack_cover_closed && disagreements().size() == 1;
 }
 
 void Context::wait(double seconds, std::string what) {

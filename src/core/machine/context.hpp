@@ -6,13 +6,13 @@
 #include <vector>
 
 #include "../config/config.hpp"
-#include "events.hpp"
-#include "../rack/geometry.hpp"
-#include "../plan/routes.hpp"
-#include "ports.hpp"
-#include "../rack/sensors.hpp"
 #include "../motion/step.hpp"
+#include "../plan/routes.hpp"
+#include "../rack/geometry.hpp"
+#include "../rack/sensors.hpp"
 #include "../rack/tool_state.hpp"
+#include "events.hpp"
+#include "ports.hpp"
 #include "prompt.hpp"
 #include "rehearsal.hpp"
 
@@ -204,7 +204,7 @@ class Context {
  private:
   void blow_if_due();
   unsigned configs_taken_ = 0;
-  plan::Route route_;          ///< the waypoints the phase under way walks
+  plan::Route route_;           ///< the waypoints the phase under way walks
   std::size_t route_next_ = 0;  ///< the index of the waypoint to publish next
   bool blowing = false;
 };

@@ -18,9 +18,7 @@ Engine::Engine(const Config& config, Ports& ports, ToolState tools)
 
 Engine::~Engine() = default;
 
-FlowRun* Engine::flow() const {
-  return fsm.get_state<const Operating&>().flow.get();
-}
+FlowRun* Engine::flow() const { return fsm.get_state<const Operating&>().flow.get(); }
 
 /// A flow that reached an end hands it to the machine above, before any
 /// event raised meanwhile (a submachine's exit point does so in Boost.MSM).

@@ -56,8 +56,8 @@ struct StopProgram {
   void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
     Context& c = *fsm.ctx;
     c.end_sequence();
-    const std::string why = "M6 T" + std::to_string(c.request.tool) +
-                            " cancelled by the operator; " + c.whereabouts();
+    const std::string why =
+        "M6 T" + std::to_string(c.request.tool) + " cancelled by the operator; " + c.whereabouts();
     Step fail = failure_step(why);
     fail.tool = c.tools.spindle;
     c.publish(fail);
@@ -74,8 +74,7 @@ struct StopDryRun {
     if constexpr (std::is_same_v<Event, Abort>) why = e.reason;
     const int pocket = c.sequence_pocket();
     c.end_sequence();
-    c.tell(MessageKind::info, "verify of pocket " + std::to_string(pocket) + " stopped (" +
-                                  why +
+    c.tell(MessageKind::info, "verify of pocket " + std::to_string(pocket) + " stopped (" + why +
                                   "); nothing was recorded. The spindle may be in the rack: jog "
                                   "it out the way it came in before the next change");
   }

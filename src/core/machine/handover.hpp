@@ -16,8 +16,7 @@ struct InsertLeg_ : Flow<InsertLeg_> {
   template <class Event, class Parent>
   void on_entry(const Event& e, Parent& parent) {
     Flow::on_entry(e, parent);
-    ctx->record_progress(
-        "inserting tool " + std::to_string(tool) + " at loading", 0);
+    ctx->record_progress("inserting tool " + std::to_string(tool) + " at loading", 0);
   }
   struct InsertPrompt {
     template <class Leg>
@@ -33,9 +32,9 @@ struct InsertLeg_ : Flow<InsertLeg_> {
   struct SayToolNotSeen {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      fsm.ctx->tell(MessageKind::error,
-                    "tool " + std::to_string(fsm.tool) +
-                        " is not in the spindle (tool-present off): " + words(fsm.ctx->activity.prompt));
+      fsm.ctx->tell(MessageKind::error, "tool " + std::to_string(fsm.tool) +
+                                            " is not in the spindle (tool-present off): " +
+                                            words(fsm.ctx->activity.prompt));
     }
   };
 
@@ -60,8 +59,7 @@ struct RemoveLeg_ : Flow<RemoveLeg_> {
   template <class Event, class Parent>
   void on_entry(const Event& e, Parent& parent) {
     Flow::on_entry(e, parent);
-    ctx->record_progress("removing tool " + std::to_string(tool) + " at loading",
-                               0);
+    ctx->record_progress("removing tool " + std::to_string(tool) + " at loading", 0);
   }
 
   struct RemovePrompt {
@@ -78,9 +76,9 @@ struct RemoveLeg_ : Flow<RemoveLeg_> {
   struct SayToolStillThere {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      fsm.ctx->tell(MessageKind::error,
-                    "tool " + std::to_string(fsm.tool) +
-                        " is still in the spindle (tool-present on): " + words(fsm.ctx->activity.prompt));
+      fsm.ctx->tell(MessageKind::error, "tool " + std::to_string(fsm.tool) +
+                                            " is still in the spindle (tool-present on): " +
+                                            words(fsm.ctx->activity.prompt));
     }
   };
 

@@ -86,7 +86,8 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
         c.activity.fault_reason = e.reason;
       }
       if constexpr (std::is_same_v<Event, NotReady>) {
-        c.activity.fault_reason = "the machine went off, lost homing or entered estop during a sequence";
+        c.activity.fault_reason =
+            "the machine went off, lost homing or entered estop during a sequence";
       }
       c.tools.uncertain = true;
       c.ports.save(c.tools);
@@ -132,8 +133,7 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
     template <class Fsm, class Source, class Target>
     void operator()(const ClearFault& e, Fsm& fsm, Source&, Target&) const {
       Context& c = *fsm.ctx;
-      const int answered =
-          e.pocket_holds_tool ? c.sequence_pocket() : 0;
+      const int answered = e.pocket_holds_tool ? c.sequence_pocket() : 0;
       c.tools.confirm(e.spindle_tool, e.pocket_holds_tool);
       // The operator has looked at the rack: every pocket sensor not
       // contradicted by an answer is taken at its word (only while the

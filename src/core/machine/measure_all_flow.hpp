@@ -16,7 +16,6 @@ namespace fatc::machine {
 /// the machine grows by one table, not by new copies of the legs.
 /// docs/sequences.md#measure-all.
 struct MeasureAllFlow_ : Flow<MeasureAllFlow_> {
-
   /// The tools to measure, in order, and how far the batch got.
   struct Batch {
     std::vector<int> tools;
@@ -74,8 +73,7 @@ struct MeasureAllFlow_ : Flow<MeasureAllFlow_> {
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       Context& c = *fsm.ctx;
       const double now = *c.activity.last_length;
-      std::string line =
-          "T" + std::to_string(c.request.tool) + " " + format_length(c.config, now);
+      std::string line = "T" + std::to_string(c.request.tool) + " " + format_length(c.config, now);
       if (fsm.batch.stored) {
         char change[32];
         std::snprintf(change, sizeof change, "%+.4f", now - *fsm.batch.stored);
@@ -92,7 +90,7 @@ struct MeasureAllFlow_ : Flow<MeasureAllFlow_> {
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       Context& c = *fsm.ctx;
       fsm.batch.report.push_back("T" + std::to_string(c.request.tool) +
-                               " not measured: " + fsm.template get_state<Probe&>().problem);
+                                 " not measured: " + fsm.template get_state<Probe&>().problem);
       ++fsm.batch.done;
     }
   };
@@ -100,9 +98,10 @@ struct MeasureAllFlow_ : Flow<MeasureAllFlow_> {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       Context& c = *fsm.ctx;
-      std::string text =
-          "measure all " + std::string(fsm.batch.cancel ? "cancelled after " : "done: ") +
-          std::to_string(fsm.batch.done) + " of " + std::to_string(fsm.batch.tools.size()) + " tools";
+      std::string text = "measure all " +
+                         std::string(fsm.batch.cancel ? "cancelled after " : "done: ") +
+                         std::to_string(fsm.batch.done) + " of " +
+                         std::to_string(fsm.batch.tools.size()) + " tools";
       for (const auto& line : fsm.batch.report) text += "; " + line;
       c.tell(MessageKind::info, text);
     }

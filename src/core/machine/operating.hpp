@@ -91,9 +91,8 @@ template <class Because, class Guard = none, class List = Flows>
 struct RefusingRequests;
 template <class Because, class Guard, class... Each>
 struct RefusingRequests<Because, Guard, FlowList<Each...>> {
-  using type =
-      boost::mpl::vector<msmf::Internal<typename Each::request, Refuse<Because>, Guard>...,
-                         msmf::Internal<ConfigChanged, Refuse<BecauseNotIdle>, none>>;
+  using type = boost::mpl::vector<msmf::Internal<typename Each::request, Refuse<Because>, Guard>...,
+                                  msmf::Internal<ConfigChanged, Refuse<BecauseNotIdle>, none>>;
 };
 template <class Because, class Guard = none>
 using RefusesRequests = typename RefusingRequests<Because, Guard>::type;

@@ -121,13 +121,11 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
     template <class Fsm, class Source, class Target>
     void operator()(const ProbeResult& e, Fsm& fsm, Source&, Target&) const {
       const std::string tool = "tool " + std::to_string(fsm.tool);
-      fsm.problem = e.tripped_before
-                                   ? "the touch-off sensor was already tripped"
-                                   : tool + " did not touch the sensor before probe_limit";
+      fsm.problem = e.tripped_before ? "the touch-off sensor was already tripped"
+                                     : tool + " did not touch the sensor before probe_limit";
       fsm.ctx->tell(MessageKind::error,
-                    e.tripped_before
-                        ? "probe: " + tool + ": " + fsm.problem + "; nothing written"
-                        : "probe: " + fsm.problem + "; nothing written");
+                    e.tripped_before ? "probe: " + tool + ": " + fsm.problem + "; nothing written"
+                                     : "probe: " + fsm.problem + "; nothing written");
     }
   };
   struct SayOutsideWindow {
@@ -195,7 +193,8 @@ struct MeasureLeg_ : Flow<MeasureLeg_> {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       const Context& c = *fsm.ctx;
-      return std::abs(*c.activity.last_length - c.tools.lengths.at(fsm.tool)) > c.config.check_tolerance();
+      return std::abs(*c.activity.last_length - c.tools.lengths.at(fsm.tool)) >
+             c.config.check_tolerance();
     }
   };
   struct SayMeasured {
@@ -203,7 +202,8 @@ struct MeasureLeg_ : Flow<MeasureLeg_> {
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       const Context& c = *fsm.ctx;
       fsm.ctx->tell(MessageKind::info, "tool " + std::to_string(fsm.tool) + " measures " +
-                                           format_length(c.config, *c.activity.last_length) + ", stored " +
+                                           format_length(c.config, *c.activity.last_length) +
+                                           ", stored " +
                                            format_length(c.config, c.tools.lengths.at(fsm.tool)));
     }
   };

@@ -43,7 +43,7 @@ struct Status {
   /// The flow under way is an operator's (load, unload, measure all, verify):
   /// its executor runs over MDI, started by the adapter, not inside a program.
   bool over_mdi = false;
-  bool accepting = false;          ///< idle, and task is free for a load or unload
+  bool accepting = false;  ///< idle, and task is free for a load or unload
   /// A chuck atom released the chuck and it stays open: motion and the
   /// spindle must wait for the clamp (the `chuck-held` pin).
   bool chuck_held = false;
