@@ -185,27 +185,24 @@ int report(const std::vector<SequenceViolation>& violations, std::ostream& out) 
   return static_cast<int>(violations.size());
 }
 
-/// "tool-present, air-pressure-ok, pocket-occupied-1 2 5 (sensor_timeout_seconds 1)", or "none".
+/// The wired sensors of `sensors` by their pins, the pocket sensors' numbers
+/// after the first, and the timeout they share (the rack cover's have their
+/// own): "…, pocket-…-1 2 5 (sensor_timeout_seconds 1)", or "none".
 std::string sensors_wired(const Config& config) {
   const SensorConfig& wired = config.sensors;
-  std::string pins;
-  auto add = [&](bool on, const char* pin) {
-    if (on) pins += std::string(pins.empty() ? "" : ", ") + pin;
-  };
-  add(wired.zero_speed, "zero-speed");
-  add(wired.tool_present, "tool-present");
-  add(wired.drawbar_open, "drawbar-open");
-  add(wired.drawbar_closed, "drawbar-closed");
-  add(wired.air_pressure, "air-pressure-ok");
+  std::vector<std::string> pins;
+  for (const SensorDeclaration& sensor : kSensors) {
+    if (keyed_in(sensor, "sensors") && wired.wired(sensor.sensor)) pins.push_back(sensor.words.pin);
+  }
   if (!wired.pocket_occupancy.empty()) {
     std::vector<std::string> pockets;
     for (const int pocket : wired.pocket_occupancy) pockets.push_back(std::to_string(pocket));
-    pins += std::string(pins.empty() ? "" : ", ") + "pocket-occupied-" + listed(pockets, " ");
+    pins.push_back(pocket_pin(listed(pockets, " ")));
   }
   if (pins.empty()) return "none";
   std::ostringstream timeout;
   timeout << config.sensor_timeout_seconds;
-  return pins + " (sensor_timeout_seconds " + timeout.str() + ")";
+  return listed(pins, ", ") + " (sensor_timeout_seconds " + timeout.str() + ")";
 }
 
 /// --check's verdict when an input could not be read or is not valid: the

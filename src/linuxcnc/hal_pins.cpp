@@ -21,18 +21,17 @@ void make(int id, hal_pin_dir_t dir, hal_float_t** pin, const std::string& prefi
   check(hal_pin_float_newf(dir, pin, id, "%s.%s", prefix.c_str(), name.c_str()), prefix, name);
 }
 
-/// `pocket-occupied-N` for each of `pockets`, in HAL memory.
+/// A pocket sensor's pin for each of `pockets`, in HAL memory.
 void make_pocket_pins(int id, HalPins* p, const std::string& prefix,
                       const std::vector<int>& pockets) {
   p->pocket_count = static_cast<int>(pockets.size());
-  p->pocket_occupied =
+  p->pocket_sensors =
       static_cast<hal_bit_t**>(hal_malloc(sizeof(hal_bit_t*) * (pockets.size() + 1)));
   p->pocket_tools = static_cast<int*>(hal_malloc(sizeof(int) * (pockets.size() + 1)));
-  if (!p->pocket_occupied || !p->pocket_tools) throw std::runtime_error("hal_malloc failed");
+  if (!p->pocket_sensors || !p->pocket_tools) throw std::runtime_error("hal_malloc failed");
   for (std::size_t i = 0; i < pockets.size(); ++i) {
     p->pocket_tools[i] = pockets[i];
-    make(id, HAL_IN, &p->pocket_occupied[i], prefix,
-         "pocket-occupied-" + std::to_string(pockets[i]));
+    make(id, HAL_IN, &p->pocket_sensors[i], prefix, pocket_pin(pockets[i]));
   }
 }
 
@@ -67,6 +66,10 @@ HalPins* create_pins(const std::string& name, int& id, const std::vector<int>& p
       case PinDeclaration::Type::bit:
         make(id, pin.dir, &(p->*pin.bit), name, pin.name);
         *(p->*pin.bit) = pin.start != 0;
+        break;
+      case PinDeclaration::Type::sensor:
+        make(id, pin.dir, &p->sensors[index(pin.sensor)], name, pin.name);
+        *p->sensors[index(pin.sensor)] = false;
         break;
       case PinDeclaration::Type::s32:
         make(id, pin.dir, &(p->*pin.s32), name, pin.name);

@@ -9,8 +9,8 @@ namespace fatc::linuxcnc {
 /// written through the pointers HAL gives; only Component touches them.
 struct HalPins;
 
-/// Creates the component and every pin, with a `pocket-occupied-N` for each
-/// of `pockets` (tool numbers); throws std::runtime_error naming the pin that
+/// Creates the component and every pin, with a pocket sensor's for each of
+/// `pockets` (tool numbers); throws std::runtime_error naming the pin that
 /// failed. hal_ready is left to the caller, after everything else that can
 /// fail has been checked.
 HalPins* create_pins(const std::string& component_name, int& component_id,

@@ -2,6 +2,7 @@
 
 #include <hal.h>
 
+#include "core/config/sensor_list.hpp"
 #include "core/rack/keepout.hpp"
 #include "hal_pins.hpp"
 
@@ -18,18 +19,13 @@ struct HalPins {
   hal_bit_t* chuck_held;
   hal_bit_t* probe;
   hal_bit_t* spindle_stopped;
-  hal_bit_t* zero_speed;
-  hal_bit_t* tool_present;
-  hal_bit_t* drawbar_open;
-  hal_bit_t* drawbar_closed;
-  hal_bit_t* air_pressure_ok;
+  /// in: the optional sensors of core/config/sensor_list.hpp, by Sensor
+  hal_bit_t* sensors[kSensorCount];
   hal_bit_t* rack_cover_open;
-  hal_bit_t* rack_cover_opened;
-  hal_bit_t* rack_cover_closed;
   hal_bit_t* air_blast;
-  /// in: pocket-occupied-N, one per configured pocket, in the order of
+  /// in: the pocket sensors, one per configured pocket, in the order of
   /// `pocket_tools` (sensors.pocket_occupancy); HAL memory, `pocket_count` long
-  hal_bit_t** pocket_occupied;
+  hal_bit_t** pocket_sensors;
   int* pocket_tools;
   int pocket_count;
   hal_bit_t* machine_on;

@@ -9,18 +9,12 @@ namespace fatc::linuxcnc {
 SensorReadings read_sensors(const HalPins& pins, const Config& config) {
   const SensorConfig& wired = config.sensors;
   SensorReadings sensors;
-  if (wired.zero_speed) sensors.zero_speed = *pins.zero_speed;
-  if (wired.tool_present) sensors.tool_present = *pins.tool_present;
-  if (wired.drawbar_open) sensors.drawbar_open = *pins.drawbar_open;
-  if (wired.drawbar_closed) sensors.drawbar_closed = *pins.drawbar_closed;
-  if (wired.air_pressure) sensors.air_pressure_ok = *pins.air_pressure_ok;
-  if (const auto& cover = config.rack_cover) {
-    if (cover->opened_sensor) sensors.rack_cover_opened = *pins.rack_cover_opened;
-    if (cover->closed_sensor) sensors.rack_cover_closed = *pins.rack_cover_closed;
+  for (const SensorDeclaration& sensor : kSensors) {
+    if (wired.wired(sensor.sensor)) sensors.set(sensor.sensor, *pins.sensors[index(sensor.sensor)]);
   }
   for (int i = 0; i < pins.pocket_count; ++i) {
     const int pocket = pins.pocket_tools[i];
-    if (wired.pocket(pocket)) sensors.pocket_occupied[pocket] = *pins.pocket_occupied[i];
+    if (wired.pocket(pocket)) sensors.pockets[pocket] = *pins.pocket_sensors[i];
   }
   return sensors;
 }

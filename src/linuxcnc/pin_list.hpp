@@ -5,41 +5,58 @@
 // tests/integration/pins/pins.golden are generated from it (fatc_docs), and a
 // test fails when a generated file is stale.
 
+#include <initializer_list>
 #include <string>
+#include <vector>
 
 #include "hal_pins_detail.hpp"
 
 namespace fatc::linuxcnc {
 
-/// `pocket-occupied-N`: one pin for each pocket of config.json.
+/// The pocket sensor: one pin for each pocket of config.json.
 struct PerPocket {};
 /// `rack-keepout-N-...`: one pin for each box the rack guard holds.
 struct PerBox {
   hal_float_t* (HalPins::*member)[kGuardBoxes];
 };
 
+/// A sensor's line in the reference: "sensor (`sensors.zero_speed`): the spindle's ...".
+inline std::string sensor_doc(const SensorWords& words) {
+  return "sensor (`" + std::string(words.key) + "`): " + words.says + words.pin_note;
+}
+
 struct PinDeclaration {
-  enum class Type { bit, s32, real, bit_per_pocket, real_per_box };
-  constexpr PinDeclaration(const char* name, hal_bit_t* HalPins::*member, hal_pin_dir_t dir,
-                           const char* doc, int start = 0)
+  enum class Type { bit, s32, real, sensor, bit_per_pocket, real_per_box };
+  PinDeclaration(const char* name, hal_bit_t* HalPins::*member, hal_pin_dir_t dir, const char* doc,
+                 int start = 0)
       : name(name), type(Type::bit), dir(dir), doc(doc), start(start), bit(member) {}
-  constexpr PinDeclaration(const char* name, hal_s32_t* HalPins::*member, hal_pin_dir_t dir,
-                           const char* doc, int start = 0)
+  PinDeclaration(const char* name, hal_s32_t* HalPins::*member, hal_pin_dir_t dir, const char* doc,
+                 int start = 0)
       : name(name), type(Type::s32), dir(dir), doc(doc), start(start), s32(member) {}
-  constexpr PinDeclaration(const char* name, hal_float_t* HalPins::*member, hal_pin_dir_t dir,
-                           const char* doc, int start = 0)
+  PinDeclaration(const char* name, hal_float_t* HalPins::*member, hal_pin_dir_t dir,
+                 const char* doc, int start = 0)
       : name(name), type(Type::real), dir(dir), doc(doc), start(start), real(member) {}
-  constexpr PinDeclaration(const char* name, PerPocket, hal_pin_dir_t dir, const char* doc)
-      : name(name), type(Type::bit_per_pocket), dir(dir), doc(doc) {}
-  constexpr PinDeclaration(const char* name, PerBox boxes, hal_pin_dir_t dir, const char* doc)
+  explicit PinDeclaration(const SensorDeclaration& declared)
+      : name(declared.words.pin),
+        type(Type::sensor),
+        dir(HAL_IN),
+        doc(sensor_doc(declared.words)),
+        sensor(declared.sensor) {}
+  explicit PinDeclaration(PerPocket)
+      : name(kPocketSensor.pin),
+        type(Type::bit_per_pocket),
+        dir(HAL_IN),
+        doc(sensor_doc(kPocketSensor)) {}
+  PinDeclaration(const char* name, PerBox boxes, hal_pin_dir_t dir, const char* doc)
       : name(name), type(Type::real_per_box), dir(dir), doc(doc), per_box(boxes.member) {}
 
   const char* name;  ///< after `fixed_atc_probe.`
   Type type;
   hal_pin_dir_t dir;
   /// One line for the reference; `backticks` name a pin, a key or a signal.
-  const char* doc;
+  std::string doc;
   int start = 0;  ///< its value from the start, before anything writes it
+  Sensor sensor = Sensor{};  ///< a sensor's: which (HalPins::sensors)
   hal_bit_t* HalPins::*bit = nullptr;
   hal_s32_t* HalPins::*s32 = nullptr;
   hal_float_t* HalPins::*real = nullptr;
@@ -53,8 +70,27 @@ const char* dir_name(const PinDeclaration& pin);
 /// A per-box pin's name for box `box`: rack-keepout-N-x-min -> rack-keepout-2-x-min.
 std::string box_pin_name(const PinDeclaration& pin, std::size_t box);
 
+/// The pins of the sensors whose keys lie in the config object `object`, in
+/// the order of kSensors.
+inline std::vector<PinDeclaration> sensor_pins(const char* object) {
+  std::vector<PinDeclaration> pins;
+  for (const SensorDeclaration& sensor : kSensors) {
+    if (keyed_in(sensor, object)) pins.emplace_back(sensor);
+  }
+  return pins;
+}
+
+/// `parts` one after another.
+inline std::vector<PinDeclaration> joined(
+    std::initializer_list<std::vector<PinDeclaration>> parts) {
+  std::vector<PinDeclaration> all;
+  for (const auto& part : parts) all.insert(all.end(), part.begin(), part.end());
+  return all;
+}
+
 // clang-format off
-inline const PinDeclaration kPins[] = {
+/// Every pin, in the order of the references.
+inline const std::vector<PinDeclaration> kPins = joined({{
   // iocontrol's tool handshake, mirrored.
   {"number", &HalPins::number, HAL_IN, "tool being prepared (`iocontrol.0.tool-prep-number`)"},
   {"tool-prepare", &HalPins::tool_prepare, HAL_IN, "`iocontrol.0.tool-prepare`"},
@@ -81,29 +117,15 @@ inline const PinDeclaration kPins[] = {
    "LinuxCNC has the spindle off (the snippet nets `not spindle.0.on`; a drive's own stopped "
    "signal says when it stands); M6 moves only at safe Z until it (and `zero-speed` where "
    "wired) says so, then waits for it up to `spindle_stop_timeout_seconds`"},
-  // The optional sensors: read only where config.json's `sensors` says they are wired.
-  {"zero-speed", &HalPins::zero_speed, HAL_IN,
-   "sensor (`sensors.zero_speed`): the spindle's zero-speed feedback; the chuck opens only "
-   "with it on"},
-  {"tool-present", &HalPins::tool_present, HAL_IN,
-   "sensor (`sensors.tool_present`): a tool is clamped in the spindle"},
-  {"drawbar-open", &HalPins::drawbar_open, HAL_IN,
-   "sensor (`sensors.drawbar_open`): the drawbar is released"},
-  {"drawbar-closed", &HalPins::drawbar_closed, HAL_IN,
-   "sensor (`sensors.drawbar_closed`): the drawbar is clamped"},
-  {"air-pressure-ok", &HalPins::air_pressure_ok, HAL_IN,
-   "sensor (`sensors.air_pressure`): the drawbar has its air"},
-  {"pocket-occupied-N", PerPocket{}, HAL_IN,
-   "sensor (`sensors.pocket_occupancy`): pocket N holds a tool; one pin per pocket of "
-   "`pockets`, N the pocket's number (not its tool's)"},
+  // The optional sensors (core/config/sensor_list.hpp): read only where
+  // config.json's `sensors` says they are wired.
+}, sensor_pins("sensors"), {
+  PinDeclaration{PerPocket{}},
   // What the rack may need around it: each driven only where config.json names it.
   {"rack-cover-open", &HalPins::rack_cover_open, HAL_OUT,
    "`rack_cover`: true opens the rack's dust cover (before the first move into the rack; "
    "closed when the changer is done with it; left as it is at a fault)"},
-  {"rack-cover-opened", &HalPins::rack_cover_opened, HAL_IN,
-   "sensor (`rack_cover.opened_sensor`): the cover is open"},
-  {"rack-cover-closed", &HalPins::rack_cover_closed, HAL_IN,
-   "sensor (`rack_cover.closed_sensor`): the cover is closed"},
+}, sensor_pins("rack_cover"), {
   {"air-blast", &HalPins::air_blast, HAL_OUT,
    "`air_blast`: on while the chuck is open at a pocket with the spindle empty (never at "
    "`loading`); off at a fault"},
@@ -255,7 +277,7 @@ inline const PinDeclaration kPins[] = {
   {"rack-keepout-at-x", &HalPins::rack_keepout_at_x, HAL_IN, "from `fatc-rack-guard.at-x`"},
   {"rack-keepout-at-y", &HalPins::rack_keepout_at_y, HAL_IN, "from `fatc-rack-guard.at-y`"},
   {"rack-keepout-at-z", &HalPins::rack_keepout_at_z, HAL_IN, "from `fatc-rack-guard.at-z`"},
-};
+}});
 // clang-format on
 
 }  // namespace fatc::linuxcnc

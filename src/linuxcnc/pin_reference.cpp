@@ -49,7 +49,7 @@ std::string pins_golden(const std::vector<int>& pockets) {
     const std::string head = std::string(type_name(pin)) + " " + dir + " " + start_value(pin) + " ";
     if (pin.type == PinDeclaration::Type::bit_per_pocket) {
       for (const int pocket : pockets) {
-        const std::string name = "fixed_atc_probe.pocket-occupied-" + std::to_string(pocket);
+        const std::string name = "fixed_atc_probe." + pocket_pin(pocket);
         lines.emplace_back(name, head + name);
       }
     } else if (pin.type == PinDeclaration::Type::real_per_box) {

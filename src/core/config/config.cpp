@@ -245,21 +245,27 @@ void read_pocket_occupancy(Reader& reader, const Json& root, const Json& value, 
   }
 }
 
-/// `sensors`: which optional sensors are wired, each off unless it says true.
+/// The sensors of sensor_list.hpp the object at `path` wires ("sensors",
+/// "rack_cover"), each off unless it says true; read in the order of the
+/// reference (keys.cpp), so several problems are listed in that order.
+void read_wired(Reader& reader, const Json& object, const std::string& path, SensorConfig& wired) {
+  for (const std::string& name : keys_below(path)) {
+    const std::string here = join_path(path, name);
+    const auto sensor =
+        std::find_if(std::begin(kSensors), std::end(kSensors),
+                     [&](const SensorDeclaration& s) { return here == s.words.key; });
+    const auto found = object.find(name);
+    if (sensor == std::end(kSensors) || found == object.end()) continue;
+    if (const auto value = boolean(reader, *found, here)) wired.wire(sensor->sensor, *value);
+  }
+}
+
+/// `sensors`: which optional sensors are wired.
 void read_sensors(Reader& reader, const Json& root, Config& config) {
   const Json* sensors = reader.object(root, "", "sensors", false);
   if (!sensors) return;
   reader.reject_unknown_keys(*sensors, "sensors");
-  const std::pair<const char*, bool*> flags[] = {{"tool_present", &config.sensors.tool_present},
-                                                 {"drawbar_open", &config.sensors.drawbar_open},
-                                                 {"drawbar_closed", &config.sensors.drawbar_closed},
-                                                 {"air_pressure", &config.sensors.air_pressure},
-                                                 {"zero_speed", &config.sensors.zero_speed}};
-  for (const auto& [key, target] : flags) {
-    if (const auto found = sensors->find(key); found != sensors->end()) {
-      if (const auto value = boolean(reader, *found, join_path("sensors", key))) *target = *value;
-    }
-  }
+  read_wired(reader, *sensors, "sensors", config.sensors);
   if (const auto occupancy = sensors->find("pocket_occupancy"); occupancy != sensors->end()) {
     read_pocket_occupancy(reader, root, *occupancy, config);
   }
@@ -271,14 +277,7 @@ void read_rack_cover(Reader& reader, const Json& root, Config& config) {
   if (!cover) return;
   reader.reject_unknown_keys(*cover, "rack_cover");
   RackCoverConfig rack_cover;
-  const std::pair<const char*, bool*> sensors[] = {{"opened_sensor", &rack_cover.opened_sensor},
-                                                   {"closed_sensor", &rack_cover.closed_sensor}};
-  for (const auto& [key, target] : sensors) {
-    if (const auto found = cover->find(key); found != cover->end()) {
-      if (const auto value = boolean(reader, *found, join_path("rack_cover", key)))
-        *target = *value;
-    }
-  }
+  read_wired(reader, *cover, "rack_cover", config.sensors);
   reader.read(*cover, "rack_cover", "seconds", rack_cover.seconds);
   reader.read(*cover, "rack_cover", "timeout_seconds", rack_cover.timeout_seconds);
   config.rack_cover = rack_cover;

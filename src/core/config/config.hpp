@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "../motion/point.hpp"
+#include "sensor_list.hpp"
 
 namespace fatc {
 
@@ -33,10 +34,9 @@ struct FlushConfig {
 };
 
 /// `rack_cover`: a dust cover over the rack, opened before the first move into
-/// the rack and closed once the changer is done with it.
+/// the rack and closed once the changer is done with it. Which of its sensors
+/// are wired is in SensorConfig.
 struct RackCoverConfig {
-  bool opened_sensor = false;    ///< `rack-cover-opened` is wired
-  bool closed_sensor = false;    ///< `rack-cover-closed` is wired
   double seconds = 1.0;          ///< how long it takes to open, where no sensor says
   double timeout_seconds = 5.0;  ///< how long a wired sensor may take to confirm
 };
@@ -54,24 +54,6 @@ struct Pocket {
   Approach approach = Approach::side;
   PlanarOffset
       side_offset;  ///< from the pocket to its side (`side_offset`, else pocket_side_offset)
-};
-
-/// Which optional sensors are wired (config.json `sensors`); each is read
-/// from its HAL input only when it is, and checked where the sequence needs it.
-struct SensorConfig {
-  bool tool_present = false;       ///< `tool-present`: a tool is clamped in the spindle
-  bool drawbar_open = false;       ///< `drawbar-open`: the drawbar is released
-  bool drawbar_closed = false;     ///< `drawbar-closed`: the drawbar is clamped
-  bool air_pressure = false;       ///< `air-pressure-ok`: the drawbar has air
-  bool zero_speed = false;         ///< `zero-speed`: the spindle's zero-speed feedback
-  std::set<int> pocket_occupancy;  ///< pockets with a `pocket-occupied-N` sensor
-
-  bool any() const {
-    return tool_present || drawbar_open || drawbar_closed || air_pressure || zero_speed ||
-           !pocket_occupancy.empty();
-  }
-  bool drawbar() const { return drawbar_open || drawbar_closed; }
-  bool pocket(int number) const { return pocket_occupancy.count(number) != 0; }
 };
 
 /// The validated contents of config.json. Lengths are in `units`, feeds in

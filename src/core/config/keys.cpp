@@ -34,6 +34,22 @@ std::string stated(double value) {
   return out.str();
 }
 
+// A sensor's key only wires it; what the sensor says comes from sensor_list.hpp.
+/// "`tool-present`: a tool is clamped in the spindle".
+std::string pin_says(const SensorWords& words) {
+  return "`" + std::string(words.pin) + "`: " + words.says;
+}
+/// A sensor of `sensors`.
+KeyDeclaration sensor_key(Sensor sensor) {
+  const SensorWords& words = declared(sensor).words;
+  return {words.key, "`false`", {}, kBoolean, pin_says(words)};
+}
+/// A sensor of `rack_cover`: "`rack-cover-opened` is wired".
+KeyDeclaration cover_sensor_key(Sensor sensor) {
+  const SensorWords& words = declared(sensor).words;
+  return {words.key, "`false`", {}, kBoolean, "`" + std::string(words.pin) + "` is wired"};
+}
+
 // clang-format off
 const std::vector<KeyDeclaration> kKeys = {
   {"units", "`\"mm\"`", {}, "`\"mm\"`, `\"inch\"`",
@@ -154,23 +170,21 @@ const std::vector<KeyDeclaration> kKeys = {
    0.04},
   {"sensors", "all `false`", {}, "an object of the keys below",
    "which optional sensors are wired; one not wired is never read"},
-  {"sensors.tool_present", "`false`", {}, kBoolean,
-   "`tool-present`: a tool is clamped in the spindle"},
-  {"sensors.drawbar_open", "`false`", {}, kBoolean, "`drawbar-open`: the drawbar is released"},
-  {"sensors.drawbar_closed", "`false`", {}, kBoolean, "`drawbar-closed`: the drawbar is clamped"},
-  {"sensors.air_pressure", "`false`", {}, kBoolean, "`air-pressure-ok`: the drawbar has its air"},
-  {"sensors.zero_speed", "`false`", {}, kBoolean,
-   "`zero-speed`: the spindle's zero-speed feedback"},
-  {"sensors.pocket_occupancy", "`false`", {},
+  sensor_key(Sensor::tool_present),
+  sensor_key(Sensor::drawbar_open),
+  sensor_key(Sensor::drawbar_closed),
+  sensor_key(Sensor::air_pressure),
+  sensor_key(Sensor::zero_speed),
+  {kPocketSensor.key, "`false`", {},
    "`true` (every pocket), `false`, or a list of pockets of `pockets`, each once: `[1, 2, 5]`",
-   "`pocket-occupied-N`: pocket N holds a tool"},
+   pin_says(kPocketSensor)},
   {"sensor_timeout_seconds", stated(kStart.sensor_timeout_seconds), kSensorTimeout, "",
    "how long a wired sensor may take to confirm a change"},
   {"rack_cover", "absent: no cover", {},
    "an object of the keys below; `{}` turns the cover on with their defaults",
    "the rack has a dust cover on `rack-cover-open`"},
-  {"rack_cover.opened_sensor", "`false`", {}, kBoolean, "`rack-cover-opened` is wired"},
-  {"rack_cover.closed_sensor", "`false`", {}, kBoolean, "`rack-cover-closed` is wired"},
+  cover_sensor_key(Sensor::rack_cover_opened),
+  cover_sensor_key(Sensor::rack_cover_closed),
   {"rack_cover.seconds", stated(kCover.seconds), kTimeout, "", "how long the cover takes to open where no sensor says"},
   {"rack_cover.timeout_seconds", stated(kCover.timeout_seconds), kTimeout, "", "how long a wired cover sensor may take"},
   {"air_blast", "`false`", {}, kBoolean,

@@ -27,7 +27,7 @@ struct KeyDeclaration {
   std::optional<Range> bounds;
   /// The range in words where bounds do not say it all: choices, relations.
   const char* range;
-  const char* doc;  ///< one line; `backticks` name keys, pins and values
+  std::string doc;  ///< one line; `backticks` name keys, pins and values
   std::optional<double> inch_min = std::nullopt;  ///< a floor of its own in inches
 };
 

@@ -59,8 +59,8 @@ void Simulator::record_output(Record::Kind kind, bool on) {
 void Simulator::set_chuck_open(bool open) {
   record_output(Record::Kind::chuck, open);
   chuck_open = open;
-  if (!rack.modelled || rack.drawbar_jammed || rack.drawbar_open == open) return;
-  rack.drawbar_open = open;
+  if (!rack.modelled || rack.drawbar_jammed || rack.drawbar_released == open) return;
+  rack.drawbar_released = open;
   // The sensors follow the valve at once: the changer hears of it right after this event.
   struct ReportAfter {
     Simulator& sim;
@@ -110,9 +110,7 @@ int Rack::pocket_at(const Config& config) const {
 void Simulator::model_rack(const Config& config, const ToolState& tools) {
   config_ = &config;
   rack = Rack{};
-  rack.modelled =
-      config.sensors.any() ||
-      (config.rack_cover && (config.rack_cover->opened_sensor || config.rack_cover->closed_sensor));
+  rack.modelled = config.sensors.any();
   rack.spindle = tools.spindle;
   // Unmodelled, nothing reads the pockets: a rack of 200 is not copied at each plan.
   for (const auto& entry : config.pockets) {
@@ -122,17 +120,36 @@ void Simulator::model_rack(const Config& config, const ToolState& tools) {
   reported_.reset();
 }
 
+bool Rack::holds(Fact fact) const {
+  switch (fact) {
+    case Fact::spindle_still:
+      return spindle_still;
+    case Fact::tool_in_spindle:
+      return spindle != 0;
+    case Fact::drawbar_released:
+      return drawbar_released;
+    case Fact::air:
+      return air;
+    case Fact::cover_open:
+      return cover_open;
+  }
+  return false;
+}
+
 SensorReadings Simulator::readings() const {
   SensorReadings r;
-  r.tool_present = rack.spindle != 0;
-  r.drawbar_open = rack.drawbar_open;
-  r.drawbar_closed = !rack.drawbar_open;
-  r.air_pressure_ok = rack.air;
-  r.zero_speed = rack.spindle_still;
-  for (const auto& [pocket, tool] : rack.pockets) r.pocket_occupied[pocket] = tool != 0;
-  r.rack_cover_opened = rack.cover_open;
-  r.rack_cover_closed = !rack.cover_open;
+  for (const SensorDeclaration& sensor : kSensors) {
+    r.set(sensor.sensor, rack.holds(sensor.watches) == sensor.on_when);
+  }
+  for (const auto& [pocket, tool] : rack.pockets) r.pockets[pocket] = tool != 0;
   return r;
+}
+
+void Simulator::show(Fact fact) {
+  const SensorReadings now = readings();
+  for (const SensorDeclaration& sensor : kSensors) {
+    if (sensor.watches == fact) shown_.set(sensor.sensor, now.reads(sensor.sensor));
+  }
 }
 
 bool Simulator::report_sensors(Changer& changer) {
@@ -245,7 +262,7 @@ int Simulator::run(Changer& changer, int limit) {
       if (answers_late && moved) {
         // The air dips during the move: the chuck waits for it before it opens.
         rack.air = false;
-        shown_.air_pressure_ok = false;
+        show(Fact::air);
         report_sensors(changer);
       }
       moved ? changer.in_position() : changer.command_done();
@@ -436,7 +453,7 @@ double longest_executor_wait(const Config& config) {
   free.pockets[config.pockets.begin()->first] = {};
   late(free, 0, [=](Changer& c) { c.load(first, 0); });
   late(with_in_spindle(config, first), 0, [=](Changer& c) { c.unload(first); });
-  if (config.rack_cover && config.rack_cover->closed_sensor) {
+  if (Sensors(config.sensors).senses_cover_closed()) {
     // A program's next M6 waits for the cover the last one closed.
     const Simulator sim = planned_right_after(config, with_in_spindle(config, first), second,
                                               [=](Changer& c) { c.tool_change(first); });

@@ -33,12 +33,12 @@ struct Rack {
   bool modelled = false;
   int spindle = 0;              ///< the tool the spindle clamps, 0 none
   std::map<int, int> pockets;   ///< pocket number -> the tool in it, 0 empty
-  bool air = true;              ///< air-pressure-ok
-  bool spindle_still = true;    ///< the zero-speed feedback
+  bool air = true;              ///< the drawbar has its air
+  bool spindle_still = true;    ///< the spindle stands still
   int grips_failing = 0;        ///< this many closings at a pocket do not take its tool
   bool tool_sticks = false;     ///< a released tool stays in the spindle
   bool drawbar_jammed = false;  ///< the drawbar does not move (its feedback stays)
-  bool drawbar_open = false;    ///< where the drawbar is
+  bool drawbar_released = false;  ///< where the drawbar is
   bool cover_open = false;      ///< where the rack cover is
   bool cover_jammed = false;    ///< the rack cover does not move (its feedback stays)
   /// The rack cover's feedback follows its command only at run()'s next
@@ -49,6 +49,8 @@ struct Rack {
 
   /// The pocket the spindle is in (its nose at the pocket's XYZ), 0 none.
   int pocket_at(const Config& config) const;
+  /// Whether `fact` holds: what the sensors that watch it read.
+  bool holds(Fact fact) const;
 };
 
 /// Ports that record everything and an executor that finishes every step at
@@ -118,6 +120,8 @@ class Simulator : public Ports {
   /// Runs out the armed timer; answering late, the sensors a sensor wait
   /// awaits answer just before.
   void run_out_timer(Changer& changer, bool awaits_sensor);
+  /// Answering late, the sensors that watch `fact` show its change at once.
+  void show(Fact fact);
   const Config* config_ = nullptr;
   double armed_seconds_ = 0.0;
   int timers_started_ = 0;

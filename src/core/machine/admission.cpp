@@ -26,8 +26,8 @@ std::optional<std::string> why_spindle_cannot_be_emptied(const Context& ctx, boo
 /// Every sequence opens the chuck: no air, no start (the legs check again
 /// before each opening).
 std::optional<std::string> why_no_air(const Context& ctx) {
-  if (ctx.air_ok()) return std::nullopt;
-  return std::string("air pressure is low (air-pressure-ok off): the chuck cannot open");
+  if (ctx.sensors.air_ok()) return std::nullopt;
+  return "air pressure is low (" + Sensors::air_pin() + " off): the chuck cannot open";
 }
 
 std::optional<std::string> why_not_ready(const Context& ctx) {

@@ -61,8 +61,8 @@ struct ChangeFlow_ : Flow<ChangeFlow_> {
       const Context& c = *fsm.ctx;
       fsm.ctx->activity.fault_reason =
           "the spindle did not stop within spindle_stop_timeout_seconds";
-      if (c.config.sensors.zero_speed && !c.sensors.zero_speed) {
-        fsm.ctx->activity.fault_reason += " (zero-speed off)";
+      if (const std::string turning = c.sensors.turning_words(); !turning.empty()) {
+        fsm.ctx->activity.fault_reason += " (" + turning + ")";
       }
     }
   };

@@ -56,7 +56,7 @@ void Changer::spindle_stopped(bool stopped) {
 }
 
 void Changer::sensors(const SensorReadings& readings) {
-  engine_->context.sensors = readings;
+  engine_->context.sensors.read = readings;
   engine_->take(SensorReport{});
 }
 

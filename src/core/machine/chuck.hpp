@@ -51,7 +51,7 @@ struct ForClamp {
 struct ChuckMayOpen : SensorGuard<ChuckMayOpen> {
   template <class Leg>
   static bool holds(const Context& c, const Leg&) {
-    return c.air_ok() && c.spindle_at_standstill();
+    return c.sensors.air_ok() && c.spindle_at_standstill();
   }
 };
 
@@ -70,9 +70,9 @@ struct WaitingToOpenChuck : msmf::state<> {
       c.await_sensor(c.config.spindle_stop_timeout_seconds,
                      "waiting for the spindle to stop before the chuck opens " + Where::where(fsm));
     } else {
-      c.await_sensor(
-          c.config.sensor_timeout_seconds,
-          "waiting for air pressure (air-pressure-ok) before the chuck opens " + Where::where(fsm));
+      c.await_sensor(c.config.sensor_timeout_seconds,
+                     "waiting for air pressure (" + Sensors::air_pin() +
+                         ") before the chuck opens " + Where::where(fsm));
     }
   }
   template <class Event, class Fsm>
@@ -88,11 +88,11 @@ struct ChuckMayNotOpen {
   template <class Leg>
   static std::string text(const Context& c, const Leg& leg) {
     std::string why;
-    if (!c.air_ok()) why = "air pressure low (air-pressure-ok off)";
+    if (!c.sensors.air_ok()) why = "air pressure low (" + Sensors::air_pin() + " off)";
     if (!c.spindle_at_standstill()) {
       std::string seen = c.machine.spindle_stopped ? "" : "spindle-stopped off";
-      if (c.config.sensors.zero_speed && !c.sensors.zero_speed) {
-        seen += std::string(seen.empty() ? "" : ", ") + "zero-speed off";
+      if (const std::string turning = c.sensors.turning_words(); !turning.empty()) {
+        seen += std::string(seen.empty() ? "" : ", ") + turning;
       }
       why += std::string(why.empty() ? "" : " and ") +
              "the spindle did not stop within spindle_stop_timeout_seconds (" + seen + ")";
@@ -110,7 +110,7 @@ struct DrawbarStayedClosed {
   template <class Leg>
   static std::string text(const Context& c, const Leg& leg) {
     return "the drawbar did not open " + Where::where(leg) + " within " +
-           seconds_words(c.config.sensor_timeout_seconds) + " (" + c.drawbar_words() + ")";
+           seconds_words(c.config.sensor_timeout_seconds) + " (" + c.sensors.drawbar_words() + ")";
   }
 };
 template <class Where>
@@ -122,7 +122,7 @@ struct DrawbarStayedOpen {
   template <class Leg>
   static std::string text(const Context& c, const Leg& leg) {
     return "the drawbar did not close " + Where::where(leg) + " within " +
-           seconds_words(c.config.sensor_timeout_seconds) + " (" + c.drawbar_words() + ")";
+           seconds_words(c.config.sensor_timeout_seconds) + " (" + c.sensors.drawbar_words() + ")";
   }
 };
 template <class Where>

@@ -48,20 +48,19 @@ struct ChuckFlow_ : Flow<ChuckFlow_> {
       fsm.ctx->wait(fsm.ctx->config.chuck_seconds, "clamping the chuck (G-code)");
     }
   };
-  /// After a clamp, `tool-present` (where wired) must agree with the record:
+  /// After a clamp, the spindle's sensor (where wired) must agree with the record:
   /// what a hand did at the spindle meanwhile is checked before the program
   /// goes on.
   struct SpindleAsRecorded : SensorGuard<SpindleAsRecorded> {
     template <class Leg>
     static bool holds(const Context& c, const Leg&) {
-      return c.spindle_reads(c.tools.spindle != 0);
+      return c.sensors.spindle_reads(c.tools.spindle != 0);
     }
     static std::string awaited(const Context& c) {
-      return c.tools.spindle != 0 ? "waiting for tool-present to see tool " +
-                                        std::to_string(c.tools.spindle) + " after the clamp"
-                                  : std::string(
-                                        "waiting for tool-present to see the spindle "
-                                        "empty after the clamp");
+      return "waiting for " + Sensors::tool_pin() + " to see " +
+             (c.tools.spindle != 0 ? "tool " + std::to_string(c.tools.spindle)
+                                   : std::string("the spindle empty")) +
+             " after the clamp";
     }
   };
   struct CheckingSpindle : AwaitingSensor<SpindleAsRecorded> {};
@@ -69,12 +68,10 @@ struct ChuckFlow_ : Flow<ChuckFlow_> {
     template <class Leg>
     static std::string text(const Context& c, const Leg&) {
       const int held = c.tools.spindle;
-      return held != 0 ? "after the clamp from G-code tool-present reads the spindle empty (off), "
-                         "but tool " +
-                             std::to_string(held) + " is recorded in it"
-                       : std::string(
-                             "after the clamp from G-code tool-present reads a tool (on), "
-                             "but the spindle is recorded empty");
+      return "after the clamp from G-code " + Sensors::tool_pin() +
+             (held != 0 ? " reads the spindle empty (off), but tool " + std::to_string(held) +
+                              " is recorded in it"
+                        : std::string(" reads a tool (on), but the spindle is recorded empty"));
     }
   };
   using FaultSpindleNotAsRecorded = FaultSaying<SpindleNotAsRecorded, true>;

@@ -106,7 +106,7 @@ void Context::open_cover() {
 void Context::close_cover() {
   if (!config.rack_cover || !outputs.cover_open) return;
   outputs.cover_open = false;
-  outputs.cover_closing = config.rack_cover->closed_sensor;
+  outputs.cover_closing = sensors.senses_cover_closed();
   ++motion.sequence_step;
   ports.set_rack_cover_open(false);
 }
@@ -114,13 +114,13 @@ void Context::close_cover() {
 bool Context::cover_reads_open() const {
   if (!config.rack_cover) return true;
   if (!outputs.cover_open) return false;
-  return config.rack_cover->opened_sensor ? sensors.rack_cover_opened : outputs.cover_settled;
+  return sensors.senses_cover_opened() ? sensors.cover_reads_opened() : outputs.cover_settled;
 }
 
 bool Context::cover_still_closing() const {
   // The cover's own disagreement is one of those disagreements() names.
-  return outputs.cover_closing && config.rack_cover && config.rack_cover->closed_sensor &&
-         !outputs.cover_open && !sensors.rack_cover_closed && disagreements().size() == 1;
+  return outputs.cover_closing && config.rack_cover && sensors.senses_cover_closed() &&
+         !outputs.cover_open && !sensors.cover_reads_closed() && disagreements().size() == 1;
 }
 
 void Context::wait(double seconds, std::string what) {
@@ -202,52 +202,8 @@ std::string Context::whereabouts() const {
   return text;
 }
 
-bool Context::spindle_at_standstill() const {
-  return machine.spindle_stopped && (!config.sensors.zero_speed || sensors.zero_speed);
-}
-
-bool Context::air_ok() const { return !config.sensors.air_pressure || sensors.air_pressure_ok; }
-
-bool Context::drawbar_reads_open() const {
-  return (!config.sensors.drawbar_open || sensors.drawbar_open) &&
-         (!config.sensors.drawbar_closed || !sensors.drawbar_closed);
-}
-
-bool Context::drawbar_reads_closed() const {
-  return (!config.sensors.drawbar_closed || sensors.drawbar_closed) &&
-         (!config.sensors.drawbar_open || !sensors.drawbar_open);
-}
-
-bool Context::spindle_reads(bool holds) const {
-  return !config.sensors.tool_present || sensors.tool_present == holds;
-}
-
-bool Context::pocket_reads(int pocket, bool occupied) const {
-  return !config.sensors.pocket(pocket) || sensors.occupied(pocket) == occupied;
-}
-
 std::vector<std::string> Context::disagreements() const {
-  // A released chuck holds nothing for certain: the operator may be taking
-  // the tool out. tool-present is compared again once it is clamped.
-  SensorConfig compared = config.sensors;
-  if (outputs.chuck_open) compared.tool_present = false;
-  auto found = sensor_disagreements(compared, sensors, tools);
-  if (config.rack_cover && config.rack_cover->closed_sensor && !outputs.cover_open &&
-      !sensors.rack_cover_closed) {
-    found.push_back("the rack cover is not closed (rack-cover-closed off)");
-  }
-  return found;
-}
-
-std::string Context::drawbar_words() const {
-  std::string words;
-  if (config.sensors.drawbar_open)
-    words = std::string("drawbar-open ") + (sensors.drawbar_open ? "on" : "off");
-  if (config.sensors.drawbar_closed) {
-    if (!words.empty()) words += ", ";
-    words += std::string("drawbar-closed ") + (sensors.drawbar_closed ? "on" : "off");
-  }
-  return words;
+  return sensors.disagreements(tools, outputs.chuck_open, outputs.cover_open);
 }
 
 void Context::await_sensor(double seconds, std::string what) {

@@ -65,7 +65,7 @@ struct Outputs {
   bool cover_open = false;    ///< the rack cover
   bool cover_settled = true;  ///< an unsensed cover has had `rack_cover.seconds` to move
   /// The changer commanded the cover closed after its last sequence and waits
-  /// for `rack-cover-closed` (Operating's ComparingSensors clears it on exit).
+  /// for its closed sensor (Operating's ComparingSensors clears it on exit).
   bool cover_closing = false;
 };
 
@@ -104,7 +104,7 @@ class Context {
   ToolState tools;
   RequestServed request;
   MachineFacts machine;
-  SensorReadings sensors;  ///< what the optional sensors read
+  Sensors sensors{config.sensors};  ///< the optional sensors: what they read, what that means
   Motion motion;
   Outputs outputs;
   Activity activity;
@@ -163,36 +163,25 @@ class Context {
   /// Where the tools are, in words, for messages after a cancel or a fault.
   std::string whereabouts() const;
 
-  // The optional sensors: each check passes when its sensor is not wired.
-  /// The spindle stands still: LinuxCNC has it off (`spindle-stopped`) and,
-  /// where wired, the zero-speed feedback (`zero-speed`) agrees.
-  bool spindle_at_standstill() const;
-  bool air_ok() const;
-  /// The drawbar reads released: `drawbar-open` on, `drawbar-closed` off (those wired).
-  bool drawbar_reads_open() const;
-  /// The drawbar reads clamped: `drawbar-closed` on, `drawbar-open` off (those wired).
-  bool drawbar_reads_closed() const;
-  /// `tool-present` reads a tool (`holds`) or none.
-  bool spindle_reads(bool holds) const;
-  /// `pocket-occupied-N` of pocket `pocket` reads `occupied`.
-  bool pocket_reads(int pocket, bool occupied) const;
+  // What the sensors say of the other parts (Sensors asks nothing else).
+  /// The spindle stands still: LinuxCNC has it off (`spindle-stopped`) and
+  /// its own feedback agrees where wired.
+  bool spindle_at_standstill() const { return machine.spindle_stopped && sensors.spindle_still(); }
   /// The rack cover (`rack_cover`): commanded open or closed. Closing is
-  /// not waited for here: SensorsAgree waits for `rack-cover-closed`.
+  /// not waited for here: SensorsAgree waits for its closed sensor.
   void open_cover();
   void close_cover();
-  /// No cover, or it is open: `rack-cover-opened` on where wired, else it
+  /// No cover, or it is open: its opened sensor on where wired, else it
   /// has had its `seconds`.
   bool cover_reads_open() const;
   /// The only disagreement is the cover the changer itself commanded closed
-  /// after its last sequence: it is still on its way (`rack-cover-closed` off,
+  /// after its last sequence: it is still on its way (its closed sensor off,
   /// at most `rack_cover.timeout_seconds`). A request waits for it; a cover
   /// that reads open otherwise refuses requests.
   bool cover_still_closing() const;
-  /// Where the wired sensors contradict the tool state (or the rack cover
-  /// its command), one phrase each.
+  /// Where the sensors contradict the tool state (or the rack cover its
+  /// command), one phrase each.
   std::vector<std::string> disagreements() const;
-  /// What the wired drawbar sensors read, for a message: "drawbar-open off, drawbar-closed on".
-  std::string drawbar_words() const;
   /// Waits up to `seconds` for a sensor (TimerElapsed if it does not come);
   /// `what` is what the activity shows meanwhile.
   void await_sensor(double seconds, std::string what);

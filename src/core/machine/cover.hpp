@@ -20,9 +20,9 @@ struct OpeningCover : msmf::state<> {
     c.open_cover();
     if (c.cover_reads_open()) {
       c.raise.sensor_report();
-    } else if (c.config.rack_cover->opened_sensor) {
+    } else if (c.sensors.senses_cover_opened()) {
       c.await_sensor(c.config.rack_cover->timeout_seconds,
-                     "waiting for the rack cover to open (rack-cover-opened)");
+                     "waiting for the rack cover to open (" + Sensors::cover_opened_pin() + ")");
     } else {
       c.await_sensor(c.config.rack_cover->seconds, "opening the rack cover");
     }
@@ -31,11 +31,11 @@ struct OpeningCover : msmf::state<> {
   void on_exit(const Event&, Fsm& fsm) {
     fsm.ctx->ports.cancel_timer();
   }
-  /// A cover with no `rack-cover-opened` is open once it has had its seconds.
+  /// A cover with no opened sensor is open once it has had its seconds.
   struct HasNoOpenedSensor {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      return !fsm.ctx->config.rack_cover->opened_sensor;
+      return !fsm.ctx->sensors.senses_cover_opened();
     }
   };
   struct Settle {
@@ -59,8 +59,8 @@ struct CoverDidNotOpen {
   template <class Leg>
   static std::string text(const Context& c, const Leg&) {
     return "the rack cover did not open within rack_cover.timeout_seconds (" +
-           seconds_words(c.config.rack_cover->timeout_seconds) +
-           ", rack-cover-opened off): nothing moved into the rack";
+           seconds_words(c.config.rack_cover->timeout_seconds) + ", " +
+           Sensors::cover_opened_pin() + " off): nothing moved into the rack";
   }
 };
 using FaultCoverDidNotOpen = FaultSaying<CoverDidNotOpen, false>;
@@ -68,7 +68,7 @@ using FaultCoverDidNotOpen = FaultSaying<CoverDidNotOpen, false>;
 struct CoverHasOpenedSensor {
   template <class Event, class Fsm, class Source, class Target>
   bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-    return fsm.ctx->config.rack_cover && fsm.ctx->config.rack_cover->opened_sensor;
+    return fsm.ctx->config.rack_cover && fsm.ctx->sensors.senses_cover_opened();
   }
 };
 

@@ -55,7 +55,7 @@ struct ProbeResult {
 /// The timer the current state armed ran out.
 struct TimerElapsed {};
 /// The spindle started or stopped turning, or a wired sensor changed, or a
-/// state asks for a fresh look at them; Context::spindle_stopped and
+/// state asks for a fresh look at them; Context::machine.spindle_stopped and
 /// Context::sensors hold the facts.
 struct SensorReport {};
 /// The operator pressed Continue (or Done).

@@ -28,13 +28,13 @@ struct InsertLeg_ : Flow<InsertLeg_> {
     }
   };
   struct AwaitingTool : AskingOperator<InsertPrompt> {};
-  /// Continue, yet `tool-present` sees no tool: the question stands.
+  /// Continue, yet the spindle's sensor sees no tool: the question stands.
   struct SayToolNotSeen {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       fsm.ctx->tell(MessageKind::error, "tool " + std::to_string(fsm.tool) +
-                                            " is not in the spindle (tool-present off): " +
-                                            words(fsm.ctx->activity.prompt));
+                                            " is not in the spindle (" + Sensors::tool_pin() +
+                                            " off): " + words(fsm.ctx->activity.prompt));
     }
   };
 
@@ -72,13 +72,13 @@ struct RemoveLeg_ : Flow<RemoveLeg_> {
     }
   };
   struct AwaitingRemoval : AskingOperator<RemovePrompt> {};
-  /// Continue, yet `tool-present` still sees a tool: the question stands.
+  /// Continue, yet the spindle's sensor still sees a tool: the question stands.
   struct SayToolStillThere {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       fsm.ctx->tell(MessageKind::error, "tool " + std::to_string(fsm.tool) +
-                                            " is still in the spindle (tool-present on): " +
-                                            words(fsm.ctx->activity.prompt));
+                                            " is still in the spindle (" + Sensors::tool_pin() +
+                                            " on): " + words(fsm.ctx->activity.prompt));
     }
   };
 

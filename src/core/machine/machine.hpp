@@ -140,8 +140,7 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
       // machine is on: its sensors may have no power otherwise).
       std::string adopted;
       if (c.machine.ready) {
-        for (const auto& change :
-             adopt_pocket_sensors(c.config.sensors, c.sensors, answered, c.tools)) {
+        for (const auto& change : c.sensors.adopt_pocket_sensors(answered, c.tools)) {
           adopted += change + "; ";
         }
       }

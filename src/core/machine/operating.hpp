@@ -162,11 +162,11 @@ struct Operating_ : Flow<Operating_> {
   struct Idle : msmf::state<> {
     using flag_list = boost::mpl::vector1<flag::Idle>;
   };
-  /// The changer is done with the rack: its cover (if any) closes, and
-  /// `rack-cover-closed` (if wired) has its own timeout to say so.
+  /// The changer is done with the rack: its cover (if any) closes, and its
+  /// closed sensor (if wired) has its own timeout to say so.
   struct SensorOrCoverTimeout {
     double operator()(const Config& c) const {
-      return c.rack_cover && c.rack_cover->closed_sensor
+      return c.rack_cover && Sensors(c.sensors).senses_cover_closed()
                  ? std::max(c.sensor_timeout_seconds, c.rack_cover->timeout_seconds)
                  : c.sensor_timeout_seconds;
     }

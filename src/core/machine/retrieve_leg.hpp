@@ -47,14 +47,15 @@ struct RetrieveLeg_ : Flow<RetrieveLeg_> {
       fsm.ctx->wait(fsm.ctx->config.chuck_seconds, "gripping tool " + std::to_string(fsm.tool));
     }
   };
-  /// The drawbar reads closed and tool-present sees the tool.
+  /// The drawbar reads closed and the spindle's sensor sees the tool.
   struct Gripped : SensorGuard<Gripped> {
     template <class Leg>
     static bool holds(const Context& c, const Leg&) {
-      return c.drawbar_reads_closed() && c.spindle_reads(true);
+      return c.sensors.drawbar_reads_closed() && c.sensors.spindle_reads(true);
     }
     static std::string awaited(const Context&) {
-      return "waiting for the drawbar to report closed and tool-present to see the tool";
+      return "waiting for the drawbar to report closed and " + Sensors::tool_pin() +
+             " to see the tool";
     }
   };
   struct CheckingGrip : AwaitingSensor<Gripped> {};
@@ -71,11 +72,12 @@ struct RetrieveLeg_ : Flow<RetrieveLeg_> {
     template <class Leg>
     static std::string text(const Context& c, const Leg& leg) {
       const std::string t = std::to_string(leg.tool);
-      if (!c.pocket_reads(leg.pocket, true)) {
+      if (!c.sensors.pocket_reads(leg.pocket, true)) {
         return "pocket " + std::to_string(leg.pocket) + " reads empty (" + pocket_pin(leg.pocket) +
                " off): tool " + t + " cannot be fetched";
       }
-      return "the spindle is not empty (tool-present on): tool " + t + " cannot be fetched";
+      return "the spindle is not empty (" + Sensors::tool_pin() + " on): tool " + t +
+             " cannot be fetched";
     }
   };
   using FaultCannotFetch = FaultSaying<CannotFetch, false>;
@@ -85,8 +87,8 @@ struct RetrieveLeg_ : Flow<RetrieveLeg_> {
       ++fsm.retries;
       fsm.ctx->tell(MessageKind::info, "tool " + std::to_string(fsm.tool) +
                                            " not in the spindle after the chuck closed at pocket " +
-                                           std::to_string(fsm.pocket) +
-                                           " (tool-present off); gripping it once more");
+                                           std::to_string(fsm.pocket) + " (" + Sensors::tool_pin() +
+                                           " off); gripping it once more");
     }
   };
   struct NotGripped {
@@ -94,7 +96,7 @@ struct RetrieveLeg_ : Flow<RetrieveLeg_> {
     static std::string text(const Context&, const Leg& leg) {
       return "tool " + std::to_string(leg.tool) +
              " not in the spindle after the chuck closed at pocket " + std::to_string(leg.pocket) +
-             " (tool-present off, retried once)";
+             " (" + Sensors::tool_pin() + " off, retried once)";
     }
   };
   using FaultToolNotGripped = FaultSaying<NotGripped, true>;

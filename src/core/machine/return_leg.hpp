@@ -86,8 +86,8 @@ struct ReturnLeg_ : Flow<ReturnLeg_<Which>> {
       fsm.ctx->record_in_spindle(fsm.tool);
       fsm.ctx->fail_check("tool " + std::to_string(fsm.tool) +
                               " still in the spindle after the chuck opened at pocket " +
-                              std::to_string(fsm.pocket) +
-                              " and the spindle lifted (tool-present on)",
+                              std::to_string(fsm.pocket) + " and the spindle lifted (" +
+                              Sensors::tool_pin() + " on)",
                           true);
     }
   };

@@ -40,7 +40,7 @@ struct SensorGuard {
   }
 };
 
-/// LinuxCNC has the spindle off and, where wired, zero-speed says it stands still.
+/// LinuxCNC has the spindle off and, where wired, the spindle's own feedback agrees.
 struct SpindleIsStopped : SensorGuard<SpindleIsStopped> {
   template <class Leg>
   static bool holds(const Context& c, const Leg&) {
@@ -48,21 +48,21 @@ struct SpindleIsStopped : SensorGuard<SpindleIsStopped> {
   }
   static std::string awaited(const Context&) { return "waiting for the spindle to stop"; }
 };
-/// `air-pressure-ok`: the drawbar has the air to open.
+/// The drawbar has the air to open.
 struct AirPressureOk : SensorGuard<AirPressureOk> {
   template <class Leg>
   static bool holds(const Context& c, const Leg&) {
-    return c.air_ok();
+    return c.sensors.air_ok();
   }
   static std::string awaited(const Context&) {
-    return "waiting for air pressure (air-pressure-ok)";
+    return "waiting for air pressure (" + Sensors::air_pin() + ")";
   }
 };
 /// The drawbar feedback reads released.
 struct DrawbarOpen : SensorGuard<DrawbarOpen> {
   template <class Leg>
   static bool holds(const Context& c, const Leg&) {
-    return c.drawbar_reads_open();
+    return c.sensors.drawbar_reads_open();
   }
   static std::string awaited(const Context&) { return "waiting for the drawbar to report open"; }
 };
@@ -70,33 +70,35 @@ struct DrawbarOpen : SensorGuard<DrawbarOpen> {
 struct DrawbarClosed : SensorGuard<DrawbarClosed> {
   template <class Leg>
   static bool holds(const Context& c, const Leg&) {
-    return c.drawbar_reads_closed();
+    return c.sensors.drawbar_reads_closed();
   }
   static std::string awaited(const Context&) { return "waiting for the drawbar to report closed"; }
 };
-/// `tool-present` reads the leg's tool in the spindle.
+/// The spindle's sensor reads the leg's tool in the spindle.
 struct ToolReadsInSpindle : SensorGuard<ToolReadsInSpindle> {
   template <class Leg>
   static bool holds(const Context& c, const Leg&) {
-    return c.spindle_reads(true);
+    return c.sensors.spindle_reads(true);
   }
-  static std::string awaited(const Context&) { return "waiting for tool-present to see the tool"; }
+  static std::string awaited(const Context&) {
+    return "waiting for " + Sensors::tool_pin() + " to see the tool";
+  }
 };
-/// `tool-present` reads the spindle empty.
+/// The spindle's sensor reads the spindle empty.
 struct SpindleReadsEmpty : SensorGuard<SpindleReadsEmpty> {
   template <class Leg>
   static bool holds(const Context& c, const Leg&) {
-    return c.spindle_reads(false);
+    return c.sensors.spindle_reads(false);
   }
   static std::string awaited(const Context&) {
-    return "waiting for tool-present to see the spindle empty";
+    return "waiting for " + Sensors::tool_pin() + " to see the spindle empty";
   }
 };
 /// The pocket of the leg's tool reads empty: a tool can go in.
 struct PocketReadsEmpty : SensorGuard<PocketReadsEmpty> {
   template <class Leg>
   static bool holds(const Context& c, const Leg& leg) {
-    return c.pocket_reads(leg.pocket, false);
+    return c.sensors.pocket_reads(leg.pocket, false);
   }
 };
 /// The pocket of the leg's tool reads occupied and the spindle empty: the
@@ -104,7 +106,7 @@ struct PocketReadsEmpty : SensorGuard<PocketReadsEmpty> {
 struct ReadyToFetch : SensorGuard<ReadyToFetch> {
   template <class Leg>
   static bool holds(const Context& c, const Leg& leg) {
-    return c.pocket_reads(leg.pocket, true) && c.spindle_reads(false);
+    return c.sensors.pocket_reads(leg.pocket, true) && c.sensors.spindle_reads(false);
   }
 };
 /// The wired sensors agree with the tool state.

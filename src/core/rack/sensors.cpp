@@ -5,19 +5,69 @@ namespace {
 
 std::string on_off(bool value) { return value ? "on" : "off"; }
 
+std::string pin(Sensor sensor) { return declared(sensor).words.pin; }
+
 }  // namespace
 
-std::string pocket_pin(int pocket) { return "pocket-occupied-" + std::to_string(pocket); }
+bool Sensors::spindle_still() const {
+  return !wired.wired(Sensor::zero_speed) || read.reads(Sensor::zero_speed);
+}
 
-std::vector<std::string> sensor_disagreements(const SensorConfig& wired, const SensorReadings& read,
-                                              const ToolState& tools) {
+std::string Sensors::turning_words() const {
+  return spindle_still() ? "" : pin(Sensor::zero_speed) + " off";
+}
+
+bool Sensors::air_ok() const {
+  return !wired.wired(Sensor::air_pressure) || read.reads(Sensor::air_pressure);
+}
+
+bool Sensors::drawbar_reads_open() const {
+  return (!wired.wired(Sensor::drawbar_open) || read.reads(Sensor::drawbar_open)) &&
+         (!wired.wired(Sensor::drawbar_closed) || !read.reads(Sensor::drawbar_closed));
+}
+
+bool Sensors::drawbar_reads_closed() const {
+  return (!wired.wired(Sensor::drawbar_closed) || read.reads(Sensor::drawbar_closed)) &&
+         (!wired.wired(Sensor::drawbar_open) || !read.reads(Sensor::drawbar_open));
+}
+
+std::string Sensors::drawbar_words() const {
+  std::string words;
+  for (const Sensor sensor : {Sensor::drawbar_open, Sensor::drawbar_closed}) {
+    if (!wired.wired(sensor)) continue;
+    words += (words.empty() ? "" : ", ") + pin(sensor) + " " + on_off(read.reads(sensor));
+  }
+  return words;
+}
+
+bool Sensors::spindle_reads(bool holds) const {
+  return !wired.wired(Sensor::tool_present) || read.reads(Sensor::tool_present) == holds;
+}
+
+bool Sensors::pocket_reads(int pocket, bool occupied) const {
+  return !wired.pocket(pocket) || read.occupied(pocket) == occupied;
+}
+
+bool Sensors::senses_cover_opened() const { return wired.wired(Sensor::rack_cover_opened); }
+bool Sensors::senses_cover_closed() const { return wired.wired(Sensor::rack_cover_closed); }
+bool Sensors::cover_reads_opened() const { return read.reads(Sensor::rack_cover_opened); }
+bool Sensors::cover_reads_closed() const { return read.reads(Sensor::rack_cover_closed); }
+
+std::string Sensors::tool_pin() { return pin(Sensor::tool_present); }
+std::string Sensors::air_pin() { return pin(Sensor::air_pressure); }
+std::string Sensors::cover_opened_pin() { return pin(Sensor::rack_cover_opened); }
+
+std::vector<std::string> Sensors::disagreements(const ToolState& tools, bool chuck_open,
+                                                bool cover_open) const {
   std::vector<std::string> found;
-  if (wired.tool_present && read.tool_present != (tools.spindle != 0)) {
-    found.push_back(tools.spindle != 0
-                        ? "tool " + std::to_string(tools.spindle) +
-                              " is recorded in the spindle, but tool-present reads it empty (off)"
-                        : std::string("the spindle is recorded empty, but tool-present reads a "
-                                      "tool in it (on)"));
+  // A released chuck holds nothing for certain: the operator may be taking
+  // the tool out. The spindle is compared again once it is clamped.
+  if (!chuck_open && !spindle_reads(tools.spindle != 0)) {
+    found.push_back(
+        tools.spindle != 0
+            ? "tool " + std::to_string(tools.spindle) + " is recorded in the spindle, but " +
+                  tool_pin() + " reads it empty (off)"
+            : "the spindle is recorded empty, but " + tool_pin() + " reads a tool in it (on)");
   }
   for (const int pocket : wired.pocket_occupancy) {
     const bool recorded = tools.holds(pocket);
@@ -37,11 +87,13 @@ std::vector<std::string> sensor_disagreements(const SensorConfig& wired, const S
                       (tools.spindle == tool ? "in the spindle" : "out of the machine"));
     }
   }
+  if (senses_cover_closed() && !cover_open && !cover_reads_closed()) {
+    found.push_back("the rack cover is not closed (" + pin(Sensor::rack_cover_closed) + " off)");
+  }
   return found;
 }
 
-std::vector<std::string> adopt_pocket_sensors(const SensorConfig& wired, const SensorReadings& read,
-                                              int answered, ToolState& tools) {
+std::vector<std::string> Sensors::adopt_pocket_sensors(int answered, ToolState& tools) const {
   std::vector<std::string> changed;
   for (const int pocket : wired.pocket_occupancy) {
     // Only a pocket some tool (not the spindle's) belongs in says which tool it holds.

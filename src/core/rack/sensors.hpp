@@ -1,5 +1,6 @@
 #pragma once
 
+#include <bitset>
 #include <map>
 #include <string>
 #include <vector>
@@ -12,42 +13,75 @@ namespace fatc {
 /// What the optional sensors read, as the adapter last saw their HAL inputs.
 /// Only the ones the config says are wired mean anything.
 struct SensorReadings {
-  bool tool_present = false;            ///< `tool-present`
-  bool drawbar_open = false;            ///< `drawbar-open`
-  bool drawbar_closed = false;          ///< `drawbar-closed`
-  bool air_pressure_ok = false;         ///< `air-pressure-ok`
-  bool zero_speed = false;              ///< `zero-speed`: the spindle's zero-speed feedback
-  std::map<int, bool> pocket_occupied;  ///< `pocket-occupied-N`, by pocket number
-  bool rack_cover_opened = false;       ///< `rack-cover-opened`
-  bool rack_cover_closed = false;       ///< `rack-cover-closed`
+  std::bitset<kSensorCount> bits;  ///< by Sensor
+  std::map<int, bool> pockets;     ///< the pocket sensors, by pocket number
 
+  bool reads(Sensor sensor) const { return bits.test(index(sensor)); }
+  void set(Sensor sensor, bool on) { bits.set(index(sensor), on); }
   bool occupied(int pocket) const {
-    const auto found = pocket_occupied.find(pocket);
-    return found != pocket_occupied.end() && found->second;
+    const auto found = pockets.find(pocket);
+    return found != pockets.end() && found->second;
   }
   bool operator==(const SensorReadings& other) const {
-    return tool_present == other.tool_present && drawbar_open == other.drawbar_open &&
-           drawbar_closed == other.drawbar_closed && air_pressure_ok == other.air_pressure_ok &&
-           zero_speed == other.zero_speed && pocket_occupied == other.pocket_occupied &&
-           rack_cover_opened == other.rack_cover_opened &&
-           rack_cover_closed == other.rack_cover_closed;
+    return bits == other.bits && pockets == other.pockets;
   }
   bool operator!=(const SensorReadings& other) const { return !(*this == other); }
 };
 
-/// Where the wired sensors contradict the tool state, one phrase each, e.g.
-/// "pocket 5 reads empty (pocket-occupied-5 off), but tool 12 is recorded in it".
-std::vector<std::string> sensor_disagreements(const SensorConfig& wired, const SensorReadings& read,
-                                              const ToolState& tools);
+/// The optional sensors as the sequences see them: which are wired, what
+/// they read, and what that means. Each check passes where its sensor is not
+/// wired. The one place that names a sensor: the state machine asks these.
+class Sensors {
+ public:
+  /// `wired`: the machine's own config's, which lives as long as the machine
+  /// and is read where it lies; so a copy, which would read another's, is none.
+  explicit Sensors(const SensorConfig& wired) : wired(wired) {}
+  Sensors(const Sensors&) = delete;
+  Sensors& operator=(const Sensors&) = delete;
 
-/// The tool state as the operator's clearing of a fault leaves it, with the
-/// wired pocket sensors taken at their word for every pocket the operator did
-/// not answer about (`answered`, 0 none). Returns the phrases of what it
-/// changed: "pocket 5 recorded empty, as pocket-occupied-5 reads".
-std::vector<std::string> adopt_pocket_sensors(const SensorConfig& wired, const SensorReadings& read,
-                                              int answered, ToolState& tools);
+  const SensorConfig& wired;
+  SensorReadings read;
 
-/// "pocket-occupied-5", the pin's name without the component.
-std::string pocket_pin(int pocket);
+  /// The spindle's own feedback says it stands still (LinuxCNC's word is
+  /// the machine's: Context::spindle_at_standstill).
+  bool spindle_still() const;
+  /// The spindle's own feedback where it says the spindle still turns, for a
+  /// message: its pin and "off"; else nothing.
+  std::string turning_words() const;
+  bool air_ok() const;
+  /// The drawbar reads released: its open sensor on, its closed one off.
+  bool drawbar_reads_open() const;
+  /// The drawbar reads clamped: its closed sensor on, its open one off.
+  bool drawbar_reads_closed() const;
+  /// What the drawbar's sensors read, for a message: each one's pin, "on" or "off".
+  std::string drawbar_words() const;
+  /// A tool in the spindle reads there (`holds`), or none.
+  bool spindle_reads(bool holds) const;
+  /// Pocket `pocket`'s sensor reads `occupied`.
+  bool pocket_reads(int pocket, bool occupied) const;
+  /// The rack cover's sensors: wired, and what they read.
+  bool senses_cover_opened() const;
+  bool senses_cover_closed() const;
+  bool cover_reads_opened() const;
+  bool cover_reads_closed() const;
+
+  /// Where the sensors contradict the tool state, or the rack cover its
+  /// command (`cover_open`), one phrase each: "pocket 5 reads empty
+  /// (pocket-occupied-5 off), but tool 12 is recorded in it". A released
+  /// chuck (`chuck_open`) holds nothing for certain.
+  std::vector<std::string> disagreements(const ToolState& tools, bool chuck_open,
+                                         bool cover_open) const;
+  /// The tool state as the operator's clearing of a fault leaves it, with the
+  /// pocket sensors taken at their word for every pocket the operator did not
+  /// answer about (`answered`, 0 none). Returns the phrases of what it
+  /// changed: "pocket 5 recorded empty, as pocket-occupied-5 reads (off)".
+  std::vector<std::string> adopt_pocket_sensors(int answered, ToolState& tools) const;
+
+  /// The pins the sequences' messages name: the spindle's, the air's, the
+  /// rack cover's opened sensor.
+  static std::string tool_pin();
+  static std::string air_pin();
+  static std::string cover_opened_pin();
+};
 
 }  // namespace fatc

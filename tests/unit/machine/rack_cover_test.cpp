@@ -67,7 +67,7 @@ TEST(RackCoverConfig, shouldBeOffUntilNamed) {
   EXPECT_FALSE(c.air_blast);
   const Config named = valid_config(R"("rack_cover": {}, "air_blast": true)");
   ASSERT_TRUE(named.rack_cover.has_value());
-  EXPECT_FALSE(named.rack_cover->opened_sensor);
+  EXPECT_FALSE(named.sensors.wired(Sensor::rack_cover_opened));
   EXPECT_EQ(named.rack_cover->seconds, 1.0);
   EXPECT_EQ(named.rack_cover->timeout_seconds, 5.0);
   EXPECT_TRUE(named.air_blast);

@@ -115,8 +115,10 @@ TEST(SensorConfig, shouldLeaveEverySensorOffUnlessTheConfigWiresIt) {
 TEST(SensorConfig, shouldReadEveryWiredSensorTheTimeoutAndTheWindow) {
   const Config c =
       test::valid_config(kAllSensors + R"(, "sensor_timeout_seconds": 0.5, "probe_window": 3)");
-  EXPECT_TRUE(c.sensors.tool_present && c.sensors.drawbar_open && c.sensors.drawbar_closed &&
-              c.sensors.air_pressure && c.sensors.zero_speed);
+  for (const Sensor sensor : {Sensor::tool_present, Sensor::drawbar_open, Sensor::drawbar_closed,
+                              Sensor::air_pressure, Sensor::zero_speed}) {
+    EXPECT_TRUE(c.sensors.wired(sensor)) << declared(sensor).words.key;
+  }
   EXPECT_EQ(c.sensors.pocket_occupancy, (std::set<int>{1, 2, 3, 4, 5, 6}));
   EXPECT_DOUBLE_EQ(c.sensor_timeout_seconds, 0.5);
   EXPECT_DOUBLE_EQ(c.window(), 3.0);
@@ -125,7 +127,7 @@ TEST(SensorConfig, shouldReadEveryWiredSensorTheTimeoutAndTheWindow) {
 TEST(SensorConfig, shouldWireOnlyTheListedPockets) {
   const Config c = test::valid_config(R"("sensors": {"pocket_occupancy": [3, 1]})");
   EXPECT_EQ(c.sensors.pocket_occupancy, (std::set<int>{1, 3}));
-  EXPECT_FALSE(c.sensors.tool_present);
+  EXPECT_FALSE(c.sensors.wired(Sensor::tool_present));
 }
 
 struct Hostile {
