@@ -30,11 +30,13 @@ struct SensorReadings {
 
 /// The optional sensors as the sequences see them: which are wired, what
 /// they read, and what that means. Each check passes where its sensor is not
-/// wired. The one place that names a sensor: the state machine asks these.
+/// wired. What gives a sensor its meaning: the state machine asks these and
+/// names no sensor itself.
 class Sensors {
  public:
-  /// `wired`: the machine's own config's, which lives as long as the machine
-  /// and is read where it lies; so a copy, which would read another's, is none.
+  /// `wired`: its machine's config's, read where it lies, so a taught config
+  /// the machine takes is the one asked. Not copied: a copy would still read
+  /// the config it was made from.
   explicit Sensors(const SensorConfig& wired) : wired(wired) {}
   Sensors(const Sensors&) = delete;
   Sensors& operator=(const Sensors&) = delete;
@@ -48,6 +50,7 @@ class Sensors {
   /// The spindle's own feedback where it says the spindle still turns, for a
   /// message: its pin and "off"; else nothing.
   std::string turning_words() const;
+  /// The drawbar has the air to open.
   bool air_ok() const;
   /// The drawbar reads released: its open sensor on, its closed one off.
   bool drawbar_reads_open() const;
