@@ -570,6 +570,7 @@ int run_mode(const Options& given, std::ostream& out, std::ostream& err) {
       out << usage();
       return 0;
     case Options::Mode::component:
+    case Options::Mode::version:  // main's: the version is linked into the program alone
       break;
   }
   return 2;

@@ -121,6 +121,10 @@ const std::vector<ModeDeclaration> kModes = {
   {Mode::dot, "--dot", "", {}, {}, "print the state machine as Graphviz",
    "print the state machine as Graphviz, generated from its transition tables"},
   {Mode::help, "--help", "", {}, {}, "print this help", "print the usage (also -h)"},
+  {Mode::version, "--version", "", {}, {}, "print the name and version",
+   "print the name and version: the release (the package's version) and, built from a git "
+   "checkout, the commit, as `fixed_atc_probe 0.1.0 (29d48c9)`; the component's first line "
+   "at start says the same. Exit 0"},
 };
 // clang-format on
 
