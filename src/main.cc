@@ -78,10 +78,6 @@ int run_component(const fatc::io::Options& options) {
     std::streambuf* before;
     ~Restore() { std::cerr.rdbuf(before); }
   } restore{std::cerr.rdbuf(&log)};
-  // On stderr too (the terminal LinuxCNC was started from, docs/setup.md step
-  // 8): which build runs and on what, before anything can fail.
-  std::cerr << "fixed_atc_probe: info: " << fatc::io::version() << " started with "
-            << options.config_path << ", state " << state_path << std::endl;
   const auto loaded = fatc::io::load_config_file(options.config_path);
   if (!loaded.config) {
     for (const auto& error : loaded.errors) std::cerr << "fixed_atc_probe: " << error << "\n";
@@ -90,6 +86,11 @@ int run_component(const fatc::io::Options& options) {
   const fatc::Config config = *loaded.config;
   const auto tools = fatc::io::load_state_file(state_path, config);
   if (!tools.state) return fail(tools.error);
+  // Which build runs and on what, in the terminal LinuxCNC was started from
+  // (docs/setup.md step 8) and STATE.log; after the inputs are read, so that
+  // a bad one stays the one line it is.
+  std::cerr << "fixed_atc_probe: info: " << fatc::io::version() << " started with "
+            << options.config_path << ", state " << state_path << std::endl;
   if (::access(state_path.c_str(), F_OK) != 0) {
     // A first start writes what it assumes (every pocket full, the spindle
     // empty) at once: panels can show it, and an unwritable path fails now.
