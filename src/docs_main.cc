@@ -91,6 +91,9 @@ int main(int argc, char** argv) {
     text << in.rdbuf();
     std::string page = text.str();
     page = page.substr(page.find('\n') + 1);  // the template's own comment
+    page = fill(page, "@TH@",
+                ".TH FIXED_ATC_PROBE \"1\" \"2026\" \"fixed_atc_probe " FATC_PROJECT_VERSION
+                "\" \"LinuxCNC HAL userspace components\"\n");
     page = fill(page, "@SYNOPSIS@", fatc::io::synopsis_man());
     page = fill(page, "@OPTIONS@", fatc::io::options_man());
     std::cout << fill(page, "@PINS@", fatc::linuxcnc::pins_man());

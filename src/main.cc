@@ -24,6 +24,7 @@
 #include "io/ini.hpp"
 #include "io/message_log.hpp"
 #include "io/standard_output.hpp"
+#include "io/version.hpp"
 #include "linuxcnc/component.hpp"
 #include "linuxcnc/hal_pins.hpp"
 #include "linuxcnc/nml_link.hpp"
@@ -77,7 +78,6 @@ int run_component(const fatc::io::Options& options) {
     std::streambuf* before;
     ~Restore() { std::cerr.rdbuf(before); }
   } restore{std::cerr.rdbuf(&log)};
-  log.note("fixed_atc_probe: started with " + options.config_path);
   const auto loaded = fatc::io::load_config_file(options.config_path);
   if (!loaded.config) {
     for (const auto& error : loaded.errors) std::cerr << "fixed_atc_probe: " << error << "\n";
@@ -86,6 +86,11 @@ int run_component(const fatc::io::Options& options) {
   const fatc::Config config = *loaded.config;
   const auto tools = fatc::io::load_state_file(state_path, config);
   if (!tools.state) return fail(tools.error);
+  // Which build runs and on what, in the terminal LinuxCNC was started from
+  // (docs/setup.md step 8) and STATE.log; after the inputs are read, so that
+  // a bad one stays the one line it is.
+  std::cerr << "fixed_atc_probe: info: " << fatc::io::version() << " started with "
+            << options.config_path << ", state " << state_path << std::endl;
   if (::access(state_path.c_str(), F_OK) != 0) {
     // A first start writes what it assumes (every pocket full, the spindle
     // empty) at once: panels can show it, and an unwritable path fails now.
@@ -177,7 +182,12 @@ int main(int argc, char** argv) {
     // A write that fails (a full disk, > /dev/full) is kept and said once, at the end.
     fatc::io::StandardOutput written(STDOUT_FILENO);
     std::ostream out(&written);
-    const int code = fatc::io::run_tool_mode(*options, out, std::cerr);
+    int code = 0;
+    if (options->mode == fatc::io::Options::Mode::version) {
+      out << "fixed_atc_probe " << fatc::io::version() << "\n";
+    } else {
+      code = fatc::io::run_tool_mode(*options, out, std::cerr);
+    }
     out.flush();
     if (written.error() != 0) {
       std::cerr << "fixed_atc_probe: cannot write to standard output ("

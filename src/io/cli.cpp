@@ -343,8 +343,9 @@ int plot(const Options& options, std::ostream& out, std::ostream& err) {
              (config.path == Path::direct ? "direct" : "prototype") + " path";
   }
   try {
-    write_file(options.plot_path, rack_svg(config, *rack, change ? &*change : nullptr, title),
-               kCommandLineWait);
+    const std::string drawing = rack_svg(config, *rack, change ? &*change : nullptr,
+                                         loaded.limits ? &*loaded.limits : nullptr, title);
+    write_file(options.plot_path, drawing, kCommandLineWait);
   } catch (const std::exception& e) {
     err << e.what() << "\n";
     return 2;
@@ -570,6 +571,7 @@ int run_mode(const Options& given, std::ostream& out, std::ostream& err) {
       out << usage();
       return 0;
     case Options::Mode::component:
+    case Options::Mode::version:  // main's: the version is linked into the program alone
       break;
   }
   return 2;

@@ -12,7 +12,7 @@ namespace fatc::io {
 
 /// The component's command line.
 struct Options {
-  enum class Mode { component, check, plan, dot, help, confirm, lint, teach, plot };
+  enum class Mode { component, check, plan, dot, help, version, confirm, lint, teach, plot };
   Mode mode = Mode::component;
   std::string config_path;
   std::string state_path;  ///< component, --check, --lint: CONFIG.state unless --state is given

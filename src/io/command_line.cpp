@@ -110,17 +110,22 @@ const std::vector<ModeDeclaration> kModes = {
    "is refused. The config is locked from before it is read until it is replaced: a second "
    "--teach, or the component's teach, waits its turn (at most 5 s). Exit 0 written, 1 refused "
    "(nothing written), 2 usage or a file that cannot be read or written"},
-  {Mode::plot, "--plot", "FILE.svg", {"--config"}, {"--state", "--from", "--to"},
+  {Mode::plot, "--plot", "FILE.svg", {"--config"}, {"--state", "--from", "--to", "--ini"},
    "draw the rack from above, and the path of M6 TB with TA in the spindle",
    "draw the rack from above into FILE.svg: each pocket with its number, tool, keep-out and "
    "approach, safe, loading and the touch-off sensor, as the config (and --state, else the "
-   "first-start map) has them; with --from A --to B also the XY path of that change. FILE.svg "
+   "first-start map) has them; with --from A --to B also the XY path of that change; with --ini "
+   "the machine's travel, its soft limits in X and Y, as an outline. FILE.svg "
    "must not be the config or state file, a symbolic link, a second name, a read-only file or a "
    "FIFO. Exit 0 written, 1 invalid config or state or a refused change, 2 the file cannot be "
    "written"},
   {Mode::dot, "--dot", "", {}, {}, "print the state machine as Graphviz",
    "print the state machine as Graphviz, generated from its transition tables"},
   {Mode::help, "--help", "", {}, {}, "print this help", "print the usage (also -h)"},
+  {Mode::version, "--version", "", {}, {}, "print the name and version",
+   "print the name and version: the release (the package's version) and, built from a git "
+   "checkout, the commit, as `fixed_atc_probe 0.1.0 (29d48c9)`; the component's first line "
+   "at start says the same. Exit 0"},
 };
 // clang-format on
 

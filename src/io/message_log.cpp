@@ -42,15 +42,8 @@ bool MessageLog::open() {
   return false;
 }
 
-void MessageLog::note(const std::string& line) {
-  std::string pending = std::move(line_);
-  line_ = line + "\n";
-  write_line(false);
-  line_ = std::move(pending);
-}
-
-void MessageLog::write_line(bool also) {
-  if (also && also_) also_->sputn(line_.data(), static_cast<std::streamsize>(line_.size()));
+void MessageLog::write_line() {
+  if (also_) also_->sputn(line_.data(), static_cast<std::streamsize>(line_.size()));
   if (open()) {
     struct stat st;
     if (::fstat(fd_, &st) == 0 && st.st_size > kLimit) {

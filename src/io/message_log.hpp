@@ -22,9 +22,6 @@ class MessageLog : public std::streambuf {
   MessageLog(const MessageLog&) = delete;
   MessageLog& operator=(const MessageLog&) = delete;
 
-  /// A line for the log alone (where one run starts).
-  void note(const std::string& line);
-
   static constexpr long kLimit = 1 << 20;
 
  protected:
@@ -32,7 +29,7 @@ class MessageLog : public std::streambuf {
   int sync() override;
 
  private:
-  void write_line(bool also = true);
+  void write_line();
   bool open();
 
   std::string path_;

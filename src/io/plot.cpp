@@ -17,7 +17,7 @@ namespace {
 constexpr double kSize = 900.0;         ///< the drawing's larger side, in pixels
 constexpr double kMargin = 70.0;        ///< room for the labels around it
 constexpr double kTitle = 40.0;         ///< the title's band at the top
-constexpr double kLegend = 80.0;        ///< the legend's band at the bottom
+constexpr double kLegendLine = 18.0;    ///< each line of the legend's band at the bottom
 constexpr double kLegendWidth = 820.0;  ///< its longest line, with the margins
 
 /// `text` as XML 1.0 character data: & < > and quotes as entities, and what
@@ -81,7 +81,9 @@ class View {
   double length(double machine) const { return machine * scale_; }
   // At least as wide as the legend's longest line.
   double width() const { return std::max(2 * kMargin + (max_x_ - min_x_) * scale_, kLegendWidth); }
-  double height() const { return kTitle + 2 * kMargin + (max_y_ - min_y_) * scale_ + kLegend; }
+  double height(std::size_t legend_lines) const {
+    return kTitle + 2 * kMargin + (max_y_ - min_y_) * scale_ + kLegendLine * (legend_lines + 1);
+  }
 
  private:
   double min_x_ = std::numeric_limits<double>::infinity();
@@ -105,20 +107,48 @@ std::vector<std::pair<Point, bool>> path_of(const Simulator& plan, const Point& 
   return path;
 }
 
-/// A station's dot and its label, `dy` below the dot (loading and the sensor
-/// often share their XY: one label above, one below).
-void station(std::ostringstream& svg, const View& view, const Point& p, const char* colour,
-             const std::string& label, double dy) {
-  svg << "<circle cx=\"" << number(view.x(p.x)) << "\" cy=\"" << number(view.y(p.y))
-      << "\" r=\"6\" fill=\"" << colour << "\"/>\n"
-      << "<text x=\"" << number(view.x(p.x) + 9) << "\" y=\"" << number(view.y(p.y) + dy)
-      << "\" fill=\"" << colour << "\">" << escaped(label) << "</text>\n";
+/// A station: its marker, `name` its class, and its label, `dy` below its
+/// centre. Loading, the sensor and safe often share their XY or lie close:
+/// the sensor is a ring, drawn first, loading a smaller dot inside it, safe
+/// the smallest, on top; their labels one above another, clear of the ring.
+struct Station {
+  const char* name;
+  const char* colour;
+  const char* label;
+  double radius;
+  bool ring;
+  double dy;
+};
+constexpr Station kSensor{"sensor", "#d70", "touch-off sensor", 11, true, 20};
+constexpr Station kLoading{"loading", "#26c", "loading", 7, false, -10};
+constexpr Station kSafe{"safe", "#2a2", "safe", 4, false, 5};
+
+void station(std::ostringstream& svg, const View& view, const Point& p, const Station& s) {
+  svg << "<circle class=\"" << s.name << "\" cx=\"" << number(view.x(p.x)) << "\" cy=\""
+      << number(view.y(p.y)) << "\" r=\"" << number(s.radius) << "\" "
+      << (s.ring ? std::string("fill=\"none\" stroke-width=\"3\" stroke=\"")
+                 : std::string("fill=\""))
+      << s.colour << "\"/>\n"
+      << "<text x=\"" << number(view.x(p.x) + kSensor.radius + 4) << "\" y=\""
+      << number(view.y(p.y) + s.dy) << "\" fill=\"" << s.colour << "\">" << s.label << "</text>\n";
+}
+
+/// The machine's travel in XY (its soft limits) as a grey outline, and its limits in words.
+void travel_outline(std::ostringstream& svg, const View& view, const SoftLimits& travel) {
+  const double left = view.x(travel.x.min);
+  const double top = view.y(travel.y.max);
+  svg << "<rect class=\"travel\" x=\"" << number(left) << "\" y=\"" << number(top) << "\" width=\""
+      << number(view.x(travel.x.max) - left) << "\" height=\"" << number(view.y(travel.y.min) - top)
+      << "\" fill=\"none\" stroke=\"#888\" stroke-width=\"2\"/>\n"
+      << "<text x=\"" << number(left) << "\" y=\"" << number(top - 8) << "\" fill=\"#888\">"
+      << "travel X " << number(travel.x.min) << " to " << number(travel.x.max) << ", Y "
+      << number(travel.y.min) << " to " << number(travel.y.max) << "</text>\n";
 }
 
 }  // namespace
 
 std::string rack_svg(const Config& config, const ToolState& tools, const Simulator* plan,
-                     const std::string& title) {
+                     const SoftLimits* travel, const std::string& title) {
   const double margin = config.keepout_margin();
   View view;
   for (const auto& [n, pocket] : config.pockets) {
@@ -130,19 +160,38 @@ std::string rack_svg(const Config& config, const ToolState& tools, const Simulat
   std::vector<std::pair<Point, bool>> path;
   if (plan) path = path_of(*plan, config.safe);
   for (const auto& [p, slow] : path) view.include(p);
+  if (travel) {
+    view.include({travel->x.min, travel->y.min, 0});
+    view.include({travel->x.max, travel->y.max, 0});
+  }
   view.fit();
+
+  std::vector<std::string> legend = {
+      "Seen from above, machine X to the right, Y up. Dashed squares: each pocket's keep-out (" +
+          number(margin) + " around it);",
+      "arrows: the side approach, from the side into the pocket; circles: top pockets.",
+      "Green dot: safe; blue dot: loading; orange ring: the touch-off sensor."};
+  if (travel)
+    legend.push_back("Grey outline: the machine's travel, the INI's soft limits in X and Y.");
+  if (plan) {
+    legend.push_back(
+        "The change: blue dashed rapids, red solid slow moves (pocket_feed); moves along Z alone "
+        "are not drawn.");
+  }
 
   std::ostringstream svg;
   svg << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
       << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << number(view.width())
-      << "\" height=\"" << number(view.height()) << "\" viewBox=\"0 0 " << number(view.width())
-      << " " << number(view.height()) << "\" font-family=\"sans-serif\" font-size=\"13\">\n"
+      << "\" height=\"" << number(view.height(legend.size())) << "\" viewBox=\"0 0 "
+      << number(view.width()) << " " << number(view.height(legend.size()))
+      << "\" font-family=\"sans-serif\" font-size=\"13\">\n"
       << "<defs><marker id=\"arrow\" viewBox=\"0 0 10 10\" refX=\"9\" refY=\"5\" "
          "markerWidth=\"7\" markerHeight=\"7\" orient=\"auto-start-reverse\">"
          "<path d=\"M 0 0 L 10 5 L 0 10 z\" fill=\"#444\"/></marker></defs>\n"
       << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
       << "<text x=\"" << number(kMargin) << "\" y=\"26\" font-size=\"16\">" << escaped(title)
       << "</text>\n";
+  if (travel) travel_outline(svg, view, *travel);
 
   for (const auto& [n, pocket] : config.pockets) {
     const PocketWaypoints w = pocket_waypoints(config, n);
@@ -187,20 +236,15 @@ std::string rack_svg(const Config& config, const ToolState& tools, const Simulat
     }
   }
 
-  station(svg, view, config.safe, "#2a2", "safe", 4);
-  station(svg, view, config.loading, "#26c", "loading", -6);
-  station(svg, view, config.probe_limit, "#d70", "touch-off sensor", 16);
+  station(svg, view, config.probe_limit, kSensor);
+  station(svg, view, config.loading, kLoading);
+  station(svg, view, config.safe, kSafe);
 
-  const double legend = view.height() - kLegend + 20;
-  svg << "<text x=\"" << number(kMargin) << "\" y=\"" << number(legend) << "\" fill=\"#555\">"
-      << "Seen from above, machine X to the right, Y up. Dashed squares: each pocket's keep-out ("
-      << number(margin) << " around it);</text>\n"
-      << "<text x=\"" << number(kMargin) << "\" y=\"" << number(legend + 18) << "\" fill=\"#555\">"
-      << "arrows: the side approach, from the side into the pocket; circles: top pockets.</text>\n";
-  if (plan) {
-    svg << "<text x=\"" << number(kMargin) << "\" y=\"" << number(legend + 36)
-        << "\" fill=\"#555\">The change: blue dashed rapids, red solid slow moves "
-           "(pocket_feed); moves along Z alone are not drawn.</text>\n";
+  double line_y = view.height(legend.size()) - kLegendLine * legend.size();
+  for (const std::string& line : legend) {
+    svg << "<text x=\"" << number(kMargin) << "\" y=\"" << number(line_y) << "\" fill=\"#555\">"
+        << line << "</text>\n";
+    line_y += kLegendLine;
   }
   svg << "</svg>\n";
   return svg.str();

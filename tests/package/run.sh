@@ -57,6 +57,12 @@ for want in /usr/bin/fixed_atc_probe /usr/lib/linuxcnc/modules/fatc_chuck_guard.
   grep -qx "$want" <<< "$files" || { echo "FAIL: the package has no $want"; exit 1; }
 done
 man -w fixed_atc_probe >/dev/null || { echo "FAIL: man fixed_atc_probe finds no page"; exit 1; }
+# The installed program says the package's version (both from CMakeLists.txt's project()).
+said=$(/usr/bin/fixed_atc_probe --version)
+version=$(dpkg-deb --field "$deb" Version)
+[[ "$said" == "fixed_atc_probe $version"* ]] ||
+  { echo "FAIL: --version says \"$said\", the package is $version"; exit 1; }
+echo "ok: $said"
 if grep -q "__pycache__\|\.state$" <<< "$files"; then echo "FAIL: build leftovers packaged"; exit 1; fi
 echo "ok: installed $(grep -c . <<< "$files") paths, each where expected; man fixed_atc_probe works"
 /usr/bin/fixed_atc_probe --check --config /usr/share/fixed_atc_probe/config/config.json \

@@ -37,6 +37,7 @@ check() {  # check LIMIT_KB NAME ARGS...: one run under the limit
 runs=0
 for limit in $(seq 8000 2000 32000) 48000 64000 128000; do
   check "$limit" help --help
+  check "$limit" version --version
   check "$limit" check --check --config "$config" --state "$work/none.state"
   check "$limit" plan --plan --config "$config" --from 1 --to 2
   check "$limit" dot --dot
@@ -47,7 +48,7 @@ for limit in $(seq 8000 2000 32000) 48000 64000 128000; do
   check "$limit" teach --teach safe --config "$work/teach.json" --at "$safe"
   rm -f "$work/confirm.state"  # a confirm that went through wrote it: each starts with none
   check "$limit" confirm --confirm --config "$config" --spindle 0 --state "$work/confirm.state"
-  runs=$((runs + 8))
+  runs=$((runs + 9))
 done
 echo "memory_limit.sh: $runs runs from ulimit -v 8000 to 128000 KB, $failures failures"
 [ "$failures" -eq 0 ]

@@ -20,12 +20,15 @@ TEST_F(Log, shouldKeepEachLineWithItsTimeAndPassItOn) {
   {
     MessageLog log(path, terminal.rdbuf());
     std::ostream err(&log);
-    log.note("fixed_atc_probe: started with c.json");
+    err << "fixed_atc_probe: info: 0.1.0 started with c.json" << std::endl;
     err << "fixed_atc_probe: info: tool 3 measured 29.998 mm, in pocket 3" << std::endl;
   }
-  EXPECT_EQ(terminal.str(), "fixed_atc_probe: info: tool 3 measured 29.998 mm, in pocket 3\n");
+  EXPECT_EQ(terminal.str(),
+            "fixed_atc_probe: info: 0.1.0 started with c.json\n"
+            "fixed_atc_probe: info: tool 3 measured 29.998 mm, in pocket 3\n");
   const std::string kept = test::text_of(path);
-  EXPECT_NE(kept.find(" fixed_atc_probe: started with c.json\n"), std::string::npos) << kept;
+  EXPECT_NE(kept.find(" fixed_atc_probe: info: 0.1.0 started with c.json\n"), std::string::npos)
+      << kept;
   EXPECT_NE(kept.find(" fixed_atc_probe: info: tool 3 measured"), std::string::npos) << kept;
   EXPECT_EQ(kept.substr(0, 2), "20") << "each line starts with the date";
 }

@@ -32,7 +32,7 @@ long count(const std::string& text, const std::string& part) {
 
 TEST(Plot, shouldDrawEveryPocketWithItsToolKeepOutAndApproach) {
   const Config config = valid_config();
-  const std::string svg = io::rack_svg(config, ToolState::fresh(config), nullptr, "the rack");
+  const std::string svg = io::rack_svg(config, ToolState::fresh(config), nullptr, nullptr, "the rack");
   EXPECT_EQ(svg.rfind("<?xml", 0), 0u);
   EXPECT_EQ(svg.substr(svg.size() - 7), "</svg>\n");
   for (int n = 1; n <= 6; ++n) {
@@ -54,7 +54,7 @@ TEST(Plot, shouldShowWhereEachToolIsAndTopPockets) {
   const Config config = parse_config(text).config.value();
   ToolState tools = ToolState::fresh(config);
   tools.put_in_spindle(2);
-  const std::string svg = io::rack_svg(config, tools, nullptr, "A & <B>");
+  const std::string svg = io::rack_svg(config, tools, nullptr, nullptr, "A & <B>");
   EXPECT_NE(svg.find(">T2 (spindle), top</text>"), std::string::npos) << svg;
   EXPECT_NE(svg.find(">T1, top</text>"), std::string::npos);
   EXPECT_EQ(count(svg, "marker-end"), 0) << "no side approach to draw";
@@ -64,7 +64,7 @@ TEST(Plot, shouldShowWhereEachToolIsAndTopPockets) {
 TEST(Plot, shouldDrawTheChangesMovesInXYSlowOnesApart) {
   const Config config = valid_config();
   const Simulator change = plan_change(config, 1, 2, -70.0);
-  const std::string svg = io::rack_svg(config, ToolState::fresh(config), &change, "M6 T2");
+  const std::string svg = io::rack_svg(config, ToolState::fresh(config), &change, nullptr, "M6 T2");
   // Six approach arrows, and the change's moves in XY: two slow ones (into
   // pocket 1, out of pocket 2), the rest rapids.
   EXPECT_EQ(count(svg, "stroke=\"#c00\""), 2) << svg;
@@ -95,9 +95,73 @@ TEST(Plot, shouldRefuseWhatItCannotDrawInOneLine) {
   EXPECT_EQ(r.err,
             "/nonexistent/dir/x.svg: cannot create a temporary file in /nonexistent/dir (No such "
             "file or directory): not written\n");
-  r = test::run_cli({"--plot", "x.svg", "--config", config, "--ini", "sim.ini"});
-  EXPECT_EQ(r.code, 2);
-  EXPECT_NE(r.err.find("--ini is not used by --plot"), std::string::npos) << r.err;
+  r = test::run_cli({"--plot", "x.svg", "--config", config, "--ini", "/nonexistent/sim.ini"});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(count(r.err, "\n"), 1) << r.err;
+  EXPECT_EQ(r.err.rfind("/nonexistent/sim.ini: ", 0), 0u) << r.err;
+}
+
+TEST(Plot, shouldOutlineTheMachinesTravelWithItsLimits) {
+  const Config config = valid_config();
+  const SoftLimits travel{{-10.0, 400.0}, {-20.0, 300.0}, {-120.0, 0.0}};
+  const std::string svg =
+      io::rack_svg(config, ToolState::fresh(config), nullptr, &travel, "the machine");
+  EXPECT_EQ(count(svg, "<rect class=\"travel\""), 1) << svg;
+  EXPECT_NE(svg.find(">travel X -10.0 to 400.0, Y -20.0 to 300.0</text>"), std::string::npos);
+  EXPECT_NE(svg.find("Grey outline: the machine's travel"), std::string::npos);
+  // Its corners where the rack's coordinates put them: pocket 1 (x 20, y 20)
+  // drawn as far from the outline's left edge as 30 mm are from 50 mm.
+  const auto attribute = [&](const std::string& from, const std::string& name) {
+    const auto at = svg.find(name + "=\"", svg.find(from)) + name.size() + 2;
+    return std::stod(svg.substr(at, svg.find('"', at) - at));
+  };
+  const double left = attribute("<rect class=\"travel\"", "x");
+  const double width = attribute("<rect class=\"travel\"", "width");
+  const double safe_x = attribute("<circle class=\"safe\"", "cx");
+  EXPECT_NEAR((safe_x - left) / width, (config.safe.x + 10.0) / 410.0, 0.002);
+  const std::string without = io::rack_svg(config, ToolState::fresh(config), nullptr, nullptr, "");
+  EXPECT_EQ(count(without, "travel"), 0);
+}
+
+TEST(Plot, shouldKeepLoadingVisibleOnTheSensorAndSafeOnBoth) {
+  Config config = valid_config();
+  ASSERT_EQ(config.loading.x, config.probe_limit.x);  // the sample's: one place in XY
+  ASSERT_EQ(config.loading.y, config.probe_limit.y);
+  config.safe = config.loading;
+  const std::string svg = io::rack_svg(config, ToolState::fresh(config), nullptr, nullptr, "");
+  // The sensor a ring, drawn first; loading a smaller dot inside it; safe the smallest, last.
+  const auto sensor = svg.find("<circle class=\"sensor\"");
+  const auto loading = svg.find("<circle class=\"loading\"");
+  const auto safe = svg.find("<circle class=\"safe\"");
+  ASSERT_NE(sensor, std::string::npos);
+  ASSERT_NE(loading, std::string::npos);
+  ASSERT_NE(safe, std::string::npos);
+  EXPECT_LT(sensor, loading);
+  EXPECT_LT(loading, safe);
+  const auto line = [&](std::size_t at) { return svg.substr(at, svg.find('\n', at) - at); };
+  EXPECT_NE(line(sensor).find("r=\"11.0\" fill=\"none\""), std::string::npos) << line(sensor);
+  EXPECT_NE(line(loading).find("r=\"7.0\" fill=\"#26c\""), std::string::npos) << line(loading);
+  EXPECT_NE(line(safe).find("r=\"4.0\" fill=\"#2a2\""), std::string::npos) << line(safe);
+  // Three labels, each on a line of its own.
+  std::vector<std::string> label_y;
+  for (const std::string label : {">touch-off sensor<", ">loading<", ">safe<"}) {
+    const auto text = svg.rfind("<text", svg.find(label));
+    const auto y = svg.find(" y=\"", text) + 4;
+    label_y.push_back(svg.substr(y, svg.find('"', y) - y));
+  }
+  EXPECT_NE(label_y[0], label_y[1]);
+  EXPECT_NE(label_y[1], label_y[2]);
+  EXPECT_NE(label_y[0], label_y[2]);
+}
+
+TEST(Plot, shouldDrawTheTravelOfTheIniItIsGiven) {
+  const std::string path = ::testing::TempDir() + "fatc_travel.svg";
+  const auto r = test::run_cli({"--plot", path, "--config", FATC_SOURCE_DIR "/config/config.json",
+                                "--ini", FATC_SOURCE_DIR "/config/sim/fixed_atc_sim.ini"});
+  EXPECT_EQ(r.code, 0) << r.err;
+  const std::string written = test::text_of(path);
+  std::remove(path.c_str());
+  EXPECT_NE(written.find(">travel X -10.0 to 400.0, Y -10.0 to 300.0</text>"), std::string::npos);
 }
 
 /// A folder with a config and a state file, where --plot draws.
@@ -183,7 +247,7 @@ TEST(Plot, shouldEscapeWhatXmlForbidsInEveryTextItWrites) {
   // continuation byte, a cut sequence, an overlong '<', a UTF-16 surrogate.
   const std::string nasty = std::string("a&b<c>d\"e'f\x01g\x1b[31mh\x7fi\xef\xbf\xbej\xef\xbf\xbfk") +
                             "\x80l\xe2\x82m\xc0\xbcn\xed\xa0\x80o \xc3\xa9 \xe2\x86\x92 \xf0\x9f\x94\xa7";
-  const std::string svg = io::rack_svg(config, ToolState::fresh(config), nullptr, nasty);
+  const std::string svg = io::rack_svg(config, ToolState::fresh(config), nullptr, nullptr, nasty);
   EXPECT_NE(svg.find(">a&amp;b&lt;c&gt;d&quot;e&apos;f\\x01g\\x1b[31mh\\x7fi\\u{fffe}j\\u{ffff}k"
                      "\\x80l\\xe2\\x82m\\xc0\\xbcn\\xed\\xa0\\x80o \xc3\xa9 \xe2\x86\x92 "
                      "\xf0\x9f\x94\xa7</text>"),

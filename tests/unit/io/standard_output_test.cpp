@@ -82,6 +82,7 @@ TEST_F(FullDisk, shouldEndEveryModeThatPrintsWithOneLine) {
   std::ofstream(confirmed) << to_json(cut_off);
   const std::vector<std::vector<std::string>> modes = {
       {"--help"},
+      {"--version"},
       {"--dot"},
       {"--check", "--config", kConfig, "--state", state},
       {"--plan", "--config", kConfig, "--from", "1", "--to", "2"},
