@@ -32,10 +32,11 @@ class ToolTablePockets {
 
  private:
   std::optional<std::string> path_;
-  std::optional<std::map<int, PocketState>> rack_;  ///< the rack the file was last brought in line with
-  std::optional<std::timespec> changed_;            ///< the file's mtime then
-  std::map<int, std::optional<int>> left_;          ///< each tool's P as the file was left then
-  bool reload_ = false;                             ///< written, LinuxCNC not yet told to read it
+  std::optional<std::map<int, PocketState>>
+      rack_;                                ///< the rack the file was last brought in line with
+  std::optional<std::timespec> changed_;    ///< the file's mtime then
+  std::map<int, std::optional<int>> left_;  ///< each tool's P as the file was left then
+  bool reload_ = false;                     ///< written, LinuxCNC not yet told to read it
   bool failed_said_ = false;
 };
 

@@ -97,7 +97,8 @@ std::vector<Token> tokens_of(std::string_view line) {
 }
 
 /// The first field of `letter` (either case), if the line has one.
-std::optional<Token> field_of(std::string_view line, const std::vector<Token>& tokens, char letter) {
+std::optional<Token> field_of(std::string_view line, const std::vector<Token>& tokens,
+                              char letter) {
   for (const Token& token : tokens) {
     if (std::toupper(static_cast<unsigned char>(line[token.at])) == letter) return token;
   }
@@ -220,7 +221,8 @@ std::string pocket_disagreement_words(const std::vector<PocketChange>& changes) 
   }
   return "the tool table's P column disagreed with the changer's rack, which it shows: " + where +
          "; P written back as the changer has it. Editing P moves no tool: to put a tool into "
-         "another pocket, unload it, then load it with the Pocket box (pocket-number) set to that pocket";
+         "another pocket, unload it, then load it with the Pocket box (pocket-number) set to that "
+         "pocket";
 }
 
 }  // namespace fatc

@@ -55,7 +55,7 @@ struct PocketChange {
 };
 
 struct PocketRewrite {
-  std::string text;                  ///< the table with the rack's pockets in P
+  std::string text;                   ///< the table with the rack's pockets in P
   std::vector<PocketChange> changes;  ///< in the order of the lines
   /// Each tool's P in `text`, as its first line gives it (nullopt: none).
   std::map<int, std::optional<int>> p_of;

@@ -11,8 +11,8 @@ namespace {
 
 ToolState rack() {
   ToolState tools;
-  tools.pockets = {{1, {12, true}}, {2, {7, true}}, {3, {0, false}}, {4, {3, false}},
-                   {5, {20, true}}};
+  tools.pockets = {
+      {1, {12, true}}, {2, {7, true}}, {3, {0, false}}, {4, {3, false}}, {5, {20, true}}};
   tools.spindle = 3;
   return tools;
 }
@@ -76,9 +76,9 @@ TEST(RackPockets, shouldKeepCommentsBlankLinesOrderAndLinesLinuxCncSkipsByteForB
       ";rack tools first\r\n"
       "\n"
       "T20 P3 Z41 ;P5 in the comment stays\r\n"
-      "T7 P2 K9\n"          // LinuxCNC skips the line: no K field
-      "T12 PX Z30\n"        // P is no number: skipped
-      "T3 Z40 P3";          // P last, no newline at the end
+      "T7 P2 K9\n"    // LinuxCNC skips the line: no K field
+      "T12 PX Z30\n"  // P is no number: skipped
+      "T3 Z40 P3";    // P last, no newline at the end
   EXPECT_EQ(with_rack_pockets(text, rack()).text,
             ";rack tools first\r\n"
             "\n"
@@ -93,9 +93,11 @@ TEST(RackPockets, shouldMendEveryLineOfAToolListedTwice) {
 }
 
 TEST(RackPockets, shouldNameToolWhatTheTableSaidAndHowToMoveAToolWhenTheyDisagree) {
-  const std::string words = pocket_disagreement_words({{3, 7, 4}, {9, 2, 0}, {12, std::nullopt, 1}});
+  const std::string words =
+      pocket_disagreement_words({{3, 7, 4}, {9, 2, 0}, {12, std::nullopt, 1}});
   EXPECT_NE(words.find("tool 3 is in pocket 4 (the table said P7)"), std::string::npos) << words;
-  EXPECT_NE(words.find("tool 9 is in no pocket of the rack (the table said P2)"), std::string::npos);
+  EXPECT_NE(words.find("tool 9 is in no pocket of the rack (the table said P2)"),
+            std::string::npos);
   EXPECT_NE(words.find("tool 12 is in pocket 1 (the table said no P)"), std::string::npos);
   EXPECT_NE(words.find("unload it, then load it with the Pocket box"), std::string::npos);
 }
