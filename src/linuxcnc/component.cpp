@@ -16,7 +16,8 @@ Component::Component(HalPins* pins, const Config& config, std::string config_pat
       nml_(nml),
       teacher_(std::move(config_path), *this),
       state_path_(std::move(state_path)),
-      lengths_(std::move(tool_table)),
+      lengths_(tool_table),
+      table_pockets_(std::move(tool_table)),
       status_file_(state_path_ + ".status") {
   *pins_->units_inch = config.units == Units::inch;
 }
@@ -38,6 +39,12 @@ void Component::poll(Clock::time_point now, std::optional<bool> interpreter_idle
   }
   measure_all_press_.poll(*changer_, refuse_);
   start_executor_if_needed();
+  if (task_free_ && !changer_->status().busy()) {
+    // No flow moves a tool meanwhile (off and faulted included: the table
+    // shows the rack as the changer has it). Before the spindle tool's M61,
+    // which makes task busy for a while.
+    table_pockets_.poll(changer_->tools(), *nml_, *this);
+  }
   if (task_free_) spindle_tool_.poll(now, *pins_->linuxcnc_tool, *changer_, *nml_, *this);
   keepout_.poll(*pins_, *changer_, machine_ready_.value_or(false), nml_, lengths_.spindle_length(),
                 *this);

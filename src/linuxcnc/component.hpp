@@ -14,6 +14,7 @@
 #include "keepout_lengths.hpp"
 #include "rack_keepout.hpp"
 #include "spindle_tool_sync.hpp"
+#include "tool_table_pockets.hpp"
 
 namespace fatc::linuxcnc {
 
@@ -93,6 +94,7 @@ class Component : public Ports {
   SpindleToolSync spindle_tool_;
   RackKeepout keepout_;
   KeepoutLengths lengths_;
+  ToolTablePockets table_pockets_;
   io::StatusFile status_file_;
   MeasureAllPress measure_all_press_;
   const MeasureAllPress::Refuse refuse_ = [this](const std::string& why) {

@@ -143,6 +143,12 @@ bool NmlLink::run_mdi(const std::string& line) {
   return write_received(execute);
 }
 
+bool NmlLink::load_tool_table() {
+  EMC_TOOL_LOAD_TOOL_TABLE load;
+  load.file[0] = '\0';  // iocontrol's own file, the one the INI names
+  return write_received(load);
+}
+
 void NmlLink::abort() {
   EMC_TASK_ABORT abort;
   write_received(abort);

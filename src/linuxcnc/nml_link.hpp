@@ -51,6 +51,9 @@ class NmlLink {
   /// Puts task in MDI mode and runs `line` there, as halui does for its MDI
   /// commands. False when task did not take the commands (the caller retries).
   bool run_mdi(const std::string& line);
+  /// Makes LinuxCNC read its tool table file again ([EMCIO]TOOL_TABLE), as a
+  /// GUI's tool editor does after it saved it. False when task did not take it.
+  bool load_tool_table();
   /// Stops what task runs (program or MDI), as the GUI's Stop does.
   void abort();
 

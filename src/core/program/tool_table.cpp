@@ -1,5 +1,6 @@
 #include "tool_table.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cerrno>
 #include <climits>
@@ -75,6 +76,35 @@ std::string field_problem(const std::string& field, ToolTableEntry& entry, bool&
   return quote(field) + " is no tool table field (T P D X Y Z A B C U V W I J Q)";
 }
 
+/// Where one field of a table line is.
+struct Token {
+  std::size_t at = 0;
+  std::size_t size = 0;
+};
+
+/// The fields of a table line as LinuxCNC's strtok finds them: before the
+/// first ';', between spaces (a CR ends the last one).
+std::vector<Token> tokens_of(std::string_view line) {
+  std::vector<Token> tokens;
+  const std::size_t end = std::min(line.find(';'), line.size());
+  std::size_t at = 0;
+  while (at < end) {
+    const std::size_t stop = std::min(line.find_first_of(" \r", at), end);
+    if (stop > at) tokens.push_back({at, stop - at});
+    at = stop + 1;
+  }
+  return tokens;
+}
+
+/// The first field of `letter` (either case), if the line has one.
+std::optional<Token> field_of(std::string_view line, const std::vector<Token>& tokens,
+                              char letter) {
+  for (const Token& token : tokens) {
+    if (std::toupper(static_cast<unsigned char>(line[token.at])) == letter) return token;
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 ToolTable parse_tool_table(std::string_view text) {
@@ -140,6 +170,59 @@ std::map<int, double> tool_lengths(const ToolTable& table, Units units, double m
     if (entry.z) lengths[tool] = *entry.z / scale;
   }
   return lengths;
+}
+
+PocketRewrite with_rack_pockets(std::string_view text, const ToolState& tools) {
+  PocketRewrite rewrite;
+  std::size_t start = 0;
+  while (start < text.size()) {
+    std::size_t end = text.find('\n', start);
+    end = end == std::string_view::npos ? text.size() : end + 1;
+    std::string line(text.substr(start, end - start));
+    start = end;
+    // A line LinuxCNC skips, or reads as nothing a tool can have, is not ours to mend.
+    const ToolTable one = parse_tool_table(line);
+    if (one.tools.size() != 1 || !one.problems.empty()) {
+      rewrite.text += line;
+      continue;
+    }
+    const int tool = one.tools.begin()->first;
+    const std::vector<Token> tokens = tokens_of(line);
+    const auto p_field = field_of(line, tokens, 'P');
+    std::optional<int> was;
+    if (p_field) was = static_cast<int>(std::strtol(line.c_str() + p_field->at + 1, nullptr, 10));
+    std::optional<int> pocket = tools.home_of(tool);
+    if (!pocket && was && tools.pockets.count(*was) != 0) pocket = 0;
+    if (pocket && pocket != was) {
+      const std::string field = "P" + std::to_string(*pocket);
+      if (p_field) {
+        line.replace(p_field->at, p_field->size, field);
+      } else {
+        const Token t_field = *field_of(line, tokens, 'T');
+        line.insert(t_field.at + t_field.size, " " + field);
+      }
+      rewrite.changes.push_back({tool, was, *pocket});
+      was = pocket;
+    }
+    rewrite.p_of.emplace(tool, was);
+    rewrite.text += line;
+  }
+  return rewrite;
+}
+
+std::string pocket_disagreement_words(const std::vector<PocketChange>& changes) {
+  std::string where;
+  for (const PocketChange& change : changes) {
+    if (!where.empty()) where += ", ";
+    where += "tool " + std::to_string(change.tool) + " is " +
+             (change.pocket == 0 ? std::string("in no pocket of the rack")
+                                 : "in pocket " + std::to_string(change.pocket)) +
+             " (the table said " + (change.was ? "P" + std::to_string(*change.was) : "no P") + ")";
+  }
+  return "the tool table's P column disagreed with the changer's rack, which it shows: " + where +
+         "; P written back as the changer has it. Editing P moves no tool: to put a tool into "
+         "another pocket, unload it, then load it with the Pocket box (pocket-number) set to that "
+         "pocket";
 }
 
 }  // namespace fatc

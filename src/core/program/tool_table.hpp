@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "../config/config.hpp"
+#include "../rack/tool_state.hpp"
 
 namespace fatc {
 
@@ -42,5 +43,38 @@ ToolTable parse_tool_table(std::string_view text);
 /// machine's units, `machine_per_mm` of them to the mm. The keep-out's
 /// lengths (ToolLengths::table), for --check, --plan, --teach and the component.
 std::map<int, double> tool_lengths(const ToolTable& table, Units units, double machine_per_mm);
+
+/// A tool whose P the rack map changed.
+struct PocketChange {
+  int tool = 0;
+  std::optional<int> was;  ///< the P the table gave it; nullopt: the line had none
+  int pocket = 0;          ///< the P written: its pocket, 0 for a tool outside the rack
+  bool operator==(const PocketChange& other) const {
+    return tool == other.tool && was == other.was && pocket == other.pocket;
+  }
+};
+
+struct PocketRewrite {
+  std::string text;                   ///< the table with the rack's pockets in P
+  std::vector<PocketChange> changes;  ///< in the order of the lines
+  /// Each tool's P in `text`, as its first line gives it (nullopt: none).
+  std::map<int, std::optional<int>> p_of;
+};
+
+/// The rack map in the P column of a tool table (LinuxCNC keeps P for
+/// bookkeeping with RANDOM_TOOLCHANGER = 0, and every GUI's tool page shows
+/// it): a tool that belongs in a pocket gets that pocket's number, whether it
+/// sits there or in the spindle; a tool outside the rack whose P names a
+/// pocket of the rack gets P0, so that no pocket shows two tools. Only the P
+/// field of those lines changes (one with none gets it after its T); every
+/// other line, field, space and comment stays byte for byte, lengths
+/// included. A rack tool the table has no line for gets none: a line would
+/// give LinuxCNC a tool with no length, and the table is the operator's.
+PocketRewrite with_rack_pockets(std::string_view text, const ToolState& tools);
+
+/// The operator's line when the table's P disagreed with the changer's map
+/// (a P edited in a GUI): where the changer has each tool, what the table
+/// said, and how a tool really moves to another pocket.
+std::string pocket_disagreement_words(const std::vector<PocketChange>& changes);
 
 }  // namespace fatc

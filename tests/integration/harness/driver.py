@@ -15,6 +15,7 @@ import time
 
 import hal
 import linuxcnc
+import tool_table
 
 PINS = ["fixed_atc_probe.chuck", "fixed_atc_probe.waiting-for-operator", "fixed_atc_probe.last-length", "fixed_atc_probe.state", "fixed_atc_probe.fault",
         "fixed_atc_probe.busy", "fixed_atc_probe.tool-in-spindle", "fixed_atc_probe.step-ready",
@@ -587,6 +588,13 @@ def perform(step, result, start):
         result.setdefault("files", {})[step["name"]] = {
             "t": now(), "pos": list(stat.actual_position[:3]),
             "config": read_text(config_path()), "bak": read_text(config_path() + ".bak")}
+    elif step["do"] == "tool_table":
+        table = tool_table.record(stat, os.path.join(ini_dir(), "sim.tbl"), lambda: (
+            hal.get_value(COMPONENT + ".state") == 1 and stat.interp_state == linuxcnc.INTERP_IDLE))
+        result.setdefault("tool_tables", {})[step["name"]] = dict(table, t=now())
+    elif step["do"] == "edit_tool_table":
+        result["edited_table"] = tool_table.edit_p(command, os.path.join(ini_dir(), "sim.tbl"),
+                                                   step["tool"], step["p"])
     elif step["do"] == "program_open":
         # A program loaded as a GUI's File > Open does, not run (measure-which 2 reads it).
         command.mode(linuxcnc.MODE_AUTO)
