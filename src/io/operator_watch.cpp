@@ -180,6 +180,7 @@ OperatorWatch::Turn OperatorWatch::observe(const std::optional<StatusWords>& sta
       const auto& [kind, text] = status->messages[i];
       turn.lines.push_back(kind + ": " + text);
       refused_ = refused_ || (kind == "error" && contains(text, " refused: "));
+      prompt_pending_ = prompt_pending_ || kind == "prompt";
       cancelled_ = cancelled_ || contains(text, " cancelled");
     }
     seen_serial_ = status->serial;
@@ -207,13 +208,12 @@ OperatorWatch::Turn OperatorWatch::observe(const std::optional<StatusWords>& sta
   const bool running = status->state != kIdle && status->state != kFault && status->state != 0;
   if (running) started_ = answered_ = true;
   if (!started_) return turn;
-  if (!pins.waiting_for_operator) prompt_answered_ = false;
-  // Pin and file agree: the prompt's words are printed before its answer.
-  if (answer_yes_ && !prompt_answered_ && pins.waiting_for_operator &&
+  // Pin and file agree, and its words are printed before its answer.
+  if (answer_yes_ && prompt_pending_ && pins.waiting_for_operator &&
       status->awaiting == kAwaitsOperator) {
     turn.lines.push_back("continue (--yes)");
     turn.press_continue = true;
-    prompt_answered_ = true;
+    prompt_pending_ = false;
   }
   if (status->state == kFault || status->state == 0) {
     turn.outcome = OperatorOutcome::fault;

@@ -95,7 +95,9 @@ class OperatorWatch {
   long seen_serial_;
   bool answered_ = false;
   bool started_ = false;
-  bool prompt_answered_ = false;  ///< the prompt waiting now got its Continue
+  /// A prompt said and not yet answered: the next prompt may come before a
+  /// poll sees waiting-for-operator low between the two.
+  bool prompt_pending_ = false;
   bool cancelled_ = false;        ///< a message of this request said so
   bool refused_ = false;
 };
