@@ -70,7 +70,7 @@ std::optional<io::ComponentPins> read_pins(Failure& failure) {
   const auto fault = find("fault");
   if (!state || !waiting || !can_cancel || !fault) {
     failure = {OperatorOutcome::not_running,
-               "fixed_atc_probe is not running: HAL has no pin fixed_atc_probe.state (is it in "
+               "the component is not running: HAL has no pin fixed_atc_probe.state (is it in "
                "the INI's HAL files?)"};
     return std::nullopt;
   }
@@ -90,7 +90,7 @@ std::optional<io::StatusWords> read_status(const std::string& path) {
 bool set_and_hold(const std::string& name, int value, Failure& failure) {
   const auto pin = find(name);
   if (!pin) {
-    failure = {OperatorOutcome::not_running, "fixed_atc_probe is not running: HAL has no pin "
+    failure = {OperatorOutcome::not_running, "the component is not running: HAL has no pin "
                                              "fixed_atc_probe." + name};
     return false;
   }
@@ -201,7 +201,7 @@ int run_operator(const io::Options& options, std::ostream& out, std::ostream& er
   }
   const std::string status_path = options.state_path + ".status";
   if (::shmget(kHalKey, 0, 0) < 0) {
-    err << "fixed_atc_probe: fixed_atc_probe is not running: no HAL (LinuxCNC is not started, or "
+    err << "fixed_atc_probe: the component is not running: no HAL (LinuxCNC is not started, or "
            "runs as another user)"
         << std::endl;
     return io::operator_exit_status(OperatorOutcome::not_running);
@@ -210,7 +210,7 @@ int run_operator(const io::Options& options, std::ostream& out, std::ostream& er
   const std::string name = "fatc-operator-" + std::to_string(::getpid());
   const int id = hal_init(name.c_str());
   if (id < 0) {
-    err << "fixed_atc_probe: fixed_atc_probe is not running: cannot join HAL (" << id << ")"
+    err << "fixed_atc_probe: the component is not running: cannot join HAL (" << id << ")"
         << std::endl;
     return io::operator_exit_status(OperatorOutcome::not_running);
   }
