@@ -1,5 +1,6 @@
 // fixed_atc_probe: a fixed-rack tool changer for LinuxCNC, as a userspace HAL
-// component (default), or a config checker and planner (--check, --plan, --dot).
+// component (default), or a config checker and planner (--check, --plan, --dot),
+// or its operator without a GUI (--operator).
 #include <hal.h>
 #include <unistd.h>
 
@@ -28,6 +29,7 @@
 #include "linuxcnc/component.hpp"
 #include "linuxcnc/hal_pins.hpp"
 #include "linuxcnc/nml_link.hpp"
+#include "linuxcnc/operator_command.hpp"
 
 namespace {
 
@@ -179,6 +181,12 @@ int main(int argc, char** argv) {
       return 2;
     }
     if (options->mode == fatc::io::Options::Mode::component) return run_component(*options);
+    if (options->mode == fatc::io::Options::Mode::operator_request) {
+      std::signal(SIGTERM, request_stop);
+      std::signal(SIGINT, request_stop);
+      return fatc::linuxcnc::run_operator(fatc::io::with_state_of_ini(*options), std::cout,
+                                          std::cerr, stop_requested);
+    }
     // A write that fails (a full disk, > /dev/full) is kept and said once, at the end.
     fatc::io::StandardOutput written(STDOUT_FILENO);
     std::ostream out(&written);

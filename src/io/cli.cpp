@@ -527,13 +527,10 @@ std::string written_onto_input(const Options& options) {
   return "";
 }
 
-namespace {
-
-/// --check and --lint with --ini and no --state read the state file the
-/// component reads: [FIXED_ATC_PROBE]STATE, from the INI's folder, where
-/// LinuxCNC runs the HAL file that hands it to the component.
 Options with_state_of_ini(Options options) {
-  const bool reads_it = options.mode == Options::Mode::check || options.mode == Options::Mode::lint;
+  const bool reads_it = options.mode == Options::Mode::check ||
+                        options.mode == Options::Mode::lint ||
+                        options.mode == Options::Mode::operator_request;
   if (!reads_it || options.state_given || !options.ini_path) return options;
   std::string error;
   const auto ini = IniFile::read(*options.ini_path, error);
@@ -544,6 +541,8 @@ Options with_state_of_ini(Options options) {
   }
   return options;
 }
+
+namespace {
 
 int run_mode(const Options& given, std::ostream& out, std::ostream& err) {
   const Options options = with_state_of_ini(given);
@@ -572,6 +571,7 @@ int run_mode(const Options& given, std::ostream& out, std::ostream& err) {
       return 0;
     case Options::Mode::component:
     case Options::Mode::version:  // main's: the version is linked into the program alone
+    case Options::Mode::operator_request:  // HAL's: src/linuxcnc/operator_command.cpp
       break;
   }
   return 2;

@@ -7,12 +7,14 @@
 
 #include "core/motion/point.hpp"
 #include "core/dry_run/teach.hpp"
+#include "operator_watch.hpp"
 
 namespace fatc::io {
 
 /// The component's command line.
 struct Options {
-  enum class Mode { component, check, plan, dot, help, version, confirm, lint, teach, plot };
+  enum class Mode { component, check, plan, dot, help, version, confirm, lint, teach, plot,
+                    operator_request };
   Mode mode = Mode::component;
   std::string config_path;
   std::string state_path;  ///< component, --check, --lint: CONFIG.state unless --state is given
@@ -28,6 +30,10 @@ struct Options {
   std::optional<TeachTarget> teach_target;     ///< --teach TARGET
   std::optional<Point> teach_at;               ///< --teach: --at X,Y,Z, machine coordinates
   std::string plot_path;                       ///< --plot FILE.svg
+  std::optional<OperatorRequest> request;      ///< --operator ACTION
+  std::optional<int> into_pocket;              ///< --operator load: --into P
+  bool answer_yes = false;                     ///< --operator: --yes
+  std::optional<double> timeout_seconds;       ///< --operator: --timeout SECONDS
 };
 
 /// Parses argv; nullopt and one line in `error` on a usage mistake: an
@@ -39,6 +45,11 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
 /// on --teach, the state file of --confirm and of the component) is one of the
 /// files it reads, so that it would replace an input; empty otherwise.
 std::string written_onto_input(const Options& options);
+
+/// --check, --lint and --operator with --ini and no --state read the state
+/// file the component reads: [FIXED_ATC_PROBE]STATE, from the INI's folder,
+/// where LinuxCNC runs the HAL file that hands it to the component.
+Options with_state_of_ini(Options options);
 
 /// --confirm: 0 when the state file was rewritten with the operator's word.
 /// --check: 0 when config, state and INI are valid and no planned move breaks

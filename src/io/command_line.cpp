@@ -29,9 +29,19 @@ const std::vector<OptionDeclaration> kOptions = {
   {"--from", "A", "the tool in the spindle before the change (0: none)",
    "the tool in the spindle, 0 none"},
   {"--to", "B", "the tool M6 asks for (0: empty the spindle)", "the tool M6 asks for"},
-  {"--spindle", "N", "--confirm: the tool the spindle holds, as found (0: empty)",
+  {"--spindle", "N",
+   "--confirm, --operator clear-fault: the tool the spindle holds, as found (0: empty; "
+   "--operator without it: LinuxCNC's tool)",
    "0: the spindle is empty"},
-  {"--pocket", "yes|no", "--confirm: whether the cut-off pocket holds its tool", ""},
+  {"--pocket", "yes|no",
+   "--confirm, --operator clear-fault: whether the cut-off pocket holds its tool", ""},
+  {"--into", "P", "--operator load:T: the pocket the tool goes into (0 or none: the changer "
+   "chooses)", ""},
+  {"--yes", "", "--operator: answer Continue at each prompt, as the operator would once the "
+   "prompt's work is done (a script, a test)", ""},
+  {"--timeout", "SECONDS",
+   "--operator: stop waiting after this long (the request goes on: exit 5); without it the "
+   "command waits for the end, as long as the operator takes", ""},
   {"--tool-table", "FILE",
    "--lint, --check, --plan, --teach: LinuxCNC's tool table (else the INI's [EMCIO]TOOL_TABLE)",
    ""},
@@ -119,6 +129,23 @@ const std::vector<ModeDeclaration> kModes = {
    "must not be the config or state file, a symbolic link, a second name, a read-only file or a "
    "FIFO. Exit 0 written, 1 invalid config or state or a refused change, 2 the file cannot be "
    "written"},
+  {Mode::operator_request, "--operator", "ACTION", {},
+   {"--ini", "--state", "--into", "--spindle", "--pocket", "--yes", "--timeout"},
+   "ask the running component, as its panel does: load, unload, continue, cancel, ...",
+   "the operator without a GUI (a script, a terminal over SSH): asks the running component, "
+   "through the pins its panel pulses and the status file it reads, for ACTION: `load:T` "
+   "(`--into P`), `unload:T`, `continue`, `cancel`, `clear-fault` (`--spindle N`, `--pocket "
+   "yes|no`), `measure-all` (every tool in the rack; `measure-all:never` those never measured, "
+   "`measure-all:program` the loaded program's) or `verify:P`; prints each message the "
+   "component says meanwhile (the prompts' words among them) and last the outcome, and exits "
+   "when the request has ended. A prompt waits for `continue` or `cancel` from another "
+   "invocation (or the panel), or is answered by `--yes`. The state file, and so the status "
+   "file beside it, is the INI's [FIXED_ATC_PROBE]STATE (--ini) or --state. A pin netted from a "
+   "panel's button is pressed through its signal, as the button would; a pin another writer "
+   "holds is refused. Exit 0 done, 1 refused (nothing moved; also Continue, Cancel or Clear "
+   "fault with nothing to act on), 2 usage, 3 fault, 4 cancelled, 5 timeout (--timeout, or the "
+   "component did not take the request up within 10 s), 6 the component is not running (no "
+   "HAL, no fixed_atc_probe pins, or no status file)"},
   {Mode::dot, "--dot", "", {}, {}, "print the state machine as Graphviz",
    "print the state machine as Graphviz, generated from its transition tables"},
   {Mode::help, "--help", "", {}, {}, "print this help", "print the usage (also -h)"},
@@ -220,10 +247,28 @@ std::optional<Point> position_argument(const std::string& text, std::string& err
 bool take_value(const std::string& arg, const std::string& text, Options& options,
                 std::string& error) {
   const bool tool = arg == "--from" || arg == "--to" || arg == "--spindle";
-  // --teach and --at say what they expect themselves.
-  if (text.empty() && arg != "--teach" && arg != "--at") {
+  // --teach, --at and --operator say what they expect themselves.
+  const bool says_itself = arg == "--teach" || arg == "--at" || arg == "--operator";
+  if (text.empty() && !says_itself && arg != "--into" && arg != "--timeout") {
     error = arg + ": expected " + (tool ? "a tool number" : "a file path") + ", got nothing";
     return false;
+  }
+  if (arg == "--operator") {
+    options.request = parse_operator_action(text, error);
+    return options.request.has_value();
+  }
+  if (arg == "--into") {
+    options.into_pocket = tool_argument(text);
+    if (!options.into_pocket) error = "--into: expected a pocket number (0: the changer chooses), got " + quote(text);
+    return options.into_pocket.has_value();
+  }
+  if (arg == "--timeout") {
+    options.timeout_seconds = decimal_argument(text);
+    if (!options.timeout_seconds || *options.timeout_seconds <= 0.0) {
+      error = "--timeout: expected seconds above 0, got " + quote(text);
+      return false;
+    }
+    return true;
   }
   if (tool) {
     const auto number = tool_argument(text);
@@ -286,12 +331,34 @@ std::size_t first_place(const std::vector<std::string>& args, const std::string&
   return args.size();
 }
 
+/// "--ini FILE", or "--yes" for a flag.
+std::string named_value(const char* name) {
+  const char* value = option(name).value;
+  return *value ? std::string(name) + " " + value : std::string(name);
+}
+
+/// --operator's options given where its ACTION does not read them; empty when none is.
+std::string operator_options_misplaced(const Options& options) {
+  using Action = OperatorRequest::Action;
+  if (!options.ini_path && options.state_path.empty()) {
+    return "--operator needs --ini FILE (the machine's INI, whose [FIXED_ATC_PROBE]STATE names "
+           "the status file) or --state FILE";
+  }
+  const Action action = options.request->action;
+  if (options.into_pocket && action != Action::load) return "--into is read only by --operator load:T";
+  if ((options.spindle_tool || options.pocket_holds_tool) && action != Action::clear_fault) {
+    return std::string(options.spindle_tool ? "--spindle" : "--pocket") +
+           " is read only by --operator clear-fault";
+  }
+  return "";
+}
+
 std::string synopsis(const ModeDeclaration& mode) {
   std::string line = "fixed_atc_probe";
   if (*mode.flag) line += std::string(" ") + mode.flag;
   if (*mode.value) line += std::string(" ") + mode.value;
   for (const char* name : mode.needs) line += std::string(" ") + name + " " + option(name).value;
-  for (const char* name : mode.may) line += std::string(" [") + name + " " + option(name).value + "]";
+  for (const char* name : mode.may) line += std::string(" [") + named_value(name) + "]";
   return line;
 }
 
@@ -321,6 +388,10 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
     }
   }
   for (const OptionDeclaration& o : kOptions) {
+    if (!*o.value) {  // a flag: --yes=1 is refused, not read as --yes
+      given[o.name] = app.add_flag(o.name)->disable_flag_override();
+      continue;
+    }
     given[o.name] = app.add_option(o.name, values[o.name])
                         ->expected(0, 1)
                         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
@@ -344,12 +415,15 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
     app.parse(reversed);
   } catch (const CLI::ParseError& e) {
     error = e.what();
-    for (const std::string& arg : args) {  // CLI11's words for --dot=1
+    for (const std::string& arg : args) {  // CLI11's words for --dot=1 and --yes=1
       const auto equals = arg.find('=');
       const auto flag = std::find_if(kModes.begin(), kModes.end(), [&](const ModeDeclaration& m) {
         return *m.flag && !*m.value && arg.substr(0, equals) == m.flag;
       });
-      if (equals != std::string::npos && flag != kModes.end()) {
+      const auto option_flag = std::find_if(kOptions.begin(), kOptions.end(), [&](const OptionDeclaration& o) {
+        return !*o.value && arg.substr(0, equals) == o.name;
+      });
+      if (equals != std::string::npos && (flag != kModes.end() || option_flag != kOptions.end())) {
         error = arg.substr(0, equals) + " takes no value, got " + quote(arg.substr(equals + 1));
         break;
       }
@@ -427,10 +501,22 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
     error = "--plot: --from A and --to B go together (the change to draw)";
     return std::nullopt;
   }
+  if (options.mode == Mode::operator_request) {
+    if (given.at("--yes")->count() > 1) {
+      error = "--yes given twice";
+      return std::nullopt;
+    }
+    if (const std::string wrong = operator_options_misplaced(options); !wrong.empty()) {
+      error = wrong;
+      return std::nullopt;
+    }
+    options.answer_yes = given.at("--yes")->count() == 1;
+  }
   options.state_given = !options.state_path.empty();
-  // --plan and --plot read a state file only when given one; the others default to CONFIG.state.
+  // --plan and --plot read a state file only when given one, --operator the INI's; the others
+  // default to CONFIG.state.
   if (reads(*mode, "--state") && options.mode != Mode::plan && options.mode != Mode::plot &&
-      options.state_path.empty()) {
+      options.mode != Mode::operator_request && options.state_path.empty()) {
     options.state_path = options.config_path + ".state";
   }
   return options;
@@ -444,7 +530,7 @@ std::string usage() {
   }
   out += "options:\n";
   for (const OptionDeclaration& o : kOptions) {
-    out += std::string("  ") + o.name + " " + o.value + "\n      " + o.doc + "\n";
+    out += std::string("  ") + named_value(o.name) + "\n      " + o.doc + "\n";
   }
   return out;
 }
@@ -460,7 +546,9 @@ std::string synopsis_man() {
       out += ".B " + std::string(name) + "\n.I " + option(name).value + "\n";
     }
     for (const char* name : mode.may) {
-      out += ".RB [ " + std::string(name) + "\n.IR " + option(name).value + " ]\n";
+      out += *option(name).value
+                 ? ".RB [ " + std::string(name) + "\n.IR " + option(name).value + " ]\n"
+                 : ".RB [ " + std::string(name) + " ]\n";
     }
   }
   return out;
@@ -474,7 +562,7 @@ std::string options_man() {
            "\n" + man_text(mode.doc) + ".\n";
   }
   for (const OptionDeclaration& o : kOptions) {
-    out += ".TP\n.B " + std::string(o.name) + " " + o.value + "\n" + man_text(o.doc) + ".\n";
+    out += ".TP\n.B " + named_value(o.name) + "\n" + man_text(o.doc) + ".\n";
   }
   return out;
 }
@@ -502,7 +590,7 @@ std::string command_line_markdown() {
   }
   out += "\n| option | what it is |\n| --- | --- |\n";
   for (const OptionDeclaration& o : kOptions) {
-    out += "| `" + std::string(o.name) + " " + o.value + "` | " + o.doc + " |\n";
+    out += "| `" + named_value(o.name) + "` | " + o.doc + " |\n";
   }
   return out;
 }

@@ -17,6 +17,8 @@ import hal
 import linuxcnc
 import tool_table
 
+import operator_command
+
 PINS = ["fixed_atc_probe.chuck", "fixed_atc_probe.waiting-for-operator", "fixed_atc_probe.last-length", "fixed_atc_probe.state", "fixed_atc_probe.fault",
         "fixed_atc_probe.busy", "fixed_atc_probe.tool-in-spindle", "fixed_atc_probe.step-ready",
         "fixed_atc_probe.step-request", "iocontrol.0.tool-prepare", "iocontrol.0.tool-prepared",
@@ -649,6 +651,8 @@ def run_operator(scenario):
     def sampled_wait(condition, timeout, what):
         sampled_wait_in(result, start, condition, timeout, what)
 
+    background = {}  # operator commands still running, by name
+
     for step in scenario["operator"]:
         if "do" in step:
             perform(step, result, start)
@@ -736,6 +740,8 @@ def run_operator(scenario):
             command.jog(linuxcnc.JOG_INCREMENT, False, axis, 20.0, distance)
             sampled_wait(lambda: abs(stat.actual_position[axis] - target) < 1e-3, 60, "the jog")
             result["jogged_to"] = list(stat.actual_position[:3])
+        elif "operator_command" in step or "join" in step:
+            operator_command.perform(step, result, background)
         elif "mdi" in step:
             command.mode(linuxcnc.MODE_MDI)
             command.wait_complete()
