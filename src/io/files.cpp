@@ -154,6 +154,12 @@ bool read_regular(const std::string& path, std::size_t max_bytes, bool limit_siz
 
 }  // namespace
 
+std::optional<FileStamp> stamp_of(const std::string& path) {
+  struct stat about {};
+  if (::stat(path.c_str(), &about) != 0) return std::nullopt;
+  return FileStamp{about.st_mtim.tv_sec, about.st_mtim.tv_nsec, about.st_size};
+}
+
 std::optional<std::string> read_small_file(const std::string& path, std::string& error) {
   std::uint64_t file_bytes = 0;
   std::string text;

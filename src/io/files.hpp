@@ -21,6 +21,20 @@ constexpr std::size_t kMaxFileBytes = 1024 * 1024;
 /// Never blocks: a FIFO is opened non-blocking and refused before any read.
 std::optional<std::string> read_small_file(const std::string& path, std::string& error);
 
+/// When a file was last written and how long it is: a file LinuxCNC rewrites
+/// in place (the tool table) has changed when its stamp has.
+struct FileStamp {
+  std::int64_t seconds = 0;
+  long nanoseconds = 0;
+  std::int64_t size = 0;
+  bool operator==(const FileStamp& other) const {
+    return seconds == other.seconds && nanoseconds == other.nanoseconds && size == other.size;
+  }
+  bool operator!=(const FileStamp& other) const { return !(*this == other); }
+};
+/// The file's stamp, or nothing if it cannot be looked at.
+std::optional<FileStamp> stamp_of(const std::string& path);
+
 /// Takes one piece of a file as it is read.
 using Take = std::function<void(std::string_view piece)>;
 

@@ -1,7 +1,5 @@
 #include "keepout_lengths.hpp"
 
-#include <sys/stat.h>
-
 #include "core/dry_run/sequence_check.hpp"
 #include "core/program/tool_table.hpp"
 #include "io/files.hpp"
@@ -15,23 +13,15 @@ void KeepoutLengths::soft_limits(std::optional<SoftLimits> limits) {
 }
 
 void KeepoutLengths::read_table(const Config& config, double per_mm) {
-  struct stat about {};
-  if (!path_ || ::stat(path_->c_str(), &about) != 0) return;
-  if (table_changed_ && table_changed_->tv_sec == about.st_mtim.tv_sec &&
-      table_changed_->tv_nsec == about.st_mtim.tv_nsec) {
-    return;
-  }
+  if (!path_) return;
+  const auto before = io::stamp_of(*path_);
+  if (!before || before == table_read_) return;
   std::string error;
   const auto text = io::read_small_file(*path_, error);
   // LinuxCNC rewrites the file in place: one changed while it was read is
   // read again at the next poll, whole.
-  struct stat after {};
-  if (!text || ::stat(path_->c_str(), &after) != 0 ||
-      after.st_mtim.tv_sec != about.st_mtim.tv_sec ||
-      after.st_mtim.tv_nsec != about.st_mtim.tv_nsec || after.st_size != about.st_size) {
-    return;
-  }
-  table_changed_ = about.st_mtim;
+  if (!text || io::stamp_of(*path_) != before) return;
+  table_read_ = before;
   lengths_.table = tool_lengths(parse_tool_table(*text), config.units, per_mm);
 }
 
@@ -60,7 +50,8 @@ void KeepoutLengths::poll(Changer& changer, const NmlLink* nml, Ports& ports) {
   spindle_length_ = lengths_.of(spindle, changer.tools().lengths).length;
   // Told once the table is read: before, every length would look missing.
   if (per_mm && spindle > 0 && told_.insert(spindle).second) {
-    const std::string words = keepout_length_words(config, lengths_, spindle, changer.tools().lengths);
+    const std::string words =
+        keepout_length_words(config, lengths_, spindle, changer.tools().lengths);
     if (!words.empty()) ports.tell(MessageKind::info, words);
   }
 }

@@ -1,13 +1,13 @@
 #pragma once
 
-#include <ctime>
 #include <map>
 #include <optional>
 #include <set>
 #include <string>
 
-#include "core/machine/changer.hpp"
 #include "core/dry_run/dry_run.hpp"
+#include "core/machine/changer.hpp"
+#include "io/files.hpp"
 
 namespace fatc::linuxcnc {
 
@@ -44,10 +44,10 @@ class KeepoutLengths {
   std::optional<SoftLimits> limits_;
   DryRun dry_run_;
   bool rehearsing_ = false;
-  std::optional<std::timespec> table_changed_;  ///< the file's mtime when last read
-  std::optional<unsigned> configs_taken_;       ///< the config `longest` is of
-  ToolLengths lengths_;                         ///< in the config's units
-  std::optional<ToolLengths> given_;            ///< what the changer has
+  std::optional<io::FileStamp> table_read_;  ///< the file's stamp when last read
+  std::optional<unsigned> configs_taken_;    ///< the config `longest` is of
+  ToolLengths lengths_;                      ///< in the config's units
+  std::optional<ToolLengths> given_;         ///< what the changer has
   double spindle_length_ = 0.0;
   std::set<int> told_;
 };

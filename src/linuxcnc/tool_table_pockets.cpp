@@ -1,7 +1,5 @@
 #include "tool_table_pockets.hpp"
 
-#include <sys/stat.h>
-
 #include <stdexcept>
 
 #include "core/program/tool_table.hpp"
@@ -10,21 +8,14 @@
 #include "nml_link.hpp"
 
 namespace fatc::linuxcnc {
-namespace {
-
-bool same_time(const std::optional<std::timespec>& a, const std::timespec& b) {
-  return a && a->tv_sec == b.tv_sec && a->tv_nsec == b.tv_nsec;
-}
-
-}  // namespace
 
 void ToolTablePockets::poll(const ToolState& tools, NmlLink& nml, Ports& ports) {
   if (!path_) return;
   // Task refused or missed it: the file holds the rack, LinuxCNC's memory not yet.
   if (reload_ && nml.load_tool_table()) reload_ = false;
-  struct stat about {};
-  if (::stat(path_->c_str(), &about) != 0) return;
-  if (rack_ == tools.pockets && same_time(changed_, about.st_mtim)) return;
+  const auto stamp = io::stamp_of(*path_);
+  if (!stamp) return;
+  if (rack_ == tools.pockets && stamp == changed_) return;
   try {
     // The writer's lock from the read to the replace: a --teach or a second
     // component writes no table between them.
@@ -45,15 +36,14 @@ void ToolTablePockets::poll(const ToolState& tools, NmlLink& nml, Ports& ports) 
       reload_ = !nml.load_tool_table();
     }
     if (!edited.empty()) ports.tell(MessageKind::info, pocket_disagreement_words(edited));
-    struct stat after {};
-    if (::stat(path_->c_str(), &after) == 0) changed_ = after.st_mtim;
+    changed_ = io::stamp_of(*path_);
     rack_ = tools.pockets;
     left_ = rewrite.p_of;
     failed_said_ = false;
   } catch (const std::runtime_error& e) {
     // Tried again at the next change of the rack or the file.
     rack_ = tools.pockets;
-    changed_ = about.st_mtim;
+    changed_ = stamp;
     if (!failed_said_) {
       ports.tell(MessageKind::error,
                  std::string("cannot write the rack's pockets into the tool table: ") + e.what());

@@ -1,12 +1,12 @@
 #pragma once
 
-#include <ctime>
 #include <map>
 #include <optional>
 #include <string>
 
 #include "core/machine/ports.hpp"
 #include "core/rack/tool_state.hpp"
+#include "io/files.hpp"
 
 namespace fatc::linuxcnc {
 
@@ -34,7 +34,7 @@ class ToolTablePockets {
   std::optional<std::string> path_;
   std::optional<std::map<int, PocketState>>
       rack_;                                ///< the rack the file was last brought in line with
-  std::optional<std::timespec> changed_;    ///< the file's mtime then
+  std::optional<io::FileStamp> changed_;    ///< the file's stamp then
   std::map<int, std::optional<int>> left_;  ///< each tool's P as the file was left then
   bool reload_ = false;                     ///< written, LinuxCNC not yet told to read it
   bool failed_said_ = false;
