@@ -107,14 +107,14 @@ bool active(const machine::Engine& engine) {
 Phase phase_of(const machine::Engine& engine) {
   namespace flag = machine::flag;
   if (active<flag::Faulted>(engine)) return Phase::fault;
-  Phase phase = Phase::not_ready;
-  if (machine::Flows::any([&](auto flow) {
-        using Flow = decltype(flow);
-        phase = Flow::phase;
-        return active<Flow>(engine);
-      })) {
-    return phase;
-  }
+  std::optional<Phase> running;
+  machine::Flows::any([&](auto flow) {
+    using Flow = decltype(flow);
+    if (!active<Flow>(engine)) return false;
+    running = Flow::phase;
+    return true;
+  });
+  if (running) return *running;
   if (active<flag::Idle>(engine)) return Phase::idle;
   return Phase::not_ready;
 }
@@ -181,8 +181,9 @@ const char* phase_word(Phase phase) {
   const char* word = "?";
   machine::Flows::any([&](auto flow) {
     using Flow = decltype(flow);
+    if (Flow::phase != phase) return false;
     word = Flow::word;
-    return Flow::phase == phase;
+    return true;
   });
   return word;
 }
