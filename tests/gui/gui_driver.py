@@ -1,19 +1,21 @@
 #!/usr/bin/python3
 """The GUI test's operator: started by LinuxCNC beside its GUI ([APPLICATIONS]),
-AXIS or gmoccapy ([DISPLAY]DISPLAY), it finds the fixed_atc_probe panel's
-widgets through AT-SPI, clicks them with the X server's test extension like a
-mouse would, follows the panel's HAL pins and LinuxCNC's status, takes
-screenshots, then quits the GUI.
+AXIS, gmoccapy, qtdragon or qtdragon_hd ([DISPLAY]DISPLAY), it finds the
+fixed_atc_probe panel's widgets through AT-SPI, clicks them with the X
+server's test extension like a mouse would, follows the panel's HAL pins and
+LinuxCNC's status, takes screenshots, then quits the GUI.
 Writes FATC_RESULTS (JSON) and the screenshots into FATC_ARTIFACTS.
 
 The panel is a GtkPlug inside AXIS (Tk), which has no accessibility tree to
-hang it on, or inside gmoccapy's GtkSocket (EMBED_TAB_COMMAND); GTK names the
-plug's accessible in the _XEMBED_AT_SPI_PATH property of its window, and the
-driver walks the tree from there over D-Bus, in either GUI.
+hang it on, or inside gmoccapy's GtkSocket (EMBED_TAB_COMMAND): GTK names the
+plug's accessible in the _XEMBED_AT_SPI_PATH property of its window. In
+qtdragon it is gladevcp's own window, taken into a Qt page. The driver walks
+the tree from there over D-Bus (desktop.py); what differs between the GUIs
+is in screens.py.
 
 In AXIS the whole operator run: unload and load tool 4, the program page
-(a program opened with axis-remote), the Setup page's Teach loading. In
-gmoccapy the part that proves the embedding: the same unload and load."""
+(a program opened with axis-remote), the Setup page's Teach loading. In the
+others the part that proves the embedding: the same unload and load."""
 import json
 import os
 import subprocess
@@ -23,34 +25,26 @@ import traceback
 
 import gi
 gi.require_version("Gdk", "3.0")
-from gi.repository import Gdk, Gio, GLib  # noqa: E402
-
-import Xlib.protocol.event  # noqa: E402
-import Xlib.error  # noqa: E402
-from Xlib import X, display  # noqa: E402
+from gi.repository import Gdk  # noqa: E402
 
 sys.path.insert(0, os.path.join(os.environ["FATC_ROOT"], "tests", "integration", "harness"))
 import driver  # noqa: E402  (bring-up and waits shared with the integration runs)
-import linuxcnc  # noqa: E402
+import screens  # noqa: E402
+from desktop import Accessible, click_at, panel_plug  # noqa: E402
 from driver import hal, stat, wait_for  # noqa: E402
-from Xlib.ext import xtest  # noqa: E402
-
-STATE_CHECKED = 4  # AtspiStateType
-STATE_SENSITIVE = 24
-COORDS_SCREEN = 0
 
 PANEL_PINS = ["load-enabled", "unload-enabled", "continue-enabled", "cancel-enabled",
               "clear-fault-enabled", "load", "unload", "continue", "cancel", "tool-number",
               "teach-pocket-enabled", "teach-loading-enabled", "pocket-number",
               "measure-all-enabled", "measure-which", "verify-pocket-enabled"]
 
-xdisplay = display.Display()
 result = {"steps": [], "messages": [], "error": None, "screenshots": []}
+# The GUI LinuxCNC runs ([DISPLAY]DISPLAY): its name and how it is met.
+gui_name, screen = screens.screen_of(driver.ini().find("DISPLAY", "DISPLAY"))
 
 
 def gui():
-    """The GUI LinuxCNC runs: axis or gmoccapy."""
-    return os.path.basename(driver.ini().find("DISPLAY", "DISPLAY").split()[0])
+    return gui_name
 
 
 def note(what):
@@ -62,126 +56,18 @@ def note(what):
     result["steps"].append(entry)
 
 
-class Accessible:
-    """One node of an application's AT-SPI tree, reached over the a11y bus."""
-    bus = None
-
-    def __init__(self, name, path):
-        self.name, self.path = name, path
-
-    @classmethod
-    def connect(cls):
-        session = Gio.bus_get_sync(Gio.BusType.SESSION)
-        address = session.call_sync("org.a11y.Bus", "/org/a11y/bus", "org.a11y.Bus", "GetAddress",
-                                    None, None, 0, 5000, None).unpack()[0]
-        cls.bus = Gio.DBusConnection.new_for_address_sync(
-            address, Gio.DBusConnectionFlags.AUTHENTICATION_CLIENT |
-            Gio.DBusConnectionFlags.MESSAGE_BUS_CONNECTION, None, None)
-
-    def call(self, interface, method, args=None):
-        return self.bus.call_sync(self.name, self.path, interface, method, args, None, 0, 5000,
-                                  None).unpack()
-
-    def children(self):
-        return [Accessible(n, p) for n, p in self.call("org.a11y.atspi.Accessible", "GetChildren")[0]]
-
-    def role(self):
-        return self.call("org.a11y.atspi.Accessible", "GetRoleName")[0]
-
-    def label(self):
-        return self.call("org.freedesktop.DBus.Properties", "Get",
-                         GLib.Variant("(ss)", ("org.a11y.atspi.Accessible", "Name")))[0]
-
-    def description(self):
-        return self.call("org.freedesktop.DBus.Properties", "Get",
-                         GLib.Variant("(ss)", ("org.a11y.atspi.Accessible", "Description")))[0]
-
-    def sensitive(self):
-        low, _ = self.call("org.a11y.atspi.Accessible", "GetState")[0]
-        return bool(low & (1 << STATE_SENSITIVE))
-
-    def checked(self):
-        low, _ = self.call("org.a11y.atspi.Accessible", "GetState")[0]
-        return bool(low & (1 << STATE_CHECKED))
-
-    def find_described(self, role, words):
-        """The first node (breadth first) of `role` whose description (its
-        tooltip) starts with `words`."""
-        level = [self]
-        while level:
-            below = []
-            for node in level:
-                for child in node.children():
-                    if child.role() == role and child.description().startswith(words):
-                        return child
-                    below.append(child)
-            level = below
-        return None
-
-    def extents(self):
-        return self.call("org.a11y.atspi.Component", "GetExtents", GLib.Variant("(u)", (COORDS_SCREEN,)))[0]
-
-    def set_value(self, value):
-        self.call("org.freedesktop.DBus.Properties", "Set",
-                  GLib.Variant("(ssv)", ("org.a11y.atspi.Value", "CurrentValue", GLib.Variant("d", value))))
-
-    def find_named(self, label):
-        for child in self.children():
-            if child.label() == label:
-                return child
-            found = child.find_named(label)
-            if found:
-                return found
-        return None
-
-    def labels(self):
-        """Every label below this node, in the tree's order."""
-        found = []
-        for child in self.children():
-            if child.role() == "label":
-                found.append(child)
-            found += child.labels()
-        return found
-
-    def find(self, role, label=None):
-        for child in self.children():
-            if child.role() == role and (label is None or child.label() == label):
-                return child
-            found = child.find(role, label)
-            if found:
-                return found
-        return None
-
-
-def panel_plug():
-    """The panel's root accessible, from the property GTK sets on the plug window."""
-    atom = xdisplay.intern_atom("_XEMBED_AT_SPI_PATH")
-
-    def search(window):
-        # A window may close while the tree is walked (AXIS opens and closes
-        # some while it starts): that one holds no panel.
-        try:
-            value = window.get_full_property(atom, X.AnyPropertyType)
-            children = [] if value else window.query_tree().children
-        except Xlib.error.XError:
-            return None
-        if value:
-            return value.value.decode() if isinstance(value.value, bytes) else bytes(value.value).decode()
-        for child in children:
-            found = search(child)
-            if found:
-                return found
-        return None
-    where = search(xdisplay.screen().root)
-    if not where:
-        return None
-    name, path = where.rsplit(":", 1)
-    return Accessible(name, path)
-
-
 def panel_ready():
     plug = panel_plug()
     return plug is not None and plug.find("push button", "Load / Probe") is not None
+
+
+def panel_in_view():
+    """The panel's Load button lies on the screen (inside the GUI's window)."""
+    x, y, w, h = button("Load / Probe").extents()
+    window = screen.window() or [0, 0, 1 << 16, 1 << 16]
+    result["panel_view"] = {"load_button": [x, y, w, h], "gui_window": window}  # for a failure's report
+    return w > 0 and h > 0 and window[0] <= x and x + w <= window[0] + window[2] \
+        and window[1] <= y and y + h <= window[1] + window[3]
 
 
 def button(name):
@@ -194,21 +80,7 @@ def sensitive(name):
 
 def click(name, node=None):
     """A left click in the middle of the button (or of `node`), through the X server."""
-    x, y, width, height = (node or button(name)).extents()
-    x, y = x + width // 2, y + height // 2
-    # From outside the panel, as a hand moves the mouse: GTK only takes the
-    # click of a button the pointer has entered.
-    xtest.fake_input(xdisplay, X.MotionNotify, x=1, y=1)
-    xdisplay.sync()
-    time.sleep(0.05)
-    xtest.fake_input(xdisplay, X.MotionNotify, x=x, y=y)
-    xdisplay.sync()
-    time.sleep(0.05)
-    xtest.fake_input(xdisplay, X.ButtonPress, 1)
-    xdisplay.sync()
-    time.sleep(0.05)
-    xtest.fake_input(xdisplay, X.ButtonRelease, 1)
-    xdisplay.sync()
+    click_at(node or button(name))
     note("clicked " + name)
 
 
@@ -258,7 +130,8 @@ def screenshot(name, shown, words=None):
 
 
 def panel_region(margin=6):
-    """The panel's area on the screen: around every widget it shows."""
+    """The panel's area on the screen: around every widget it shows, within
+    its scrolled window's view (a GUI may give it less room than it asks)."""
     boxes = []
 
     def walk(node):
@@ -269,8 +142,9 @@ def panel_region(margin=6):
                     boxes.append((x, y, x + w, y + h))
             walk(child)
     walk(panel_plug())
-    return (min(b[0] for b in boxes) - margin, min(b[1] for b in boxes) - margin,
-            max(b[2] for b in boxes) + margin, max(b[3] for b in boxes) + margin)
+    x, y, w, h = panel_plug().find("scroll pane").extents()
+    return (max(min(b[0] for b in boxes) - margin, x), max(min(b[1] for b in boxes) - margin, y),
+            min(max(b[2] for b in boxes) + margin, x + w), min(max(b[3] for b in boxes) + margin, y + h))
 
 
 def rack():
@@ -331,90 +205,15 @@ def pin(name, value):
     return lambda: hal.get_value(name) == value
 
 
-def quit_gui():
-    if gui() == "axis":
-        os.system("axis-remote --quit")
-        return
-    # gmoccapy: its window closed as a window manager would (WM_DELETE_WINDOW);
-    # gmoccapy then turns the machine off, ends its panel and quits.
-    window = gmoccapy_window()
-    if window is None:
-        return
-    protocols = xdisplay.intern_atom("WM_PROTOCOLS")
-    delete = xdisplay.intern_atom("WM_DELETE_WINDOW")
-    window.send_event(Xlib.protocol.event.ClientMessage(
-        window=window, client_type=protocols, data=(32, [delete, X.CurrentTime, 0, 0, 0])))
-    xdisplay.sync()
-
-
-def gmoccapy_window():
-    """gmoccapy's main window: its largest window on the screen."""
-    found = []
-    for window in xdisplay.screen().root.query_tree().children:
-        wm_class = window.get_wm_class()
-        if wm_class and "gmoccapy" in (wm_class[0].lower(), wm_class[1].lower()) \
-                and window.get_attributes().map_state == X.IsViewable:
-            g = window.get_geometry()
-            found.append((g.width * g.height, window))
-    return max(found, key=lambda f: f[0])[1] if found else None
-
-
-def gui_window():
-    """gmoccapy's main window on the screen: [x, y, width, height]."""
-    window = gmoccapy_window()
-    if window is None:
-        return None
-    g = window.get_geometry()
-    return [g.x, g.y, g.width, g.height]
-
-
-def gmoccapy_app():
-    """gmoccapy's application node in AT-SPI (None before it registers)."""
-    registry = Accessible("org.a11y.atspi.Registry", "/org/a11y/atspi/accessible/root")
-    return next((a for a in registry.children() if a.label() == "gmoccapy"), None)
-
-
-def gmoccapy_popups(words):
-    """The texts with `words` that gmoccapy shows in its message popups: its
-    windows other than the main one (searched whole, that one is large)."""
-    window = gui_window()
-    found = []
-    for top in gmoccapy_app().children():
-        x, y, w, h = top.extents()
-        if [x, y, w, h] == window or w <= 0:
-            continue
-        found += [label.label() for label in top.labels() if words in label.label()]
-    return found
-
-
-def gmoccapy_machine_on():
-    """Out of estop and on, in step with gmoccapy: its estop and on buttons
-    follow the machine's state and, toggled so, send that state again. A
-    reset gmoccapy sees only once the machine is on would turn it off; so
-    each step waits until gmoccapy's button shows it (over AT-SPI)."""
-    wait_for(lambda: gmoccapy_app() is not None, 120, "gmoccapy over AT-SPI")
-    app = gmoccapy_app()
-    estop = app.find_described("toggle button", "Estop the machine")
-    on = app.find_described("toggle button", "Turn the machine on")
-    if estop is None or on is None:
-        raise RuntimeError("gmoccapy's estop or on button not found over AT-SPI")
-    # gmoccapy sets its estop button from the machine once its window is up.
-    wait_for(lambda: gui_window() is not None and estop.checked(), 120, "gmoccapy showing estop")
-    driver.command.state(linuxcnc.STATE_ESTOP_RESET)
-    wait_for(lambda: stat.task_state == linuxcnc.STATE_ESTOP_RESET and not estop.checked(), 60,
-             "gmoccapy showing the estop reset")
-    driver.command.state(linuxcnc.STATE_ON)
-    wait_for(lambda: stat.task_state == linuxcnc.STATE_ON and on.checked(), 60, "gmoccapy showing the machine on")
-    note("machine on in gmoccapy")
-
-
 def run():
     Accessible.connect()
     wait_for(panel_ready, 120, "the panel's buttons over AT-SPI")
-    if gui() == "gmoccapy":
-        # gmoccapy shows each message in a popup: left to it, as to an operator's GUI.
-        driver.read_messages = False
-        gmoccapy_machine_on()
+    # A GUI that shows each message itself reads them: left to it, as to an operator's.
+    driver.read_messages = screen.reads_messages
+    screen.machine_on()
+    screen.show_panel()
+    wait_for(panel_in_view, 30, "the panel in view in " + gui())
+    note("panel in view in " + gui())
     driver.bring_up()
     # Task settles a moment after homing; the panel follows `accepting`.
     wait_for(pin("fatc-panel.accepting", True), 60, "the changer accepting requests")
@@ -422,8 +221,7 @@ def run():
     note("idle, tool number 0")
     result["idle_tool0_sensitive"] = {b: sensitive(b) for b in ("Load / Probe", "Unload", "Continue", "Cancel")}
     result["rack_start"] = rack()
-    if gui() == "gmoccapy":
-        result["gui_window"] = gui_window()
+    result["gui_window"] = screen.window()
 
     if gui() == "axis":
         # The demo program opened in AXIS: the panel checks it with --lint.
@@ -458,9 +256,9 @@ def run():
     note("insert prompt")
     screenshot("insert_prompt", ("Continue", True), "Insert tool 4")
     result["insert_prompt_shown"] = panel_says("Insert tool 4")
-    if gui() == "gmoccapy":
-        wait_for(lambda: gmoccapy_popups("Insert tool 4"), 10, "gmoccapy's popup of the insert prompt")
-        result["gmoccapy_popup"] = gmoccapy_popups("Insert tool 4")
+    if gui() != "axis":
+        wait_for(lambda: screen.shows("Insert tool 4"), 10, gui() + " showing the insert prompt")
+        result["gui_shows"] = screen.shows("Insert tool 4")
     answer("Continue", next_prompt="Jog it closer")
     wait_for(pin("fatc-panel.continue-enabled", True), 180, "the jog prompt")
     note("jog prompt")
@@ -515,7 +313,7 @@ def main():
     result["messages"] = driver.messages
     with open(os.environ["FATC_RESULTS"], "w") as f:
         json.dump(result, f, indent=1)
-    quit_gui()
+    screen.quit()
 
 
 if __name__ == "__main__":

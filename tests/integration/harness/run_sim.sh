@@ -47,8 +47,9 @@ if [ -n "${FATC_INI_SED:-}" ]; then
   sed -i -e "$FATC_INI_SED" "$work/sim.ini"
 fi
 if [ -n "${FATC_INI_FILTER:-}" ]; then
-  # A program that rewrites the copied INI in place: another machine setup.
-  "$FATC_INI_FILTER" "$work/sim.ini"
+  # A program (and its arguments) that rewrites the copied INI in place:
+  # another machine setup.
+  $FATC_INI_FILTER "$work/sim.ini"
 fi
 if [ -n "${FATC_APP:-}" ]; then
   # A program LinuxCNC starts beside its GUI (the GUI test's driver).
