@@ -118,7 +118,7 @@ def main():
                                                   "probe_length_compensation_offset")}
         results["truth"] = SENSOR_Z - c["probe_length_compensation_offset"]
         driver.bring_up()
-        hal.set_p("fatc-sensor-z.in1", str(SENSOR_Z))
+        hal.set_p("fatc-sensor.z-trip", str(SENSOR_Z))
         subprocess.run(["halcmd", "net", "fatc-sensor", "motion.digital-in-" + SENSOR_INPUT], check=True)
         mdi("T%d M6" % TOOL, 180)
         feed = c.get("probe_seek_feed", 300.0)
