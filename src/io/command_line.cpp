@@ -145,7 +145,8 @@ const std::vector<ModeDeclaration> kModes = {
    "holds is refused. Exit 0 done, 1 refused (nothing moved; also Continue, Cancel or Clear "
    "fault with nothing to act on), 2 usage, 3 fault, 4 cancelled, 5 timeout (--timeout, or the "
    "component did not take the request up within 10 s), 6 the component is not running (no "
-   "HAL, no fixed_atc_probe pins, or no status file)"},
+   "HAL, no fixed_atc_probe pins, or no status file), 7 failed (the flow ended without doing "
+   "it, its error said: a probe that missed the sensor)"},
   {Mode::dot, "--dot", "", {}, {}, "print the state machine as Graphviz",
    "print the state machine as Graphviz, generated from its transition tables"},
   {Mode::help, "--help", "", {}, {}, "print this help", "print the usage (also -h)"},

@@ -89,6 +89,8 @@ int operator_exit_status(OperatorOutcome outcome) {
       return 5;
     case OperatorOutcome::not_running:
       return 6;
+    case OperatorOutcome::failed:
+      return 7;
   }
   return 2;
 }
@@ -107,6 +109,8 @@ const char* outcome_word(OperatorOutcome outcome) {
       return "timeout";
     case OperatorOutcome::not_running:
       return "not running";
+    case OperatorOutcome::failed:
+      return "failed";
   }
   return "?";
 }
@@ -182,6 +186,7 @@ OperatorWatch::Turn OperatorWatch::observe(const std::optional<StatusWords>& sta
       refused_ = refused_ || (kind == "error" && contains(text, " refused: "));
       prompt_pending_ = prompt_pending_ || kind == "prompt";
       cancelled_ = cancelled_ || contains(text, " cancelled");
+      failed_ = failed_ || (kind == "error" && !contains(text, " refused: "));
     }
     seen_serial_ = status->serial;
     answered_ = true;
@@ -218,7 +223,9 @@ OperatorWatch::Turn OperatorWatch::observe(const std::optional<StatusWords>& sta
   if (status->state == kFault || status->state == 0) {
     turn.outcome = OperatorOutcome::fault;
   } else if (status->state == kIdle) {
-    turn.outcome = cancelled_ ? OperatorOutcome::cancelled : OperatorOutcome::done;
+    turn.outcome = cancelled_ ? OperatorOutcome::cancelled
+                   : failed_  ? OperatorOutcome::failed
+                              : OperatorOutcome::done;
   }
   return turn;
 }

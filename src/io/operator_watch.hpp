@@ -26,9 +26,10 @@ struct OperatorRequest {
 std::optional<OperatorRequest> parse_operator_action(const std::string& text, std::string& error);
 
 /// How a request ended, each its own exit status (operator_exit_status).
-enum class OperatorOutcome { done, refused, fault, cancelled, timeout, not_running };
+enum class OperatorOutcome { done, refused, fault, cancelled, timeout, not_running, failed };
 /// 0 done, 1 refused (nothing moved), 3 fault, 4 cancelled, 5 timeout, 6 the
-/// component not running; 2 stays the command line's usage mistake.
+/// component not running, 7 failed (ended without doing it: a probe missed);
+/// 2 stays the command line's usage mistake.
 int operator_exit_status(OperatorOutcome outcome);
 /// "done", "refused", …: the last line's first word.
 const char* outcome_word(OperatorOutcome outcome);
@@ -99,6 +100,7 @@ class OperatorWatch {
   /// poll sees waiting-for-operator low between the two.
   bool prompt_pending_ = false;
   bool cancelled_ = false;        ///< a message of this request said so
+  bool failed_ = false;           ///< an error that was no refusal (a probe missed)
   bool refused_ = false;
 };
 

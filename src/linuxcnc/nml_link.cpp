@@ -120,17 +120,23 @@ bool NmlLink::write_received(RCS_CMD_MSG& message) {
   // the first replaces it (a mode change lost, then "can't do that in AUTO
   // mode"). So wait until task echoes this serial, as LinuxCNC's own shcom
   // does, but briefly: the component's loop keeps the chuck guard's heartbeat.
+  // Each client counts its own serials: where task's echo already holds the
+  // next one (a GUI's command), it would read as taken before task saw this
+  // one, and the command after it would replace it unseen; so skip that one.
   message.serial_number = ++serial_;
+  if (echo_serial() == message.serial_number) message.serial_number = ++serial_;
   if (channels_->command->write(&message) != 0) return false;
   const auto until = std::chrono::steady_clock::now() + kReceiveTimeout;
   do {
-    if (channels_->status->peek() == EMC_STAT_TYPE) {
-      const auto* stat = static_cast<EMC_STAT*>(channels_->status->get_address());
-      if (stat->echo_serial_number == message.serial_number) return true;
-    }
+    if (echo_serial() == message.serial_number) return true;
     std::this_thread::sleep_for(std::chrono::milliseconds(1));
   } while (std::chrono::steady_clock::now() < until);
   return false;
+}
+
+std::optional<int> NmlLink::echo_serial() {
+  if (channels_->status->peek() != EMC_STAT_TYPE) return std::nullopt;
+  return static_cast<EMC_STAT*>(channels_->status->get_address())->echo_serial_number;
 }
 
 bool NmlLink::run_mdi(const std::string& line) {

@@ -63,6 +63,8 @@ class NmlLink {
   void send(MessageKind kind, const std::string& line);
   /// Writes a command and waits (at most kReceiveTimeout) until task took it.
   bool write_received(RCS_CMD_MSG& message);
+  /// The serial of the last command task took; none before its status came.
+  std::optional<int> echo_serial();
   static constexpr std::chrono::milliseconds kReceiveTimeout{100};
   /// Characters of one operator message part (LinuxCNC's buffer holds 255).
   static constexpr std::size_t kMessagePart = 240;

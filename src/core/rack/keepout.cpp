@@ -58,8 +58,10 @@ KeepoutLength ToolLengths::of(int tool, const std::map<int, double>& measured) c
   const bool in_table = z != table.end() && z->second > 0.0;
   const bool measured_here = own != measured.end() && own->second > 0.0;
   // A table written relative to a master tool gives a longer tool a small Z:
-  // the changer's own measurement, where longer, is the tool's.
-  if (measured_here && (!in_table || own->second > z->second)) {
+  // the changer's own measurement, where longer, is the tool's. LinuxCNC
+  // writes the table with six decimals: a measurement it rounded is no longer.
+  constexpr double kTableDecimals = 5e-7;
+  if (measured_here && (!in_table || own->second > z->second + kTableDecimals)) {
     return {own->second, LengthSource::measured};
   }
   if (in_table) return {z->second, LengthSource::table};

@@ -13,7 +13,6 @@ import re
 import struct
 import time
 
-import linuxcnc
 
 HEADER = struct.Struct("=QIi")
 ENTRY = struct.Struct("=ii9d3di4x")
@@ -31,9 +30,29 @@ def memory():
     return entries
 
 
+def file_lines(text):
+    """tool -> (P, Z, comment) of each line of a tool table file."""
+    lines = {}
+    for line in text.splitlines():
+        fields, _, comment = line.partition(";")
+        words = {w[0].upper(): w[1:] for w in fields.split()}
+        if "T" in words:
+            lines[int(words["T"])] = (int(words["P"]) if "P" in words else None,
+                                      float(words.get("Z", 0)), comment.strip())
+    return lines
+
+
+def agrees(entries, lines):
+    """Each tool of the memory has the file's P and Z."""
+    return all((m["pocket"], round(m["z"], 6)) == (lines[m["tool"]][0], round(lines[m["tool"]][1], 6))
+               for m in entries[1:] if m["tool"] in lines)
+
+
 def record(stat, path, settled):
     """The file and the memory once `settled` (changer idle, task free) held
-    and the file stood unchanged for a second (the component writes it then)."""
+    and the file stood unchanged for a second (the component writes it then),
+    and the memory agrees with it or 5 s more passed; `agreed_after`: the
+    seconds from the file's last change until it did (None: it did not)."""
     deadline = time.monotonic() + 20
     stamp, since = None, time.monotonic()
     while time.monotonic() < deadline:
@@ -44,8 +63,15 @@ def record(stat, path, settled):
         elif time.monotonic() - since > 1.0:
             break
         time.sleep(0.05)
+    lines = file_lines(open(path).read())
+    agreed_after = None
+    while time.monotonic() - since < 6.0:
+        if agrees(memory(), lines):
+            agreed_after = time.monotonic() - since
+            break
+        time.sleep(0.05)
     stat.poll()
-    return {"file": open(path).read(), "memory": memory(),
+    return {"file": open(path).read(), "memory": memory(), "agreed_after": agreed_after,
             "stat": [{"tool": t.id, "z": t.zoffset} for t in stat.tool_table]}
 
 

@@ -13,27 +13,16 @@ import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "harness"))
 from check import fail, load_results, ok, scenario  # noqa: E402
+from tool_table import file_lines  # noqa: E402
 
 # rack_config.json's pockets after the run: T20 loaded into 3, T3 in the spindle (belongs in 4).
 POCKETS = {12: 1, 7: 2, 20: 3, 3: 4, 5: 5, 6: 6}
 COMMENTS = {3: "10mm face mill, pocket 4 (top)", 20: "4mm end mill, loaded into pocket 3 by the run"}
 
 
-def file_lines(table):
-    """tool -> (P, Z, comment) of each line of the file."""
-    lines = {}
-    for line in table["file"].splitlines():
-        fields, _, comment = line.partition(";")
-        words = {w[0].upper(): w[1:] for w in fields.split()}
-        if "T" in words:
-            lines[int(words["T"])] = (int(words["P"]) if "P" in words else None,
-                                      float(words.get("Z", 0)), comment.strip())
-    return lines
-
-
 def check_table(table, what, lengths):
     print("%s, the file LinuxCNC wrote:\n%s" % (what, table["file"]))
-    lines = file_lines(table)
+    lines = file_lines(table["file"])
     for tool, pocket in POCKETS.items():
         if lines.get(tool, (None,))[0] != pocket:
             fail("%s: the file's line of T%d has P %s, not %d" % (what, tool, lines.get(tool), pocket))
@@ -57,7 +46,8 @@ def check_table(table, what, lengths):
                 what, m["tool"], m["pocket"], m["z"], lines[m["tool"]][0], lines[m["tool"]][1]))
     if memory[0]["tool"] != 3 or memory[0]["pocket"] != POCKETS[3]:
         fail("%s: LinuxCNC's spindle entry is %s, not T3 with its pocket %d" % (what, memory[0], POCKETS[3]))
-    ok("%s: LinuxCNC's memory agrees with the file, the spindle's T3 keeps P%d" % (what, POCKETS[3]))
+    ok("%s: LinuxCNC's memory agrees with the file (%.2f s after the file's last change, the file"
+       " standing 1 s), the spindle's T3 keeps P%d" % (what, table["agreed_after"], POCKETS[3]))
     return lines
 
 

@@ -223,6 +223,21 @@ TEST(OperatorWatch, shouldEndCancelledWhenAnotherInvocationCancels) {
   EXPECT_EQ(watch.observe(status, {1, false, false, false}).outcome, OperatorOutcome::cancelled);
 }
 
+TEST(OperatorWatch, shouldEndFailedWhenTheFlowSaidAnErrorAndEndedIdle) {
+  StatusWords status;
+  status.state = 1;
+  OperatorWatch watch({Action::load, 1}, true, 0);
+  status = said(status, 3, 2, {{"info", "probing tool 1"}});
+  EXPECT_FALSE(watch.observe(status, {3, false, true, false}).outcome);
+  status = said(
+      status, 1, 0,
+      {{"error", "probe: tool 1 did not touch the sensor before probe_limit; nothing written"}});
+  const auto turn = watch.observe(status, {1, false, false, false});
+  EXPECT_EQ(turn.outcome, OperatorOutcome::failed);
+  EXPECT_EQ(operator_exit_status(*turn.outcome), 7);
+  EXPECT_STREQ(outcome_word(*turn.outcome), "failed");
+}
+
 TEST(OperatorWatch, shouldEndInFaultWhenTheChangerFaults) {
   StatusWords status;
   status.state = 1;

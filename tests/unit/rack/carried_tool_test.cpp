@@ -69,6 +69,10 @@ TEST(KeepoutLength, shouldTakeTheTablesLengthOnlyWhereItIsOneBelowTheNose) {
   EXPECT_DOUBLE_EQ(lengths.of(4, {{4, 85.0}}).length, 85.0) << "the measurement, longer";
   EXPECT_EQ(lengths.of(4, {{4, 85.0}}).source, LengthSource::measured);
   EXPECT_DOUBLE_EQ(lengths.of(1, {{1, 29.9}}).length, 30.0) << "the table's, longer";
+  // The table's six decimals of the changer's own measurement: the same length.
+  lengths.table[5] = 24.9983;
+  EXPECT_EQ(lengths.of(5, {{5, 24.998300000003056}}).source, LengthSource::table);
+  EXPECT_EQ(keepout_length_words(top_rack(), lengths, 5, {{5, 24.998300000003056}}), "");
 }
 
 TEST(KeepoutLength, shouldSayWhatItCountsWhereTheTablesZIsNoLength) {
