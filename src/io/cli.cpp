@@ -266,6 +266,7 @@ int check(const Options& options, std::ostream& out, std::ostream& err) {
       << format_point(config.loading.x, config.loading.y, config.loading.z) << "\n";
   out << "probe_limit           "
       << format_point(config.probe_limit.x, config.probe_limit.y, config.probe_limit.z) << "\n";
+  if (const auto note = loading_note(config)) out << *note << "\n";
   for (const auto& [number, pocket] : config.pockets) {
     const auto w = pocket_waypoints(config, number);
     const std::string name = "pocket " + std::to_string(number);

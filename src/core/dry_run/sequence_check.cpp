@@ -1,6 +1,8 @@
 #include "sequence_check.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 
 namespace fatc {
 
@@ -78,6 +80,19 @@ SequencesChecked check_sequences(const Config& config, const std::optional<SoftL
         from_safe(in_spindle, [number](Changer& c) { c.verify(number); }));
   }
   return checked;
+}
+
+std::optional<std::string> loading_note(const Config& config) {
+  const double off = std::hypot(config.loading.x - config.probe_limit.x,
+                                config.loading.y - config.probe_limit.y);
+  if (off <= (config.units == Units::inch ? 0.04 : 1.0)) return std::nullopt;
+  char where[160];
+  std::snprintf(where, sizeof where,
+                "loading X%.3f Y%.3f is not over the touch-off sensor (probe_limit X%.3f Y%.3f)",
+                config.loading.x, config.loading.y, config.probe_limit.x, config.probe_limit.y);
+  return std::string("note: ") + where + ", " + format_length(config, off) +
+         " off: a load measures straight down from loading, so each load needs a jog over the "
+         "sensor at its second prompt; set loading's x and y to probe_limit's to spare it";
 }
 
 std::vector<std::string> carried_tools(const Config& config, const ToolLengths& lengths,

@@ -79,6 +79,12 @@ std::vector<std::string> carried_tools(const Config& config, const ToolLengths& 
                                        const std::map<int, double>& measured,
                                        const SequencesChecked& checked);
 
+/// What --check notes when `loading` is not over the touch-off sensor
+/// (`probe_limit`'s X, Y, within 1 mm or 0.04 inch): a load measures straight
+/// down from where the operator put the tool in, so each load would need a
+/// jog over the sensor first. Nothing when it is.
+std::optional<std::string> loading_note(const Config& config);
+
 /// The tool lengths of the tool table `table` (by tool), with the longest
 /// the config allows for those it gives no length of.
 ToolLengths carried_lengths(const Config& config, const std::optional<SoftLimits>& limits,

@@ -90,6 +90,23 @@ TEST(KeepoutLength, shouldSayWhatItCountsWhereTheTablesZIsNoLength) {
             std::string::npos);
 }
 
+TEST(LoadingNote, shouldSayWhenLoadingIsNotOverTheTouchOffSensor) {
+  Config config = top_rack();
+  config.loading.x = config.probe_limit.x + 0.5;
+  config.loading.y = config.probe_limit.y;
+  EXPECT_FALSE(loading_note(config)) << "within 1 mm: over it";
+  config.loading = {20.0, 150.0, -10.0};
+  config.probe_limit = {300.0, 300.0, -90.0};
+  const auto note = loading_note(config);
+  ASSERT_TRUE(note);
+  EXPECT_EQ(note->rfind("note: loading X20.000 Y150.000 is not over the touch-off sensor "
+                        "(probe_limit X300.000 Y300.000), 317.6476 mm off: a load measures "
+                        "straight down from loading",
+                        0),
+            0u)
+      << *note;
+}
+
 // ---------------------------------------------------------------- one move
 
 TEST(TipRoom, shouldBeTheNosesLowestHeightOverAColumnLessItsHoldersTop) {
