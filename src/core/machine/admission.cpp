@@ -14,7 +14,10 @@ std::optional<std::string> why_spindle_cannot_be_emptied(const Context& ctx, boo
   const auto pocket = ctx.return_pocket(held);
   if (!pocket) {
     if (hand_out) return std::nullopt;
-    return tool_name(held) + " in the spindle has no pocket to go to; unload it first";
+    // A load whose probe missed leaves its tool so: loading it again measures
+    // it into a pocket.
+    return tool_name(held) + " in the spindle has no pocket to go to; unload it, or load " +
+           tool_name(held) + " again to measure it into a pocket";
   }
   if (ctx.tools.holds(*pocket)) {
     return "pocket " + std::to_string(*pocket) + " is recorded full, yet " + tool_name(held) +

@@ -469,7 +469,7 @@ INSTANTIATE_TEST_SUITE_P(Each, RefusedLoad, ::testing::Values(
   LoadRefusal{"no_pocket", 0, {}, 9, "no pocket for tool 9: every pocket holds a tool; unload one first"},
   LoadRefusal{"zero", 0, {}, 0, "load needs a tool number above 0, got 0"},
   LoadRefusal{"already_in_rack", 0, {}, 3, "tool 3 is already in pocket 3; unload it first"},
-  LoadRefusal{"spindle_tool_homeless", 9, {3}, 3, "tool 9 in the spindle has no pocket to go to; unload it first"}
+  LoadRefusal{"spindle_tool_homeless", 9, {3}, 3, "tool 9 in the spindle has no pocket to go to; unload it, or load tool 9 again to measure it into a pocket"}
 ));
 // clang-format on
 
