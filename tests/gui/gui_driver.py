@@ -206,6 +206,7 @@ def pin(name, value):
 
 
 def run():
+    screen.gui_up()
     Accessible.connect()
     wait_for(panel_ready, 120, "the panel's buttons over AT-SPI")
     # A GUI that shows each message itself reads them: left to it, as to an operator's.

@@ -15,6 +15,9 @@ class Axis:
     read the same message channel (see said_or_shown)."""
     reads_messages = True
 
+    def gui_up(self):
+        pass
+
     def machine_on(self):
         pass
 
@@ -35,6 +38,9 @@ class Gmoccapy:
     """The panel on the right of gmoccapy's main screen (box_right); each
     message in a popup of gmoccapy's."""
     reads_messages = False
+
+    def gui_up(self):
+        pass
 
     def app(self):
         return application("gmoccapy")
@@ -104,9 +110,21 @@ class QtDragon:
         app = application("qtvcp")
         return app and next((w for w in app.children() if w.label() == "QTvcp-Screen-" + self.screen), None)
 
+    def gui_up(self):
+        """qtdragon's window on the screen. Only then may the driver join the
+        accessibility bus: where the driver started that bus before Qt had
+        joined it, qtvcp never showed up in AT-SPI (4 of 4 runs with the bus
+        started first, 1 of about 8 where the driver was quicker)."""
+        wait_for(lambda: windows_of("qtvcp"), 120, "%s's window" % self.screen)
+
     def machine_on(self):
-        wait_for(lambda: self.frame() is not None and self.frame().extents()[2] > 0, 120,
-                 "%s's window over AT-SPI" % self.screen)
+        try:
+            wait_for(lambda: self.frame() is not None and self.frame().extents()[2] > 0, 120,
+                     "%s's window over AT-SPI" % self.screen)
+        except TimeoutError:
+            app = application("qtvcp")
+            raise TimeoutError("no %s window over AT-SPI; qtvcp's: %s" % (
+                self.screen, app and [(w.role(), w.label(), w.extents()) for w in app.children()]))
 
     def show_panel(self):
         user = self.frame().find("check box", "USER")  # qtdragon's page buttons are checkable
