@@ -75,44 +75,38 @@ std::optional<OperatorRequest> parse_operator_action(const std::string& text, st
   return std::nullopt;
 }
 
-int operator_exit_status(OperatorOutcome outcome) {
-  switch (outcome) {
-    case OperatorOutcome::done:
-      return 0;
-    case OperatorOutcome::refused:
-      return 1;
-    case OperatorOutcome::fault:
-      return 3;
-    case OperatorOutcome::cancelled:
-      return 4;
-    case OperatorOutcome::timeout:
-      return 5;
-    case OperatorOutcome::not_running:
-      return 6;
-    case OperatorOutcome::failed:
-      return 7;
+namespace {
+
+/// Each outcome once: its exit status and the last line's first word.
+struct OutcomeDeclaration {
+  OperatorOutcome outcome;
+  int status;
+  const char* word;
+};
+constexpr OutcomeDeclaration kOutcomes[] = {
+    {OperatorOutcome::done, 0, "done"},           {OperatorOutcome::refused, 1, "refused"},
+    {OperatorOutcome::fault, 3, "fault"},         {OperatorOutcome::cancelled, 4, "cancelled"},
+    {OperatorOutcome::timeout, 5, "timeout"},     {OperatorOutcome::not_running, 6, "not running"},
+    {OperatorOutcome::failed, 7, "failed"},
+};
+
+const OutcomeDeclaration* declaration_of(OperatorOutcome outcome) {
+  for (const auto& declared : kOutcomes) {
+    if (declared.outcome == outcome) return &declared;
   }
-  return 2;
+  return nullptr;
+}
+
+}  // namespace
+
+int operator_exit_status(OperatorOutcome outcome) {
+  const auto* declared = declaration_of(outcome);
+  return declared ? declared->status : 2;
 }
 
 const char* outcome_word(OperatorOutcome outcome) {
-  switch (outcome) {
-    case OperatorOutcome::done:
-      return "done";
-    case OperatorOutcome::refused:
-      return "refused";
-    case OperatorOutcome::fault:
-      return "fault";
-    case OperatorOutcome::cancelled:
-      return "cancelled";
-    case OperatorOutcome::timeout:
-      return "timeout";
-    case OperatorOutcome::not_running:
-      return "not running";
-    case OperatorOutcome::failed:
-      return "failed";
-  }
-  return "?";
+  const auto* declared = declaration_of(outcome);
+  return declared ? declared->word : "?";
 }
 
 Press press_of(const OperatorRequest& request, std::optional<int> into, std::optional<int> spindle,

@@ -49,29 +49,30 @@ class Accessible:
         except GLib.Error:
             return []
 
-    def role(self):
+    def answer(self, *args):
+        """call()'s first value, "" for a node gone while the tree is walked
+        (as in children())."""
         try:
-            return self.call("org.a11y.atspi.Accessible", "GetRoleName")[0]
-        except GLib.Error:  # gone meanwhile, as in children()
-            return ""
-
-    def label(self):
-        try:
-            return self.call("org.freedesktop.DBus.Properties", "Get",
-                             GLib.Variant("(ss)", ("org.a11y.atspi.Accessible", "Name")))[0]
+            return self.call(*args)[0]
         except GLib.Error:
             return ""
+
+    def role(self):
+        return self.answer("org.a11y.atspi.Accessible", "GetRoleName")
+
+    def named_property(self, name):
+        return self.answer("org.freedesktop.DBus.Properties", "Get",
+                           GLib.Variant("(ss)", ("org.a11y.atspi.Accessible", name)))
+
+    def label(self):
+        return self.named_property("Name")
+
+    def description(self):
+        return self.named_property("Description")
 
     def text(self):
         """What a text widget holds (a label's words are its label())."""
         return self.call("org.a11y.atspi.Text", "GetText", GLib.Variant("(ii)", (0, -1)))[0]
-
-    def description(self):
-        try:
-            return self.call("org.freedesktop.DBus.Properties", "Get",
-                             GLib.Variant("(ss)", ("org.a11y.atspi.Accessible", "Description")))[0]
-        except GLib.Error:
-            return ""
 
     def sensitive(self):
         low, _ = self.call("org.a11y.atspi.Accessible", "GetState")[0]
