@@ -161,15 +161,16 @@ std::string plural(std::size_t n, const std::string& one, const std::string& man
 
 void print_rows(const Preflight& checked, std::ostream& out) {
   if (checked.rows.empty()) return;
-  out << "\n  #  line      code          where                                 length"
-         "                          time\n";
+  out << "\n  #  line      code          where                                 rule"
+         "                                  length                          time\n";
   for (std::size_t i = 0; i < checked.rows.size() && i < kMaxRows; ++i) {
     const PreflightRow& row = checked.rows[i];
     const int line = row.use.where.line;
     char number[16];
     std::snprintf(number, sizeof number, "%3zu  ", i + 1);
     out << number << padded(line > 0 ? std::to_string(line) : "-", 10) << padded(row.code, 14)
-        << padded(row.where, 38) << padded(row.length, 32)
+        << padded(row.where, 38) << padded(row.rule.empty() ? "-" : row.rule, 38)
+        << padded(row.length, 32)
         << (row.seconds ? seconds_text(*row.seconds) : "-") << "\n";
   }
   if (checked.rows.size() > kMaxRows) {
@@ -328,6 +329,7 @@ int lint(const Options& options, std::ostream& out, std::ostream& err) {
   if (first_change != run->uses.end()) carried.longest = longest_carried(config, sequences_checked());
   input.lengths = std::move(carried);
   input.lengths_set = keepout.lengths_set();
+  input.spindle_starts = run->spindle_starts;
   const Preflight checked = preflight(run->uses, input);
 
   std::vector<program::Finding> problems = run->problems;

@@ -12,6 +12,7 @@
 #include "rack_volume.hpp"
 #include "json_text.hpp"
 #include "reader.hpp"
+#include "tool_rules.hpp"
 
 namespace fatc {
 namespace {
@@ -189,11 +190,9 @@ void read_choice(Reader& reader, const Json& root, const char* key,
 }
 
 void read_probe_after_change(Reader& reader, const Json& root, Config& config) {
-  read_choice(
-      reader, root, "probe_after_change",
-      {std::pair{"off", ProbeAfterChange::off}, std::pair{"measure", ProbeAfterChange::measure},
-       std::pair{"check", ProbeAfterChange::check}},
-      config.probe_after_change);
+  if (const auto rule = read_rule(reader, root, "", "probe_after_change")) {
+    config.probe_after_change = *rule;
+  }
   config.probe_check_tolerance =
       reader.declared(root, "", "probe_check_tolerance");
 }
@@ -513,6 +512,7 @@ ConfigResult parse_config(const std::string& json_text) {
   config.rack_keepout_above = reader.declared(root, "", "rack_keepout_above");
 
   read_probe_after_change(reader, root, config);
+  read_tools(reader, root, config);
   read_choice(reader, root, "path",
               {std::pair{"prototype", Path::prototype}, std::pair{"direct", Path::direct}},
               config.path);
@@ -529,6 +529,7 @@ ConfigResult parse_config(const std::string& json_text) {
 
   // Relations between keys only mean something once every key read cleanly.
   if (reader.count() == 0) check_geometry(reader, config);
+  if (reader.count() == 0) check_tools(reader, config);
   if (reader.count() == 0) {
     result.config = config;
   } else {

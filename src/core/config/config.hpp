@@ -13,11 +13,28 @@ namespace fatc {
 
 enum class Units { mm, inch };
 
-/// What M6 does with the tool it just put in the spindle.
-enum class ProbeAfterChange {
-  off,      ///< nothing
-  measure,  ///< measure it and write its length
-  check,    ///< measure it and fault if it differs from the stored length
+/// When the changer measures a tool on the touch-off sensor: a tool's own
+/// `tools.N.measure`, else `probe_after_change`.
+enum class MeasureRule {
+  off,       ///< M6 measures nothing; a load and measure all do
+  always,    ///< after every change into the spindle, and at a load ("measure" of old)
+  when_new,  ///< "new": M6 measures it only when the changer never measured it; a load does
+  never,     ///< never touches the sensor: its length in LinuxCNC's tool table is trusted
+  check,     ///< M6 re-touches it and faults when it differs from its stored length
+};
+
+/// What a tool is (`tools.N.kind`).
+enum class ToolKind {
+  cutter,  ///< turns in the spindle
+  probe,   ///< a touch probe: the spindle is held while it is in it
+};
+
+/// `tools.N`: what config.json says of one tool; the tool table stays LinuxCNC's.
+struct ToolConfig {
+  ToolKind kind = ToolKind::cutter;
+  std::optional<MeasureRule> measure;         ///< unset: probe_after_change
+  std::optional<double> check_tolerance;      ///< unset: probe_check_tolerance
+  std::optional<double> probe_feed;           ///< caps both probing stages; unset: a probe's is probe_latch_feed
 };
 
 /// Which way the sequences go between the rack and `safe` (`path`).
@@ -87,7 +104,7 @@ struct Config {
   std::optional<double> rack_keepout_margin;  ///< unset: half the side offset
   bool rack_keepout_all_motion = true;        ///< the realtime guard keeps all motion out
   std::optional<double> rack_keepout_above;   ///< unset: 5 mm or 0.2 inch
-  ProbeAfterChange probe_after_change = ProbeAfterChange::off;
+  MeasureRule probe_after_change = MeasureRule::off;  ///< every tool's rule but its own
   std::optional<double> probe_check_tolerance;  ///< unset: 0.1 mm or 0.004 inch
   bool manual_tools = true;             ///< M6 to a tool without pocket hands it over at `loading`
   SensorConfig sensors;                 ///< all off unless config.json says they are wired
@@ -97,6 +114,7 @@ struct Config {
   bool air_blast = false;  ///< `air-blast` cleans the taper while the chuck is open at a pocket
   std::optional<double> verify_feed;  ///< unset: pocket_feed
   Path path = Path::prototype;
+  std::map<int, ToolConfig> tools;  ///< tool number -> what `tools` says of it
 
   bool has_pocket(int number) const { return pockets.count(number) != 0; }
   /// The pocket that holds `tool` at first start, if any.
@@ -117,6 +135,13 @@ struct Config {
   /// How far above the holders' tops the rack's volume reaches.
   double keepout_above() const;
   double check_tolerance() const;
+  /// `tool`'s measuring rule, its kind, its check tolerance and its feeds on
+  /// the sensor: its own where `tools` gives them, else the config's.
+  MeasureRule rule_of(int tool) const;
+  bool is_probe(int tool) const;
+  double check_tolerance_of(int tool) const;
+  double seek_feed_of(int tool) const;
+  double latch_feed_of(int tool) const;
   /// How far from its stored length a tool may first touch the sensor in a
   /// probe after M6: a touch outside stops the probe.
   double window() const;
@@ -139,6 +164,17 @@ const char* units_name(Units units);
 /// units to the mm (LinuxCNC's linear units: 1 mm, 1/25.4 inch).
 double machine_per_unit(Units units, double machine_per_mm);
 const char* approach_name(Approach approach);
+/// The word config.json uses: "always", "new", ...
+const char* rule_name(MeasureRule rule);
+/// Where `tool`'s rule comes from, for a message: `tools.7.measure is "never"`,
+/// `probe_after_change is "off"`.
+std::string rule_said(const Config& config, int tool);
+/// Whether M6 measures `tool` after putting it in the spindle, by its rule;
+/// `measured`: the changer has a length of it.
+bool measures_after_change(const Config& config, int tool, bool measured);
+/// What the changer does with `tool` at a change, in a few words for --lint
+/// and the panel: "measured", "checked ±0.050", "probe, spindle held, measured if new".
+std::string rule_words(const Config& config, int tool);
 /// A length for a message, with the config's unit: "25.0012 mm".
 std::string format_length(const Config& config, double length);
 

@@ -124,9 +124,15 @@ const std::vector<KeyDeclaration> kKeys = {
    "the second, slow probing stage: it sets the accuracy"},
   {"probe_backoff", stated(kStart.probe_backoff) + " (sample: 0.5)", kOffset, "",
    "lift above the first touch before the slow stage"},
-  {"probe_after_change", "`\"off\"`", {}, "`\"off\"`, `\"measure\"`, `\"check\"`",
-   "after M6: nothing, measure the new tool and write its length, or measure it and fault when "
-   "it differs from the stored length (measuring after M6)"},
+  {"probe_after_change", "`\"off\"`", {},
+   "`\"off\"`, `\"always\"`, `\"new\"`, `\"never\"`, `\"check\"`; `\"measure\"` is the older "
+   "word for `\"always\"`",
+   "every tool's measuring rule unless `tools` gives its own. After M6: `\"off\"` measures "
+   "nothing; `\"always\"` measures the new tool and writes its length; `\"new\"` only a tool the "
+   "changer never measured; `\"check\"` measures it and faults when it differs from the stored "
+   "length (a tool never measured is measured). A load and measure all measure every tool but a "
+   "`\"never\"` one, which nothing takes to the sensor: its length in LinuxCNC's tool table is "
+   "trusted (measuring after M6)"},
   {"probe_check_tolerance", "0.1 mm, 0.004 inch", kTolerance, "below `probe_window`",
    "how far a checked length may be from the stored one"},
   {"probe_window", "10 mm, 0.4 inch", kOffset, "above `probe_check_tolerance`",
@@ -189,6 +195,21 @@ const std::vector<KeyDeclaration> kKeys = {
   {"rack_cover.timeout_seconds", stated(kCover.timeout_seconds), kTimeout, "", "how long a wired cover sensor may take"},
   {"air_blast", "`false`", {}, kBoolean,
    "drive `air-blast` while the chuck is open at a pocket with the spindle empty"},
+  {"tools", "`{}`", {}, "an object of tool numbers, each an object of the keys below",
+   "what a tool is and how it is measured, where it differs from the rest; lengths stay in "
+   "LinuxCNC's tool table"},
+  {"tools.N.kind", "`\"cutter\"`", {}, "`\"cutter\"`, `\"probe\"`",
+   "`\"probe\"`: a touch probe. While it is in the spindle `fatc-spindle-guard` holds the "
+   "spindle still (M3, M4 from anywhere; the component aborts them and says why) and routes "
+   "the probe's input to `motion.probe-input`"},
+  {"tools.N.measure", "`probe_after_change`", {}, "as `probe_after_change`",
+   "this tool's measuring rule"},
+  {"tools.N.check_tolerance", "`probe_check_tolerance`", kTolerance,
+   "below `probe_window`; only with the rule `\"check\"`",
+   "how far this tool's checked length may be from its stored one"},
+  {"tools.N.probe_feed", "a probe: `probe_latch_feed`; else none", kFeed, "",
+   "the most either probing stage moves this tool on the sensor: a probe's stylus or a spring "
+   "tool touches slowly"},
 };
 // clang-format on
 
@@ -209,12 +230,14 @@ std::vector<std::string> expand(const std::string& path) {
   return paths;
 }
 
-/// "pockets.7.x" as declared: "pockets.N.x".
+/// "pockets.7.x" as declared: "pockets.N.x"; "tools.7.kind": "tools.N.kind".
 std::string pattern_of(const std::string& path) {
-  const std::string prefix = "pockets.";
-  if (path.rfind(prefix, 0) != 0) return path;
-  const auto dot = path.find('.', prefix.size());
-  return prefix + "N" + (dot == std::string::npos ? "" : path.substr(dot));
+  for (const std::string prefix : {"pockets.", "tools."}) {
+    if (path.rfind(prefix, 0) != 0) continue;
+    const auto dot = path.find('.', prefix.size());
+    return prefix + "N" + (dot == std::string::npos ? "" : path.substr(dot));
+  }
+  return path;
 }
 
 std::string unit_words(const Range& range) {

@@ -45,9 +45,9 @@ struct LoadPocket {
 };
 LoadPocket choose_load_pocket(const Context& ctx, int tool, int asked);
 /// The tools of `asked` that measure all can fetch (in the rack, or in the
-/// spindle with a pocket to go to), in order, once each; `skipped` names the
-/// others (measure_all_flow.cpp).
+/// spindle with a pocket to go to), in order, once each; `never` names those
+/// whose rule is "never", `skipped` the others (measure_all_flow.cpp).
 std::vector<int> measurable_tools(const Context& ctx, const std::vector<int>& asked,
-                                  std::string& skipped);
+                                  std::string& skipped, std::string& never);
 
 }  // namespace fatc

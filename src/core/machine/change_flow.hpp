@@ -17,7 +17,7 @@ namespace fatc::machine {
 /// chuck closed, until it stands (within spindle_stop_timeout_seconds of the
 /// end of those moves); then empty the spindle (its tool back to its pocket,
 /// or handed out), fetch the requested tool (from its pocket, or handed in),
-/// and measure it if `probe_after_change` asks. docs/sequences.md#m6.
+/// and measure it if its measuring rule asks (`tools`, `probe_after_change`). docs/sequences.md#m6.
 struct ChangeFlow_ : Flow<ChangeFlow_> {
   /// The requested tool is in the rack: a fetch follows the return.
   static bool fetch_follows_return(const Context& c) {
@@ -66,10 +66,13 @@ struct ChangeFlow_ : Flow<ChangeFlow_> {
       }
     }
   };
+  /// The requested tool's measuring rule asks for it (`tools`, `probe_after_change`).
   struct ProbesAfterChange {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      return fsm.ctx->config.probe_after_change != ProbeAfterChange::off;
+      const Context& c = *fsm.ctx;
+      return measures_after_change(c.config, c.request.tool,
+                                   c.tools.lengths.count(c.request.tool) != 0);
     }
   };
 

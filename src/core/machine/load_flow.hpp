@@ -10,7 +10,8 @@ namespace fatc::machine {
 
 // ================================================================ load and probe
 /// The operator loads a tool by hand at `loading`; it is measured on the
-/// sensor and put away in its pocket. docs/sequences.md#load-and-probe.
+/// sensor (unless its rule is "never") and put away in its pocket.
+/// docs/sequences.md#load-and-probe.
 struct LoadFlow_ : Flow<LoadFlow_> {
 
   int load_pocket = 0;  ///< the pocket the loaded tool goes into (PutAway)
@@ -41,13 +42,22 @@ struct LoadFlow_ : Flow<LoadFlow_> {
     }
   };
 
+  /// Its rule lets nothing take it to the sensor: LinuxCNC's tool table has its length.
+  struct MeasuredAtLoad {
+    template <class Event, class Fsm, class Source, class Target>
+    bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      return fsm.ctx->config.rule_of(fsm.ctx->request.tool) != MeasureRule::never;
+    }
+  };
   /// "tool 3 measured 29.998 mm, in pocket 3": a finished load says what it did.
   struct SayLoaded {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       const Context& c = *fsm.ctx;
-      char length[64] = "";
-      if (c.activity.last_length) {
+      char length[96] = "";
+      if (c.config.rule_of(c.request.tool) == MeasureRule::never) {
+        std::snprintf(length, sizeof length, " not measured (\"never\": LinuxCNC's tool table length),");
+      } else if (c.activity.last_length) {
         std::snprintf(length, sizeof length, " measured %.3f %s,", *c.activity.last_length,
                       units_name(c.config.units));
       }
@@ -72,10 +82,12 @@ struct LoadFlow_ : Flow<LoadFlow_> {
   Row < DecidingToReturn                 , none            , ToLoading         , none        , Not<SpindleHoldsOtherTool>  >,
   Row < Returning::exit_pt<Finished>     , LegDone         , ToLoading         , none        , none                        >,
   Row < ToLoading                        , InPosition      , Inserting         , none        , Not<RequestedToolInSpindle> >,
-  Row < ToLoading                        , InPosition      , AwaitingProbe     , none        , RequestedToolInSpindle      >,
+  Row < ToLoading                        , InPosition      , AwaitingProbe     , none        , And<RequestedToolInSpindle, MeasuredAtLoad> >,
+  Row < ToLoading                        , InPosition      , PuttingAway       , none        , And<RequestedToolInSpindle, Not<MeasuredAtLoad>> >,
   Row < Inserting::exit_pt<Finished>     , LegDone         , ReportingTool     , none        , none                        >,
   Row < Inserting::exit_pt<Cancelled>    , LegDone         , ReportingFinalTool, SayCancelled, none                        >,
-  Row < ReportingTool                    , CommandDone     , AwaitingProbe     , none        , none                        >,
+  Row < ReportingTool                    , CommandDone     , AwaitingProbe     , none        , MeasuredAtLoad              >,
+  Row < ReportingTool                    , CommandDone     , PuttingAway       , none        , Not<MeasuredAtLoad>         >,
   Row < AwaitingProbe                    , OperatorContinue, Probe             , none        , none                        >,
   Row < AwaitingProbe                    , OperatorCancel  , ReportingFinalTool, SayCancelled, none                        >,
   Row < Probe::exit_pt<Finished>         , LegDone         , PuttingAway       , none        , none                        >,

@@ -14,12 +14,14 @@
 namespace fatc {
 
 std::vector<int> measurable_tools(const Context& ctx, const std::vector<int>& asked,
-                                  std::string& skipped) {
+                                  std::string& skipped, std::string& never) {
   std::vector<int> tools;
   for (const int tool : asked) {
     if (std::find(tools.begin(), tools.end(), tool) != tools.end()) continue;
     const bool in_spindle = tool != 0 && tool == ctx.tools.spindle && ctx.return_pocket(tool);
-    if (ctx.tools.pocket_holding(tool) || in_spindle) {
+    if (ctx.config.rule_of(tool) == MeasureRule::never) {
+      never += (never.empty() ? "" : ", ") + ("T" + std::to_string(tool));
+    } else if (ctx.tools.pocket_holding(tool) || in_spindle) {
       tools.push_back(tool);
     } else if (tool != 0) {
       skipped += (skipped.empty() ? "" : ", ") + ("T" + std::to_string(tool));
@@ -40,9 +42,11 @@ std::optional<std::string> why_not_measure(const Context& ctx, const std::vector
   if (!ctx.spindle_at_standstill()) return std::string("the spindle is turning; stop it first");
   if (auto air = why_no_air(ctx)) return air;
   std::string skipped;
-  if (measurable_tools(ctx, asked, skipped).empty()) {
+  std::string never;
+  if (measurable_tools(ctx, asked, skipped, never).empty()) {
     return "no tool to measure in the rack" +
-           (skipped.empty() ? std::string() : " (not in the rack: " + skipped + ")");
+           (skipped.empty() ? std::string() : " (not in the rack: " + skipped + ")") +
+           (never.empty() ? std::string() : " (never measured: " + never + ")");
   }
   return why_spindle_cannot_be_emptied(ctx, false);
 }

@@ -32,9 +32,14 @@ struct MeasureAllFlow_ : Flow<MeasureAllFlow_> {
     Flow::on_entry(e, parent);
     if constexpr (std::is_same_v<Event, MeasureRequest>) {
       std::string skipped;
-      batch = {measurable_tools(*ctx, e.tools, skipped), 0, false, {}, {}};
+      std::string never;
+      batch = {measurable_tools(*ctx, e.tools, skipped, never), 0, false, {}, {}};
       if (!skipped.empty()) {
         ctx->tell(MessageKind::info, "measure all skips what is not in the rack: " + skipped);
+      }
+      if (!never.empty()) {
+        ctx->tell(MessageKind::info, "measure all skips what is never measured (\"never\": "
+                                     "LinuxCNC's tool table length): " + never);
       }
     }
   }

@@ -33,14 +33,14 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
 
   struct Seek {
     template <class Leg>
-    Step operator()(const Context& c, const Leg&) const {
-      return plan::probe_seek(c.config);
+    Step operator()(const Context& c, const Leg& leg) const {
+      return plan::probe_seek(c.config, leg.tool);
     }
   };
   struct Latch {
     template <class Leg>
-    Step operator()(const Context& c, const Leg&) const {
-      return plan::probe_latch(c.config);
+    Step operator()(const Context& c, const Leg& leg) const {
+      return plan::probe_latch(c.config, leg.tool);
     }
   };
   struct Length {
@@ -53,7 +53,7 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
   struct BackingOff : Walking<BackingOff> {
     template <class Leg>
     static plan::Route route(const Context& c, const Leg& leg) {
-      return {plan::probe_back_off(c.config, leg.first_touch_z)};
+      return {plan::probe_back_off(c.config, leg.tool, leg.first_touch_z)};
     }
   };
   struct Latching : Probing<Latch> {};
@@ -93,7 +93,7 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       const Context& c = *fsm.ctx;
-      return !c.request.in_program || c.config.probe_after_change != ProbeAfterChange::check ||
+      return !c.request.in_program || c.config.rule_of(fsm.tool) != MeasureRule::check ||
              c.tools.lengths.count(fsm.tool) == 0;
     }
   };
@@ -184,17 +184,26 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
 using ProbingLeg = Machine_of<ProbingLeg_>;
 
 // ================================================================ measure after M6
-/// `probe_after_change`: takes the tool just put in the spindle to the sensor
-/// and measures it, or checks it against its stored length; ends at safe Z.
+/// A measuring rule after M6 (`tools`, `probe_after_change`): takes the tool
+/// just put in the spindle to the sensor and measures it, or checks it
+/// against its stored length; ends at safe Z.
 struct MeasureLeg_ : Flow<MeasureLeg_> {
   using Probe = ProbingLeg;
+
+  /// Where the tolerance of `tool` comes from, for the fault's words.
+  static std::string tolerance_name(const Config& config, int tool) {
+    const auto own = config.tools.find(tool);
+    return own != config.tools.end() && own->second.check_tolerance
+               ? "tools." + std::to_string(tool) + ".check_tolerance"
+               : std::string("probe_check_tolerance");
+  }
 
   struct LengthDiffers {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       const Context& c = *fsm.ctx;
       return std::abs(*c.activity.last_length - c.tools.lengths.at(fsm.tool)) >
-             c.config.check_tolerance();
+             c.config.check_tolerance_of(fsm.tool);
     }
   };
   struct SayMeasured {
@@ -214,8 +223,12 @@ struct MeasureLeg_ : Flow<MeasureLeg_> {
       c.activity.fault_reason =
           "tool " + std::to_string(fsm.tool) + " measures " +
           format_length(c.config, *c.activity.last_length) + " but its stored length is " +
-          format_length(c.config, c.tools.lengths.at(fsm.tool)) + " (probe_check_tolerance " +
-          format_length(c.config, c.config.check_tolerance()) + "): tool broken or pulled out?";
+          format_length(c.config, c.tools.lengths.at(fsm.tool)) + ", " +
+          format_length(c.config, std::abs(*c.activity.last_length - c.tools.lengths.at(fsm.tool))) +
+          (*c.activity.last_length < c.tools.lengths.at(fsm.tool) ? " shorter" : " longer") +
+          " (" + tolerance_name(c.config, fsm.tool) + " " +
+          format_length(c.config, c.config.check_tolerance_of(fsm.tool)) +
+          "): tool broken or pulled out?";
     }
   };
   struct SayNotMeasured {
@@ -223,7 +236,8 @@ struct MeasureLeg_ : Flow<MeasureLeg_> {
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       fsm.ctx->activity.fault_reason =
           "tool " + std::to_string(fsm.tool) +
-          " could not be measured after the change (probe_after_change): " +
+          " could not be measured after the change (" + rule_said(fsm.ctx->config, fsm.tool) +
+          "): " +
           fsm.template get_state<Probe&>().problem;
     }
   };

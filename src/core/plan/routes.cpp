@@ -97,18 +97,18 @@ Step loading_xy(const Config& c) {
 Step sensor_xy(const Config& c) {
   return move(StepKind::rapid, axis_xy, c.probe_limit, "over the touch-off sensor");
 }
-Step probe_seek(const Config& c) {
+Step probe_seek(const Config& c, int tool) {
   return move(StepKind::probe, axis_z, c.probe_limit, "touch-off sensor (seek)", 0, false,
-              c.probe_seek_feed);
+              c.seek_feed_of(tool));
 }
-Step probe_back_off(const Config& c, double first_touch_z) {
+Step probe_back_off(const Config& c, int tool, double first_touch_z) {
   Point above = c.probe_limit;
   above.z = first_touch_z + c.probe_backoff;
-  return move(StepKind::feed, axis_z, above, "back off the sensor", 0, false, c.probe_seek_feed);
+  return move(StepKind::feed, axis_z, above, "back off the sensor", 0, false, c.seek_feed_of(tool));
 }
-Step probe_latch(const Config& c) {
+Step probe_latch(const Config& c, int tool) {
   return move(StepKind::probe, axis_z, c.probe_limit, "touch-off sensor (latch)", 0, false,
-              c.probe_latch_feed);
+              c.latch_feed_of(tool));
 }
 Step retract_from_sensor(const Config& c, double latched_z) {
   Point up = c.probe_limit;

@@ -22,10 +22,10 @@ Step loading_z(const Config& c);
 Step loading_xy(const Config& c);
 /// Over the touch-off sensor, at the current Z.
 Step sensor_xy(const Config& c);
-Step probe_seek(const Config& c);
+Step probe_seek(const Config& c, int tool);
 /// Up from where the seek touched, to latch slowly from there.
-Step probe_back_off(const Config& c, double first_touch_z);
-Step probe_latch(const Config& c);
+Step probe_back_off(const Config& c, int tool, double first_touch_z);
+Step probe_latch(const Config& c, int tool);
 Step retract_from_sensor(const Config& c, double latched_z);
 /// Tells LinuxCNC (M61) what the spindle holds.
 Step spindle_tool(int tool);

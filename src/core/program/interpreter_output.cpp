@@ -132,6 +132,12 @@ void InterpreterOutput::canonical_call(std::string_view line) {
     }
     use(ToolUse::Kind::change, any_selected_ ? selected_ : std::nullopt,
         any_selected_ ? selected_line_ : line_);
+  } else if (calls(call, "START_SPINDLE_CLOCKWISE") ||
+             calls(call, "START_SPINDLE_COUNTERCLOCKWISE")) {
+    if (run_.spindle_starts.size() < kMaxToolUses) {
+      run_.spindle_starts.push_back({{program_.name, line_}, run_.uses.size(),
+                                     calls(call, "START_SPINDLE_CLOCKWISE")});
+    }
   } else if (const auto row = argument_of(call, "CHANGE_TOOL_NUMBER")) {
     std::optional<int> tool;
     if (*row >= 0 && static_cast<std::size_t>(*row) < tool_of_row_.size() && !reads_input(line_)) {

@@ -38,10 +38,14 @@ class Checker {
 
   Preflight run(const std::vector<program::ToolUse>& uses) {
     auto set = in_.lengths_set.begin();
+    auto start = in_.spindle_starts.begin();
     std::size_t ran = 0;
     for (const auto& use : uses) {
       for (; set != in_.lengths_set.end() && set->before_use <= ran && use.ran; ++set) {
         lengths_.table[set->tool] = set->length;
+      }
+      for (; start != in_.spindle_starts.end() && start->before_use <= ran && use.ran; ++start) {
+        spindle_started(*start);
       }
       ran += use.ran ? 1 : 0;
       PreflightRow row;
@@ -54,12 +58,25 @@ class Checker {
       }
       result_.rows.push_back(row);
     }
+    for (; start != in_.spindle_starts.end(); ++start) spindle_started(*start);
     return std::move(result_);
   }
 
  private:
   void problem(const program::Site& where, const std::string& text) {
     result_.problems.push_back({where, text});
+  }
+
+  /// M3 or M4 with a probe in the spindle: the guard holds it, the changer aborts.
+  void spindle_started(const program::SpindleStart& start) {
+    if (!spindle_known_ || tools_.spindle == 0 || !config_.is_probe(tools_.spindle)) return;
+    const std::string text =
+        std::string(start.clockwise ? "M3" : "M4") + " starts the spindle with " +
+        tool_word(tools_.spindle) + " in it, a probe (tools." + std::to_string(tools_.spindle) +
+        ".kind): fatc-spindle-guard holds the spindle and the changer aborts the program here";
+    if (named_.size() < program::kMaxErrors && named_.insert({start.where.line, text}).second) {
+      problem(start.where, text);
+    }
   }
 
   void change(PreflightRow& row) {
@@ -81,6 +98,7 @@ class Checker {
                              "until the fault is cleared (panel, or --confirm)");
     }
     row.length = length(use, tool);
+    if (tool != 0) row.rule = rule_words(config_, tool);
     if (spindle_known_ && tool == tools_.spindle) {
       row.where = tool == 0 ? "the spindle is empty already" : "in the spindle already";
       row.seconds = 0.0;
@@ -130,6 +148,10 @@ class Checker {
     }
     tools_.put_in_spindle(tool);
     spindle_known_ = true;
+    // Measured at this change: a "new" tool is not measured at the next.
+    if (tool != 0 && measures_after_change(config_, tool, measured(tool))) {
+      measured_here_.insert(tool);
+    }
   }
 
   void set_tool(PreflightRow& row) {
@@ -159,8 +181,9 @@ class Checker {
   /// and the change does not measure it.
   std::string length(const program::ToolUse& use, int tool) {
     if (tool == 0) return "-";
-    const bool measures = config_.probe_after_change != ProbeAfterChange::off &&
-                          use.kind == program::ToolUse::Kind::change;
+    const bool measures =
+        use.kind == program::ToolUse::Kind::change &&
+        measures_after_change(config_, tool, measured(tool));
     std::optional<std::string> stored;  // the length as the column shows it
     std::string missing;                // why there is none
     if (in_.table != nullptr) {
@@ -188,14 +211,17 @@ class Checker {
       }
     }
     if (measures) {
-      return std::string(config_.probe_after_change == ProbeAfterChange::check ? "checked"
-                                                                               : "measured") +
+      return std::string(config_.rule_of(tool) == MeasureRule::check ? "checked" : "measured") +
              " at the change" + (stored ? ", stored " + *stored : "");
     }
     if (stored) return *stored;
     if (never_measured_.insert(tool).second) {
+      const MeasureRule rule = config_.rule_of(tool);
       problem(use.where, tool_word(tool) + " was never measured: " + missing +
-                             ", and M6 measures nothing (probe_after_change is off)");
+                             ", and M6 measures nothing (" + rule_said(config_, tool) +
+                             (rule == MeasureRule::never ? ": give its length in the tool table"
+                                                         : "") +
+                             ")");
     }
     return "never measured";
   }
@@ -221,6 +247,12 @@ class Checker {
     }
   }
 
+  /// The changer has a length of `tool`: from the state file, or measured by
+  /// an earlier change of the program.
+  bool measured(int tool) const {
+    return tools_.lengths.count(tool) != 0 || measured_here_.count(tool) != 0;
+  }
+
   /// The probe touches at the stored length, or at its limit when none is known.
   double sensor_z(int tool) const {
     const auto stored = tools_.lengths.find(tool);
@@ -235,7 +267,7 @@ class Checker {
     // The same change plans the same while the pockets involved are the same.
     const auto key =
         std::make_tuple(from, to, touch, return_pocket(tools_, config_, from).value_or(0),
-                        tools_.pocket_holding(to).value_or(0));
+                        tools_.pocket_holding(to).value_or(0), measured(to));
     const auto known = plans_.find(key);
     if (known != plans_.end()) return known->second;
     // The problems the lint reports itself (a state cut off, a tool not in
@@ -245,6 +277,9 @@ class Checker {
     resolved.in_progress.reset();
     if (const auto home = resolved.home_of(to); home && to != from)
       resolved.pockets[*home].holds = true;
+    if (measured(to) && resolved.lengths.count(to) == 0) {
+      resolved.lengths[to] = touch - config_.probe_length_compensation_offset;
+    }
     const Simulator sim = plan_change_timed(config_, resolved, to, touch);
     PlannedChange planned;
     for (const Step& step : sim.steps()) {
@@ -266,7 +301,8 @@ class Checker {
   bool spindle_known_ = true;
   bool said_uncertain_ = false;
   std::set<int> never_measured_;
-  std::map<std::tuple<int, int, double, int, int>, PlannedChange> plans_;
+  std::set<int> measured_here_;  ///< tools a change of the program measured
+  std::map<std::tuple<int, int, double, int, int, bool>, PlannedChange> plans_;
   Preflight result_;
 };
 

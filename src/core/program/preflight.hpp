@@ -35,6 +35,8 @@ struct PreflightInput {
   /// before the change, in the order rs274 ran it.
   ToolLengths lengths;
   std::vector<LengthSet> lengths_set;
+  /// The program's M3 and M4: one that turns a probe (`tools.N.kind`) is a problem.
+  std::vector<program::SpindleStart> spindle_starts;
 };
 
 /// One M6 or M61 of the program, as the changer would meet it.
@@ -42,6 +44,7 @@ struct PreflightRow {
   program::ToolUse use;
   std::string code;               ///< "M6 T3", "M6", "M61 Q3"
   std::string where;              ///< "pocket 3", "manual: handed over at loading", ...
+  std::string rule;               ///< the tool's measuring rule, rule_words(): "checked ±0.050"
   std::string length;             ///< "30.0000 mm (state file)", "never measured", ...
   std::optional<double> seconds;  ///< nullopt: not estimated
 };

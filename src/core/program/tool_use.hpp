@@ -39,9 +39,17 @@ struct ToolUse {
   bool ran = true;
 };
 
+/// An M3 or M4 LinuxCNC's interpreter ran: whatever the spindle holds then turns.
+struct SpindleStart {
+  Site where;
+  std::size_t before_use = 0;  ///< how many tool uses the interpreter ran before it
+  bool clockwise = true;       ///< M3; false: M4
+};
+
 /// What LinuxCNC's interpreter made of a program.
 struct InterpreterRun {
   std::vector<ToolUse> uses;
+  std::vector<SpindleStart> spindle_starts;  ///< at most kMaxToolUses
   std::vector<Finding> problems;  ///< where the interpreter stopped, or the run was cut short
   std::vector<Finding> unknowns;  ///< what only the running machine knows
   std::size_t uses_not_kept = 0;  ///< tool uses beyond kMaxToolUses, counted only

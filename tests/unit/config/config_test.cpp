@@ -49,7 +49,7 @@ TEST(Config, shouldApplyDocumentedDefaultsToNewKeys) {
   EXPECT_EQ(c.spindle_stop_timeout_seconds, 10.0);
   EXPECT_FALSE(c.rack_keepout_margin);
   EXPECT_EQ(c.keepout_margin(), 20.0) << "half the side offset";
-  EXPECT_EQ(c.probe_after_change, ProbeAfterChange::off);
+  EXPECT_EQ(c.probe_after_change, MeasureRule::off);
   EXPECT_EQ(c.check_tolerance(), 0.1);
   EXPECT_TRUE(c.manual_tools);
 }
@@ -80,7 +80,7 @@ TEST(Config, shouldReadEveryNewKey) {
   EXPECT_EQ(c.flush.pause_seconds, 0.3);
   EXPECT_EQ(c.spindle_stop_timeout_seconds, 4.0);
   EXPECT_EQ(c.keepout_margin(), 0.5);
-  EXPECT_EQ(c.probe_after_change, ProbeAfterChange::check);
+  EXPECT_EQ(c.probe_after_change, MeasureRule::check);
   EXPECT_EQ(c.check_tolerance(), 0.002);
   EXPECT_FALSE(c.manual_tools);
 }
@@ -168,7 +168,16 @@ INSTANTIATE_TEST_SUITE_P(Each, BadConfigs, ::testing::Values(
     for (int i = 0; i < 9; ++i) j["pockets"][std::to_string(10 + i)] = {{"x", 1000.0 + 200.0 * i}};
   }, "rack_keepout_all_motion: the pockets lie in 10 groups apart from each other, and the realtime guard holds 4: move pockets together or set it false"},
   BadConfig{"margin_inch_below_floor", [](Json& j) { j["units"] = "inch"; j["rack_keepout_margin"] = 0.01; }, "rack_keepout_margin: must be from 0.04 to 1000 inch, got 0.01"},
-  BadConfig{"probe_after_change_word", [](Json& j) { j["probe_after_change"] = "always"; }, "probe_after_change: expected \"off\", \"measure\" or \"check\", got \"always\""},
+  BadConfig{"tools_key", [](Json& j) { j["tools"] = {{"T7", Json::object()}}; }, "tools.T7: the key must be a tool number"},
+  BadConfig{"tools_entry", [](Json& j) { j["tools"] = {{"7", "probe"}}; }, "tools.7: expected an object, got \"probe\""},
+  BadConfig{"tools_kind", [](Json& j) { j["tools"]["7"]["kind"] = "laser"; }, "tools.7.kind: expected \"cutter\" or \"probe\", got \"laser\""},
+  BadConfig{"tools_measure", [](Json& j) { j["tools"]["7"]["measure"] = "sometimes"; }, "tools.7.measure: expected \"off\", \"always\""},
+  BadConfig{"tools_unknown", [](Json& j) { j["tools"]["7"]["mesure"] = "new"; }, "tools.7.mesure: unknown key, did you mean \"measure\"?"},
+  BadConfig{"tools_tolerance_unused", [](Json& j) { j["tools"]["7"]["check_tolerance"] = 0.05; }, "tools.7.check_tolerance: only a tool checked at M6 uses it, and tool 7's rule is \"off\""},
+  BadConfig{"tools_tolerance_window", [](Json& j) { j["tools"]["7"] = {{"measure", "check"}, {"check_tolerance", 20}}; }, "tools.7.check_tolerance: must be smaller than probe_window (10), got 20"},
+  BadConfig{"tools_feed_never", [](Json& j) { j["tools"]["7"] = {{"measure", "never"}, {"probe_feed", 20}}; }, "tools.7.probe_feed: tool 7 is never measured"},
+  BadConfig{"tools_feed_zero", [](Json& j) { j["tools"]["7"]["probe_feed"] = 0; }, "tools.7.probe_feed: must be from 0.01 to 100000"},
+  BadConfig{"probe_after_change_word", [](Json& j) { j["probe_after_change"] = "sometimes"; }, "probe_after_change: expected \"off\", \"always\", \"new\", \"never\", \"check\" or \"measure\", got \"sometimes\""},
   BadConfig{"tolerance_zero", [](Json& j) { j["probe_check_tolerance"] = 0; }, "probe_check_tolerance: must be from 0.0001 to 100 mm, got 0"},
   BadConfig{"manual_tools_word", [](Json& j) { j["manual_tools"] = "yes"; }, "manual_tools: expected true or false, got \"yes\""},
   BadConfig{"blend_negative", [](Json& j) { j["blend_tolerance"] = -1; }, "blend_tolerance: must be from 0 to 1000 mm, got -1"},

@@ -148,11 +148,11 @@ const Hostile kBadConfigs[] = {
   {"bidi_override_value.json", "units: expected \"mm\" or \"inch\", got \"\\u{202e}mm\""},
   {"bidi_isolate_key.json", "\\u{2067}safe\\u{2069}: unknown key"},
   {"tag_characters_value.json", "units: expected \"mm\" or \"inch\", got \"mm\\u{e0041}\\u{e007f}\""},
-  {"soft_hyphen_value.json", "probe_after_change: expected \"off\", \"measure\" or \"check\", got \"mea\\u{00ad}sure\""},
+  {"soft_hyphen_value.json", "probe_after_change: expected \"off\", \"always\", \"new\", \"never\", \"check\" or \"measure\", got \"mea\\u{00ad}sure\""},
   {"zero_width_key.json", "chuck_seconds\\u{200b}: unknown key, did you mean \"chuck_seconds\"?"},
   {"deep_duplicate_long_keys.json", "\u2026kkkkkkkkkkkkk56." K58 "57." K58 "58." K58 "59.x: appears twice"},
   {"newline_in_pocket_key.json", "pockets.1\\n2: the key must be a pocket number"},
-  {"long_string_value.json", "probe_after_change: expected \"off\", \"measure\" or \"check\", got \"xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx\u2026\""},
+  {"long_string_value.json", "probe_after_change: expected \"off\", \"always\", \"new\", \"never\", \"check\" or \"measure\", got \"xxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxxx\u2026\""},
   {"long_unterminated_string.json", "line 1, column 20012: invalid JSON: syntax error while parsing value - invalid string: missing closing quote; last read: '\"mmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmmm\u2026'"},
   {"many_unknown_keys.json", "key0: unknown key"},
   // syntax and types

@@ -240,11 +240,11 @@ TEST_F(Lint, shouldReportAToolNeverMeasuredOncePerTool) {
   EXPECT_EQ(r.code, 1);
   EXPECT_LINE(r, "unmeasured.ngc: line 1: T1 was never measured: no length in the state file " +
                      path("tools.state") +
-                     ", and M6 measures nothing (probe_after_change is off)\n");
+                     ", and M6 measures nothing (probe_after_change is \"off\")\n");
   EXPECT_NO_LINE(r, "unmeasured.ngc: line 3: T1 was never measured");
   EXPECT_LINE(r,
-              "  2  2         M6 T2         pocket 2                              22.0000 mm "
-              "(state file)");
+              "  2  2         M6 T2         pocket 2                              not measured at "
+              "M6                    22.0000 mm (state file)");
 }
 
 TEST_F(Lint, shouldReportAStateFileThatRecordsACutOffSequence) {
@@ -266,8 +266,8 @@ TEST_F(Lint, shouldAcceptAnUnmeasuredToolWhenTheChangeMeasuresIt) {
                          config_with("probe_after_change", "measure"), "--state", no_state()});
   EXPECT_EQ(r.code, 0) << r.out;
   EXPECT_LINE(r,
-              "  1  1         M6 T1         pocket 1                              measured at "
-              "the change ");
+              "  1  1         M6 T1         pocket 1                              measured        "
+              "                      measured at the change ");
 }
 
 TEST_F(Lint, shouldReadTheLengthsFromTheToolTable) {
@@ -276,12 +276,12 @@ TEST_F(Lint, shouldReadTheLengthsFromTheToolTable) {
       lint(write("table.ngc", "T1 M6\nT2 M6\nT3 M6\nT4 M6\nM2\n"), {"--tool-table", table});
   EXPECT_EQ(r.code, 1);
   EXPECT_LINE(r,
-              "  1  1         M6 T1         pocket 1                              Z30.0000 (tool "
-              "table)");
+              "  1  1         M6 T1         pocket 1                              not measured at "
+              "M6                    Z30.0000 (tool table)");
   EXPECT_LINE(r, "table.ngc: line 2: T2 was never measured: Z0 in the tool table " + table +
-                     " (line 3), and M6 measures nothing (probe_after_change is off)\n");
+                     " (line 3), and M6 measures nothing (probe_after_change is \"off\")\n");
   EXPECT_LINE(r, "table.ngc: line 3: T3 was never measured: no Z in the tool table " + table +
-                     " (line 4), and M6 measures nothing (probe_after_change is off)\n");
+                     " (line 4), and M6 measures nothing (probe_after_change is \"off\")\n");
   // LinuxCNC skips the line of tool 4: its interpreter refuses T4.
   EXPECT_LINE(r,
               "table.ngc: line 4: LinuxCNC stops the program here: Requested tool 4 not found "

@@ -710,7 +710,7 @@ Lines measure_at_sensor(bool writes) {
   return lines;
 }
 
-TEST(ProbeAfterChange, shouldMeasureAndWriteTheRetrievedTool) {
+TEST(MeasureRule, shouldMeasureAndWriteTheRetrievedTool) {
   Rig rig(test::valid_config(R"("probe_after_change": "measure")"), 0);
   rig.sim.sensor_z = kSensorZ;
   rig.changer->tool_change(4);
@@ -720,7 +720,7 @@ TEST(ProbeAfterChange, shouldMeasureAndWriteTheRetrievedTool) {
   EXPECT_EQ(rig.changer->status().phase, Phase::idle);
 }
 
-TEST(ProbeAfterChange, shouldPassACheckWithinToleranceAndWriteNothing) {
+TEST(MeasureRule, shouldPassACheckWithinToleranceAndWriteNothing) {
   Rig rig(test::valid_config(R"("probe_after_change": "check", "probe_check_tolerance": 0.05)"), 0,
           {}, {{4, 25.04}});
   rig.sim.sensor_z = kSensorZ;
@@ -732,7 +732,7 @@ TEST(ProbeAfterChange, shouldPassACheckWithinToleranceAndWriteNothing) {
             "tool 4 measures 25.0000 mm, stored 25.0400 mm");
 }
 
-TEST(ProbeAfterChange, shouldFaultWhenTheCheckedLengthDiffers) {
+TEST(MeasureRule, shouldFaultWhenTheCheckedLengthDiffers) {
   Rig rig(test::valid_config(R"("probe_after_change": "check")"), 0, {}, {{4, 30.0}});
   rig.sim.sensor_z = kSensorZ;
   rig.changer->tool_change(4);
@@ -741,8 +741,8 @@ TEST(ProbeAfterChange, shouldFaultWhenTheCheckedLengthDiffers) {
   EXPECT_EQ(rig.changer->status().phase, Phase::fault);
   EXPECT_EQ(sim.steps().back().kind, StepKind::fail);
   EXPECT_NE(sim.steps().back().label.find("tool 4 measures 25.0000 mm but its stored length is "
-                                          "30.0000 mm (probe_check_tolerance 0.1000 mm): tool "
-                                          "broken or pulled out?"),
+                                          "30.0000 mm, 5.0000 mm shorter (probe_check_tolerance "
+                                          "0.1000 mm): tool broken or pulled out?"),
             std::string::npos)
       << sim.steps().back().label;
   EXPECT_DOUBLE_EQ(rig.changer->tools().lengths.at(4), 30.0) << "a check never writes";
@@ -750,7 +750,7 @@ TEST(ProbeAfterChange, shouldFaultWhenTheCheckedLengthDiffers) {
   EXPECT_FALSE(sim.chuck_open);
 }
 
-TEST(ProbeAfterChange, shouldMeasureAToolNeverMeasuredWhenChecking) {
+TEST(MeasureRule, shouldMeasureAToolNeverMeasuredWhenChecking) {
   Rig rig(test::valid_config(R"("probe_after_change": "check")"), 0);
   rig.sim.sensor_z = kSensorZ;
   rig.changer->tool_change(4);
@@ -759,7 +759,7 @@ TEST(ProbeAfterChange, shouldMeasureAToolNeverMeasuredWhenChecking) {
   EXPECT_DOUBLE_EQ(rig.changer->tools().lengths.at(4), 25.0);
 }
 
-TEST(ProbeAfterChange, shouldFaultWhenTheToolCannotBeMeasured) {
+TEST(MeasureRule, shouldFaultWhenTheToolCannotBeMeasured) {
   Rig rig(test::valid_config(R"("probe_after_change": "measure")"), 0);
   rig.changer->tool_change(4);  // sim.sensor_z unset: the probe misses
   rig.sim.run(*rig.changer);
@@ -769,7 +769,7 @@ TEST(ProbeAfterChange, shouldFaultWhenTheToolCannotBeMeasured) {
   EXPECT_TRUE(rig.changer->tools().lengths.empty());
 }
 
-TEST(ProbeAfterChange, shouldNotLetCancelStopAProbeInsideAProgram) {
+TEST(MeasureRule, shouldNotLetCancelStopAProbeInsideAProgram) {
   Rig rig(test::valid_config(R"("probe_after_change": "measure")"), 0);
   rig.changer->tool_change(4);
   while (rig.changer->status().awaiting != Awaiting::probe) ASSERT_TRUE(rig.advance_once());
@@ -777,6 +777,148 @@ TEST(ProbeAfterChange, shouldNotLetCancelStopAProbeInsideAProgram) {
   EXPECT_EQ(rig.changer->status().awaiting, Awaiting::probe);
   EXPECT_EQ(rig.sim.messages(MessageKind::info).back(),
             "Cancel: nothing is waiting for the operator");
+}
+
+// ---------------------------------------------------------------- each tool's own rule (tools)
+
+/// The valid config where tool 4 has `tools.4` as given.
+Config with_tool4(const std::string& tool4, const std::string& extra = "") {
+  return test::valid_config(R"("tools": {"4": )" + tool4 + "}" + (extra.empty() ? "" : "," + extra));
+}
+
+bool measured(const Lines& lines) {
+  return std::find(lines.begin(), lines.end(), "probe touch-off sensor (seek)") != lines.end();
+}
+
+TEST(MeasureRule, shouldMeasureANewToolOnceAndThenTrustItsLength) {
+  Rig rig(with_tool4(R"({"measure": "new"})"), 0);
+  rig.sim.sensor_z = kSensorZ;
+  rig.changer->tool_change(4);
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.lines(), concat({retrieve(4), measure_at_sensor(true), {"done T4"}}));
+  std::size_t from = rig.sim.records.size();
+  rig.changer->tool_change(5);  // probe_after_change "off": not measured
+  rig.sim.run(*rig.changer);
+  EXPECT_FALSE(measured(rig.lines(from)));
+  from = rig.sim.records.size();
+  rig.changer->tool_change(4);
+  rig.sim.run(*rig.changer);
+  EXPECT_FALSE(measured(rig.lines(from))) << "measured once, when new";
+  EXPECT_EQ(rig.changer->status().phase, Phase::idle);
+}
+
+TEST(MeasureRule, shouldMeasureAnAlwaysToolAtEveryChangeWhateverTheDefault) {
+  Rig rig(with_tool4(R"({"measure": "always"})"), 0, {}, {{4, 25.0}});
+  rig.sim.sensor_z = kSensorZ;
+  for (int round = 0; round < 2; ++round) {
+    const std::size_t from = rig.sim.records.size();
+    rig.changer->tool_change(4);
+    rig.sim.run(*rig.changer);
+    EXPECT_TRUE(measured(rig.lines(from))) << "change " << round + 1;
+    rig.changer->tool_change(0);
+    rig.sim.run(*rig.changer);
+  }
+}
+
+TEST(MeasureRule, shouldNeverTakeANeverToolToTheSensorAtAChange) {
+  Rig rig(with_tool4(R"({"measure": "never"})", R"("probe_after_change": "always")"), 0);
+  rig.sim.sensor_z = kSensorZ;
+  rig.changer->tool_change(4);
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.lines(), concat({retrieve(4), {"done T4"}}));
+  EXPECT_TRUE(rig.changer->tools().lengths.empty());
+}
+
+TEST(MeasureRule, shouldPutANeverToolAwayAtALoadWithoutMeasuringIt) {
+  Rig rig(with_tool4(R"({"measure": "never"})"), 0, {4});
+  rig.sim.sensor_z = kSensorZ;
+  rig.changer->load(4);
+  rig.sim.run(*rig.changer);
+  const std::size_t inserted = rig.sim.records.size();
+  rig.changer->operator_continue();
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.lines(inserted),
+            concat({{"set-tool T4"}, return_to_pocket(4), {"set-tool T0", "done T0"}}));
+  EXPECT_TRUE(rig.changer->tools().holds(4));
+  EXPECT_TRUE(rig.changer->tools().lengths.empty());
+  EXPECT_EQ(rig.sim.messages(MessageKind::info).back(),
+            "tool 4 not measured (\"never\": LinuxCNC's tool table length), in pocket 4");
+}
+
+TEST(MeasureRule, shouldLeaveANeverToolOutOfMeasureAll) {
+  Rig rig(with_tool4(R"({"measure": "never"})"), 0);
+  rig.sim.sensor_z = kSensorZ;
+  rig.changer->measure_all({4, 5});
+  rig.sim.run(*rig.changer);
+  const Lines lines = rig.lines();
+  EXPECT_EQ(std::count(lines.begin(), lines.end(), "probe touch-off sensor (seek)"), 1);
+  EXPECT_EQ(rig.changer->tools().lengths.count(4), 0u);
+  EXPECT_EQ(rig.changer->tools().lengths.count(5), 1u);
+  const auto said = rig.sim.messages(MessageKind::info);
+  EXPECT_NE(std::find(said.begin(), said.end(),
+                      "measure all skips what is never measured (\"never\": LinuxCNC's tool table "
+                      "length): T4"),
+            said.end());
+}
+
+TEST(MeasureRule, shouldCheckEachToolAgainstItsOwnTolerance) {
+  // 0.3 mm off: within tools.4's 0.5, beyond probe_check_tolerance's 0.1.
+  Rig within(with_tool4(R"({"measure": "check", "check_tolerance": 0.5})"), 0, {}, {{4, 25.3}});
+  within.sim.sensor_z = kSensorZ;
+  within.changer->tool_change(4);
+  within.sim.run(*within.changer);
+  EXPECT_EQ(within.changer->status().phase, Phase::idle);
+  // 2 mm shorter than stored: broken.
+  Rig broken(with_tool4(R"({"measure": "check", "check_tolerance": 0.05})"), 0, {}, {{4, 27.0}});
+  broken.sim.sensor_z = kSensorZ;
+  broken.changer->tool_change(4);
+  broken.sim.run(*broken.changer);
+  EXPECT_EQ(broken.changer->status().phase, Phase::fault);
+  EXPECT_NE(broken.sim.steps().back().label.find(
+                "tool 4 measures 25.0000 mm but its stored length is 27.0000 mm, 2.0000 mm "
+                "shorter (tools.4.check_tolerance 0.0500 mm): tool broken or pulled out?"),
+            std::string::npos)
+      << broken.sim.steps().back().label;
+  EXPECT_DOUBLE_EQ(broken.changer->tools().lengths.at(4), 27.0) << "a check never writes";
+}
+
+TEST(ToolKind, shouldMeasureAProbeAtItsOwnSlowFeed) {
+  Rig rig(with_tool4(R"({"kind": "probe", "measure": "always"})",
+                     R"("probe_seek_feed": 3000, "probe_latch_feed": 60)"),
+          0);
+  rig.sim.sensor_z = kSensorZ;
+  rig.changer->tool_change(4);
+  rig.sim.run(*rig.changer);
+  int probes = 0;
+  for (const Step& step : rig.sim.steps()) {
+    if (step.kind != StepKind::probe && step.label != "back off the sensor") continue;
+    EXPECT_DOUBLE_EQ(step.feed, 60.0) << step.label;
+    probes += step.kind == StepKind::probe;
+  }
+  EXPECT_EQ(probes, 2);
+}
+
+TEST(ToolKind, shouldCapBothProbingStagesAtAToolsProbeFeed) {
+  const Config config = with_tool4(R"({"probe_feed": 40})", R"("probe_latch_feed": 60)");
+  EXPECT_DOUBLE_EQ(config.seek_feed_of(4), 40.0);
+  EXPECT_DOUBLE_EQ(config.latch_feed_of(4), 40.0);
+  EXPECT_DOUBLE_EQ(config.seek_feed_of(5), config.probe_seek_feed);
+  EXPECT_DOUBLE_EQ(config.latch_feed_of(5), 60.0);
+}
+
+TEST(ToolKind, shouldSayEachToolsRuleInAFewWords) {
+  const Config config = test::valid_config(
+      R"("probe_after_change": "new", "tools": {"3": {"measure": "check", "check_tolerance": 0.05},
+         "7": {"measure": "always"}, "12": {"measure": "never"}, "99": {"kind": "probe"}})");
+  EXPECT_EQ(rule_words(config, 7), "measured");
+  EXPECT_EQ(rule_words(config, 3), "checked ±0.050");
+  EXPECT_EQ(rule_words(config, 12), "never measured (tool table length)");
+  EXPECT_EQ(rule_words(config, 99), "probe, spindle held, measured if new");
+  EXPECT_EQ(rule_words(config, 5), "measured if new");
+  EXPECT_EQ(rule_said(config, 12), "tools.12.measure is \"never\"");
+  EXPECT_EQ(rule_said(config, 5), "probe_after_change is \"new\"");
+  EXPECT_TRUE(config.is_probe(99));
+  EXPECT_FALSE(config.is_probe(7));
 }
 
 // ---------------------------------------------------------------- cancel mid-probe (load)

@@ -657,7 +657,7 @@ TEST(ProbeWindow, shouldStopATouchFarTooEarlyWritingNothing) {
   EXPECT_EQ(rig.status().phase, Phase::fault);
   EXPECT_EQ(
       rig.activity(),
-      "fault: tool 3 could not be measured after the change (probe_after_change): tool 3 "
+      "fault: tool 3 could not be measured after the change (probe_after_change is \"always\"): tool 3 "
       "touched the sensor at Z -50.0000 mm, 20.0000 mm too early: its stored length 25.0000 mm "
       "puts the touch at Z -70.0000 mm (probe_window 5.0000 mm); a shorted sensor, a wrong or "
       "pulled-out tool?");
