@@ -135,8 +135,11 @@ std::string seconds_text(double seconds) {
 
 namespace {
 
+/// `text` and spaces to `width` characters as a terminal shows them (UTF-8: "±" is one).
 std::string padded(const std::string& text, std::size_t width) {
-  return text.size() >= width ? text + " " : text + std::string(width - text.size(), ' ');
+  const auto shown = static_cast<std::size_t>(std::count_if(
+      text.begin(), text.end(), [](char c) { return (static_cast<unsigned char>(c) & 0xC0) != 0x80; }));
+  return shown >= width ? text + " " : text + std::string(width - shown, ' ');
 }
 
 std::string site_text(const program::Site& where) {

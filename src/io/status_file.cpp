@@ -37,7 +37,7 @@ void StatusFile::write(const Status& status, const std::optional<InProgress>& cu
                           std::to_string(serial_) + "/" + std::to_string(status.pocket) + "/" +
                           std::to_string(status.batch_done) + "/" + status.activity + "/" +
                           (cut_off ? cut_off->sequence + cut_off->step : std::string("-")) + "/" +
-                          keepout;
+                          keepout + "/" + status.rule;
   if (key == shown_) return;
   shown_ = key;  // a failed write is not retried every poll; the next change writes again
   nlohmann::json root = {{"phase", phase_word(status.phase)},
@@ -49,6 +49,8 @@ void StatusFile::write(const Status& status, const std::optional<InProgress>& cu
                          {"cut_off", nullptr},
                          {"messages", nlohmann::json::array()},
                          {"keepout", keepout},
+                         {"rule", status.rule},
+                         {"spindle_held", status.spindle_probe != 0},
                          {"serial", serial_}};
   if (cut_off) {
     root["cut_off"] = {

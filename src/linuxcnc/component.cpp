@@ -92,6 +92,11 @@ void Component::read_machine(std::optional<bool> interpreter_idle) {
     changer_->task_availability(std::nullopt);
   }
   if (abort_.rose(*pins_->abort)) abort("the abort pin was raised");
+  // fatc-spindle-guard holds the spindle while a probe is in it: what asked for it stops.
+  if (spindle_refused_.rose(*pins_->spindle_refused)) {
+    if (nml_) nml_->abort();
+    tell(MessageKind::error, spindle_held_refusal(changer_->status().spindle_probe));
+  }
 }
 
 void Component::read_executor(std::optional<bool> interpreter_idle) {

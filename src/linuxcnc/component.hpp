@@ -100,7 +100,7 @@ class Component : public Ports {
   const MeasureAllPress::Refuse refuse_ = [this](const std::string& why) {
     tell(MessageKind::error, why);
   };
-  Edge abort_, clear_, load_, unload_, continue_, cancel_;
+  Edge abort_, clear_, load_, unload_, continue_, cancel_, spindle_refused_;
   Edge teach_pocket_, teach_loading_, teach_safe_, teach_sensor_, measure_all_, verify_;
 };
 

@@ -17,6 +17,8 @@ struct HalPins {
   hal_bit_t* changed;
   hal_bit_t* chuck;
   hal_bit_t* chuck_held;
+  hal_bit_t* probe_in_spindle;
+  hal_bit_t* spindle_refused;
   hal_bit_t* probe;
   hal_bit_t* spindle_stopped;
   /// in: the optional sensors of core/config/sensor_list.hpp, by Sensor

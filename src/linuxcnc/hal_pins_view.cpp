@@ -59,6 +59,7 @@ void write_status(HalPins& pins, const Status& status, const Changer& changer,
   *pins.state = static_cast<int>(status.phase);
   *pins.ready = status.phase == Phase::idle && !status.chuck_held;
   *pins.chuck_held = status.chuck_held;
+  *pins.probe_in_spindle = status.spindle_probe != 0;
   *pins.fault = status.phase == Phase::fault;
   *pins.busy = status.busy();
   *pins.tool_in_spindle = changer.tools().spindle;

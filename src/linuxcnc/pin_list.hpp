@@ -110,6 +110,13 @@ inline const std::vector<PinDeclaration> kPins = joined({{
    "`motion.feed-inhibit` and `spindle.0.inhibit` (the chuck atoms)"},
   {"heartbeat", &HalPins::heartbeat, HAL_OUT,
    "toggles every poll; `fatc-chuck-guard` closes the chuck when it stops for 0.5 s"},
+  {"probe-in-spindle", &HalPins::probe_in_spindle, HAL_OUT,
+   "a touch probe (config.json's `tools`) is in the spindle, or may be after a cut-off "
+   "sequence; the snippet nets it to `fatc-spindle-guard`, which holds the spindle still and "
+   "gives `motion.probe-input` the probe's input"},
+  {"spindle-refused", &HalPins::spindle_refused, HAL_IN,
+   "`fatc-spindle-guard.refused`: M3 or M4 met the held spindle; a rising edge aborts what "
+   "task runs and says why"},
   {"probe", &HalPins::probe, HAL_IN,
    "the touch-off sensor, netted together with `motion.probe-input` (G38.3 reads that one); "
    "the executor does not probe when it is already on"},

@@ -38,6 +38,7 @@ apt-get install -y -qq --reinstall "$deb" >/dev/null
 files=$(dpkg -L fixed-atc-probe)
 for want in /usr/bin/fixed_atc_probe /usr/lib/linuxcnc/modules/fatc_chuck_guard.so \
             /usr/lib/linuxcnc/modules/fatc_rack_guard.so \
+            /usr/lib/linuxcnc/modules/fatc_spindle_guard.so \
             /usr/share/fixed_atc_probe/nc_files/fixed_atc_probe_m6.ngc \
             /usr/share/fixed_atc_probe/nc_files/fixed_atc_probe_execute.ngc \
             /usr/share/fixed_atc_probe/nc_files/fixed_atc_probe_chuck_release.ngc \

@@ -169,6 +169,8 @@ const char* rule_name(MeasureRule rule);
 /// Where `tool`'s rule comes from, for a message: `tools.7.measure is "never"`,
 /// `probe_after_change is "off"`.
 std::string rule_said(const Config& config, int tool);
+/// What the operator reads when M3 or M4 meets probe `tool` in the spindle.
+std::string spindle_held_refusal(int tool);
 /// Whether M6 measures `tool` after putting it in the spindle, by its rule;
 /// `measured`: the changer has a length of it.
 bool measures_after_change(const Config& config, int tool, bool measured);

@@ -143,6 +143,16 @@ std::string rule_said(const Config& config, int tool) {
          " is \"" + rule_name(config.rule_of(tool)) + "\"";
 }
 
+std::string spindle_held_refusal(int tool) {
+  if (tool == 0) {
+    return "spindle held: a probe was in the spindle when the changer stopped answering, so the "
+           "spindle start was aborted";
+  }
+  const std::string t = std::to_string(tool);
+  return "spindle held: tool " + t + " in the spindle is a probe (tools." + t +
+         ".kind), so the spindle start was aborted; change to a cutter (M6) before M3 or M4";
+}
+
 bool measures_after_change(const Config& config, int tool, bool measured) {
   switch (config.rule_of(tool)) {
     case MeasureRule::always:

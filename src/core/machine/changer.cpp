@@ -212,6 +212,9 @@ Status Changer::status() const {
     status.batch_done = batch.done;
     status.batch_total = batch.total;
   }
+  status.spindle_probe = spindle_probe(c.config, c.tools);
+  const int about = status.busy() && c.request.tool != 0 ? c.request.tool : c.tools.spindle;
+  if (about != 0) status.rule = "T" + std::to_string(about) + " " + rule_words(c.config, about);
   status.activity = activity_of(status, c);
   return status;
 }

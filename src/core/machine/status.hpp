@@ -52,6 +52,12 @@ struct Status {
   int pocket = 0;       ///< the pocket being served, 0 none
   int batch_done = 0;   ///< measure all: tools measured (or tried) so far
   int batch_total = 0;  ///< measure all: tools it measures; 0 when none runs
+  /// A probe (`tools.N.kind`) that is, or after a cut-off sequence may be, in
+  /// the spindle: the spindle is held (`probe-in-spindle`); 0 none.
+  int spindle_probe = 0;
+  /// The tool the change is about (else the spindle's) and its rule, for the
+  /// panel: "T3 checked ±0.050", "T99 probe, spindle held, measured if new"; empty: none.
+  std::string rule;
 
   /// A flow runs: every phase but these three is a flow's.
   bool busy() const {

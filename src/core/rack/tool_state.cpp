@@ -341,4 +341,13 @@ ToolStateResult tool_state_from_json(const std::string& text) {
   return {state, "", version};
 }
 
+int spindle_probe(const Config& config, const ToolState& tools) {
+  if (config.is_probe(tools.spindle)) return tools.spindle;
+  if (!tools.uncertain) return 0;
+  for (const auto& [number, pocket] : tools.pockets) {
+    if (pocket.tool != 0 && !pocket.holds && config.is_probe(pocket.tool)) return pocket.tool;
+  }
+  return 0;
+}
+
 }  // namespace fatc

@@ -73,6 +73,10 @@ struct ToolState {
 /// tool from outside the rack, its first-start pocket if that is free.
 std::optional<int> return_pocket(const ToolState& tools, const Config& config, int tool);
 
+/// The probe (`tools.N.kind`) in the spindle, or, after a cut-off sequence,
+/// one that is out of its pocket and may be: the spindle is held. 0: none.
+int spindle_probe(const Config& config, const ToolState& tools);
+
 /// "pockets 2, 5", "pocket 4" or "no pocket", for messages.
 std::string pocket_list(const std::vector<int>& numbers);
 

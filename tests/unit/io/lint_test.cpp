@@ -270,6 +270,23 @@ TEST_F(Lint, shouldAcceptAnUnmeasuredToolWhenTheChangeMeasuresIt) {
               "                      measured at the change ");
 }
 
+TEST_F(Lint, shouldNameALineThatStartsTheSpindleWithAProbeInIt) {
+  const nlohmann::json tools = {{"2", {{"kind", "probe"}, {"measure", "new"}}},
+                                {"3", {{"measure", "check"}, {"check_tolerance", 0.05}}}};
+  const LintRun r = run({"--lint", write("probe.ngc", "T2 M6\nS1000 M3\nM5\nT3 M6\nM4 S500\nM2\n"),
+                         "--config", config_with("tools", tools), "--state",
+                         state_with_lengths({2, 3})});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r,
+              "probe.ngc: line 2: M3 starts the spindle with T2 in it, a probe (tools.2.kind): "
+              "fatc-spindle-guard holds the spindle and the changer aborts the program here\n");
+  EXPECT_NO_LINE(r, "probe.ngc: line 5:");
+  EXPECT_LINE(r, "M6 T2         pocket 2                              probe, spindle held, measured "
+                 "if new  22.0000 mm (state file)");
+  EXPECT_LINE(r, "M6 T3         pocket 3                              checked ±0.050          "
+                 "              checked at the change, stored 23.0000 mm (state file) ");
+}
+
 TEST_F(Lint, shouldReadTheLengthsFromTheToolTable) {
   const std::string table = kPrograms + "/tools.tbl";
   const LintRun r =

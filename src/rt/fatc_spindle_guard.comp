@@ -1,0 +1,45 @@
+component fatc_spindle_guard "Holds the spindle still while fixed_atc_probe has a touch probe in it, and gives motion the probe's input then";
+description """
+While \\fBprobe-in-spindle\\fR is true (config.json's \\fBtools\\fR says the tool
+in the spindle is a probe) the spindle is \\fBheld\\fR: \\fBspindle-on\\fR, the
+drive's run, stays false whatever \\fBspindle-on-in\\fR (spindle.0.on) asks,
+and \\fBinhibit\\fR holds motion's spindle speed at 0 (spindle.0.inhibit), so an
+M3 or M4 from a program, MDI, a GUI or halui turns nothing. \\fBrefused\\fR
+tells the component, which aborts what asked and says why. Once held, only a
+live component releases it: when its heartbeat stops for \\fBtimeout\\fR
+seconds (it died, hangs or was unloaded) the spindle stays held.
+\\fBprobe-input\\fR, for motion.probe-input, is the probe's own input
+(\\fBspindle-probe\\fR) while it is in the spindle and the changer is not
+measuring (\\fBchanger-busy\\fR false), else the touch-off \\fBsensor\\fR.
+""";
+pin in bit probe-in-spindle "fixed_atc_probe.probe-in-spindle: the spindle holds a probe";
+pin in bit heartbeat "fixed_atc_probe.heartbeat: toggles on every poll of the component";
+pin in float timeout = 0.5 "seconds without a heartbeat edge before the component is taken for gone";
+pin in bit changer-busy "fixed_atc_probe.busy: the changer's own moves measure on the touch-off sensor";
+pin in bit chuck-held "fixed_atc_probe.chuck-held: a chuck atom holds the spindle as well";
+pin in bit spindle-on-in "spindle.0.on: LinuxCNC asks for the spindle";
+pin out bit spindle-on "to the spindle drive's run: spindle-on-in, unless held";
+pin out bit inhibit "to spindle.0.inhibit: held or chuck-held";
+pin out bit held "a probe is in the spindle, or was when the component stopped answering";
+pin out bit refused "held while LinuxCNC asks for the spindle";
+pin in bit sensor "the touch-off sensor";
+pin in bit spindle-probe "the touch probe's own input";
+pin out bit probe-input "to motion.probe-input: the probe's input while it is in the spindle and the changer is not measuring, else the sensor's";
+pin out bit alive "a heartbeat edge came within timeout";
+variable int last_beat = 0;
+variable double quiet = 1e9;
+function _;
+license "GPL";
+;;
+if (heartbeat != last_beat) {
+    last_beat = heartbeat;
+    quiet = 0;
+} else if (quiet < 1e9) {
+    quiet += fperiod;
+}
+alive = quiet < timeout;
+held = probe_in_spindle || (held && !alive);
+spindle_on = spindle_on_in && !held;
+inhibit = held || chuck_held;
+refused = held && spindle_on_in;
+probe_input = (probe_in_spindle && !changer_busy) ? spindle_probe : sensor;
