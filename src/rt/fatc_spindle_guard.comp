@@ -5,7 +5,8 @@ in the spindle is a probe) the spindle is \\fBheld\\fR: \\fBspindle-on\\fR, the
 drive's run, stays false whatever \\fBspindle-on-in\\fR (spindle.0.on) asks,
 and \\fBinhibit\\fR holds motion's spindle speed at 0 (spindle.0.inhibit), so an
 M3 or M4 from a program, MDI, a GUI or halui turns nothing. \\fBrefused\\fR
-tells the component, which aborts what asked and says why. Once held, only a
+(the spindle asked for: \\fBspindle-on-in\\fR or a \\fBspeed-command\\fR
+speed) tells the component, which aborts what asked and says why. Once held, only a
 live component releases it: when its heartbeat stops for \\fBtimeout\\fR
 seconds (it died, hangs or was unloaded) the spindle stays held.
 \\fBprobe-input\\fR, for motion.probe-input, is the probe's own input
@@ -18,10 +19,11 @@ pin in float timeout = 0.5 "seconds without a heartbeat edge before the componen
 pin in bit changer-busy "fixed_atc_probe.busy: the changer's own moves measure on the touch-off sensor";
 pin in bit chuck-held "fixed_atc_probe.chuck-held: a chuck atom holds the spindle as well";
 pin in bit spindle-on-in "spindle.0.on: LinuxCNC asks for the spindle";
+pin in float speed-command "spindle.0.speed-cmd-rps: the speed asked for, before spindle.0.inhibit (2.9.0 drops spindle.0.on with the inhibited speed)";
 pin out bit spindle-on "to the spindle drive's run: spindle-on-in, unless held";
 pin out bit inhibit "to spindle.0.inhibit: held or chuck-held";
 pin out bit held "a probe is in the spindle, or was when the component stopped answering";
-pin out bit refused "held while LinuxCNC asks for the spindle";
+pin out bit refused "held while LinuxCNC asks for the spindle (spindle-on-in, or a speed-command)";
 pin in bit sensor "the touch-off sensor";
 pin in bit spindle-probe "the touch probe's own input";
 pin out bit probe-input "to motion.probe-input: the probe's input while it is in the spindle and the changer is not measuring, else the sensor's";
@@ -41,5 +43,5 @@ alive = quiet < timeout;
 held = probe_in_spindle || (held && !alive);
 spindle_on = spindle_on_in && !held;
 inhibit = held || chuck_held;
-refused = held && spindle_on_in;
+refused = held && (spindle_on_in || speed_command != 0);
 probe_input = (probe_in_spindle && !changer_busy) ? spindle_probe : sensor;
