@@ -169,6 +169,9 @@ const char* rule_name(MeasureRule rule);
 /// Where `tool`'s rule comes from, for a message: `tools.7.measure is "never"`,
 /// `probe_after_change is "off"`.
 std::string rule_said(const Config& config, int tool);
+/// Every tool's rule, for --check: "T2 probe, spindle held, measured if new;
+/// every other tool not measured at M6 (probe_after_change)".
+std::string measuring_words(const Config& config);
 /// What the operator reads when M3 or M4 meets probe `tool` in the spindle.
 std::string spindle_held_refusal(int tool);
 /// Whether M6 measures `tool` after putting it in the spindle, by its rule;

@@ -47,7 +47,7 @@ void read_tools(Reader& reader, const Json& root, Config& config) {
     const std::string here = join_path("tools", item.key());
     const auto number = tool_number_key(item.key());
     if (!number) {
-      reader.error(here, "the key must be a tool number, a positive integer like \"7\"");
+      reader.error(here, "the key must be a tool number from 1 to 999999999, like \"7\"");
       continue;
     }
     if (!item.value().is_object()) {
@@ -141,6 +141,15 @@ std::string rule_said(const Config& config, int tool) {
   return (own && own->measure ? "tools." + std::to_string(tool) + ".measure"
                               : std::string("probe_after_change")) +
          " is \"" + rule_name(config.rule_of(tool)) + "\"";
+}
+
+std::string measuring_words(const Config& config) {
+  std::string words;
+  for (const auto& [tool, own] : config.tools) {
+    words += "T" + std::to_string(tool) + " " + rule_words(config, tool) + "; ";
+  }
+  const std::string rest = config.tools.empty() ? "every tool " : "every other tool ";
+  return words + rest + rule_words(config, 0) + " (probe_after_change)";
 }
 
 std::string spindle_held_refusal(int tool) {

@@ -609,5 +609,33 @@ TEST(LastLength, shouldShowTheMeasuredLengthWhenACheckWritesNothing) {
   for (const Step& step : rig.sim.steps()) EXPECT_NE(step.kind, StepKind::set_tool_length);
 }
 
+TEST(Status, shouldHoldTheSpindleWhileAProbeIsInItAndSayEachToolsRule) {
+  const std::string tools =
+      R"("tools": {"2": {"kind": "probe"}, "3": {"measure": "check", "check_tolerance": 0.05}})";
+  Rig probe(2, tools);
+  EXPECT_EQ(probe.status().spindle_probe, 2);
+  EXPECT_EQ(probe.status().rule, "T2 probe, spindle held, not measured at M6");
+  Rig cutter(1, tools);
+  EXPECT_EQ(cutter.status().spindle_probe, 0);
+  EXPECT_EQ(cutter.status().rule, "T1 not measured at M6");
+  // During a change the rule shown is the requested tool's.
+  cutter.changer->tool_change(3);
+  cutter.step();
+  EXPECT_EQ(cutter.status().rule, "T3 checked ±0.050");
+  EXPECT_EQ(Rig(0, tools).status().rule, "");
+}
+
+TEST(Status, shouldHoldTheSpindleWhenACutOffSequenceMayHaveLeftTheProbeInIt) {
+  const Config config = test::valid_config(R"("tools": {"2": {"kind": "probe"}})");
+  ToolState tools = ToolState::fresh(config);
+  tools.spindle = 1;
+  test::take_out(tools, 1);
+  test::take_out(tools, 2);  // the probe's pocket empty: cut off while fetching it
+  tools.uncertain = true;
+  EXPECT_EQ(spindle_probe(config, tools), 2);
+  tools.uncertain = false;
+  EXPECT_EQ(spindle_probe(config, tools), 0) << "known: T1 in the spindle, the probe elsewhere";
+}
+
 }  // namespace
 }  // namespace fatc

@@ -63,6 +63,23 @@ TEST(InterpreterOutput, shouldTakeEachChangeOnItsTWordsLineThroughTheRemap) {
   EXPECT_TRUE(run.unknowns.empty());
 }
 
+TEST(InterpreterOutput, shouldKeepEachSpindleStartWithTheToolUsesBeforeIt) {
+  const auto run = read(
+      "    1 N1000000001 START_SPINDLE_CLOCKWISE(0)\n"
+      "    2 N1000000002 SELECT_TOOL(3)\n"
+      "    3 N1000000002 CHANGE_TOOL(3)\n"
+      "    4 N1000000003 SET_SPINDLE_SPEED(0, 500.0000)\n"
+      "    5 N1000000003 START_SPINDLE_COUNTERCLOCKWISE(0)\n",
+      "executing\n");
+  ASSERT_EQ(run.spindle_starts.size(), 2u);
+  EXPECT_EQ(run.spindle_starts[0].where.line, 1);
+  EXPECT_EQ(run.spindle_starts[0].before_use, 0u);
+  EXPECT_TRUE(run.spindle_starts[0].clockwise);
+  EXPECT_EQ(run.spindle_starts[1].where.line, 3);
+  EXPECT_EQ(run.spindle_starts[1].before_use, 1u);
+  EXPECT_FALSE(run.spindle_starts[1].clockwise);
+}
+
 TEST(InterpreterOutput, shouldTakeAChangeWithoutItsToolAsLinuxCnc210PrintsIt) {
   // LinuxCNC 2.10's rs274 prints CHANGE_TOOL() with no number: the tool is
   // the one SELECT_TOOL chose (2.9 printed CHANGE_TOOL(7)).
