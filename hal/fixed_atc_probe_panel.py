@@ -380,7 +380,7 @@ class Handler:
             get("said_words").set_text(said[-1] if said else " ")
             get("keepout_words").set_text(status.get("keepout", " "))
             # The measuring rule of the tool the change is about, or the spindle's:
-            # "T3 checked ±0.050", "T99 probe, spindle held, measured if new".
+            # "T3 checked ±0.05", "T99 probe, spindle held, measured if new".
             get("rule_words").set_text(status.get("rule") or " ")
         else:
             get("step_words").set_text(describe_awaiting(c["awaiting"], c["step-kind"], c["step-x"],

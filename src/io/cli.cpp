@@ -258,8 +258,9 @@ int check(const Options& options, std::ostream& out, std::ostream& err) {
   const Config& config = *loaded.config;
   out << shown_path(options.config_path) << ": units " << units_name(config.units) << ", "
       << config.pockets.size() << " pockets, keep-out margin " << config.keepout_margin() << "\n";
-  out << "sensors wired: " << sensors_wired(config) << "\nmeasuring: " << measuring_words(config)
-      << "\n\n";
+  out << "sensors wired: " << sensors_wired(config) << "\nmeasuring:\n";
+  for (const std::string& line : measuring_words(config)) out << "  " << line << "\n";
+  out << "\n";
   out << "station                          x          y          z\n";
   out << "safe                  " << format_point(config.safe.x, config.safe.y, config.safe.z)
       << "\n";

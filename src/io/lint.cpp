@@ -135,10 +135,16 @@ std::string seconds_text(double seconds) {
 
 namespace {
 
-/// `text` and spaces to `width` characters as a terminal shows them (UTF-8: "±" is one).
+/// How many characters a terminal shows of UTF-8 `text` ("±" is one).
+std::size_t shown_width(const std::string& text) {
+  return static_cast<std::size_t>(std::count_if(text.begin(), text.end(), [](char c) {
+    return (static_cast<unsigned char>(c) & 0xC0) != 0x80;
+  }));
+}
+
+/// `text` and spaces to `width` characters as a terminal shows them.
 std::string padded(const std::string& text, std::size_t width) {
-  const auto shown = static_cast<std::size_t>(std::count_if(
-      text.begin(), text.end(), [](char c) { return (static_cast<unsigned char>(c) & 0xC0) != 0x80; }));
+  const std::size_t shown = shown_width(text);
   return shown >= width ? text + " " : text + std::string(width - shown, ' ');
 }
 
@@ -164,16 +170,24 @@ std::string plural(std::size_t n, const std::string& one, const std::string& man
 
 void print_rows(const Preflight& checked, std::ostream& out) {
   if (checked.rows.empty()) return;
-  out << "\n  #  line      code          where                                 rule"
-         "                                  length                          time\n";
+  // The rule and length columns as wide as their longest text (a tool table's
+  // "measured at the change, stored Z35.0000 (tool table)").
+  std::size_t rule_width = 38;
+  std::size_t length_width = 32;
+  for (std::size_t i = 0; i < checked.rows.size() && i < kMaxRows; ++i) {
+    rule_width = std::max(rule_width, shown_width(checked.rows[i].rule) + 1);
+    length_width = std::max(length_width, shown_width(checked.rows[i].length) + 1);
+  }
+  out << "\n  #  line      code          where                                 "
+      << padded("rule", rule_width) << padded("length", length_width) << "time\n";
   for (std::size_t i = 0; i < checked.rows.size() && i < kMaxRows; ++i) {
     const PreflightRow& row = checked.rows[i];
     const int line = row.use.where.line;
     char number[16];
     std::snprintf(number, sizeof number, "%3zu  ", i + 1);
     out << number << padded(line > 0 ? std::to_string(line) : "-", 10) << padded(row.code, 14)
-        << padded(row.where, 38) << padded(row.rule.empty() ? "-" : row.rule, 38)
-        << padded(row.length, 32)
+        << padded(row.where, 38) << padded(row.rule.empty() ? "-" : row.rule, rule_width)
+        << padded(row.length, length_width)
         << (row.seconds ? seconds_text(*row.seconds) : "-") << "\n";
   }
   if (checked.rows.size() > kMaxRows) {

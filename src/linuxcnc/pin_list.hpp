@@ -106,8 +106,9 @@ inline const std::vector<PinDeclaration> kPins = joined({{
    "true opens the chuck; the HAL snippet passes it through `fatc-chuck-guard` to the signal "
    "`fatc-chuck`, which the drawbar valve takes"},
   {"chuck-held", &HalPins::chuck_held, HAL_OUT,
-   "a G-code release holds the chuck open until its clamp; the snippet nets it to "
-   "`motion.feed-inhibit` and `spindle.0.inhibit` (the chuck atoms)"},
+   "a G-code release holds the chuck open until its clamp; the snippet nets it through "
+   "`fatc-rack-guard` to `motion.feed-inhibit` and through `fatc-spindle-guard` to "
+   "`spindle.0.inhibit` (the chuck atoms)"},
   {"heartbeat", &HalPins::heartbeat, HAL_OUT,
    "toggles every poll; `fatc-chuck-guard` closes the chuck when it stops for 0.5 s"},
   {"probe-in-spindle", &HalPins::probe_in_spindle, HAL_OUT,
@@ -118,8 +119,9 @@ inline const std::vector<PinDeclaration> kPins = joined({{
    "`fatc-spindle-guard.refused`: M3 or M4 met the held spindle; a rising edge aborts what "
    "task runs and says why"},
   {"probe", &HalPins::probe, HAL_IN,
-   "the touch-off sensor, netted together with `motion.probe-input` (G38.3 reads that one); "
-   "the executor does not probe when it is already on"},
+   "the touch-off sensor, netted together with `motion.probe-input` (G38.3 reads that one), "
+   "or with `fatc-spindle-guard.sensor` where a touch probe shares it; the executor does not "
+   "probe when it is already on"},
   {"spindle-stopped", &HalPins::spindle_stopped, HAL_IN,
    "LinuxCNC has the spindle off (the snippet nets `not spindle.0.on`; a drive's own stopped "
    "signal says when it stands); M6 moves only at safe Z until it (and `zero-speed` where "

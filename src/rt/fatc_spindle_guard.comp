@@ -3,7 +3,9 @@ description """
 While \\fBprobe-in-spindle\\fR is true (config.json's \\fBtools\\fR says the tool
 in the spindle is a probe) the spindle is \\fBheld\\fR: \\fBspindle-on\\fR, the
 drive's run, stays false whatever \\fBspindle-on-in\\fR (spindle.0.on) asks,
-and \\fBinhibit\\fR holds motion's spindle speed at 0 (spindle.0.inhibit), so an
+\\fBspeed-out\\fR, the drive's speed, stays 0 whatever \\fBspeed-in\\fR says,
+and \\fBinhibit\\fR holds motion's spindle speed at 0 (spindle.0.inhibit, which
+M49 and M51 P0 switch off), so an
 M3 or M4 from a program, MDI, a GUI or halui turns nothing. \\fBrefused\\fR
 (the spindle asked for: \\fBspindle-on-in\\fR or a \\fBspeed-command\\fR
 speed) tells the component, which aborts what asked and says why. Once held, only a
@@ -21,6 +23,8 @@ pin in bit chuck-held "fixed_atc_probe.chuck-held: a chuck atom holds the spindl
 pin in bit spindle-on-in "spindle.0.on: LinuxCNC asks for the spindle";
 pin in float speed-command "spindle.0.speed-cmd-rps: the speed asked for, before spindle.0.inhibit (2.9.0 drops spindle.0.on with the inhibited speed)";
 pin out bit spindle-on "to the spindle drive's run: spindle-on-in, unless held";
+pin in float speed-in "the speed motion gives the drive (spindle.0.speed-out, or what your chain makes of it)";
+pin out float speed-out "to the spindle drive's speed: speed-in, 0 while held (M49 and M51 P0 switch spindle.0.inhibit off; this holds still)";
 pin out bit inhibit "to spindle.0.inhibit: held or chuck-held";
 pin out bit held "a probe is in the spindle, or was when the component stopped answering";
 pin out bit refused "held while LinuxCNC asks for the spindle (spindle-on-in, or a speed-command)";
@@ -42,6 +46,7 @@ if (heartbeat != last_beat) {
 alive = quiet < timeout;
 held = probe_in_spindle || (held && !alive);
 spindle_on = spindle_on_in && !held;
+speed_out = held ? 0 : speed_in;
 inhibit = held || chuck_held;
 refused = held && (spindle_on_in || speed_command != 0);
 probe_input = (probe_in_spindle && !changer_busy) ? spindle_probe : sensor;

@@ -379,7 +379,7 @@ void check_geometry(Reader& reader, Config& config) {
                                         ": a rounded corner would cut into the rack; got " +
                                         format_number(config.blend_tolerance));
   }
-  if (config.window() <= config.check_tolerance()) {
+  if (uses_default_tolerance(config) && config.window() <= config.check_tolerance()) {
     reader.error("probe_window", "must be larger than probe_check_tolerance (" +
                                      format_number(config.check_tolerance()) + "), got " +
                                      format_number(config.window()));

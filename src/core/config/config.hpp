@@ -169,16 +169,19 @@ const char* rule_name(MeasureRule rule);
 /// Where `tool`'s rule comes from, for a message: `tools.7.measure is "never"`,
 /// `probe_after_change is "off"`.
 std::string rule_said(const Config& config, int tool);
-/// Every tool's rule, for --check: "T2 probe, spindle held, measured if new;
-/// every other tool not measured at M6 (probe_after_change)".
-std::string measuring_words(const Config& config);
+/// Every tool's rule, one line each, for --check: "T2 probe, spindle held,
+/// measured if new", ..., "every other tool not measured at M6 (probe_after_change)".
+std::vector<std::string> measuring_words(const Config& config);
 /// What the operator reads when M3 or M4 meets probe `tool` in the spindle.
 std::string spindle_held_refusal(int tool);
+/// Some tool is checked against `probe_check_tolerance` (its rule "check", no
+/// tolerance of its own): only then must probe_window exceed it.
+bool uses_default_tolerance(const Config& config);
 /// Whether M6 measures `tool` after putting it in the spindle, by its rule;
 /// `measured`: the changer has a length of it.
 bool measures_after_change(const Config& config, int tool, bool measured);
 /// What the changer does with `tool` at a change, in a few words for --lint
-/// and the panel: "measured", "checked ±0.050", "probe, spindle held, measured if new".
+/// and the panel: "measured", "checked ±0.05", "probe, spindle held, measured if new".
 std::string rule_words(const Config& config, int tool);
 /// A length for a message, with the config's unit: "25.0012 mm".
 std::string format_length(const Config& config, double length);

@@ -86,7 +86,12 @@ void check_tools(Reader& reader, const Config& config) {
                    "must be smaller than probe_window (" + format_number(config.window()) +
                        "), got " + format_number(*tool.check_tolerance));
     }
-    if (tool.probe_feed && rule == MeasureRule::never) {
+    if (tool.probe_feed && *tool.probe_feed > config.probe_seek_feed) {
+      reader.error(here + ".probe_feed", "must not be above probe_seek_feed (" +
+                                             format_number(config.probe_seek_feed) +
+                                             "): it caps both probing feeds, got " +
+                                             format_number(*tool.probe_feed));
+    } else if (tool.probe_feed && rule == MeasureRule::never) {
       reader.error(here + ".probe_feed", "tool " + std::to_string(number) +
                                              " is never measured (\"measure\": \"never\"): "
                                              "nothing would use its probe_feed");
@@ -143,13 +148,14 @@ std::string rule_said(const Config& config, int tool) {
          " is \"" + rule_name(config.rule_of(tool)) + "\"";
 }
 
-std::string measuring_words(const Config& config) {
-  std::string words;
+std::vector<std::string> measuring_words(const Config& config) {
+  std::vector<std::string> lines;
   for (const auto& [tool, own] : config.tools) {
-    words += "T" + std::to_string(tool) + " " + rule_words(config, tool) + "; ";
+    lines.push_back("T" + std::to_string(tool) + " " + rule_words(config, tool));
   }
-  const std::string rest = config.tools.empty() ? "every tool " : "every other tool ";
-  return words + rest + rule_words(config, 0) + " (probe_after_change)";
+  lines.push_back(std::string(config.tools.empty() ? "every tool " : "every other tool ") +
+                  rule_words(config, 0) + " (probe_after_change)");
+  return lines;
 }
 
 std::string spindle_held_refusal(int tool) {
@@ -160,6 +166,14 @@ std::string spindle_held_refusal(int tool) {
   const std::string t = std::to_string(tool);
   return "spindle held: tool " + t + " in the spindle is a probe (tools." + t +
          ".kind), so the spindle start was aborted; change to a cutter (M6) before M3 or M4";
+}
+
+bool uses_default_tolerance(const Config& config) {
+  if (config.probe_after_change == MeasureRule::check) return true;  // every tool not listed
+  for (const auto& [tool, own] : config.tools) {
+    if (config.rule_of(tool) == MeasureRule::check && !own.check_tolerance) return true;
+  }
+  return false;
 }
 
 bool measures_after_change(const Config& config, int tool, bool measured) {
@@ -193,8 +207,7 @@ std::string rule_words(const Config& config, int tool) {
       break;
     case MeasureRule::check: {
       char tolerance[48];
-      std::snprintf(tolerance, sizeof tolerance, config.units == Units::inch ? "%.4f" : "%.3f",
-                    config.check_tolerance_of(tool));
+      std::snprintf(tolerance, sizeof tolerance, "%g", config.check_tolerance_of(tool));
       rule = std::string("checked ±") + tolerance;
       break;
     }

@@ -49,6 +49,14 @@ struct LoadFlow_ : Flow<LoadFlow_> {
       return fsm.ctx->config.rule_of(fsm.ctx->request.tool) != MeasureRule::never;
     }
   };
+  /// A "never" tool already in the spindle: nothing to insert or measure.
+  struct PutAwayAtOnce {
+    template <class Event, class Fsm, class Source, class Target>
+    bool operator()(const Event& e, Fsm& fsm, Source& source, Target& target) const {
+      return RequestedToolInSpindle{}(e, fsm, source, target) &&
+             !MeasuredAtLoad{}(e, fsm, source, target);
+    }
+  };
   /// "tool 3 measured 29.998 mm, in pocket 3": a finished load says what it did.
   struct SayLoaded {
     template <class Event, class Fsm, class Source, class Target>
@@ -79,11 +87,11 @@ struct LoadFlow_ : Flow<LoadFlow_> {
   //    Start                              Event             Next                Action        Guard
   // +----------------------------------+-----------------+-------------------+-------------+-----------------------------+
   Row < DecidingToReturn                 , none            , Returning         , none        , SpindleHoldsOtherTool       >,
-  Row < DecidingToReturn                 , none            , ToLoading         , none        , Not<SpindleHoldsOtherTool>  >,
+  Row < DecidingToReturn                 , none            , PuttingAway       , none        , PutAwayAtOnce               >,
+  Row < DecidingToReturn                 , none            , ToLoading         , none        , And<Not<SpindleHoldsOtherTool>, Not<PutAwayAtOnce>> >,
   Row < Returning::exit_pt<Finished>     , LegDone         , ToLoading         , none        , none                        >,
   Row < ToLoading                        , InPosition      , Inserting         , none        , Not<RequestedToolInSpindle> >,
-  Row < ToLoading                        , InPosition      , AwaitingProbe     , none        , And<RequestedToolInSpindle, MeasuredAtLoad> >,
-  Row < ToLoading                        , InPosition      , PuttingAway       , none        , And<RequestedToolInSpindle, Not<MeasuredAtLoad>> >,
+  Row < ToLoading                        , InPosition      , AwaitingProbe     , none        , RequestedToolInSpindle      >,
   Row < Inserting::exit_pt<Finished>     , LegDone         , ReportingTool     , none        , none                        >,
   Row < Inserting::exit_pt<Cancelled>    , LegDone         , ReportingFinalTool, SayCancelled, none                        >,
   Row < ReportingTool                    , CommandDone     , AwaitingProbe     , none        , MeasuredAtLoad              >,

@@ -44,9 +44,11 @@ std::optional<std::string> why_not_measure(const Context& ctx, const std::vector
   std::string skipped;
   std::string never;
   if (measurable_tools(ctx, asked, skipped, never).empty()) {
-    return "no tool to measure in the rack" +
-           (skipped.empty() ? std::string() : " (not in the rack: " + skipped + ")") +
-           (never.empty() ? std::string() : " (never measured: " + never + ")");
+    std::string why;
+    if (!skipped.empty()) why += "not in the rack: " + skipped;
+    if (!never.empty()) why += (why.empty() ? "" : "; ") + ("measured never (\"never\"): " + never);
+    return (never.empty() ? std::string("no tool to measure in the rack") : "no tool to measure") +
+           (why.empty() ? std::string() : " (" + why + ")");
   }
   return why_spindle_cannot_be_emptied(ctx, false);
 }

@@ -56,7 +56,7 @@ struct Status {
   /// the spindle: the spindle is held (`probe-in-spindle`); 0 none.
   int spindle_probe = 0;
   /// The tool the change is about (else the spindle's) and its rule, for the
-  /// panel: "T3 checked ±0.050", "T99 probe, spindle held, measured if new"; empty: none.
+  /// panel: "T3 checked ±0.05", "T99 probe, spindle held, measured if new"; empty: none.
   std::string rule;
 
   /// A flow runs: every phase but these three is a flow's.

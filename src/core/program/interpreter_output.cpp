@@ -132,11 +132,18 @@ void InterpreterOutput::canonical_call(std::string_view line) {
     }
     use(ToolUse::Kind::change, any_selected_ ? selected_ : std::nullopt,
         any_selected_ ? selected_line_ : line_);
-  } else if (calls(call, "START_SPINDLE_CLOCKWISE") ||
-             calls(call, "START_SPINDLE_COUNTERCLOCKWISE")) {
+  } else if (starts_with(call, "SET_SPINDLE_SPEED(0, ")) {
+    spindle_speed_ = std::strtod(std::string(call.substr(21)).c_str(), nullptr);
+  } else if (call == "START_SPINDLE_CLOCKWISE(0)" || call == "START_SPINDLE_COUNTERCLOCKWISE(0)" ||
+             starts_with(call, "ORIENT_SPINDLE(0, ")) {
     if (run_.spindle_starts.size() < kMaxToolUses) {
-      run_.spindle_starts.push_back({{program_.name, line_}, run_.uses.size(),
-                                     calls(call, "START_SPINDLE_CLOCKWISE")});
+      SpindleStart start;
+      start.where = {program_.name, line_};
+      start.before_use = run_.uses.size();
+      start.clockwise = call == "START_SPINDLE_CLOCKWISE(0)";
+      start.orients = starts_with(call, "ORIENT_SPINDLE(0, ");
+      start.speed = spindle_speed_;
+      run_.spindle_starts.push_back(start);
     }
   } else if (const auto row = argument_of(call, "CHANGE_TOOL_NUMBER")) {
     std::optional<int> tool;

@@ -78,6 +78,7 @@ class InterpreterOutput {
 
   ProgramGiven program_;
   std::vector<int> tool_of_row_;
+  double spindle_speed_ = 0.0;  ///< spindle 0's S, as SET_SPINDLE_SPEED last said
   InterpreterRun run_;
   int line_ = 0;                   ///< of the last call that named one
   std::optional<int> selected_;    ///< the last T, nullopt when it is not known

@@ -68,15 +68,24 @@ class Checker {
   }
 
   /// M3 or M4 with a probe in the spindle: the guard holds it, the changer aborts.
+  /// The program stops at the first: later ones with the same probe are not named.
   void spindle_started(const program::SpindleStart& start) {
     if (!spindle_known_ || tools_.spindle == 0 || !config_.is_probe(tools_.spindle)) return;
-    const std::string text =
-        std::string(start.clockwise ? "M3" : "M4") + " starts the spindle with " +
-        tool_word(tools_.spindle) + " in it, a probe (tools." + std::to_string(tools_.spindle) +
-        ".kind): fatc-spindle-guard holds the spindle and the changer aborts the program here";
-    if (named_.size() < program::kMaxErrors && named_.insert({start.where.line, text}).second) {
-      problem(start.where, text);
+    if (start.orients) {
+      problem(start.where, "M19 orients the spindle with " + tool_word(tools_.spindle) +
+                               " in it, a probe (tools." + std::to_string(tools_.spindle) +
+                               ".kind): fatc-spindle-guard does not hold an orient; change to "
+                               "a cutter first");
+      return;
     }
+    if (start.speed == 0.0 || probe_start_said_) return;
+    probe_start_said_ = true;
+    problem(start.where,
+            std::string(start.clockwise ? "M3" : "M4") + " starts the spindle with " +
+                tool_word(tools_.spindle) + " in it, a probe (tools." +
+                std::to_string(tools_.spindle) +
+                ".kind): fatc-spindle-guard holds the spindle and the changer aborts the program "
+                "here");
   }
 
   void change(PreflightRow& row) {
@@ -148,6 +157,7 @@ class Checker {
     }
     tools_.put_in_spindle(tool);
     spindle_known_ = true;
+    probe_start_said_ = false;
     // Measured at this change: a "new" tool is not measured at the next.
     if (tool != 0 && measures_after_change(config_, tool, measured(tool))) {
       measured_here_.insert(tool);
@@ -181,9 +191,11 @@ class Checker {
   /// and the change does not measure it.
   std::string length(const program::ToolUse& use, int tool) {
     if (tool == 0) return "-";
+    const bool change = use.kind == program::ToolUse::Kind::change;
+    // M6 of the tool already in the spindle answers at once: it measures nothing.
+    const bool already = change && spindle_known_ && tool == tools_.spindle;
     const bool measures =
-        use.kind == program::ToolUse::Kind::change &&
-        measures_after_change(config_, tool, measured(tool));
+        change && !already && measures_after_change(config_, tool, measured(tool));
     std::optional<std::string> stored;  // the length as the column shows it
     std::string missing;                // why there is none
     if (in_.table != nullptr) {
@@ -211,17 +223,21 @@ class Checker {
       }
     }
     if (measures) {
-      return std::string(config_.rule_of(tool) == MeasureRule::check ? "checked" : "measured") +
-             " at the change" + (stored ? ", stored " + *stored : "");
+      // A check of a tool the changer has no length of measures it.
+      const bool checks = config_.rule_of(tool) == MeasureRule::check && measured(tool);
+      return std::string(checks ? "checked" : "measured") + " at the change" +
+             (stored ? ", stored " + *stored : "");
     }
+    if (measured_here_.count(tool) != 0) return "measured at an earlier change";
     if (stored) return *stored;
     if (never_measured_.insert(tool).second) {
       const MeasureRule rule = config_.rule_of(tool);
-      problem(use.where, tool_word(tool) + " was never measured: " + missing +
-                             ", and M6 measures nothing (" + rule_said(config_, tool) +
-                             (rule == MeasureRule::never ? ": give its length in the tool table"
-                                                         : "") +
-                             ")");
+      const std::string why =
+          already ? "this M6 measures nothing (the tool is in the spindle already)"
+                  : "M6 measures nothing (" + rule_said(config_, tool) +
+                        (rule == MeasureRule::never ? ": give its length in the tool table" : "") +
+                        ")";
+      problem(use.where, tool_word(tool) + " was never measured: " + missing + ", and " + why);
     }
     return "never measured";
   }
@@ -302,6 +318,7 @@ class Checker {
   bool said_uncertain_ = false;
   std::set<int> never_measured_;
   std::set<int> measured_here_;  ///< tools a change of the program measured
+  bool probe_start_said_ = false;  ///< an M3 or M4 with the probe in the spindle now was named
   std::map<std::tuple<int, int, double, int, int, bool>, PlannedChange> plans_;
   Preflight result_;
 };

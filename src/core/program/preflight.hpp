@@ -44,7 +44,7 @@ struct PreflightRow {
   program::ToolUse use;
   std::string code;               ///< "M6 T3", "M6", "M61 Q3"
   std::string where;              ///< "pocket 3", "manual: handed over at loading", ...
-  std::string rule;               ///< the tool's measuring rule, rule_words(): "checked ±0.050"
+  std::string rule;               ///< the tool's measuring rule, rule_words(): "checked ±0.05"
   std::string length;             ///< "30.0000 mm (state file)", "never measured", ...
   std::optional<double> seconds;  ///< nullopt: not estimated
 };

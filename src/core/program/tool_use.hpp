@@ -39,11 +39,13 @@ struct ToolUse {
   bool ran = true;
 };
 
-/// An M3 or M4 LinuxCNC's interpreter ran: whatever the spindle holds then turns.
+/// An M3, M4 or M19 LinuxCNC's interpreter ran: whatever the spindle holds then turns.
 struct SpindleStart {
   Site where;
   std::size_t before_use = 0;  ///< how many tool uses the interpreter ran before it
   bool clockwise = true;       ///< M3; false: M4
+  bool orients = false;        ///< M19
+  double speed = 0.0;          ///< the S in force (0: nothing turns)
 };
 
 /// What LinuxCNC's interpreter made of a program.

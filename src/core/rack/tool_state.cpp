@@ -344,8 +344,14 @@ ToolStateResult tool_state_from_json(const std::string& text) {
 int spindle_probe(const Config& config, const ToolState& tools) {
   if (config.is_probe(tools.spindle)) return tools.spindle;
   if (!tools.uncertain) return 0;
-  for (const auto& [number, pocket] : tools.pockets) {
-    if (pocket.tool != 0 && !pocket.holds && config.is_probe(pocket.tool)) return pocket.tool;
+  // Cut off: a probe is taken to be out of the spindle only when it is known
+  // to sit in its pocket, and that pocket is not the one the sequence was at
+  // (a fetch grips before the record says so; a hand-in has no pocket).
+  const int cut_at = tools.in_progress ? tools.in_progress->pocket : 0;
+  for (const auto& [tool, own] : config.tools) {
+    if (own.kind != ToolKind::probe) continue;
+    const auto home = tools.home_of(tool);
+    if (!home || !tools.holds(*home) || *home == cut_at) return tool;
   }
   return 0;
 }

@@ -74,7 +74,8 @@ struct ToolState {
 std::optional<int> return_pocket(const ToolState& tools, const Config& config, int tool);
 
 /// The probe (`tools.N.kind`) in the spindle, or, after a cut-off sequence,
-/// one that is out of its pocket and may be: the spindle is held. 0: none.
+/// one not known to sit in its pocket (out of it, in the pocket the sequence
+/// was cut off at, or with no pocket), which may be: the spindle is held. 0: none.
 int spindle_probe(const Config& config, const ToolState& tools);
 
 /// "pockets 2, 5", "pocket 4" or "no pocket", for messages.

@@ -42,8 +42,8 @@ WORK_X, WORK_Y, WORK_Z = 120.0, 80.0, -40.0
 # Realtime meters (LinuxCNC's minmax, in the servo thread): the extremes of
 # each signal over a whole attempt, which sampling from here could miss.
 METERS = {"speed_command": "fatc-spindle-command", "speed_out": "spindle-speed-cmd",
-          "simulated_spindle": "spindle-speed-limited", "drive_run": "fatc-spindle-run",
-          "spindle_on": "fatc-spindle-on"}
+          "drive_speed": "fatc-spindle-speed", "simulated_spindle": "spindle-speed-limited",
+          "drive_run": "fatc-spindle-run", "spindle_on": "fatc-spindle-on"}
 BITS = ("drive_run", "spindle_on")  # through conv_bit_float first
 
 
@@ -148,9 +148,10 @@ def refusals():
     return sum("spindle held:" in m for m in d.messages)
 
 
-def mdi_attempt(result, start, line):
+def mdi_attempt(result, start, line, override_off=False):
     """An MDI line that starts the spindle: sampled until LinuxCNC has it off
-    again and the component has said why."""
+    again and the component has said why. override_off: after M51 P0, which
+    switches spindle.0.inhibit off."""
     said = refusals()
     d.command.mode(linuxcnc.MODE_MDI)
     d.command.wait_complete()
@@ -163,7 +164,8 @@ def mdi_attempt(result, start, line):
                   "the spindle off and the refusal after " + line)
     result.setdefault("attempts", []).append({"line": line, "began": began,
                                               "ended": time.monotonic() - start,
-                                              "meters": read_meters()})
+                                              "meters": read_meters(),
+                                              "override_off": override_off})
 
 
 def probe_program():
@@ -180,6 +182,10 @@ def probe_mdi():
     start = time.monotonic()
     mdi_attempt(result, start, "S1000 M3")
     mdi_attempt(result, start, "M4 S500")
+    # M51 P0: LinuxCNC's spindle override off, and with it spindle.0.inhibit.
+    mdi("M51 P0")
+    mdi_attempt(result, start, "S1000 M3", override_off=True)
+    mdi("M51 P1")
     return close(result)
 
 

@@ -15,9 +15,9 @@ def expect(ok, what):
     return ok
 
 
-def spindle_never_turned(samples, what):
+def spindle_never_turned(samples, what, override_off=False):
     """Motion's speed, the drive's run and the simulated spindle, in every sample."""
-    for pin in ("spindle.0.speed-out", "limit_speed.out"):
+    for pin in ("limit_speed.out",) + (() if override_off else ("spindle.0.speed-out",)):
         turning = [s for s in samples if s[pin]]
         expect(not turning, "%s: %s was %s at t=%.3f s" % (what, pin, turning[0][pin], turning[0]["t"])
                if turning else "")
@@ -26,17 +26,21 @@ def spindle_never_turned(samples, what):
            if run else "")
 
 
-def meters_held(meters, what):
+def meters_held(meters, what, override_off=False):
     """The realtime extremes of one attempt: LinuxCNC asked for the spindle,
-    and nothing turned: motion's speed, the simulated spindle, the drive's run."""
+    and nothing turned: the drive's speed and run, the simulated spindle, and
+    motion's speed out unless the spindle override (and with it
+    spindle.0.inhibit) was off."""
     low, high = meters["speed_command"]
     expect(low < 0 or high > 0, "%s: LinuxCNC never asked for the spindle (speed command "
                                 "%g..%g rps)" % (what, low, high))
-    for name in ("speed_out", "simulated_spindle", "drive_run"):
+    held = ["drive_speed", "simulated_spindle", "drive_run"] + ([] if override_off else ["speed_out"])
+    for name in held:
         expect(meters[name] == [0.0, 0.0], "%s: %s reached %g..%g in the servo thread" % (
             what, name, meters[name][0], meters[name][1]))
-    return "asked %g..%g rps; speed out, simulated spindle and drive run 0 in every servo " \
-           "period; spindle.0.on max %g" % (low, high, meters["spindle_on"][1])
+    return "asked %g..%g rps; %s 0 in every servo period; motion's speed out %g..%g, " \
+           "spindle.0.on max %g" % (low, high, ", ".join(held), meters["speed_out"][0],
+                                   meters["speed_out"][1], meters["spindle_on"][1])
 
 
 def asked(s):
@@ -80,9 +84,11 @@ def check_probe_program(r):
     expect(status.get("rule") == "T2 probe, spindle held, measured if new",
            "status file rule: %r" % status.get("rule"))
     expect(status.get("spindle_held") is True, "status file spindle_held: %r" % status.get("spindle_held"))
-    held = [s for s in samples if s[P + "tool-in-spindle"] == 2]
-    expect(held and all(s["fatc-spindle-guard.held"] and s["spindle.0.inhibit"] for s in held),
-           "with T2 in the spindle the guard did not hold it in every sample")
+    # From the sample after the component said T2 (the guard follows in the next servo period).
+    held = [s for before, s in zip(samples, samples[1:])
+            if before[P + "tool-in-spindle"] == 2 and s[P + "tool-in-spindle"] == 2]
+    loose = [s["t"] for s in held if not (s["fatc-spindle-guard.held"] and s["spindle.0.inhibit"])]
+    expect(held and not loose, "with T2 in the spindle the guard did not hold it at t=%s" % loose[:3])
     print("probe_program: " + meters_held(r["meters"], "probe_program"))
     print("probe_program: M3 asked for the spindle %.3f s until the abort (spindle.0.on high "
           "%.3f s); %d samples, speed 0 in all; probe fastest on the sensor %.2f mm/s" % (
@@ -91,12 +97,13 @@ def check_probe_program(r):
 
 def check_attempts(r, count):
     samples = r["samples"]
-    spindle_never_turned(samples, r["name"])
+    spindle_never_turned(samples, r["name"], any(a.get("override_off") for a in r["attempts"]))
     expect(len(refusals(r, 2)) >= count, "%d refusals naming tool 2, got %s" % (count, r["messages"]))
     for attempt in r.get("attempts", []):
         inside = [s for s in samples if attempt["began"] <= s["t"] <= attempt["ended"]]
-        print("%s: %s: %s" % (r["name"], attempt["line"], meters_held(attempt["meters"],
-                                                                      attempt["line"])))
+        line = attempt["line"] + (" after M51 P0" if attempt.get("override_off") else "")
+        print("%s: %s: %s" % (r["name"], line, meters_held(attempt["meters"], line,
+                                                              attempt.get("override_off"))))
         print("%s: %s: asked for %.3f s (spindle.0.on high %.3f s), %d samples, speed 0 in all" % (
             r["name"], attempt["line"], asked_for_seconds(inside) or 0, on_seconds(inside),
             len(inside)))
@@ -170,7 +177,7 @@ def check_broken(r):
     print("check_broken: %s" % (said[0] if said else "-"))
 
 
-CHECKS = {"probe_program": check_probe_program, "probe_mdi": lambda r: check_attempts(r, 2),
+CHECKS = {"probe_program": check_probe_program, "probe_mdi": lambda r: check_attempts(r, 3),
           "probe_halui": check_probe_halui, "g38_probe": check_g38, "kill_held": check_kill_held,
           "rules": check_rules, "check_broken": check_broken}
 

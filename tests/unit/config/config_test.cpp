@@ -54,6 +54,17 @@ TEST(Config, shouldApplyDocumentedDefaultsToNewKeys) {
   EXPECT_TRUE(c.manual_tools);
 }
 
+TEST(Config, shouldLetASmallProbeWindowStandWhenNoToolUsesTheDefaultTolerance) {
+  Json j = Json::parse(test::kValidConfig);
+  j["probe_window"] = 0.05;
+  j["tools"] = {{"3", {{"measure", "check"}, {"check_tolerance", 0.02}}}};
+  EXPECT_TRUE(parse_config(j.dump()).config.has_value());
+  j["tools"]["4"] = {{"measure", "check"}};  // checked against probe_check_tolerance's 0.1
+  const auto refused = parse_config(j.dump());
+  ASSERT_FALSE(refused.errors.empty());
+  EXPECT_EQ(refused.errors.front().rfind("probe_window: must be larger than probe_check_tolerance", 0), 0u);
+}
+
 TEST(Config, shouldReadEveryNewKey) {
   Json j = Json::parse(test::kValidConfig);
   j["units"] = "inch";
@@ -177,6 +188,7 @@ INSTANTIATE_TEST_SUITE_P(Each, BadConfigs, ::testing::Values(
   BadConfig{"tools_tolerance_window", [](Json& j) { j["tools"]["7"] = {{"measure", "check"}, {"check_tolerance", 20}}; }, "tools.7.check_tolerance: must be smaller than probe_window (10), got 20"},
   BadConfig{"tools_feed_never", [](Json& j) { j["tools"]["7"] = {{"measure", "never"}, {"probe_feed", 20}}; }, "tools.7.probe_feed: tool 7 is never measured"},
   BadConfig{"tools_feed_zero", [](Json& j) { j["tools"]["7"]["probe_feed"] = 0; }, "tools.7.probe_feed: must be from 0.01 to 100000"},
+  BadConfig{"tools_feed_above_seek", [](Json& j) { j["tools"]["7"]["probe_feed"] = 5000; }, "tools.7.probe_feed: must not be above probe_seek_feed (300): it caps both probing feeds, got 5000"},
   BadConfig{"probe_after_change_word", [](Json& j) { j["probe_after_change"] = "sometimes"; }, "probe_after_change: expected \"off\", \"always\", \"new\", \"never\", \"check\" or \"measure\", got \"sometimes\""},
   BadConfig{"tolerance_zero", [](Json& j) { j["probe_check_tolerance"] = 0; }, "probe_check_tolerance: must be from 0.0001 to 100 mm, got 0"},
   BadConfig{"manual_tools_word", [](Json& j) { j["manual_tools"] = "yes"; }, "manual_tools: expected true or false, got \"yes\""},

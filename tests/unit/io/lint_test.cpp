@@ -283,8 +283,31 @@ TEST_F(Lint, shouldNameALineThatStartsTheSpindleWithAProbeInIt) {
   EXPECT_NO_LINE(r, "probe.ngc: line 5:");
   EXPECT_LINE(r, "M6 T2         pocket 2                              probe, spindle held, measured "
                  "if new  22.0000 mm (state file)");
-  EXPECT_LINE(r, "M6 T3         pocket 3                              checked ±0.050          "
-                 "              checked at the change, stored 23.0000 mm (state file) ");
+  EXPECT_LINE(r, "M6 T3         pocket 3                              checked ±0.05" +
+                     std::string(25, ' ') + "checked at the change, stored 23.0000 mm (state file) ");
+}
+
+TEST_F(Lint, shouldNameOnlyTheFirstSpindleStartThatTurnsTheProbeAndAnOrient) {
+  const nlohmann::json tools = {{"2", {{"kind", "probe"}}}};
+  const LintRun r = run({"--lint", write("starts.ngc", "T2 M6\nS0 M3\nS900 M3\nM4\nM19 R90\nM2\n"),
+                         "--config", config_with("tools", tools), "--state",
+                         state_with_lengths({2})});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_NO_LINE(r, "starts.ngc: line 2:");
+  EXPECT_LINE(r, "starts.ngc: line 3: M3 starts the spindle with T2 in it, a probe");
+  EXPECT_NO_LINE(r, "starts.ngc: line 4:");
+  EXPECT_LINE(r, "starts.ngc: line 5: M19 orients the spindle with T2 in it, a probe");
+}
+
+TEST_F(Lint, shouldTakeANewToolAsMeasuredAfterItsFirstChange) {
+  const LintRun r = run({"--lint", write("new.ngc", "T1 M6\nT2 M6\nT1 M6\nT1 M6\nM2\n"),
+                         "--config", config_with("probe_after_change", "new"), "--state",
+                         no_state()});
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_LINE(r, "  1  1         M6 T1         pocket 1");
+  EXPECT_LINE(r, "measured if new                       measured at the change");
+  EXPECT_LINE(r, "measured if new                       measured at an earlier change");
+  EXPECT_NO_LINE(r, "never measured");
 }
 
 TEST_F(Lint, shouldReadTheLengthsFromTheToolTable) {

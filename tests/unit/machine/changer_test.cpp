@@ -845,6 +845,23 @@ TEST(MeasureRule, shouldPutANeverToolAwayAtALoadWithoutMeasuringIt) {
             "tool 4 not measured (\"never\": LinuxCNC's tool table length), in pocket 4");
 }
 
+TEST(MeasureRule, shouldPutANeverToolAlreadyInTheSpindleStraightAway) {
+  Rig rig(with_tool4(R"({"measure": "never"})"), 4);
+  rig.changer->load(4);
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(rig.lines(), concat({return_to_pocket(4), {"set-tool T0", "done T0"}}));
+  EXPECT_TRUE(rig.changer->tools().holds(4));
+  EXPECT_EQ(rig.changer->status().phase, Phase::idle);
+}
+
+TEST(MeasureRule, shouldSayWhyMeasureAllHasNothingToMeasure) {
+  Rig rig(with_tool4(R"({"measure": "never"})"), 0, {5});
+  rig.changer->measure_all({4, 5});
+  EXPECT_EQ(rig.sim.messages(MessageKind::error).back(),
+            "measure all (2 tools) refused: no tool to measure (not in the rack: T5; measured "
+            "never (\"never\"): T4)");
+}
+
 TEST(MeasureRule, shouldLeaveANeverToolOutOfMeasureAll) {
   Rig rig(with_tool4(R"({"measure": "never"})"), 0);
   rig.sim.sensor_z = kSensorZ;
@@ -911,7 +928,7 @@ TEST(ToolKind, shouldSayEachToolsRuleInAFewWords) {
       R"("probe_after_change": "new", "tools": {"3": {"measure": "check", "check_tolerance": 0.05},
          "7": {"measure": "always"}, "12": {"measure": "never"}, "99": {"kind": "probe"}})");
   EXPECT_EQ(rule_words(config, 7), "measured");
-  EXPECT_EQ(rule_words(config, 3), "checked ±0.050");
+  EXPECT_EQ(rule_words(config, 3), "checked ±0.05");
   EXPECT_EQ(rule_words(config, 12), "never measured (tool table length)");
   EXPECT_EQ(rule_words(config, 99), "probe, spindle held, measured if new");
   EXPECT_EQ(rule_words(config, 5), "measured if new");

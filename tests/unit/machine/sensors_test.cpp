@@ -169,7 +169,7 @@ INSTANTIATE_TEST_SUITE_P(
         Hostile{R"("sensor_timeout_seconds": -0.5)",
                 "sensor_timeout_seconds: must be from 0.01 to 60 seconds, got -0.5"},
         Hostile{R"("probe_window": -10)", "probe_window: must be from 0.001 to 1000 mm, got -10"},
-        Hostile{R"("probe_window": 0.2, "probe_check_tolerance": 0.5)",
+        Hostile{R"("probe_window": 0.2, "probe_check_tolerance": 0.5, "probe_after_change": "check")",
                 "probe_window: must be larger than probe_check_tolerance (0.5), got 0.2"}));
 
 // ---------------------------------------------------------------- a healthy rack changes nothing

@@ -621,7 +621,7 @@ TEST(Status, shouldHoldTheSpindleWhileAProbeIsInItAndSayEachToolsRule) {
   // During a change the rule shown is the requested tool's.
   cutter.changer->tool_change(3);
   cutter.step();
-  EXPECT_EQ(cutter.status().rule, "T3 checked ±0.050");
+  EXPECT_EQ(cutter.status().rule, "T3 checked ±0.05");
   EXPECT_EQ(Rig(0, tools).status().rule, "");
 }
 
@@ -635,6 +635,34 @@ TEST(Status, shouldHoldTheSpindleWhenACutOffSequenceMayHaveLeftTheProbeInIt) {
   EXPECT_EQ(spindle_probe(config, tools), 2);
   tools.uncertain = false;
   EXPECT_EQ(spindle_probe(config, tools), 0) << "known: T1 in the spindle, the probe elsewhere";
+}
+
+TEST(Status, shouldHoldTheSpindleWhenAChangeToTheProbeIsCutOffAtAnyStep) {
+  // M6 T2 (a probe) from T1, aborted at each step: the probe may be gripped
+  // before the record says it left its pocket.
+  // Returning T1 the probe sits in pocket 2; from the first step at pocket 2 on it may not.
+  const std::string probe = R"("tools": {"2": {"kind": "probe"}})";
+  bool at_probe_pocket = false;
+  for (int cut = 1;; ++cut) {
+    Rig rig(1, probe);
+    rig.changer->tool_change(2);
+    int steps = 0;
+    while (steps < cut && rig.status().busy() && rig.step()) ++steps;
+    if (!rig.status().busy()) break;  // the change ended before this step
+    rig.changer->abort("the test cut it off");
+    const Status after = rig.status();
+    const auto& cut_off = rig.changer->cut_off();
+    at_probe_pocket = at_probe_pocket || (cut_off && cut_off->pocket == 2);
+    EXPECT_EQ(after.phase, Phase::fault) << "cut at step " << cut;
+    EXPECT_EQ(after.spindle_probe, at_probe_pocket ? 2 : 0)
+        << "cut at step " << cut << ": " << (cut_off ? cut_off->step : std::string("-"));
+  }
+  EXPECT_TRUE(at_probe_pocket);
+  Rig manual(0, R"("tools": {"7": {"kind": "probe"}})");
+  manual.changer->tool_change(7);  // a probe with no pocket, handed in at loading
+  manual.advance_until(Awaiting::operator_choice);
+  manual.changer->abort("the test cut it off");
+  EXPECT_EQ(manual.status().spindle_probe, 7);
 }
 
 }  // namespace

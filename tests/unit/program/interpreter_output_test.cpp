@@ -69,15 +69,21 @@ TEST(InterpreterOutput, shouldKeepEachSpindleStartWithTheToolUsesBeforeIt) {
       "    2 N1000000002 SELECT_TOOL(3)\n"
       "    3 N1000000002 CHANGE_TOOL(3)\n"
       "    4 N1000000003 SET_SPINDLE_SPEED(0, 500.0000)\n"
-      "    5 N1000000003 START_SPINDLE_COUNTERCLOCKWISE(0)\n",
+      "    5 N1000000003 START_SPINDLE_COUNTERCLOCKWISE(0)\n"
+      "    6 N1000000004 START_SPINDLE_CLOCKWISE(1)\n"
+      "    7 N1000000005 ORIENT_SPINDLE(0, 90.0000, 0)\n",
       "executing\n");
-  ASSERT_EQ(run.spindle_starts.size(), 2u);
+  ASSERT_EQ(run.spindle_starts.size(), 3u) << "spindle 1 is another spindle";
   EXPECT_EQ(run.spindle_starts[0].where.line, 1);
   EXPECT_EQ(run.spindle_starts[0].before_use, 0u);
   EXPECT_TRUE(run.spindle_starts[0].clockwise);
   EXPECT_EQ(run.spindle_starts[1].where.line, 3);
   EXPECT_EQ(run.spindle_starts[1].before_use, 1u);
   EXPECT_FALSE(run.spindle_starts[1].clockwise);
+  EXPECT_DOUBLE_EQ(run.spindle_starts[0].speed, 0.0);
+  EXPECT_DOUBLE_EQ(run.spindle_starts[1].speed, 500.0);
+  EXPECT_TRUE(run.spindle_starts[2].orients);
+  EXPECT_EQ(run.spindle_starts[2].where.line, 5);
 }
 
 TEST(InterpreterOutput, shouldTakeAChangeWithoutItsToolAsLinuxCnc210PrintsIt) {
