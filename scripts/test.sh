@@ -5,8 +5,9 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
 status=0
-# The benchmarks (label bench) print figures and take minutes: run them alone.
-ctest --test-dir build --output-on-failure -LE bench "$@" || status=$?
+# The benchmarks (label bench) print figures and take minutes, the soak (label
+# soak) most of an hour: run them alone.
+ctest --test-dir build --output-on-failure -LE "bench|soak" "$@" || status=$?
 # The fault matrices, as tables (ctest shows a passing test's output only with -V).
 for results in build/tests/integration/fault_matrix/results.json \
                build/tests/integration/fault_matrix_restarts.json; do

@@ -16,11 +16,19 @@ Faults to inject, as a test would on a real machine:
   air-off           bit: no air pressure while high
   air-cut           bit: a rising edge cuts the air for air-cut-seconds
   take-from-pocket  s32: on a change to N > 0, tool N is taken out of pocket N by hand
+  drawbar-seconds   float: how long the drawbar takes to follow the valve (0.05 s)
+The operator's hand at `loading` (the soak):
+  hand              s32: on a change to N > 0, tool N is put into an empty spindle;
+                    to -1, the tool in the spindle is taken out
+Where every tool is, for the checks: spindle-tool, and pocket-tool-P (0: empty).
 
 Every change of where a tool is goes to rack_sim.log (one JSON object a
-line) in the folder LinuxCNC runs in, for the checks.
+line) in the folder LinuxCNC runs in, for the checks. Where a file
+rack_sim.state is in that folder (the soak puts one there), the rack starts
+as it says and it is kept up to date: the truth outlives a LinuxCNC start.
     rack_sim.py CONFIG.json"""
 import json
+import os
 import signal
 import sys
 import time
@@ -60,13 +68,17 @@ def main():
         c.newpin(name, hal.HAL_BIT, hal.HAL_IN)
     c.newpin("air-cut-seconds", hal.HAL_FLOAT, hal.HAL_IN)
     c.newpin("take-from-pocket", hal.HAL_S32, hal.HAL_IN)
+    c.newpin("hand", hal.HAL_S32, hal.HAL_IN)
+    c.newpin("drawbar-seconds", hal.HAL_FLOAT, hal.HAL_IN)
     for name in ("tool-present", "drawbar-open", "drawbar-closed", "air-pressure-ok", "cover-opened",
                  "cover-closed"):
         c.newpin(name, hal.HAL_BIT, hal.HAL_OUT)
     c.newpin("spindle-tool", hal.HAL_S32, hal.HAL_OUT)
     for tool in pockets:
         c.newpin("pocket-occupied-%d" % tool, hal.HAL_BIT, hal.HAL_OUT)
+        c.newpin("pocket-tool-%d" % tool, hal.HAL_S32, hal.HAL_OUT)
     c["air-cut-seconds"] = 10.0
+    c["drawbar-seconds"] = DRAWBAR_SECONDS
     c.ready()
 
     log = open("rack_sim.log", "w")  # one run's story
@@ -77,6 +89,12 @@ def main():
 
     holder = {tool: tool for tool in pockets}  # pocket -> the tool in it, 0 empty
     spindle = 0
+    kept = "rack_sim.state"
+    if os.path.exists(kept):
+        saved = json.load(open(kept))
+        holder = {int(p): t for p, t in saved["holders"].items()}
+        spindle = saved["spindle"]
+    shown = None
     drawbar_open = False
     moving_since = None
     cover_open = False
@@ -84,6 +102,7 @@ def main():
     air_off_until = 0.0
     last_cut = False
     last_take = 0
+    last_hand = 0
     note("start", pockets=holder, spindle=spindle)
 
     def pocket_at():
@@ -103,7 +122,7 @@ def main():
         # The drawbar follows the valve, opening only with air.
         if c["chuck"] != drawbar_open and (air or not c["chuck"]):
             moving_since = now if moving_since is None else moving_since
-            if now - moving_since >= DRAWBAR_SECONDS:
+            if now - moving_since >= c["drawbar-seconds"]:
                 drawbar_open = c["chuck"]
                 moving_since = None
                 at = pocket_at()
@@ -139,6 +158,15 @@ def main():
             holder[take] = 0
         last_take = take
 
+        hand = c["hand"]
+        if hand != last_hand and hand > 0 and not spindle:
+            spindle = hand
+            note("handed in", tool=hand)
+        elif hand != last_hand and hand < 0 and spindle:
+            note("taken out", tool=spindle)
+            spindle = 0
+        last_hand = hand
+
         c["air-pressure-ok"] = air
         c["drawbar-open"] = drawbar_open
         c["drawbar-closed"] = not drawbar_open
@@ -148,6 +176,12 @@ def main():
         c["spindle-tool"] = spindle
         for tool in pockets:
             c["pocket-occupied-%d" % tool] = holder[tool] != 0
+            c["pocket-tool-%d" % tool] = holder[tool]
+        if os.path.exists(kept) and shown != (spindle, sorted(holder.items())):
+            shown = (spindle, sorted(holder.items()))
+            with open(kept + ".tmp", "w") as f:
+                json.dump({"holders": holder, "spindle": spindle}, f)
+            os.replace(kept + ".tmp", kept)
         time.sleep(PERIOD)
     note("stop", pockets=holder, spindle=spindle)
 

@@ -1,0 +1,374 @@
+#!/usr/bin/python3
+"""[DISPLAY]DISPLAY of one LinuxCNC start of the soak (issue 36; soak_run.py
+starts LinuxCNC again and again on the same files until the soak is done).
+
+It reads soak_plan.json in LinuxCNC's folder: how many tool changes the whole
+soak makes, the seed, which start this is. Then, on the simulated mill with
+every sensor wired to the simulated rack (tests/integration/sensors/rack_sim.py,
+the physical truth: which holder is where), it runs random programs of M6
+over the whole rack (repeats, T0, manual tools handed in and out at
+`loading`), operator flows between them (unload, verify the empty pocket,
+load; measure all), and injects faults: a tool-present flicker of one servo
+period to tens of milliseconds, a drawbar that reports late (past half the
+sensor timeout), a grip that never comes (the fault path), E-stop, LinuxCNC's
+Stop, the component killed and restarted, LinuxCNC itself stopped (this start
+ends; the next one recovers). After each, the operator's recovery as the docs
+say it: machine on, look, confirm what the spindle and the cut-off pocket
+hold, clear. After every change and every recovery the changer's belief (its
+state file, LinuxCNC's tool in spindle, the tool table's lengths) is held
+against the truth; a difference the changer did not flag as uncertain is a
+mismatch. Everything goes to soak_events.jsonl, one JSON object a line;
+soak_report.py reads it.
+"""
+import json
+import os
+import random
+import subprocess
+import sys
+import time
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "integration",
+                                "harness"))
+import driver as d  # noqa: E402  (its LinuxCNC channels, HAL helpers, kill and restart)
+import hal  # noqa: E402
+import linuxcnc  # noqa: E402
+
+P = "fixed_atc_probe."
+RACK = "fatc-rack-sim."
+PLAN = json.load(open("soak_plan.json"))
+RACK_TOOLS = [1, 2, 3, 4, 5, 6]
+MANUAL_TOOLS = [7]
+# Injected into a program at a random moment, with what the operator then does.
+FAULTS = ["flicker", "late", "never", "estop", "abort", "kill", "restart_linuxcnc"]
+
+
+class Stopped(Exception):
+    """This start ends: LinuxCNC is stopped mid-change (the restart fault)."""
+
+
+class Soak:
+    def __init__(self):
+        self.rng = random.Random(PLAN["seed"] * 1000 + PLAN["start"])
+        self.events = open("soak_events.jsonl", "a")
+        self.changes = PLAN["changes_done"]
+        self.last_tool = None
+        self.change_began = None  # the changer's state pin went to changing
+        self.change_seconds = None
+        self.faulted_since_change = False
+        self.pending_fault = None
+        self.programs = 0
+        self.counting = False  # only a program's M6 count; a flow's M61 and a recovery's do not
+        self.faults = 0  # injected in this start
+        self.fault_active = False  # one was injected in the program under way: its changes are not timed
+
+    # ------------------------------------------------------------ record
+    def event(self, kind, **details):
+        self.events.write(json.dumps({"t": time.time(), "kind": kind, "start": PLAN["start"],
+                                      "changes": self.changes, **details}) + "\n")
+        self.events.flush()
+
+    def usage(self):
+        """The component's resident memory, open files and CPU seconds."""
+        pids = d.component_pids()
+        if len(pids) != 1:
+            return None
+        pid = pids[0]
+        try:
+            status = open("/proc/%d/status" % pid).read()
+            rss = int(status.split("VmRSS:")[1].split()[0])
+            fds = len(os.listdir("/proc/%d/fd" % pid))
+            fields = open("/proc/%d/stat" % pid).read().rsplit(")", 1)[1].split()
+            cpu = (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+        except (OSError, IndexError, ValueError):
+            return None
+        log = "fixed_atc_state.json.log"
+        return {"pid": pid, "rss_kib": rss, "fds": fds, "cpu_s": cpu,
+                "log_bytes": os.path.getsize(log) if os.path.exists(log) else 0,
+                "log_old_bytes": os.path.getsize(log + ".1") if os.path.exists(log + ".1") else 0}
+
+    # ------------------------------------------------------------ watch
+    def poll(self):
+        d.stat.poll()
+        d.drain_errors()
+        state = d.pin_value(P + "state")
+        now = time.monotonic()
+        if state == 2 and self.change_began is None:
+            self.change_began = now
+        elif state != 2 and self.change_began is not None:
+            self.change_seconds = now - self.change_began
+            self.change_began = None
+        if state == 5:
+            self.faulted_since_change = True
+        tool = d.stat.tool_in_spindle
+        if self.last_tool is None:
+            self.last_tool = tool
+        elif tool != self.last_tool and not self.counting:
+            self.last_tool = tool
+        elif tool != self.last_tool:
+            self.changes += 1
+            self.event("change", frm=self.last_tool, to=tool, seconds=self.change_seconds,
+                       clean=not self.faulted_since_change and not self.fault_active)
+            self.last_tool = tool
+            self.change_seconds = None
+            self.faulted_since_change = False
+            if self.changes % 50 == 0:
+                self.event("usage", **(self.usage() or {}))
+        return state
+
+    def wait(self, condition, timeout, what):
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline:
+            self.poll()
+            if self.pending_fault and self.pending_fault["at"] <= time.monotonic():
+                self.inject()
+            if condition():
+                return
+            time.sleep(0.005)
+        raise TimeoutError("timed out waiting for " + what)
+
+    # ------------------------------------------------------------ the rack's truth
+    def truth(self):
+        return {"spindle": d.pin_value(RACK + "spindle-tool"),
+                "pockets": {p: d.pin_value(RACK + "pocket-tool-%d" % p) for p in RACK_TOOLS}}
+
+    def compare(self, where):
+        """The changer's belief against the rack: a mismatch unless flagged uncertain."""
+        truth = self.truth()
+        state = d.read_json(d.state_path())
+        if state is None:
+            self.event("mismatch", where=where, what="no state file")
+            return
+        if state["uncertain"]:
+            self.event("uncertain", where=where, truth=truth)
+            return
+        problems = []
+        if state["spindle"] != truth["spindle"]:
+            problems.append("state spindle T%s, the rack T%s" % (state["spindle"], truth["spindle"]))
+        for pocket, entry in state["pockets"].items():
+            there = truth["pockets"][int(pocket)]
+            believed = entry["tool"] if entry["in_pocket"] else 0
+            if believed != there:
+                problems.append("pocket %s: state T%s, the rack T%s" % (pocket, believed, there))
+        # LinuxCNC is told the changer's tool once the changer is idle and task free.
+        try:
+            self.wait(lambda: d.stat.tool_in_spindle == truth["spindle"], 10,
+                      "LinuxCNC's tool in spindle")
+        except TimeoutError:
+            problems.append("LinuxCNC's tool in spindle T%d, the rack T%s" % (
+                d.stat.tool_in_spindle, truth["spindle"]))
+        table = {t.id: t.zoffset for t in d.stat.tool_table if t.id > 0}
+        for tool, length in state["lengths"].items():
+            if abs(table.get(int(tool), 0.0) - length) > 1e-3:
+                problems.append("T%s: state %.4f, LinuxCNC's table %.4f" % (
+                    tool, length, table.get(int(tool), 0.0)))
+            if abs(length - PLAN["true_length"]) > 0.01:
+                problems.append("T%s measured %.4f, its true length %.4f" % (
+                    tool, length, PLAN["true_length"]))
+        if problems:
+            self.event("mismatch", where=where, what=problems, truth=truth, state=state)
+        else:
+            self.event("agree", where=where)
+
+    # ------------------------------------------------------------ faults
+    def plan_fault(self, program_seconds):
+        """Perhaps a fault at a random moment of the next program. A kind that
+        the program ended before is tried again by the next (cycle mode)."""
+        if PLAN["fault_cycle"]:  # each kind in turn, one a program
+            kind = FAULTS[(PLAN["faults_before"] + self.faults) % len(FAULTS)]
+        elif self.rng.random() >= PLAN["fault_rate"]:
+            return
+        else:
+            kind = self.rng.choice(FAULTS)
+        if kind == "restart_linuxcnc" and not PLAN["restarts_left"]:
+            kind = "abort"
+        self.pending_fault = {"kind": kind,
+                              "at": time.monotonic() + self.rng.uniform(0.1, 0.5) * program_seconds}
+        if kind == "late":  # for the whole program: the drawbar reports past half its timeout
+            hal.set_p(RACK + "drawbar-seconds", str(0.6 * PLAN["sensor_timeout"]))
+            self.injected(kind, seconds=0.6 * PLAN["sensor_timeout"])
+        elif kind == "never":  # the next grip never comes
+            hal.set_p(RACK + "grip-fails", "1")
+            self.injected(kind)
+
+    def injected(self, kind, **details):
+        self.faults += 1
+        self.fault_active = True
+        self.pending_fault["at"] = float("inf")
+        self.event("fault", fault=kind, **details)
+
+    def inject(self):
+        kind = self.pending_fault["kind"]
+        if kind == "flicker":
+            width = self.rng.choice([0.001, 0.002, 0.005, 0.01, 0.02, 0.05])
+            hal.set_p("fatc-flicker.width", str(width))
+            hal.set_p("fatc-flicker.in", "1")
+            self.injected(kind, width=width)
+            hal.set_p("fatc-flicker.in", "0")
+        elif kind == "estop":
+            d.command.state(linuxcnc.STATE_ESTOP)
+            self.injected(kind)
+        elif kind == "abort":
+            d.command.abort()
+            self.injected(kind)
+        elif kind == "kill":
+            pid, _ = d.kill_component()
+            self.injected(kind, pid=pid)
+            self.event("restart", report=d.restart_component()["new"])
+        elif kind == "restart_linuxcnc":
+            self.injected(kind)
+            raise Stopped()
+
+    def end_faults(self):
+        """What a fault left set is put back once the program is over."""
+        hal.set_p(RACK + "drawbar-seconds", str(PLAN["drawbar_seconds"]))
+        hal.set_p(RACK + "grip-fails", "0")
+        self.pending_fault = None
+        self.fault_active = False
+
+    # ------------------------------------------------------------ the operator
+    def press(self, pin):
+        hal.set_p(P + pin, "1")
+        pressed = time.monotonic()
+        self.wait(lambda: time.monotonic() - pressed > 0.05, 5, "the press")
+        hal.set_p(P + pin, "0")
+        released = time.monotonic()
+        self.wait(lambda: time.monotonic() - released > 0.05, 5, "the release")
+
+    def answer_prompt(self):
+        """A prompt: the operator puts in or takes out what it asks, then Continue."""
+        status = d.read_json(d.state_path() + ".status") or {}
+        words = status.get("activity", "").lower()
+        spindle = d.pin_value(RACK + "spindle-tool")
+        if "insert tool " in words and spindle == 0:
+            tool = int(words.split("insert tool ")[1].split()[0])
+            hal.set_p(RACK + "hand", str(tool))
+            self.wait(lambda: d.pin_value(RACK + "spindle-tool") == tool, 5, "the hand-in")
+        elif "remove tool " in words and spindle:
+            hal.set_p(RACK + "hand", "-1")
+            self.wait(lambda: d.pin_value(RACK + "spindle-tool") == 0, 5, "the hand-out")
+        hal.set_p(RACK + "hand", "0")
+        self.press("continue")
+
+    def recover(self, where):
+        """As docs/operating.md#faults says: machine on, look, confirm, clear."""
+        d.stat.poll()
+        if d.stat.task_state != linuxcnc.STATE_ON:
+            d.command.state(linuxcnc.STATE_ESTOP_RESET)
+            d.command.state(linuxcnc.STATE_ON)
+            self.wait(lambda: d.stat.task_state == linuxcnc.STATE_ON, 30, "the machine on")
+        if not all(d.stat.homed[i] for i in range(d.stat.joints)):
+            d.command.mode(linuxcnc.MODE_MANUAL)
+            d.command.wait_complete()
+            d.command.home(-1)
+            self.wait(lambda: all(d.stat.homed[i] for i in range(d.stat.joints)), 120, "homing")
+        self.wait(lambda: d.stat.interp_state == linuxcnc.INTERP_IDLE and
+                  d.pin_value(P + "state") in (1, 5) and d.pin_value(P + "awaiting") == 0, 60,
+                  "the changer idle or in fault")
+        if d.pin_value(P + "state") == 5:
+            truth = self.truth()
+            pocket = d.pin_value(P + "cut-off-pocket")
+            holds = -1
+            if pocket:
+                holds = 1 if truth["pockets"].get(pocket) == pocket else 0
+            hal.set_p(P + "confirm-tool", str(truth["spindle"]))
+            hal.set_p(P + "confirm-pocket", str(holds))
+            self.press("clear-fault")
+            self.wait(lambda: d.pin_value(P + "state") == 1 and d.pin_value(P + "awaiting") == 0,
+                      60, "the changer idle after the confirm")
+            hal.set_p(P + "confirm-tool", "-1")
+            hal.set_p(P + "confirm-pocket", "-1")
+            self.event("recovery", where=where, spindle=truth["spindle"], pocket=pocket, holds=holds)
+        self.compare(where)
+
+    # ------------------------------------------------------------ work
+    def program(self):
+        n = self.rng.randint(3, 12)
+        tools = [self.rng.choice(RACK_TOOLS + RACK_TOOLS + [0] + MANUAL_TOOLS) for _ in range(n)]
+        self.programs += 1
+        path = os.path.abspath("soak_program_%d.ngc" % (self.programs % 2))
+        with open(path, "w") as f:
+            f.write("(soak: %s)\nG21 G90\n" % " ".join("T%d" % t for t in tools))
+            for t in tools:
+                f.write("T%d M6\n" % t)
+            f.write("M2\n")
+        self.event("program", tools=tools)
+        self.plan_fault(PLAN["seconds_per_change"] * n)
+        d.start_program(path)
+        self.counting = True
+        began = time.monotonic()
+        self.wait(lambda: d.stat.interp_state != linuxcnc.INTERP_IDLE or
+                  time.monotonic() - began > 2, 30, "the program to start")
+        while True:
+            self.wait(lambda: d.stat.interp_state == linuxcnc.INTERP_IDLE or
+                      d.pin_value(P + "waiting-for-operator"), 600, "the program or a prompt")
+            if d.stat.interp_state == linuxcnc.INTERP_IDLE:
+                break
+            self.answer_prompt()
+        self.counting = False
+        fault = self.pending_fault
+        reached = fault is not None and fault["at"] == float("inf")
+        if fault and not reached:
+            self.event("fault not reached", fault=fault["kind"])
+        self.end_faults()
+        self.recover("after a program" + (" with %s" % fault["kind"] if reached else ""))
+        self.event("usage", **(self.usage() or {}))
+
+    def operator_flow(self):
+        choice = self.rng.random()
+        if choice < 0.2:
+            self.event("operator", flow="measure all")
+            hal.set_p(P + "measure-which", "0")
+            self.press("measure-all")
+            self.wait(lambda: d.pin_value(P + "state") != 6 and d.pin_value(P + "state") in (1, 5)
+                      and d.stat.interp_state == linuxcnc.INTERP_IDLE, 600, "measure all")
+            self.recover("after measure all")
+            return
+        tool = self.rng.choice(RACK_TOOLS)
+        self.event("operator", flow="unload, verify, load", tool=tool)
+        hal.set_p(P + "tool-number", str(tool))
+        hal.set_p(P + "pocket-number", str(tool))
+        for flow in ("unload", "verify-pocket", "load"):
+            self.wait(lambda: d.pin_value(P + "accepting"), 60, "accepting for " + flow)
+            self.press(flow)
+            self.wait(lambda: d.pin_value(P + "state") != 1, 10, flow + " to start")
+            while True:
+                self.wait(lambda: d.pin_value(P + "state") in (1, 5) or
+                          d.pin_value(P + "waiting-for-operator"), 600, flow)
+                if d.pin_value(P + "state") in (1, 5):
+                    break
+                self.answer_prompt()
+            self.recover("after " + flow)
+
+    def run(self):
+        # As driver.bring_up, but a start after LinuxCNC was stopped mid-change
+        # finds the changer in fault: recover() confirms what the rack holds.
+        d.wait_for(lambda: d.stat.task_state in (linuxcnc.STATE_ESTOP, linuxcnc.STATE_ESTOP_RESET,
+                                                 linuxcnc.STATE_ON, linuxcnc.STATE_OFF), 120, "task")
+        self.recover("at the start")
+        self.event("usage", **(self.usage() or {}))
+        while self.changes < PLAN["changes"]:
+            if self.rng.random() < PLAN["operator_rate"]:
+                self.operator_flow()
+            else:
+                self.program()
+        self.event("usage", **(self.usage() or {}))
+        self.event("done")
+
+
+def main():
+    driver = hal.component("fatc-driver")
+    driver.ready()
+    soak = Soak()
+    try:
+        soak.run()
+    except Stopped:
+        soak.event("stopping linuxcnc")
+    except Exception as e:  # the report says it; LinuxCNC must still shut down
+        soak.event("error", what="%s: %s" % (type(e).__name__, e), messages=d.messages[-6:])
+    finally:
+        soak.event("messages", messages=d.messages)
+    subprocess.run(["sync"])
+
+
+if __name__ == "__main__":
+    main()
