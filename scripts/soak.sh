@@ -10,7 +10,8 @@
 # of the suite, which must meet every kind). The machine: the simulated mill
 # with axes ten times as fast (2000 mm/s, 20000 mm/s²), every sensor wired to
 # the simulated rack, pocket_feed 12000, 0.1 s chuck dwells, 0.05 s flush
-# pulses, sensor_timeout_seconds 0.5: a change takes about two seconds.
+# pulses, sensor_timeout_seconds 0.5, each tool measured at its first change
+# ("new"): a change takes about two seconds.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 work=${1:-$root/build/soak}
@@ -22,6 +23,6 @@ export FATC_BINARY=${FATC_BINARY:-$root/build/fixed_atc_probe}
 export FATC_INI_SED="s/^\(MAX_\(LINEAR_\)\?VELOCITY\) = 200$/\1 = 2000/;s/^\(MAX_\(LINEAR_\)\?ACCELERATION\) = 2000$/\1 = 20000/
 /^RETURN_TO_XY = /a RACK_SIM = $rack/rack_sim.py
 /^HALFILE = .*touchoff_sensor.hal$/a HALFILE = $rack/rack_sim.hal\nHALFILE = $here/soak_rack.hal"
-export FATC_CONFIG_SET='{"sensors": {"tool_present": true, "drawbar_open": true, "drawbar_closed": true, "air_pressure": true, "pocket_occupancy": true, "zero_speed": true}, "sensor_timeout_seconds": 0.5, "pocket_feed": 12000, "chuck_seconds": 0.1, "spindle_stop_timeout_seconds": 2.0, "flush": {"pulses": 1, "pulse_seconds": 0.05, "pause_seconds": 0.05}}'
+export FATC_CONFIG_SET='{"sensors": {"tool_present": true, "drawbar_open": true, "drawbar_closed": true, "air_pressure": true, "pocket_occupancy": true, "zero_speed": true}, "sensor_timeout_seconds": 0.5, "pocket_feed": 12000, "chuck_seconds": 0.1, "spindle_stop_timeout_seconds": 2.0, "flush": {"pulses": 1, "pulse_seconds": 0.05, "pause_seconds": 0.05}, "probe_after_change": "new"}'
 python3 "$here/soak_run.py" "$work" "$changes" "$seed"
 exec python3 "$here/soak_report.py" "$work" "$changes"

@@ -40,6 +40,7 @@ RACK_TOOLS = [1, 2, 3, 4, 5, 6]
 MANUAL_TOOLS = [7]
 # Injected into a program at a random moment, with what the operator then does.
 FAULTS = ["flicker", "late", "never", "estop", "abort", "kill", "restart_linuxcnc"]
+CUTS = ("estop", "abort", "kill", "restart_linuxcnc")  # those that cut a sequence off
 
 
 class Stopped(Exception):
@@ -57,9 +58,12 @@ class Soak:
         self.faulted_since_change = False
         self.pending_fault = None
         self.programs = 0
+        self.checks = 0
         self.counting = False  # only a program's M6 count; a flow's M61 and a recovery's do not
         self.faults = 0  # injected in this start
         self.fault_active = False  # one was injected in the program under way: its changes are not timed
+        self.first_of_program = False  # the next change is a program's first: it starts from anywhere
+        self.prompt_serial = -1  # the status file's serial of the last prompt answered
 
     # ------------------------------------------------------------ record
     def event(self, kind, **details):
@@ -106,20 +110,24 @@ class Soak:
             self.last_tool = tool
         elif tool != self.last_tool:
             self.changes += 1
+            clean = not self.faulted_since_change and not self.fault_active
+            self.check_change(tool)
             self.event("change", frm=self.last_tool, to=tool, seconds=self.change_seconds,
-                       clean=not self.faulted_since_change and not self.fault_active)
+                       clean=clean, first=self.first_of_program, checked=True,
+                       manual=self.last_tool in MANUAL_TOOLS or tool in MANUAL_TOOLS)
             self.last_tool = tool
             self.change_seconds = None
             self.faulted_since_change = False
-            if self.changes % 50 == 0:
-                self.event("usage", **(self.usage() or {}))
+            self.first_of_program = False
         return state
 
     def wait(self, condition, timeout, what):
         deadline = time.monotonic() + timeout
         while time.monotonic() < deadline:
             self.poll()
-            if self.pending_fault and self.pending_fault["at"] <= time.monotonic():
+            fault = self.pending_fault
+            if fault and fault["at"] != float("inf") and (
+                    d.pin_value(P + "chuck") if fault["at_chuck"] else fault["at"] <= time.monotonic()):
                 self.inject()
             if condition():
                 return
@@ -131,31 +139,54 @@ class Soak:
         return {"spindle": d.pin_value(RACK + "spindle-tool"),
                 "pockets": {p: d.pin_value(RACK + "pocket-tool-%d" % p) for p in RACK_TOOLS}}
 
-    def compare(self, where):
-        """The changer's belief against the rack: a mismatch unless flagged uncertain."""
-        truth = self.truth()
-        state = d.read_json(d.state_path())
-        if state is None:
-            self.event("mismatch", where=where, what="no state file")
-            return
-        if state["uncertain"]:
-            self.event("uncertain", where=where, truth=truth)
-            return
+    def rack_problems(self, state, truth):
+        """Where the state file and the rack disagree. A sequence cut off
+        (`uncertain`, or `in_progress` saved) excuses the spindle and the pocket
+        it was at, which the changer said it does not know; nothing else."""
+        if "unreadable" in state:
+            return ["the state file: %s" % state["unreadable"]]
+        cut = state.get("in_progress")
+        flagged = state.get("uncertain") or cut is not None
+        excused = str(cut["pocket"]) if flagged and cut else None
         problems = []
-        if state["spindle"] != truth["spindle"]:
+        if state["spindle"] != truth["spindle"] and not flagged:
             problems.append("state spindle T%s, the rack T%s" % (state["spindle"], truth["spindle"]))
         for pocket, entry in state["pockets"].items():
             there = truth["pockets"][int(pocket)]
             believed = entry["tool"] if entry["in_pocket"] else 0
-            if believed != there:
+            if believed != there and pocket != excused and not (flagged and there == state["spindle"]):
                 problems.append("pocket %s: state T%s, the rack T%s" % (pocket, believed, there))
-        # LinuxCNC is told the changer's tool once the changer is idle and task free.
-        try:
-            self.wait(lambda: d.stat.tool_in_spindle == truth["spindle"], 10,
-                      "LinuxCNC's tool in spindle")
-        except TimeoutError:
-            problems.append("LinuxCNC's tool in spindle T%d, the rack T%s" % (
-                d.stat.tool_in_spindle, truth["spindle"]))
+        return problems
+
+    def check_change(self, tool):
+        """Right after a change: the state file's rack and LinuxCNC's new tool against the rack."""
+        truth = self.truth()
+        problems = self.rack_problems(d.read_json(d.state_path()), truth)
+        if tool != truth["spindle"]:
+            problems.append("LinuxCNC's tool in spindle T%d, the rack T%s" % (tool, truth["spindle"]))
+        self.checks += 1
+        if problems:
+            self.event("mismatch", where="change %d" % self.changes, what=problems, truth=truth)
+
+    def compare(self, where):
+        """The changer's whole belief against the rack, the tool table included."""
+        truth = self.truth()
+        state = d.read_json(d.state_path())
+        problems = self.rack_problems(state, truth)
+        if "unreadable" in state:
+            self.event("mismatch", where=where, what=problems)
+            return
+        if state["uncertain"] or state.get("in_progress"):
+            self.event("uncertain", where=where, truth=truth)
+        # LinuxCNC is told the changer's tool once the changer is idle and task
+        # free: in a fault only once the operator said what the spindle holds.
+        if d.pin_value(P + "state") != 5:
+            try:
+                self.wait(lambda: d.stat.tool_in_spindle == truth["spindle"], 10,
+                          "LinuxCNC's tool in spindle")
+            except TimeoutError:
+                problems.append("LinuxCNC's tool in spindle T%d, the rack T%s" % (
+                    d.stat.tool_in_spindle, truth["spindle"]))
         table = {t.id: t.zoffset for t in d.stat.tool_table if t.id > 0}
         for tool, length in state["lengths"].items():
             if abs(table.get(int(tool), 0.0) - length) > 1e-3:
@@ -181,8 +212,14 @@ class Soak:
             kind = self.rng.choice(FAULTS)
         if kind == "restart_linuxcnc" and not PLAN["restarts_left"]:
             kind = "abort"
-        self.pending_fault = {"kind": kind,
-                              "at": time.monotonic() + self.rng.uniform(0.1, 0.5) * program_seconds}
+        # The last stretch keeps one component process and one LinuxCNC: its
+        # memory and files at its 50th change and at its last say whether it leaks.
+        if kind in ("kill", "restart_linuxcnc") and self.changes >= PLAN["changes"] - PLAN["quiet_tail"]:
+            kind = "abort"
+        # Half the cuts at the worst moment: as the chuck opens, a tool half out.
+        at = time.monotonic() + self.rng.uniform(0.1, 0.5) * program_seconds
+        self.pending_fault = {"kind": kind, "at": at,
+                              "at_chuck": kind in CUTS and self.rng.random() < 0.5}
         if kind == "late":  # for the whole program: the drawbar reports past half its timeout
             hal.set_p(RACK + "drawbar-seconds", str(0.6 * PLAN["sensor_timeout"]))
             self.injected(kind, seconds=0.6 * PLAN["sensor_timeout"])
@@ -198,24 +235,31 @@ class Soak:
 
     def inject(self):
         kind = self.pending_fault["kind"]
+        state = d.pin_value(P + "state")
         if kind == "flicker":
             width = self.rng.choice([0.001, 0.002, 0.005, 0.01, 0.02, 0.05])
             hal.set_p("fatc-flicker.width", str(width))
-            hal.set_p("fatc-flicker.in", "1")
-            self.injected(kind, width=width)
+            hal.set_p("fatc-flicker.in", "1")  # held until the oneshot took the edge
+            pulsed = time.monotonic()
+            while d.pin_value("fatc-flicker.time-left") <= 0 and time.monotonic() - pulsed < 1:
+                if d.pin_value("fatc-flicker.out"):
+                    break
+                time.sleep(0.0002)
+            fired = bool(d.pin_value("fatc-flicker.out") or d.pin_value("fatc-flicker.time-left") > 0)
             hal.set_p("fatc-flicker.in", "0")
+            self.injected(kind, width=width, fired=fired, changer_state=state)
         elif kind == "estop":
             d.command.state(linuxcnc.STATE_ESTOP)
-            self.injected(kind)
+            self.injected(kind, changer_state=state, at_chuck=self.pending_fault["at_chuck"])
         elif kind == "abort":
             d.command.abort()
-            self.injected(kind)
+            self.injected(kind, changer_state=state, at_chuck=self.pending_fault["at_chuck"])
         elif kind == "kill":
             pid, _ = d.kill_component()
-            self.injected(kind, pid=pid)
+            self.injected(kind, pid=pid, changer_state=state, at_chuck=self.pending_fault["at_chuck"])
             self.event("restart", report=d.restart_component()["new"])
         elif kind == "restart_linuxcnc":
-            self.injected(kind)
+            self.injected(kind, changer_state=state, at_chuck=self.pending_fault["at_chuck"])
             raise Stopped()
 
     def end_faults(self):
@@ -229,14 +273,23 @@ class Soak:
     def press(self, pin):
         hal.set_p(P + pin, "1")
         pressed = time.monotonic()
-        self.wait(lambda: time.monotonic() - pressed > 0.05, 5, "the press")
+        self.wait(lambda: time.monotonic() - pressed > 0.1, 5, "the press")  # the component polls at 20 ms
         hal.set_p(P + pin, "0")
         released = time.monotonic()
-        self.wait(lambda: time.monotonic() - released > 0.05, 5, "the release")
+        self.wait(lambda: time.monotonic() - released > 0.1, 5, "the release")
 
     def answer_prompt(self):
-        """A prompt: the operator puts in or takes out what it asks, then Continue."""
-        status = d.read_json(d.state_path() + ".status") or {}
+        """A prompt: the operator puts in or takes out what it asks, then Continue.
+        Its words are read once the status file shows this prompt (each prompt is
+        said, and its serial counts up), not the one before."""
+        status = {}
+
+        def shown():
+            status.update(d.read_json(d.state_path() + ".status"))
+            return status.get("serial", -1) > self.prompt_serial and \
+                "press continue" in status.get("activity", "").lower()
+        self.wait(shown, 10, "the prompt's words in the status file")
+        self.prompt_serial = status["serial"]
         words = status.get("activity", "").lower()
         spindle = d.pin_value(RACK + "spindle-tool")
         if "insert tool " in words and spindle == 0:
@@ -249,8 +302,9 @@ class Soak:
         hal.set_p(RACK + "hand", "0")
         self.press("continue")
 
-    def recover(self, where):
-        """As docs/operating.md#faults says: machine on, look, confirm, clear."""
+    def recover(self, where, provoked=False):
+        """As docs/operating.md#faults says: machine on, look, confirm, clear.
+        `provoked`: a fault was injected; a fault without one is the changer's own."""
         d.stat.poll()
         if d.stat.task_state != linuxcnc.STATE_ON:
             d.command.state(linuxcnc.STATE_ESTOP_RESET)
@@ -265,11 +319,14 @@ class Soak:
                   d.pin_value(P + "state") in (1, 5) and d.pin_value(P + "awaiting") == 0, 60,
                   "the changer idle or in fault")
         if d.pin_value(P + "state") == 5:
+            self.compare("in fault, before the confirm: " + where)
             truth = self.truth()
             pocket = d.pin_value(P + "cut-off-pocket")
             holds = -1
             if pocket:
-                holds = 1 if truth["pockets"].get(pocket) == pocket else 0
+                state = d.read_json(d.state_path())
+                own = state.get("pockets", {}).get(str(pocket), {}).get("tool", pocket)
+                holds = 1 if truth["pockets"].get(pocket) == own else 0
             hal.set_p(P + "confirm-tool", str(truth["spindle"]))
             hal.set_p(P + "confirm-pocket", str(holds))
             self.press("clear-fault")
@@ -277,7 +334,8 @@ class Soak:
                       60, "the changer idle after the confirm")
             hal.set_p(P + "confirm-tool", "-1")
             hal.set_p(P + "confirm-pocket", "-1")
-            self.event("recovery", where=where, spindle=truth["spindle"], pocket=pocket, holds=holds)
+            self.event("recovery", where=where, spindle=truth["spindle"], pocket=pocket, holds=holds,
+                       provoked=provoked)
         self.compare(where)
 
     # ------------------------------------------------------------ work
@@ -293,34 +351,46 @@ class Soak:
             f.write("M2\n")
         self.event("program", tools=tools)
         self.plan_fault(PLAN["seconds_per_change"] * n)
+        before = self.usage()
+        changes = self.changes
         d.start_program(path)
         self.counting = True
-        began = time.monotonic()
+        self.first_of_program = True
         self.wait(lambda: d.stat.interp_state != linuxcnc.INTERP_IDLE or
-                  time.monotonic() - began > 2, 30, "the program to start")
+                  d.pin_value(P + "state") != 1, 30, "the program to start")
+        deadline = time.monotonic() + 60 * (n + 2)
         while True:
             self.wait(lambda: d.stat.interp_state == linuxcnc.INTERP_IDLE or
-                      d.pin_value(P + "waiting-for-operator"), 600, "the program or a prompt")
+                      d.pin_value(P + "waiting-for-operator"), max(deadline - time.monotonic(), 1),
+                      "the program or a prompt")
             if d.stat.interp_state == linuxcnc.INTERP_IDLE:
                 break
             self.answer_prompt()
         self.counting = False
+        after = self.usage()
+        if before and after and before["pid"] == after["pid"]:
+            self.event("program cpu", cpu_s=after["cpu_s"] - before["cpu_s"],
+                       changes=self.changes - changes)
         fault = self.pending_fault
         reached = fault is not None and fault["at"] == float("inf")
         if fault and not reached:
             self.event("fault not reached", fault=fault["kind"])
         self.end_faults()
-        self.recover("after a program" + (" with %s" % fault["kind"] if reached else ""))
-        self.event("usage", **(self.usage() or {}))
+        self.recover("after a program" + (" with %s" % fault["kind"] if reached else ""),
+                     provoked=reached)
+        self.event("usage", **(after or {}))
 
     def operator_flow(self):
+        if d.pin_value(P + "tool-in-spindle") in MANUAL_TOOLS:
+            return  # the flows refuse to start with a tool of no pocket in the spindle
         choice = self.rng.random()
         if choice < 0.2:
             self.event("operator", flow="measure all")
             hal.set_p(P + "measure-which", "0")
             self.press("measure-all")
-            self.wait(lambda: d.pin_value(P + "state") != 6 and d.pin_value(P + "state") in (1, 5)
-                      and d.stat.interp_state == linuxcnc.INTERP_IDLE, 600, "measure all")
+            self.wait(lambda: d.pin_value(P + "state") != 1, 30, "measure all to start")
+            self.wait(lambda: d.pin_value(P + "state") in (1, 5) and
+                      d.stat.interp_state == linuxcnc.INTERP_IDLE, 600, "measure all")
             self.recover("after measure all")
             return
         tool = self.rng.choice(RACK_TOOLS)
@@ -344,7 +414,7 @@ class Soak:
         # finds the changer in fault: recover() confirms what the rack holds.
         d.wait_for(lambda: d.stat.task_state in (linuxcnc.STATE_ESTOP, linuxcnc.STATE_ESTOP_RESET,
                                                  linuxcnc.STATE_ON, linuxcnc.STATE_OFF), 120, "task")
-        self.recover("at the start")
+        self.recover("at the start", provoked=PLAN["start"] > 1)
         self.event("usage", **(self.usage() or {}))
         while self.changes < PLAN["changes"]:
             if self.rng.random() < PLAN["operator_rate"]:

@@ -25,12 +25,13 @@ os.makedirs(work)
 # once it exists (a fresh rack: every tool in its pocket, the spindle empty).
 with open(os.path.join(work, "rack_sim.state"), "w") as f:
     json.dump({"holders": {str(p): p for p in range(1, 7)}, "spindle": 0}, f)
-restarts = max(1, changes // 300)  # LinuxCNC stopped mid-change this often, at most
+budget = max(1, changes // 300)  # LinuxCNC stopped mid-change this often, at most
 began = time.time()
-for start in range(1, 2 * restarts + 20):
+for start in range(1, 2 * budget + 20):
     events = os.path.join(work, "soak_events.jsonl")
     done = 0
     faults = 0
+    restarts = budget
     if os.path.exists(events):
         for line in open(events):
             event = json.loads(line)
@@ -44,7 +45,8 @@ for start in range(1, 2 * restarts + 20):
             "restarts_left": max(restarts, 0), "fault_rate": 0.35, "operator_rate": 0.12,
             "seconds_per_change": 2.5, "sensor_timeout": config.get("sensor_timeout_seconds", 1.0),
             "drawbar_seconds": 0.05, "true_length": 25.0,
-            "fault_cycle": bool(os.environ.get("FATC_SOAK_CYCLE"))}
+            "fault_cycle": bool(os.environ.get("FATC_SOAK_CYCLE")),
+            "quiet_tail": 300 if changes >= 600 else 0}
     with open(os.path.join(work, "soak_plan.json"), "w") as f:
         json.dump(plan, f)
     env = dict(os.environ, FATC_KEEP_STATE="1")
