@@ -63,7 +63,7 @@ class Soak:
         self.faults = 0  # injected in this start
         self.fault_active = False  # one was injected in the program under way: its changes are not timed
         self.first_of_program = False  # the next change is a program's first: it starts from anywhere
-        self.prompt_serial = -1  # the status file's serial of the last prompt answered
+        self.prompt_serial = None  # the component and status file serial of the last prompt answered
 
     # ------------------------------------------------------------ record
     def event(self, kind, **details):
@@ -283,13 +283,14 @@ class Soak:
         Its words are read once the status file shows this prompt (each prompt is
         said, and its serial counts up), not the one before."""
         status = {}
+        pid = d.component_pids()  # a restarted component counts its serials from 0 again
 
         def shown():
             status.update(d.read_json(d.state_path() + ".status"))
-            return status.get("serial", -1) > self.prompt_serial and \
+            return (pid, status.get("serial")) != self.prompt_serial and \
                 "press continue" in status.get("activity", "").lower()
         self.wait(shown, 10, "the prompt's words in the status file")
-        self.prompt_serial = status["serial"]
+        self.prompt_serial = (pid, status["serial"])
         words = status.get("activity", "").lower()
         spindle = d.pin_value(RACK + "spindle-tool")
         if "insert tool " in words and spindle == 0:
