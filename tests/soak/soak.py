@@ -319,7 +319,14 @@ class Soak:
         self.wait(lambda: d.stat.interp_state == linuxcnc.INTERP_IDLE and
                   d.pin_value(P + "state") in (1, 5) and d.pin_value(P + "awaiting") == 0, 60,
                   "the changer idle or in fault")
-        if d.pin_value(P + "state") == 5:
+        for look in range(3):
+            if d.pin_value(P + "state") != 5:
+                break
+            # The operator looks once the machine stands: a chuck the component
+            # left open is closed by its guard within half a second, and may grip
+            # the tool again where the spindle stands.
+            self.wait(lambda: not d.pin_value("fatc-chuck-guard.chuck") and
+                      not d.pin_value(RACK + "drawbar-open"), 10, "the chuck closed")
             self.compare("in fault, before the confirm: " + where)
             truth = self.truth()
             pocket = d.pin_value(P + "cut-off-pocket")
@@ -331,12 +338,14 @@ class Soak:
             hal.set_p(P + "confirm-tool", str(truth["spindle"]))
             hal.set_p(P + "confirm-pocket", str(holds))
             self.press("clear-fault")
-            self.wait(lambda: d.pin_value(P + "state") == 1 and d.pin_value(P + "awaiting") == 0,
+            # Cleared, the changer compares its sensors with what it was told: a
+            # fault again if they disagree, and the operator looks once more.
+            self.wait(lambda: d.pin_value(P + "state") in (1, 5) and d.pin_value(P + "awaiting") == 0,
                       60, "the changer idle after the confirm")
             hal.set_p(P + "confirm-tool", "-1")
             hal.set_p(P + "confirm-pocket", "-1")
             self.event("recovery", where=where, spindle=truth["spindle"], pocket=pocket, holds=holds,
-                       provoked=provoked)
+                       provoked=provoked, look=look + 1)
         self.compare(where)
 
     # ------------------------------------------------------------ work
