@@ -46,10 +46,13 @@ longest = max(lifetimes, key=lambda p: p["changes"]) if lifetimes else None
 # Drift: each class of change (from, to) a program makes with no fault injected,
 # no operator's hand in it (manual tools) and not its first change (which
 # starts from wherever the last program or flow left the spindle).
+# A fetch into an empty spindle starts where the T0 before it left its tool:
+# its class names that tool too (T5>T0>T4).
 classes = collections.OrderedDict()
-for e in changes:
+for before, e in zip([None] + changes, changes):
     if e["clean"] and e["seconds"] and not e.get("first") and not e.get("manual"):
-        classes.setdefault("T%d>T%d" % (e["frm"], e["to"]), []).append(e["seconds"])
+        came = "T%d>" % before["frm"] if e["frm"] == 0 and before and before["to"] == 0 else ""
+        classes.setdefault("%sT%d>T%d" % (came, e["frm"], e["to"]), []).append(e["seconds"])
 
 
 def median(values):
