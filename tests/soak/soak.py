@@ -307,15 +307,9 @@ class Soak:
         """As docs/operating.md#faults says: machine on, look, confirm, clear.
         `provoked`: a fault was injected; a fault without one is the changer's own."""
         d.stat.poll()
-        if d.stat.task_state != linuxcnc.STATE_ON:
-            d.command.state(linuxcnc.STATE_ESTOP_RESET)
-            d.command.state(linuxcnc.STATE_ON)
-            self.wait(lambda: d.stat.task_state == linuxcnc.STATE_ON, 30, "the machine on")
-        if not all(d.stat.homed[i] for i in range(d.stat.joints)):
-            d.command.mode(linuxcnc.MODE_MANUAL)
-            d.command.wait_complete()
-            d.command.home(-1)
-            self.wait(lambda: all(d.stat.homed[i] for i in range(d.stat.joints)), 120, "homing")
+        if d.stat.task_state != linuxcnc.STATE_ON or \
+                not all(d.stat.homed[i] for i in range(d.stat.joints)):
+            d.machine_on()
         self.wait(lambda: d.stat.interp_state == linuxcnc.INTERP_IDLE and
                   d.pin_value(P + "state") in (1, 5) and d.pin_value(P + "awaiting") == 0, 60,
                   "the changer idle or in fault")

@@ -115,17 +115,6 @@ def files():
             "tool_table": open(os.path.join(d.ini_dir(), "sim.tbl")).read()}
 
 
-def machine_on():
-    d.command.state(linuxcnc.STATE_ESTOP_RESET)
-    d.command.state(linuxcnc.STATE_ON)
-    d.wait_for(lambda: d.stat.task_state == linuxcnc.STATE_ON, 60, "machine on")
-    if not all(d.stat.homed[i] for i in range(d.stat.joints)):
-        d.command.mode(linuxcnc.MODE_MANUAL)
-        d.command.wait_complete()
-        d.command.home(-1)
-        d.wait_for(lambda: all(d.stat.homed[i] for i in range(d.stat.joints)), 120, "homing")
-
-
 def cut(kind, at, steps, case):
     """Runs the change and strikes when the step-number pin shows `at`."""
     held = pin(P + "tool-in-spindle")
@@ -175,7 +164,7 @@ def settle(kind, struck, case):
         d.wait_for(lambda: pin("fatc-chuck-guard.alive"), 30, "the restarted component's heartbeat")
     if kind == "estop":
         case["task_state_after"] = d.stat.task_state
-        machine_on()
+        d.machine_on()
     d.wait_for(lambda: pin(P + "fault"), 30, "the changer faulted")
     d.wait_for(lambda: not hal.get_value("iocontrol.0.tool-change"), 10, "tool-change low")
 
@@ -190,7 +179,7 @@ def after_cut(messages):
 
 def observe_refusals(case):
     """Faulted: M6 and the operator flows are refused with a message; nothing moves."""
-    # The position now, not at the last poll: machine_on() may have homed since
+    # The position now, not at the last poll: d.machine_on() may have homed since
     # (the estop column failed on master with the old poll as its baseline).
     d.stat.poll()
     before = list(d.stat.actual_position[:3])
@@ -266,7 +255,7 @@ def recover():
     """After a case that went wrong: the machine on, the component up, idle."""
     d.stat.poll()
     if d.stat.task_state != linuxcnc.STATE_ON:
-        machine_on()
+        d.machine_on()
     if not d.component_pids():
         d.restart_component()
     d.wait_for(lambda: pin(P + "state") in (1, 5), 30, "the changer up")
@@ -385,7 +374,7 @@ def bring_up():
     """As the driver's, but the changer may come up faulted (a restart case)."""
     d.wait_for(lambda: d.stat.task_state in (linuxcnc.STATE_ESTOP, linuxcnc.STATE_ESTOP_RESET,
                                              linuxcnc.STATE_ON, linuxcnc.STATE_OFF), 120, "task")
-    machine_on()
+    d.machine_on()
     d.wait_for(lambda: pin(P + "state") in (1, 5), 60, "fixed_atc_probe up")
 
 

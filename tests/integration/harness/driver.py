@@ -752,6 +752,19 @@ def run_operator(scenario):
     return result
 
 
+def machine_on():
+    """Out of estop, on, and homed where homing was lost: what an operator does
+    before looking at the changer after an estop or a start."""
+    command.state(linuxcnc.STATE_ESTOP_RESET)
+    command.state(linuxcnc.STATE_ON)
+    wait_for(lambda: stat.task_state == linuxcnc.STATE_ON, 60, "machine on")
+    if not all(stat.homed[i] for i in range(stat.joints)):
+        command.mode(linuxcnc.MODE_MANUAL)
+        command.wait_complete()
+        command.home(-1)
+        wait_for(lambda: all(stat.homed[i] for i in range(stat.joints)), 120, "homing")
+
+
 def finish(result, start, first_message):
     """The last sample and what LinuxCNC says after the scenario."""
     stat.poll()
