@@ -258,6 +258,11 @@ int check(const Options& options, std::ostream& out, std::ostream& err) {
   const Config& config = *loaded.config;
   out << shown_path(options.config_path) << ": units " << units_name(config.units) << ", "
       << config.pockets.size() << " pockets, keep-out margin " << config.keepout_margin() << "\n";
+  const auto defaults = defaulted_words(config);
+  if (!defaults.empty()) {
+    out << "defaults taken (the keys left out, in " << units_name(config.units) << "):\n";
+    for (const std::string& line : defaults) out << "  " << line << "\n";
+  }
   out << "sensors wired: " << sensors_wired(config) << "\nmeasuring:\n";
   for (const std::string& line : measuring_words(config)) out << "  " << line << "\n";
   out << "\n";

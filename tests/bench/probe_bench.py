@@ -4,7 +4,12 @@ one tool N times with fixed_atc_probe's two-stage probe (seek, back off,
 latch; through the component and its step executor, as an operator's
 Load/Probe does) and N times with the prototype's method (down 0.2 mm per
 move, the sensor read between moves), both from loading Z at the same feed.
-Writes every measurement to FATC_RESULTS; scripts/bench_probe.py prints them.
+Then a touch probe (T3, config.json's tools: "kind": "probe", measured at
+probe_latch_feed) N times through Load/Probe - fast to the window above where
+its length puts the touch, slowly from there (issue 42) - and N times as it
+was measured before, at that feed all the way down from loading Z (seek,
+back-off, latch, by a program). Writes every measurement to FATC_RESULTS;
+scripts/bench_probe.py prints them.
 
 The simulated sensor is put at a height off the 0.2 mm grid of the stepping
 method, as a real sensor would be."""
@@ -21,6 +26,7 @@ from driver import command, hal, linuxcnc, stat, wait_for  # noqa: E402
 SENSOR_Z = -70.0731
 REPEATS = int(os.environ.get("FATC_BENCH_REPEATS") or "10")
 TOOL = 2
+PROBE = 3  # a touch probe: scripts/bench_probe.sh declares it so in config.json
 SENSOR_INPUT = "01"  # motion.digital-in-01: the stepping method reads the sensor there
 
 
@@ -44,10 +50,10 @@ def mdi(line, timeout=120):
     wait_for(lambda: stat.interp_state == linuxcnc.INTERP_IDLE, timeout, line)
 
 
-def two_stage():
-    """Load/Probe of the tool in the spindle; timed from the start of the seek
-    to the tool-table write, read on the pins at 2 ms."""
-    hal.set_p("fixed_atc_probe.tool-number", str(TOOL))
+def two_stage(tool=TOOL):
+    """Load/Probe of the tool in the spindle; timed from the start of the first
+    probing move to the tool-table write, read on the pins at 2 ms."""
+    hal.set_p("fixed_atc_probe.tool-number", str(tool))
     press("fixed_atc_probe.load")
     wait_for(lambda: hal.get_value("fixed_atc_probe.waiting-for-operator"), 120, "the jog prompt")
     press("fixed_atc_probe.continue")
@@ -67,7 +73,7 @@ def two_stage():
     # The tool goes home to its pocket; fetch it again for the next measurement.
     wait_for(lambda: hal.get_value("fixed_atc_probe.state") == 1 and
              stat.interp_state == linuxcnc.INTERP_IDLE, 180, "the load flow to end")
-    mdi("T%d M6" % TOOL, 180)
+    mdi("T%d M6" % tool, 180)
     return {"seconds": seconds, "length": length}
 
 
@@ -87,6 +93,30 @@ def stepping(c, program):
     stat.poll()
     z = stat.actual_position[2]
     return {"seconds": seconds, "length": z - c["probe_length_compensation_offset"]}
+
+
+def all_the_way_program(c, work):
+    """The probe as it was measured before issue 42: seek, back-off and latch,
+    all at the probe's feed (probe_latch_feed), from loading Z."""
+    path = os.path.join(work, "probe_all_the_way.ngc")
+    with open(path, "w") as f:
+        f.write("""(A touch probe measured at its own feed all the way down, as before issue 42)
+(G49: machine Z, the sim having no work offsets)
+G49 G90
+G38.3 Z%(limit).4f F%(feed).4f
+G91 G1 Z%(backoff).4f F%(feed).4f
+G90 G38.3 Z%(limit).4f F%(feed).4f
+M2
+""" % {"limit": c["probe_limit"]["z"], "feed": c.get("probe_latch_feed", 25.0),
+       "backoff": c.get("probe_backoff", 2.0)})
+    return path
+
+
+def all_the_way(c, program):
+    result = stepping(c, program)
+    stat.poll()
+    result["length"] = stat.probed_position[2] - c["probe_length_compensation_offset"]
+    return result
 
 
 def stepping_program(c, feed, work):
@@ -111,11 +141,12 @@ M2
 def main():
     own = hal.component("fatc-bench")  # hal.get_value needs a component of our own
     own.ready()
-    results = {"sensor_z": SENSOR_Z, "repeats": REPEATS, "two_stage": [], "stepping": [], "error": None}
+    results = {"sensor_z": SENSOR_Z, "repeats": REPEATS, "two_stage": [], "stepping": [],
+               "probe_approach": [], "probe_all_the_way": [], "error": None}
     try:
         c = config()
         results["config"] = {k: c.get(k) for k in ("probe_seek_feed", "probe_latch_feed", "probe_backoff",
-                                                  "probe_length_compensation_offset")}
+                                                  "probe_length_compensation_offset", "tools")}
         results["truth"] = SENSOR_Z - c["probe_length_compensation_offset"]
         driver.bring_up()
         hal.set_p("fatc-sensor.z-trip", str(SENSOR_Z))
@@ -126,6 +157,11 @@ def main():
         for _ in range(REPEATS):
             results["two_stage"].append(two_stage())
             results["stepping"].append(stepping(c, program))
+        mdi("T%d M6" % PROBE, 180)
+        program = all_the_way_program(c, os.path.dirname(sys.argv[2]))
+        for _ in range(REPEATS):
+            results["probe_approach"].append(two_stage(PROBE))
+            results["probe_all_the_way"].append(all_the_way(c, program))
     except Exception as e:  # reported by the printer; LinuxCNC must still shut down
         results["error"] = "%s: %s (last messages: %s)" % (type(e).__name__, e, driver.messages[-4:])
     json.dump(results, open(os.environ["FATC_RESULTS"], "w"), indent=1)

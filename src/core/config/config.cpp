@@ -7,6 +7,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <tuple>
 #include <sstream>
 
 #include "rack_volume.hpp"
@@ -433,13 +434,11 @@ double Config::blend_over_columns() const {
 }
 
 double Config::check_tolerance() const {
-  if (probe_check_tolerance) return *probe_check_tolerance;
-  return units == Units::inch ? 0.004 : 0.1;
+  return probe_check_tolerance.value_or(unit_default::probe_check_tolerance.in(units));
 }
 
 double Config::window() const {
-  if (probe_window) return *probe_window;
-  return units == Units::inch ? 0.4 : 10.0;
+  return probe_window.value_or(unit_default::probe_window.in(units));
 }
 
 double Config::keepout_margin() const {
@@ -448,8 +447,73 @@ double Config::keepout_margin() const {
 }
 
 double Config::keepout_above() const {
-  if (rack_keepout_above) return *rack_keepout_above;
-  return units == Units::inch ? 0.2 : 5.0;
+  return rack_keepout_above.value_or(unit_default::rack_keepout_above.in(units));
+}
+
+namespace {
+
+/// The keys whose default has a unit: each takes its default in the config's
+/// units where left out, and is named in `defaulted`.
+void read_unit_defaulted(Reader& reader, const Json& root, Config& config) {
+  const std::tuple<const char*, double Config::*, UnitDefault> keys[] = {
+      {"pocket_feed", &Config::pocket_feed, unit_default::pocket_feed},
+      {"probe_seek_feed", &Config::probe_seek_feed, unit_default::probe_seek_feed},
+      {"probe_latch_feed", &Config::probe_latch_feed, unit_default::probe_latch_feed},
+      {"probe_backoff", &Config::probe_backoff, unit_default::probe_backoff}};
+  for (const auto& [key, member, fallback] : keys) {
+    config.*member = fallback.in(config.units);
+    if (root.find(key) == root.end()) config.defaulted.push_back(key);
+    reader.read(root, "", key, config.*member);
+  }
+  for (const char* key : {"verify_feed", "probe_check_tolerance", "probe_window",
+                          "rack_keepout_margin", "rack_keepout_above"}) {
+    if (root.find(key) == root.end()) config.defaulted.push_back(key);
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> defaulted_words(const Config& config) {
+  const bool inch = config.units == Units::inch;
+  // The default each key takes, and where it comes from: the same amount in
+  // the other unit, so that a reader sees they agree, or the key it follows.
+  struct Taken {
+    const char* key;
+    double value;
+    bool feed;
+    std::optional<UnitDefault> fallback;
+    const char* follows;
+  };
+  const Taken taken[] = {
+      {"pocket_feed", config.pocket_feed, true, unit_default::pocket_feed, ""},
+      {"probe_seek_feed", config.probe_seek_feed, true, unit_default::probe_seek_feed, ""},
+      {"probe_latch_feed", config.probe_latch_feed, true, unit_default::probe_latch_feed, ""},
+      {"probe_backoff", config.probe_backoff, false, unit_default::probe_backoff, ""},
+      {"probe_check_tolerance", config.check_tolerance(), false,
+       unit_default::probe_check_tolerance, ""},
+      {"probe_window", config.window(), false, unit_default::probe_window, ""},
+      {"rack_keepout_above", config.keepout_above(), false, unit_default::rack_keepout_above, ""},
+      {"verify_feed", config.dry_run_feed(), true, std::nullopt, "pocket_feed"},
+      {"rack_keepout_margin", config.keepout_margin(), false, std::nullopt,
+       "half the side offset's length"}};
+  const auto amount = [](double value, bool feed, bool in_inch) {
+    return format_number(value) + (feed ? (in_inch ? " in/min" : " mm/min")
+                                        : (in_inch ? " inch" : " mm"));
+  };
+  std::vector<std::string> words;
+  for (const Taken& key : taken) {
+    if (std::find(config.defaulted.begin(), config.defaulted.end(), key.key) ==
+        config.defaulted.end()) {
+      continue;
+    }
+    words.push_back(std::string(key.key) + " " + amount(key.value, key.feed, inch) +
+                    (key.fallback ? " (default; " +
+                                        amount(key.fallback->in(inch ? Units::mm : Units::inch),
+                                               key.feed, !inch) +
+                                        (inch ? " in a mm config)" : " in an inch config)")
+                                  : std::string(" (default: ") + key.follows + ")"));
+  }
+  return words;
 }
 
 ConfigResult parse_config(const std::string& json_text) {
@@ -490,11 +554,8 @@ ConfigResult parse_config(const std::string& json_text) {
   if (safe) config.safe = *safe;
   read_pockets(reader, root, config);
 
-  reader.read(root, "", "pocket_feed", config.pocket_feed);
-  reader.read(root, "", "probe_seek_feed", config.probe_seek_feed);
-  reader.read(root, "", "probe_latch_feed", config.probe_latch_feed);
+  read_unit_defaulted(reader, root, config);
   config.verify_feed = reader.declared(root, "", "verify_feed");
-  reader.read(root, "", "probe_backoff", config.probe_backoff);
   read_flush(reader, root, config);
   reader.read(root, "", "spindle_stop_timeout_seconds", config.spindle_stop_timeout_seconds);
   if (const auto overlap = root.find("move_while_spindle_stops"); overlap != root.end()) {

@@ -13,6 +13,27 @@ namespace fatc {
 
 enum class Units { mm, inch };
 
+/// A default with a unit: the same amount in either unit. The inch value is
+/// the round number a machinist writes, the mm one over 25 (1.6 % more than
+/// the exact amount, as 0.004 inch is of 0.1 mm): a config that leaves the
+/// key out moves and measures at the same speeds whichever unit it is in.
+struct UnitDefault {
+  double mm;
+  double inch;
+  constexpr double in(Units units) const { return units == Units::inch ? inch : mm; }
+};
+
+/// Every default of config.json that has a unit (docs/config.md states both).
+namespace unit_default {
+constexpr UnitDefault pocket_feed{500.0, 20.0};
+constexpr UnitDefault probe_seek_feed{300.0, 12.0};
+constexpr UnitDefault probe_latch_feed{25.0, 1.0};
+constexpr UnitDefault probe_backoff{2.0, 0.08};
+constexpr UnitDefault probe_check_tolerance{0.1, 0.004};
+constexpr UnitDefault probe_window{10.0, 0.4};
+constexpr UnitDefault rack_keepout_above{5.0, 0.2};
+}  // namespace unit_default
+
 /// When the changer measures a tool on the touch-off sensor: a tool's own
 /// `tools.N.measure`, else `probe_after_change`.
 enum class MeasureRule {
@@ -91,10 +112,11 @@ struct Config {
   std::map<int, Pocket> pockets;  ///< pocket number -> pocket, pocket_default merged
 
   // Keys new in the C++ version, all optional.
-  double pocket_feed = 500.0;      ///< slow moves into and out of a pocket
-  double probe_seek_feed = 300.0;  ///< first, fast probing stage
-  double probe_latch_feed = 25.0;  ///< second, slow probing stage
-  double probe_backoff = 2.0;      ///< lift between the two stages
+  // Unset: unit_default's, in `units` (parse_config sets them once it knows).
+  double pocket_feed = unit_default::pocket_feed.mm;  ///< slow moves into and out of a pocket
+  double probe_seek_feed = unit_default::probe_seek_feed.mm;    ///< first, fast probing stage
+  double probe_latch_feed = unit_default::probe_latch_feed.mm;  ///< second, slow probing stage
+  double probe_backoff = unit_default::probe_backoff.mm;        ///< lift between the two stages
   FlushConfig flush;
   double spindle_stop_timeout_seconds = 10.0;
   bool move_while_spindle_stops = true;  ///< M6 moves toward the rack while the spindle runs down
@@ -115,6 +137,8 @@ struct Config {
   std::optional<double> verify_feed;  ///< unset: pocket_feed
   Path path = Path::prototype;
   std::map<int, ToolConfig> tools;  ///< tool number -> what `tools` says of it
+  /// The keys with a unit that config.json left out, as --check lists them.
+  std::vector<std::string> defaulted;
 
   bool has_pocket(int number) const { return pockets.count(number) != 0; }
   /// The pocket that holds `tool` at first start, if any.
@@ -185,5 +209,8 @@ bool measures_after_change(const Config& config, int tool, bool measured);
 std::string rule_words(const Config& config, int tool);
 /// A length for a message, with the config's unit: "25.0012 mm".
 std::string format_length(const Config& config, double length);
+/// Each key with a unit that the config left out, with the value it takes
+/// in the config's units, for --check: "pocket_feed 20 in/min (default)".
+std::vector<std::string> defaulted_words(const Config& config);
 
 }  // namespace fatc

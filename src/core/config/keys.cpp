@@ -33,6 +33,11 @@ std::string stated(double value) {
   out << value;
   return out.str();
 }
+/// A default with a unit, in both: "500 mm/min, 20 in/min".
+std::string stated(const UnitDefault& value, bool feed) {
+  return stated(value.mm) + (feed ? " mm/min, " : " mm, ") + stated(value.inch) +
+         (feed ? " in/min" : " inch");
+}
 
 // A sensor's key only wires it; what the sensor says comes from sensor_list.hpp.
 /// "`tool-present`: a tool is clamped in the spindle".
@@ -114,15 +119,15 @@ const std::vector<KeyDeclaration> kKeys = {
    "`\"prototype\"`: through safe XY before and after each leg; `\"direct\"`: over the rack at "
    "safe Z, safe XY only where the program or the operator comes next, only the keep-out column "
    "crossed slowly (docs/sequences.md, the direct path)"},
-  {"pocket_feed", stated(kStart.pocket_feed), kFeed, "", "the slow moves into and out of a pocket"},
+  {"pocket_feed", stated(unit_default::pocket_feed, true), kFeed, "", "the slow moves into and out of a pocket"},
   {"verify_feed", "`pocket_feed`", kFeed, "",
    "every move of a dry run through a pocket (verifying a pocket); into and out of the pocket "
    "never faster than `pocket_feed`"},
-  {"probe_seek_feed", stated(kStart.probe_seek_feed) + " (sample: 3000)", kFeed, "",
+  {"probe_seek_feed", stated(unit_default::probe_seek_feed, true) + " (sample: 3000 mm/min)", kFeed, "",
    "the first, fast probing stage, and the back-off"},
-  {"probe_latch_feed", stated(kStart.probe_latch_feed) + " (sample: 60)", kFeed, "not above `probe_seek_feed`",
+  {"probe_latch_feed", stated(unit_default::probe_latch_feed, true) + " (sample: 60 mm/min)", kFeed, "not above `probe_seek_feed`",
    "the second, slow probing stage: it sets the accuracy"},
-  {"probe_backoff", stated(kStart.probe_backoff) + " (sample: 0.5)", kOffset, "",
+  {"probe_backoff", stated(unit_default::probe_backoff, false) + " (sample: 0.5 mm)", kOffset, "",
    "lift above the first touch before the slow stage"},
   {"probe_after_change", "`\"off\"`", {},
    "`\"off\"`, `\"always\"`, `\"new\"`, `\"never\"`, `\"check\"`; `\"measure\"` is the older "
@@ -133,9 +138,9 @@ const std::vector<KeyDeclaration> kKeys = {
    "length (a tool never measured is measured). A load and measure all measure every tool but a "
    "`\"never\"` one, which nothing takes to the sensor: its length in LinuxCNC's tool table is "
    "trusted (measuring after M6)"},
-  {"probe_check_tolerance", "0.1 mm, 0.004 inch", kTolerance, "below `probe_window`",
+  {"probe_check_tolerance", stated(unit_default::probe_check_tolerance, false), kTolerance, "below `probe_window`",
    "how far a checked length may be from the stored one"},
-  {"probe_window", "10 mm, 0.4 inch", kOffset, "above `probe_check_tolerance`",
+  {"probe_window", stated(unit_default::probe_window, false), kOffset, "above `probe_check_tolerance`",
    "a probe after M6 of a tool with a stored length must first touch within this of where that "
    "length puts the touch"},
   {"manual_tools", "`true`", {}, kBoolean,
@@ -170,7 +175,7 @@ const std::vector<KeyDeclaration> kKeys = {
    "the rack's volume is kept out of every motion, programs, MDI and jogs alike, by the "
    "realtime guard `fatc-rack-guard`; `false` switches that off, and the component and panel "
    "say it is off (the changer's own moves are checked either way)"},
-  {"rack_keepout_above", "5 mm, 0.2 inch", kMargin, "from 0.04 in inch",
+  {"rack_keepout_above", stated(unit_default::rack_keepout_above, false), kMargin, "from 0.04 in inch",
    "how far above the holders' tops (a pocket's Z plus `pocket_above_chuck_offset_z`) the "
    "rack's volume reaches: the lowest the tip of the tool in the spindle may pass over a pocket",
    0.04},

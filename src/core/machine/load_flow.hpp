@@ -57,17 +57,16 @@ struct LoadFlow_ : Flow<LoadFlow_> {
              !MeasuredAtLoad{}(e, fsm, source, target);
     }
   };
-  /// "tool 3 measured 29.998 mm, in pocket 3": a finished load says what it did.
+  /// "tool 3 measured 29.9980 mm, in pocket 3": a finished load says what it did.
   struct SayLoaded {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       const Context& c = *fsm.ctx;
-      char length[96] = "";
+      std::string length;
       if (c.config.rule_of(c.request.tool) == MeasureRule::never) {
-        std::snprintf(length, sizeof length, " not measured (\"never\": LinuxCNC's tool table length),");
+        length = " not measured (\"never\": LinuxCNC's tool table length),";
       } else if (c.activity.last_length) {
-        std::snprintf(length, sizeof length, " measured %.3f %s,", *c.activity.last_length,
-                      units_name(c.config.units));
+        length = " measured " + format_length(c.config, *c.activity.last_length) + ",";
       }
       fsm.ctx->tell(MessageKind::info, "tool " + std::to_string(c.request.tool) + length +
                                            " in pocket " + std::to_string(fsm.load_pocket));

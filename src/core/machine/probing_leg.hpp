@@ -12,12 +12,15 @@ namespace fatc::machine {
 // ================================================================ probing
 /// Measures the tool in the spindle on the touch-off sensor
 /// (docs/sequences.md#probing): a fast seek, a back-off, a slow latch;
+/// a tool that seeks slower than probe_seek_feed (a touch probe) first goes
+/// down at that feed to probe_window above where its length puts the touch;
 /// length = latched machine Z minus probe_length_compensation_offset, written
 /// to the tool table. Over MDI (load, measure all) the operator may cancel
 /// it; inside M6 (`probe_after_change`) the changer fetched the tool itself,
 /// so a stored length says where it must touch, and `check` writes nothing
 /// over a stored length.
 struct ProbingLeg_ : Flow<ProbingLeg_> {
+  double approach_z = 0.0;     ///< where the fast approach ends, where there is one
   double first_touch_z = 0.0;  ///< where the seek touched
   double latched_z = 0.0;      ///< where the latch touched
   std::string problem;         ///< why nothing was measured, in words
@@ -31,6 +34,26 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
 
   struct NotMeasured : msmf::exit_pseudo_state<LegDone> {};
 
+  /// Where the fast approach of `tool` ends, if it saves time: its length
+  /// as the keep-out counts it (the tool table's, the changer's own where
+  /// longer, else the longest the config allows), from where the spindle stands.
+  static std::optional<double> approach_for(const Context& c, int tool) {
+    std::optional<double> start;
+    if (c.motion.known_axes & axis_z) {
+      start = c.motion.position.z;
+    } else if (c.machine.position) {
+      start = c.machine.position->z;
+    }
+    return plan::probe_approach_z(c.config, tool,
+                                  c.motion.keepout_lengths.of(tool, c.tools.lengths).length, start);
+  }
+
+  struct Approach {
+    template <class Leg>
+    Step operator()(const Context& c, const Leg& leg) const {
+      return plan::probe_approach(c.config, leg.approach_z);
+    }
+  };
   struct Seek {
     template <class Leg>
     Step operator()(const Context& c, const Leg& leg) const {
@@ -49,6 +72,8 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
       return plan::tool_length(leg.tool, c.tools.lengths.at(leg.tool));
     }
   };
+  struct DecidingHowToGoDown : msmf::state<> {};
+  struct Approaching : Probing<Approach> {};
   struct Seeking : Probing<Seek> {};
   struct BackingOff : Walking<BackingOff> {
     template <class Leg>
@@ -71,10 +96,23 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
     }
   };
 
+  struct ApproachSavesTime {
+    template <class Event, class Fsm, class Source, class Target>
+    bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      return approach_for(*fsm.ctx, fsm.tool).has_value();
+    }
+  };
   struct Touched {
     template <class Fsm, class Source, class Target>
     bool operator()(const ProbeResult& e, Fsm&, Source&, Target&) const {
       return e.touched;
+    }
+  };
+  /// Nothing moved: the sensor was tripped before the probe began.
+  struct TrippedBefore {
+    template <class Fsm, class Source, class Target>
+    bool operator()(const ProbeResult& e, Fsm&, Source&, Target&) const {
+      return e.tripped_before;
     }
   };
   /// The seek touched more than probe_window away from where the tool's
@@ -95,6 +133,12 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
       const Context& c = *fsm.ctx;
       return !c.request.in_program || c.config.rule_of(fsm.tool) != MeasureRule::check ||
              c.tools.lengths.count(fsm.tool) == 0;
+    }
+  };
+  struct RememberApproach {
+    template <class Event, class Fsm, class Source, class Target>
+    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+      fsm.approach_z = *approach_for(*fsm.ctx, fsm.tool);
     }
   };
   struct RememberFirstTouch {
@@ -161,11 +205,19 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
     }
   };
 
-  using initial_state = Seeking;
+  using initial_state = DecidingHowToGoDown;
   // clang-format off
   using transition_table = boost::mpl::vector<
   //    Start                  Event           Next                   Action              Guard
   // +----------------------+---------------+----------------------+-------------------+-----------------------------+
+  Row < DecidingHowToGoDown  , none          , Approaching          , RememberApproach  , ApproachSavesTime           >,
+  Row < DecidingHowToGoDown  , none          , Seeking              , none              , Not<ApproachSavesTime>      >,
+  // A touch in the approach is the first touch: the tool is longer than its length says.
+  Row < Approaching          , ProbeResult   , Seeking              , none              , And<Not<Touched>, Not<TrippedBefore>> >,
+  Row < Approaching          , ProbeResult   , BackingOff           , RememberFirstTouch, And<Touched, Not<OutsideWindow>> >,
+  Row < Approaching          , ProbeResult   , RetractingUnmeasured , SayOutsideWindow  , And<Touched, OutsideWindow>  >,
+  Row < Approaching          , ProbeResult   , RetractingUnmeasured , SayNoTouch        , TrippedBefore               >,
+  Row < Approaching          , OperatorCancel, RetractingUnmeasured , SayCancelled      , CancelStopsProbe            >,
   Row < Seeking              , ProbeResult   , BackingOff           , RememberFirstTouch, And<Touched, Not<OutsideWindow>> >,
   Row < Seeking              , ProbeResult   , RetractingUnmeasured , SayOutsideWindow  , And<Touched, OutsideWindow>  >,
   Row < Seeking              , ProbeResult   , RetractingUnmeasured , SayNoTouch        , Not<Touched>                >,

@@ -97,6 +97,19 @@ Step loading_xy(const Config& c) {
 Step sensor_xy(const Config& c) {
   return move(StepKind::rapid, axis_xy, c.probe_limit, "over the touch-off sensor");
 }
+std::optional<double> probe_approach_z(const Config& c, int tool, double length,
+                                       std::optional<double> start_z) {
+  if (c.seek_feed_of(tool) >= c.probe_seek_feed || length <= 0.0 || !start_z) return std::nullopt;
+  const double z = length + c.probe_length_compensation_offset + c.window();
+  if (z <= c.probe_limit.z || z >= *start_z - c.probe_backoff) return std::nullopt;
+  return z;
+}
+Step probe_approach(const Config& c, double z) {
+  Point above = c.probe_limit;
+  above.z = z;
+  return move(StepKind::probe, axis_z, above, "touch-off sensor (approach)", 0, false,
+              c.probe_seek_feed);
+}
 Step probe_seek(const Config& c, int tool) {
   return move(StepKind::probe, axis_z, c.probe_limit, "touch-off sensor (seek)", 0, false,
               c.seek_feed_of(tool));

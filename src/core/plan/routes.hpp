@@ -6,6 +6,7 @@
 // one place. A route is a run of moves with no decision between them.
 // docs/sequences.md is the contract they follow.
 
+#include <optional>
 #include <vector>
 
 #include "../config/config.hpp"
@@ -22,6 +23,15 @@ Step loading_z(const Config& c);
 Step loading_xy(const Config& c);
 /// Over the touch-off sensor, at the current Z.
 Step sensor_xy(const Config& c);
+/// Where a probe of `tool` first goes down fast (probe_seek_feed, still a
+/// probing move that stops at a touch) when its own seek is slower: to
+/// probe_window above where a tool `length` long touches, the rest at its own
+/// feed. None where that saves nothing: its seek is as fast, no length is
+/// known, or the spindle (at `start_z`, where known) is not higher than that
+/// by more than a back-off.
+std::optional<double> probe_approach_z(const Config& c, int tool, double length,
+                                       std::optional<double> start_z);
+Step probe_approach(const Config& c, double z);
 Step probe_seek(const Config& c, int tool);
 /// Up from where the seek touched, to latch slowly from there.
 Step probe_back_off(const Config& c, int tool, double first_touch_z);

@@ -363,6 +363,29 @@ def check_modal(r, rack):
     ok("flood coolant off during the change (%d samples), restored after it" % len(busy))
 
 
+def modal_back(r, feed, motion, name):
+    """After M6 the program's feed is exactly its own and its motion mode is `motion`
+    (#<_motion_mode>: G1 10, G80 800), as the program set them before the change."""
+    no_fault(r)
+    snap = r.get("snapshot")
+    if not snap:
+        fail("the program never reached its M0 after M6")
+    if snap["feed"] != feed:
+        fail("the feed after M6 is F%r, the program's was F%r" % (snap["feed"], feed))
+    ok("the feed after M6 is the program's exactly: F%r" % snap["feed"])
+    if snap["gcodes"][1] != motion:
+        fail("the motion mode after M6 is G%g, the program's was %s" % (snap["gcodes"][1] / 10.0, name))
+    ok("the motion mode after M6 is the program's %s" % name)
+
+
+def check_modal_feed(r, rack):
+    modal_back(r, 0.25, 10, "G1")
+
+
+def check_modal_g80(r, rack):
+    modal_back(r, 39.37008, 800, "G80")
+
+
 def check_feed_hold(r, rack):
     no_fault(r)
     if "paused_at" not in r or "resumed_at" not in r:

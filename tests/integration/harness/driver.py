@@ -31,6 +31,7 @@ PINS = ["fixed_atc_probe.chuck", "fixed_atc_probe.waiting-for-operator", "fixed_
         "fixed_atc_probe.air-blast", "fixed_atc_probe.chuck-held", "motion.feed-inhibit",
         "spindle.0.inhibit", "fixed_atc_probe.rack-keepout", "fatc-rack-guard.tripped", "fatc-rack-guard.trips",
         "motion.jog-is-active", "fixed_atc_probe.zero-speed", "fixed_atc_probe.rack-keepout-tool-length",
+        "fixed_atc_probe.step-kind", "fixed_atc_probe.step-feed",
         "motion.digital-out-02"]  # the benchmark programs' mark between two changes
 COMPONENT = "fixed_atc_probe"
 
@@ -471,7 +472,7 @@ def run_scenario(scenario):
             elif action["do"] in ("restart", "confirm", "snapshot"):
                 perform(action, result, start)
             elif action["do"] == "snapshot_abort":
-                result["snapshot"] = {"gcodes": list(stat.gcodes),
+                result["snapshot"] = {"gcodes": list(stat.gcodes), "feed": stat.settings[1],
                                       "path_tolerance": stat.settings[3],
                                       "naive_cam_tolerance": stat.settings[4],
                                       "tool_offset": list(stat.tool_offset[:3]),

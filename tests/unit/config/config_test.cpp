@@ -102,6 +102,64 @@ TEST(Config, shouldDefaultTheCheckToleranceInInches) {
   EXPECT_EQ(parse_config(j.dump()).config->check_tolerance(), 0.004);
 }
 
+TEST(Config, shouldDefaultEveryFeedAndLengthToTheSameAmountInInches) {
+  Json j = Json::parse(test::kValidConfig);
+  const Config mm = *parse_config(j.dump()).config;
+  j["units"] = "inch";
+  const Config inch = *parse_config(j.dump()).config;
+  // Each inch default is its mm one over 25: within 1.6 % of the same speed or length.
+  const std::pair<double, double> same[] = {
+      {mm.pocket_feed, inch.pocket_feed},           {mm.probe_seek_feed, inch.probe_seek_feed},
+      {mm.probe_latch_feed, inch.probe_latch_feed}, {mm.probe_backoff, inch.probe_backoff},
+      {mm.dry_run_feed(), inch.dry_run_feed()},     {mm.check_tolerance(), inch.check_tolerance()},
+      {mm.window(), inch.window()},                  {mm.keepout_above(), inch.keepout_above()}};
+  for (const auto& [in_mm, in_inch] : same) {
+    EXPECT_NEAR(in_inch * 25.4 / in_mm, 1.016, 1e-9) << in_mm << " mm against " << in_inch << " inch";
+  }
+  EXPECT_EQ(inch.pocket_feed, 20.0);
+  EXPECT_EQ(inch.probe_seek_feed, 12.0);
+  EXPECT_EQ(inch.probe_latch_feed, 1.0);
+  EXPECT_EQ(inch.probe_backoff, 0.08);
+}
+
+TEST(Config, shouldNameEachDefaultTakenInTheConfigsUnits) {
+  Json j = Json::parse(test::kValidConfig);
+  j["units"] = "inch";
+  j["pocket_side_offset"] = {{"x", 0.0}, {"y", 1.5}};
+  j["probe_seek_feed"] = 30;
+  j["rack_keepout_all_motion"] = false;  // the mm rack read as inches: pockets 50 inches apart
+  const auto parsed = parse_config(j.dump());
+  ASSERT_TRUE(parsed.config) << parsed.errors.front();
+  const Config& inch = *parsed.config;
+  EXPECT_EQ(defaulted_words(inch),
+            (std::vector<std::string>{
+                "pocket_feed 20 in/min (default; 500 mm/min in a mm config)",
+                "probe_latch_feed 1 in/min (default; 25 mm/min in a mm config)",
+                "probe_backoff 0.08 inch (default; 2 mm in a mm config)",
+                "probe_check_tolerance 0.004 inch (default; 0.1 mm in a mm config)",
+                "probe_window 0.4 inch (default; 10 mm in a mm config)",
+                "rack_keepout_above 0.2 inch (default; 5 mm in a mm config)",
+                "verify_feed 20 in/min (default: pocket_feed)",
+                "rack_keepout_margin 0.75 inch (default: half the side offset's length)"}));
+  j["units"] = "mm";
+  j["pocket_side_offset"] = {{"x", 0.0}, {"y", 40.0}};
+  const auto mm = parse_config(j.dump());
+  ASSERT_TRUE(mm.config) << mm.errors.front();
+  EXPECT_EQ(defaulted_words(*mm.config).front(),
+            "pocket_feed 500 mm/min (default; 20 in/min in an inch config)");
+  for (const char* key : {"pocket_feed", "probe_latch_feed", "probe_backoff", "verify_feed",
+                          "probe_check_tolerance", "probe_window", "rack_keepout_margin",
+                          "rack_keepout_above"}) {
+    j[key] = 0.5;
+  }
+  j["probe_window"] = 5;
+  j["rack_keepout_margin"] = 10;
+  j["rack_keepout_above"] = 3;
+  const auto all = parse_config(j.dump());
+  ASSERT_TRUE(all.config) << all.errors.front();
+  EXPECT_TRUE(defaulted_words(*all.config).empty());
+}
+
 TEST(Config, shouldReadTheSampleConfigShipped) {
   const auto result = io::load_config_file(FATC_SOURCE_DIR "/config/config.json");
   EXPECT_TRUE(result.config) << (result.errors.empty() ? "" : result.errors.front());

@@ -2,10 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <functional>
 #include <memory>
 
 #include "core/dry_run/simulator.hpp"
+#include "core/plan/routes.hpp"
 #include "sim_lines.hpp"
 #include "test_config.hpp"
 
@@ -351,7 +353,7 @@ TEST(Load, shouldLoadProbeAndPutAwayWithAnEmptySpindle) {
   EXPECT_EQ(rig.changer->tools().spindle, 0);
   EXPECT_TRUE(rig.changer->tools().holds(4));
   EXPECT_EQ(rig.changer->status().phase, Phase::idle);
-  EXPECT_EQ(rig.sim.messages(MessageKind::info).back(), "tool 4 measured 25.000 mm, in pocket 4");
+  EXPECT_EQ(rig.sim.messages(MessageKind::info).back(), "tool 4 measured 25.0000 mm, in pocket 4");
 }
 
 TEST(Load, shouldWriteTheLengthItMeasuredIntoTheToolTableStep) {
@@ -913,6 +915,79 @@ TEST(ToolKind, shouldMeasureAProbeAtItsOwnSlowFeed) {
     probes += step.kind == StepKind::probe;
   }
   EXPECT_EQ(probes, 2);
+}
+
+/// The probe steps and the back-off of a run: "label@feed->z".
+Lines probing_of(const std::vector<Step>& steps) {
+  Lines probing;
+  for (const Step& step : steps) {
+    if (step.kind != StepKind::probe && step.label != "back off the sensor") continue;
+    char line[96];
+    std::snprintf(line, sizeof line, "%s@%g->%g", step.label.c_str(), step.feed, step.target.z);
+    probing.push_back(line);
+  }
+  return probing;
+}
+
+TEST(ToolKind, shouldGoDownFastToTheWindowAboveWhereAProbesLengthPutsTheTouch) {
+  Rig rig(with_tool4(R"({"kind": "probe", "measure": "always"})",
+                     R"("probe_seek_feed": 3000, "probe_latch_feed": 60)"),
+          0);
+  rig.changer->keepout_lengths(ToolLengths{{{4, 25.0}}, 40.0});
+  rig.sim.sensor_z = kSensorZ;  // a 25 mm tool touches here
+  rig.changer->tool_change(4);
+  rig.sim.run(*rig.changer);
+  // 25 - 95 + probe_window 10: fast to Z-60, the last 10 mm at the probe's feed.
+  EXPECT_EQ(probing_of(rig.sim.steps()),
+            (Lines{"touch-off sensor (approach)@3000->-60", "touch-off sensor (seek)@60->-90",
+                   "back off the sensor@60->-68", "touch-off sensor (latch)@60->-90"}));
+  EXPECT_DOUBLE_EQ(rig.changer->tools().lengths.at(4), 25.0);
+  EXPECT_EQ(rig.changer->status().phase, Phase::idle);
+}
+
+TEST(ToolKind, shouldTakeATouchInTheApproachAsTheFirstTouch) {
+  // The table says 10 mm, the probe is 25: it touches at Z-70, above the approach's end.
+  Rig rig(with_tool4(R"({"kind": "probe", "measure": "always"})",
+                     R"("probe_seek_feed": 3000, "probe_latch_feed": 60)"),
+          0);
+  rig.changer->keepout_lengths(ToolLengths{{{4, 10.0}}, 40.0});
+  rig.sim.sensor_z = kSensorZ;
+  rig.changer->tool_change(4);
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(probing_of(rig.sim.steps()),
+            (Lines{"touch-off sensor (approach)@3000->-75", "back off the sensor@60->-68",
+                   "touch-off sensor (latch)@60->-90"}));
+  EXPECT_DOUBLE_EQ(rig.changer->tools().lengths.at(4), 25.0);
+}
+
+TEST(ToolKind, shouldApproachFromTheLongestToolTheConfigAllowsWithoutALength) {
+  Rig rig(with_tool4(R"({"kind": "probe", "measure": "always"})",
+                     R"("probe_seek_feed": 3000, "probe_latch_feed": 60)"),
+          0);
+  rig.changer->keepout_lengths(ToolLengths{{}, 40.0});
+  rig.sim.sensor_z = kSensorZ;
+  rig.changer->tool_change(4);
+  rig.sim.run(*rig.changer);
+  EXPECT_EQ(probing_of(rig.sim.steps()).front(), "touch-off sensor (approach)@3000->-45");
+}
+
+TEST(ToolKind, shouldNotApproachWhereTheSeekIsAsFastOrNoLengthIsKnown) {
+  // A cutter seeks at probe_seek_feed already.
+  Rig cutter(with_tool4(R"({"measure": "always"})"), 0);
+  cutter.changer->keepout_lengths(ToolLengths{{{4, 25.0}}, 40.0});
+  cutter.sim.sensor_z = kSensorZ;
+  cutter.changer->tool_change(4);
+  cutter.sim.run(*cutter.changer);
+  EXPECT_EQ(probing_of(cutter.sim.steps()).front(), "touch-off sensor (seek)@300->-90");
+  // No table, no longest tool: nothing says where it may touch.
+  const Config probe = with_tool4(R"({"kind": "probe"})");
+  EXPECT_FALSE(plan::probe_approach_z(probe, 4, 0.0, -10.0));
+  // The spindle already jogged down to within a back-off of it: nothing to save.
+  EXPECT_FALSE(plan::probe_approach_z(probe, 4, 25.0, -59.0));
+  EXPECT_DOUBLE_EQ(*plan::probe_approach_z(probe, 4, 25.0, -57.0), -60.0);
+  // Where the approach would end below probe_limit, the seek goes alone.
+  EXPECT_FALSE(plan::probe_approach_z(probe, 4, -20.0, -10.0));
+  EXPECT_FALSE(plan::probe_approach_z(probe, 4, 25.0, std::nullopt));
 }
 
 TEST(ToolKind, shouldCapBothProbingStagesAtAToolsProbeFeed) {
