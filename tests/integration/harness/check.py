@@ -534,7 +534,7 @@ def check_load_probe(r, rack):
         fail("after load and probe the spindle should be empty, LinuxCNC says T%d" % last["tool_in_spindle"])
     visits_in_order(r["samples"], rack.return_waypoints(4))
     ok("tool 4 put away in its pocket; the spindle is empty")
-    said(r, "tool 4 measured %.3f mm, in pocket 4" % last["fixed_atc_probe.last-length"])
+    said(r, "tool 4 measured %.4f mm, in pocket 4" % last["fixed_atc_probe.last-length"])
     # The component's log beside the state file keeps what it said.
     log = os.path.join(os.path.dirname(sys.argv[2]), "fixed_atc_state.json.log")
     if not os.path.exists(log) or "tool 4 measured" not in open(log, errors="replace").read():

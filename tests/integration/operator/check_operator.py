@@ -55,7 +55,7 @@ def check_operator_load(r):
             abs(r["tool_table"]["7"] - length) > 1e-4:
         fail("T7's length: state %s, tool table file %s, LinuxCNC %s" % (length, table, r["tool_table"]["7"]))
     ok("T7 measured %.4f mm: the state file, the tool table file and LinuxCNC agree" % length)
-    if "measured %.3f" % length not in load["out"] and "tool 7 measured" not in load["out"]:
+    if "measured %.4f" % length not in load["out"] and "tool 7 measured" not in load["out"]:
         fail("the load did not print its measurement")
     ok("the outcome printed: tool 7 measured")
 

@@ -32,7 +32,8 @@ P = d.COMPONENT + "."
 PINS = ["spindle.0.on", "spindle.0.speed-cmd-rps", "spindle.0.speed-out", "spindle.0.inhibit", "limit_speed.out",
         "fatc-spindle-guard.spindle-on", "fatc-spindle-guard.held", "fatc-spindle-guard.refused",
         "fatc-spindle-guard.alive", "motion.probe-input", "fatc-sensor.out", "fatc-sim-probe.out",
-        P + "probe-in-spindle", P + "tool-in-spindle", P + "state", P + "step-kind", P + "fault",
+        P + "probe-in-spindle", P + "tool-in-spindle", P + "state", P + "step-kind", P + "step-feed",
+        P + "fault",
         "iocontrol.0.coolant-flood"]
 # The simulated work the probe touches: a box around this XY (machine units),
 # touched when the spindle nose comes down to WORK_Z.

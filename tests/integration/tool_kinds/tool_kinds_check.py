@@ -6,6 +6,8 @@ import sys
 
 P = "fixed_atc_probe."
 SENSOR_LENGTH = 25.0  # the simulated sensor trips at Z-70, probe_length_compensation_offset -95
+SENSOR_Z = -70.0
+WINDOW = 10.0  # probe_window of config/config.json
 problems = []
 
 
@@ -75,11 +77,19 @@ def check_probe_program(r):
            "M8 after the M3 ran: the program was not stopped")
     expect(abs(r["tool_table"]["2"] - SENSOR_LENGTH) < 0.01,
            "T2 measured %.4f, expected %.4f" % (r["tool_table"]["2"], SENSOR_LENGTH))
-    # Both probing stages at the probe's own feed (tools.2.probe_feed 600 mm/min).
-    probing = [abs(s["vel"]) for s in samples if s[P + "step-kind"] == 3]
-    expect(probing and max(probing) > 1.0, "no probing move sampled")
+    # Fast (probe_seek_feed 3000 mm/min) only down to probe_window above where its
+    # length puts the touch, then both probing stages at the probe's own feed
+    # (tools.2.probe_feed 600 mm/min).
+    approach = [s for s in samples if s[P + "step-kind"] == 3 and s[P + "step-feed"] > 600]
+    probing = [abs(s["vel"]) for s in samples if s[P + "step-kind"] == 3 and s[P + "step-feed"] <= 600]
+    expect(approach, "no fast approach to the sensor sampled")
+    expect(probing and max(probing) > 1.0, "no probing move at the probe's feed sampled")
     expect(not probing or max(probing) <= 600 / 60.0 * 1.02,
            "the probe moved at %.2f mm/s on the sensor, above its probe_feed 10 mm/s" % max(probing or [0]))
+    lowest_fast = min(s["pos"][2] for s in approach)
+    expect(lowest_fast >= SENSOR_Z + WINDOW - 0.01,
+           "the fast approach went down to Z%.3f, below probe_window above the touch at Z%.3f" % (
+               lowest_fast, SENSOR_Z))
     status = r["status_file"] or {}
     expect(status.get("rule") == "T2 probe, spindle held, measured if new",
            "status file rule: %r" % status.get("rule"))
