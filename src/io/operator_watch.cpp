@@ -176,7 +176,9 @@ OperatorWatch::Turn OperatorWatch::observe(const std::optional<StatusWords>& sta
     const std::size_t count = std::min<std::size_t>(fresh, status->messages.size());
     for (std::size_t i = status->messages.size() - count; i < status->messages.size(); ++i) {
       const auto& [kind, text] = status->messages[i];
-      turn.lines.push_back(kind + ": " + text);
+      // The file's words, not its control characters: a newline would start a line of its own
+      // ("outcome: done"), an escape sequence clear or recolour the terminal.
+      turn.lines.push_back(escape(kind, kMaxMessageLine) + ": " + escape(text, kMaxMessageLine));
       refused_ = refused_ || (kind == "error" && contains(text, " refused: "));
       prompt_pending_ = prompt_pending_ || kind == "prompt";
       cancelled_ = cancelled_ || contains(text, " cancelled");

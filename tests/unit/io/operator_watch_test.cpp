@@ -250,6 +250,23 @@ TEST(OperatorWatch, shouldEndInFaultWhenTheChangerFaults) {
   EXPECT_EQ(turn.lines, std::vector<std::string>{"error: fault: the probe missed"});
 }
 
+TEST(OperatorWatch, shouldShowTheControlCharactersOfTheStatusFileNotActOnThem) {
+  // The status file is anyone's text once written: a message (or its kind) that would clear the
+  // screen, recolour it, set the window title or start a line of its own is shown, not obeyed.
+  StatusWords status;
+  status.state = 1;
+  OperatorWatch watch({Action::unload, 2}, false, 0);
+  status =
+      said(status, 4, 5,
+           {{"prompt", "\x1b[2J\x1b]0;owned\x07Remove tool 2\r\noutcome: done (exit 0)"},
+            {"info\x1b[31m", std::string("C1 \xc2\x9b") + "31m, DEL \x7f, a tab\there, \xff"}});
+  const auto turn = watch.observe(status, {4, true, true, false});
+  EXPECT_EQ(turn.lines,
+            (std::vector<std::string>{
+                "prompt: \\x1b[2J\\x1b]0;owned\\x07Remove tool 2\\r\\noutcome: done (exit 0)",
+                "info\\x1b[31m: C1 \\u{009b}31m, DEL \\x7f, a tab\\there, \\xff"}));
+}
+
 TEST(OperatorWatch, shouldWaitForAStatusFileItCanRead) {
   OperatorWatch watch({Action::load, 3}, true, 0);
   EXPECT_FALSE(watch.observe(std::nullopt, {3, true, true, false}).outcome);
