@@ -77,7 +77,7 @@ TEST(Plot, shouldWriteTheFileAndSayWhatItDrew) {
   const auto r = test::run_cli({"--plot", path, "--config", FATC_SOURCE_DIR "/config/config.json",
                                 "--from", "2", "--to", "5"});
   EXPECT_EQ(r.code, 0) << r.err;
-  EXPECT_NE(r.out.find(": 6 pockets, and the path of the change\n"),
+  EXPECT_NE(r.out.find(": 6 pockets, and the path of the change, the rack as at first start\n"),
             std::string::npos)
       << r.out;
   std::ostringstream written;
