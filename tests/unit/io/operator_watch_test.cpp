@@ -141,6 +141,23 @@ TEST(OperatorStatus, shouldReadTheStatusFileAndNothingHalfWritten) {
   EXPECT_FALSE(parse_status_words(R"({"phase": "loading"})"));
 }
 
+TEST(OperatorStatus, shouldTakeNoNumberOfTheStatusFileThatIsNoWholeCodeOrCount) {
+  // fuzz_status: "state": 6e22 was converted to int with undefined behaviour; a negative serial
+  // would overflow the count of fresh messages.
+  const auto words = [](const std::string& state, const std::string& serial) {
+    return parse_status_words(R"({"state": )" + state + R"(, "awaiting": 0, "activity": "",
+                                  "serial": )" +
+                              serial + R"(, "messages": []})");
+  };
+  EXPECT_TRUE(words("3", "4"));
+  for (const char* state : {"6e22", "2.5", "-1", "99999999999", "true", "\"3\""}) {
+    EXPECT_FALSE(words(state, "4")) << state;
+  }
+  for (const char* serial : {"-9223372036854775808", "18446744073709551615", "1e300", "4.5"}) {
+    EXPECT_FALSE(words("3", serial)) << serial;
+  }
+}
+
 TEST(OperatorStatus, shouldRefuseContinueCancelAndClearWithNothingToActOn) {
   const ComponentPins idle{1, false, false, false};
   EXPECT_EQ(nothing_to_act_on({Action::continue_prompt, 0}, idle),
