@@ -23,6 +23,7 @@
 #include "io/cli.hpp"
 #include "io/files.hpp"
 #include "io/ini.hpp"
+#include "io/interruption.hpp"
 #include "io/message_log.hpp"
 #include "io/standard_output.hpp"
 #include "io/version.hpp"
@@ -133,8 +134,11 @@ int run_component(const fatc::io::Options& options) {
     if (id >= 0) hal_exit(id);
     return fail(e.what());
   }
-  std::signal(SIGTERM, request_stop);
-  std::signal(SIGINT, request_stop);
+  // Whatever signal a terminal session ends it with, it leaves HAL first; one
+  // ignored when it started (nohup's SIGHUP) stays ignored.
+  for (const int signal : fatc::io::kEndingSignals) {
+    if (std::signal(signal, request_stop) == SIG_IGN) std::signal(signal, SIG_IGN);
+  }
 
   // From here on, whatever fails leaves HAL as it found it.
   try {
@@ -166,6 +170,23 @@ int run_component(const fatc::io::Options& options) {
   return 0;
 }
 
+/// Runs a mode that prints, its standard output through StandardOutput: a
+/// write that fails (a full disk, > /dev/full, a closed pipe) is kept, said
+/// once at the end, and ends it with exit 2, whatever the mode returned.
+template <class Mode>
+int printing(Mode mode) {
+  fatc::io::StandardOutput written(STDOUT_FILENO);
+  std::ostream out(&written);
+  const int code = mode(out);
+  out.flush();
+  if (written.error() != 0) {
+    std::cerr << "fixed_atc_probe: cannot write to standard output ("
+              << std::strerror(written.error()) << "): what it printed is lost" << std::endl;
+    return 2;
+  }
+  return code;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -182,27 +203,20 @@ int main(int argc, char** argv) {
     }
     if (options->mode == fatc::io::Options::Mode::component) return run_component(*options);
     if (options->mode == fatc::io::Options::Mode::operator_request) {
-      std::signal(SIGTERM, request_stop);
-      std::signal(SIGINT, request_stop);
-      return fatc::linuxcnc::run_operator(fatc::io::with_state_of_ini(*options), std::cout,
-                                          std::cerr, stop_requested);
+      // A terminal session's signal (a dropped SSH session's SIGHUP, Ctrl-C, a
+      // closed pipe ...) stops the waiting: it leaves HAL, then ends by that signal.
+      const fatc::io::Interruptible interruptible;
+      return printing([&](std::ostream& out) {
+        return fatc::linuxcnc::run_operator(fatc::io::with_state_of_ini(*options), out, std::cerr);
+      });
     }
-    // A write that fails (a full disk, > /dev/full) is kept and said once, at the end.
-    fatc::io::StandardOutput written(STDOUT_FILENO);
-    std::ostream out(&written);
-    int code = 0;
-    if (options->mode == fatc::io::Options::Mode::version) {
+    return printing([&](std::ostream& out) {
+      if (options->mode != fatc::io::Options::Mode::version) {
+        return fatc::io::run_tool_mode(*options, out, std::cerr);
+      }
       out << "fixed_atc_probe " << fatc::io::version() << "\n";
-    } else {
-      code = fatc::io::run_tool_mode(*options, out, std::cerr);
-    }
-    out.flush();
-    if (written.error() != 0) {
-      std::cerr << "fixed_atc_probe: cannot write to standard output ("
-                << std::strerror(written.error()) << "): what it printed is lost" << std::endl;
-      return 2;
-    }
-    return code;
+      return 0;
+    });
   } catch (const std::bad_alloc&) {
     std::cerr << "fixed_atc_probe: out of memory" << std::endl;
   } catch (const std::exception& e) {

@@ -4,7 +4,6 @@
 
 #include <cctype>
 #include <cerrno>
-#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <map>
@@ -16,9 +15,10 @@
 #include "command_line.hpp"
 #include "confirm.hpp"
 #include "core/config/quote.hpp"
-#include "core/machine/changer.hpp"
 #include "core/dry_run/sequence_check.hpp"
 #include "core/dry_run/simulator.hpp"
+#include "core/formatted.hpp"
+#include "core/machine/changer.hpp"
 #include "core/program/preflight.hpp"
 #include "core/program/tool_table.hpp"
 #include "core/rack/geometry.hpp"
@@ -32,9 +32,7 @@ namespace fatc::io {
 namespace {
 
 std::string format_point(double x, double y, double z) {
-  char buffer[96];
-  std::snprintf(buffer, sizeof buffer, "%10.3f %10.3f %10.3f", x, y, z);
-  return buffer;
+  return formatted("%10.3f %10.3f %10.3f", x, y, z);
 }
 
 /// The INI's soft limits in `units`; nullopt and one line on `err` when it cannot be read.
@@ -179,9 +177,11 @@ int check_state(const Options& options, Loaded& loaded, std::ostream& out, std::
   return 0;
 }
 
-/// Prints each violation, one indented line each; returns how many.
+/// Prints the violations, one indented line each, capped; returns how many.
 int report(const std::vector<SequenceViolation>& violations, std::ostream& out) {
-  for (const auto& v : violations) out << "  " << describe(v) << "\n";
+  std::vector<std::string> lines;
+  for (const auto& v : violations) lines.push_back(describe(v));
+  print_capped(out, lines);
   return static_cast<int>(violations.size());
 }
 
@@ -228,12 +228,17 @@ void report_carried(const Config& config, const Loaded& loaded, const SequencesC
   out << "\ntools of " << shown_path(*loaded.table_path)
       << " carried across the rack (a tool of no known length counts as "
       << format_length(config, loaded.lengths.longest) << ", the longest the config allows):\n";
+  std::vector<std::string> skipped;
   for (const std::string& line : loaded.table_skipped) {
-    out << "  not read, as LinuxCNC skips it: " << line << "\n";
+    skipped.push_back("not read, as LinuxCNC skips it: " + line);
   }
-  for (const std::string& line : carried_tools(config, loaded.lengths, loaded.measured, checked)) {
-    out << "  " << line << "\n";
-  }
+  print_capped(out, skipped);
+  // The tools it cannot carry, then how many fit.
+  std::vector<std::string> lines = carried_tools(config, loaded.lengths, loaded.measured, checked);
+  const std::string fit = lines.back();
+  lines.pop_back();
+  print_capped(out, lines);
+  out << "  " << fit << "\n";
 }
 
 int check(const Options& options, std::ostream& out, std::ostream& err) {
@@ -303,6 +308,18 @@ int check(const Options& options, std::ostream& out, std::ostream& err) {
   return violations == 0 && problems == 0 ? 0 : 1;
 }
 
+/// Whose rack --plan and --plot show: "the rack as at first start", "the rack as PATH has it".
+std::string rack_words(const Options& options) {
+  if (options.state_path.empty()) return "the rack as at first start";
+  struct stat st;
+  // A --state that is not there (a typo, a component not started yet) is said, not taken silently.
+  if (::stat(options.state_path.c_str(), &st) != 0 && errno == ENOENT) {
+    return "the rack as at first start: no state saved in " + shown_path(options.state_path) +
+           " yet";
+  }
+  return "the rack as " + shown_path(options.state_path) + " has it";
+}
+
 /// The rack at first start, or as --state has it (nothing uncertain, nothing
 /// under way); nullopt and the line on `err` when the state file is bad.
 std::optional<ToolState> rack_of(const Options& options, const Config& config, std::ostream& err) {
@@ -360,7 +377,7 @@ int plot(const Options& options, std::ostream& out, std::ostream& err) {
   }
   out << "wrote " << shown_path(options.plot_path) << ": " << config.pockets.size()
       << (config.pockets.size() == 1 ? " pocket" : " pockets")
-      << (change ? ", and the path of the change" : "") << "\n";
+      << (change ? ", and the path of the change" : "") << ", " << rack_words(options) << "\n";
   return 0;
 }
 
@@ -378,9 +395,8 @@ void print_estimate(const Options& options, const Config& config, const ToolStat
   const ChangeTime other_time = change_time(other_sim, config.safe, motion->timing);
   const char* name = config.path == Path::direct ? "direct" : "prototype";
   const char* other_name = config.path == Path::direct ? "prototype" : "direct";
-  char parts[96];
-  std::snprintf(parts, sizeof parts, "(moves %.2f s, dwells %.2f s, %d step%s)", time.moves,
-                time.dwells, time.steps, time.steps == 1 ? "" : "s");
+  const std::string parts = formatted("(moves %.2f s, dwells %.2f s, %d step%s)", time.moves,
+                                      time.dwells, time.steps, time.steps == 1 ? "" : "s");
   // Two lines: the figures, then how they were worked out (a line stays under 400 characters).
   out << "estimated " << seconds_text(time.seconds()) << " on the " << name << " path ("
       << seconds_text(other_time.seconds()) << " on the " << other_name << " path) " << parts
@@ -431,17 +447,11 @@ int plan(const Options& options, std::ostream& out, std::ostream& err) {
   ToolState& tools = *rack;
   tools.put_in_spindle(from);
   const Simulator sim = plan_change(config, tools, to, config.probe_limit.z);
-  out << "M6 T" << to << " with " << spindle_words(from)
-      << (options.state_path.empty()
-              ? ", the rack as at first start"
-              : ", the rack as " + shown_path(options.state_path) + " has it")
-      << "\n";
+  out << "M6 T" << to << " with " << spindle_words(from) << ", " << rack_words(options) << "\n";
   int number = 0;
   for (const auto& record : sim.records) {
     if (record.kind == Record::Kind::save) continue;
-    char prefix[16];
-    std::snprintf(prefix, sizeof prefix, "%3d  ", ++number);
-    out << prefix << describe(record) << "\n";
+    out << formatted("%3d  ", ++number) << describe(record) << "\n";
   }
   const int violations =
       report(check_sequence("M6", config, sim, loaded.limits, {{}, 0, loaded.lengths, tools.lengths}),

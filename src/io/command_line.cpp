@@ -77,7 +77,7 @@ const std::vector<ModeDeclaration> kModes = {
   {Mode::plan, "--plan", "", {"--config", "--from", "--to"}, {"--ini", "--state", "--tool-table"},
    "print the steps of M6 TB with TA in the spindle",
    "print the steps of M6 TB with TA in the spindle (the tools where --state has them, else "
-   "the first-start map), then its estimated time on the config's path and on the other one "
+   "the first-start map, said so when --state names no file yet), then its estimated time on the config's path and on the other one "
    "(each move an exact stop, G61.1, at the --ini's velocities and axes' accelerations, as "
    "LinuxCNC plans it, else at assumed ones; the dwells; the executor's handshake a step and "
    "iocontrol's cycles a change) and, with --ini, the bound: the direct path's moves at the INI's velocities and "
@@ -91,7 +91,9 @@ const std::vector<ModeDeclaration> kModes = {
    "pocket holds its tool, and clears the uncertainty, as clear-fault does in the running "
    "component. Answers that contradict the record (the cut-off pocket's own tool in the "
    "spindle and in its pocket; --pocket where no sequence was cut off at a pocket) are refused "
-   "and nothing is written. Nothing moves. Exit 0 written, 1 refused, 2 usage"},
+   "and nothing is written, as is a state file that is not there (a fault leaves one: a "
+   "mistyped --state would get a new one while the real one stays uncertain). Nothing moves. "
+   "Exit 0 written, 1 refused, 2 usage"},
   {Mode::lint, "--lint", "PROGRAM.ngc", {"--config"},
    {"--state", "--tool-table", "--ini", "--subroutine-path"},
    "read a G-code program without running it: its tool changes, problems, change time",
@@ -142,11 +144,16 @@ const std::vector<ModeDeclaration> kModes = {
    "invocation (or the panel), or is answered by `--yes`. The state file, and so the status "
    "file beside it, is the INI's [FIXED_ATC_PROBE]STATE (--ini) or --state. A pin netted from a "
    "panel's button is pressed through its signal, as the button would; a pin another writer "
-   "holds is refused. Exit 0 done, 1 refused (nothing moved; also Continue, Cancel or Clear "
-   "fault with nothing to act on), 2 usage, 3 fault, 4 cancelled, 5 timeout (--timeout, or the "
-   "component did not take the request up within 10 s), 6 the component is not running (no "
-   "HAL, no fixed_atc_probe pins, or no status file), 7 failed (the flow ended without doing "
-   "it, its error said: a probe that missed the sensor)"},
+   "holds is refused. The component's words are printed with their control characters shown "
+   "(\\x1b), never acted on. Exit 0 done, 1 refused (nothing moved; also Continue, Cancel or "
+   "Clear fault with nothing to act on), 2 usage (an --ini that cannot be read or names no "
+   "[FIXED_ATC_PROBE]STATE among them) or its output lost (a write to standard output failed), 3 "
+   "fault, 4 cancelled, 5 timeout (--timeout, or the component did not take the request up "
+   "within 10 s), 6 the component is not running (no HAL, no fixed_atc_probe pins, or no status "
+   "file), 7 failed (the flow ended without doing it, its error said: a probe that missed the "
+   "sensor). A signal a terminal session sends (SIGHUP of a dropped SSH session, SIGINT, SIGTERM, "
+   "SIGQUIT, SIGPIPE) stops the waiting: it leaves HAL, says so on stderr and ends by that "
+   "signal (the shell's 128 + N); the request goes on in the component"},
   {Mode::dot, "--dot", "", {}, {}, "print the state machine as Graphviz",
    "print the state machine as Graphviz, generated from its transition tables"},
   {Mode::help, "--help", "", {}, {}, "print this help", "print the usage (also -h)"},

@@ -1,5 +1,8 @@
 #include "confirm.hpp"
 
+#include <sys/stat.h>
+
+#include <cerrno>
 #include <ostream>
 
 #include "files.hpp"
@@ -30,6 +33,14 @@ int confirm(const Options& options, std::ostream& out, std::ostream& err) {
   const auto config = load_config_file(options.config_path);
   if (!config.config) {
     for (const auto& error : config.errors) err << error << "\n";
+    return 1;
+  }
+  // A fault leaves a state file (a first start writes one at once): none there is a wrong path,
+  // which would otherwise be written anew while the real one stays uncertain.
+  struct stat st;
+  if (::stat(options.state_path.c_str(), &st) != 0 && errno == ENOENT) {
+    err << shown_path(options.state_path) << ": no such state file, so nothing to confirm and "
+        << "nothing written (is it the --state the component was given?)\n";
     return 1;
   }
   auto state = load_state_file(options.state_path, *config.config);

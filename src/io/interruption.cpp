@@ -3,15 +3,16 @@
 #include <signal.h>
 
 #include <csignal>
+#include <iterator>
 #include <string>
 
 namespace fatc::io {
 namespace {
 
-constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP};
+constexpr std::size_t kCount = std::size(kEndingSignals);
 volatile std::sig_atomic_t came = 0;
-struct sigaction before[3];
-bool installed[3] = {false, false, false};
+struct sigaction before[kCount];
+bool installed[kCount] = {};
 
 void note(int signal) {
   if (came == 0) came = signal;
@@ -21,22 +22,23 @@ void note(int signal) {
 
 Interruptible::Interruptible() {
   came = 0;
-  for (int i = 0; i < 3; ++i) {
+  for (std::size_t i = 0; i < kCount; ++i) {
     struct sigaction action = {};
     action.sa_handler = note;
     sigemptyset(&action.sa_mask);
     // No SA_RESTART: a poll() or read() under way returns at once with EINTR.
     action.sa_flags = 0;
-    if (::sigaction(kSignals[i], nullptr, &before[i]) != 0 || before[i].sa_handler == SIG_IGN) {
+    if (::sigaction(kEndingSignals[i], nullptr, &before[i]) != 0 ||
+        before[i].sa_handler == SIG_IGN) {
       continue;
     }
-    installed[i] = ::sigaction(kSignals[i], &action, nullptr) == 0;
+    installed[i] = ::sigaction(kEndingSignals[i], &action, nullptr) == 0;
   }
 }
 
 Interruptible::~Interruptible() {
-  for (int i = 0; i < 3; ++i) {
-    if (installed[i]) ::sigaction(kSignals[i], &before[i], nullptr);
+  for (std::size_t i = 0; i < kCount; ++i) {
+    if (installed[i]) ::sigaction(kEndingSignals[i], &before[i], nullptr);
     installed[i] = false;
   }
   if (came != 0) ::raise(came);
@@ -52,6 +54,10 @@ const char* signal_name(int signal) {
       return "SIGTERM";
     case SIGHUP:
       return "SIGHUP";
+    case SIGQUIT:
+      return "SIGQUIT";
+    case SIGPIPE:
+      return "SIGPIPE";
   }
   return "a signal";
 }

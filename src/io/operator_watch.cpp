@@ -1,6 +1,7 @@
 #include "operator_watch.hpp"
 
 #include <algorithm>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "core/config/quote.hpp"
@@ -132,15 +133,39 @@ Press press_of(const OperatorRequest& request, std::optional<int> into, std::opt
   return {{}, "continue"};
 }
 
+namespace {
+
+/// A whole number of the status file from `lowest` to `highest`; nullopt for
+/// anything else (a fraction, 6e22, text), which get<int>() would convert
+/// with undefined behaviour.
+std::optional<long> whole(const nlohmann::json& value, long lowest, long highest) {
+  if (value.is_number_unsigned()) {
+    const auto number = value.get<unsigned long>();
+    return number <= static_cast<unsigned long>(highest) ? std::optional<long>(number)
+                                                         : std::nullopt;
+  }
+  if (!value.is_number_integer()) return std::nullopt;
+  const auto number = value.get<long>();
+  return number >= lowest && number <= highest ? std::optional<long>(number) : std::nullopt;
+}
+
+}  // namespace
+
 std::optional<StatusWords> parse_status_words(const std::string& text) {
   const auto root = nlohmann::json::parse(text, nullptr, false);
   if (!root.is_object()) return std::nullopt;
   try {
     StatusWords words;
-    words.state = root.at("state").get<int>();
-    words.awaiting = root.at("awaiting").get<int>();
+    // The pins' codes, and the count of messages said (from 0: a difference of two never
+    // overflows).
+    const auto state = whole(root.at("state"), 0, 1000);
+    const auto awaiting = whole(root.at("awaiting"), 0, 1000);
+    const auto serial = whole(root.at("serial"), 0, std::numeric_limits<long>::max() / 2);
+    if (!state || !awaiting || !serial) return std::nullopt;
+    words.state = static_cast<int>(*state);
+    words.awaiting = static_cast<int>(*awaiting);
     words.activity = root.at("activity").get<std::string>();
-    words.serial = root.at("serial").get<long>();
+    words.serial = *serial;
     for (const auto& message : root.at("messages")) {
       words.messages.emplace_back(message.at("kind").get<std::string>(),
                                   message.at("text").get<std::string>());
@@ -176,7 +201,9 @@ OperatorWatch::Turn OperatorWatch::observe(const std::optional<StatusWords>& sta
     const std::size_t count = std::min<std::size_t>(fresh, status->messages.size());
     for (std::size_t i = status->messages.size() - count; i < status->messages.size(); ++i) {
       const auto& [kind, text] = status->messages[i];
-      turn.lines.push_back(kind + ": " + text);
+      // The file's words, not its control characters: a newline would start a line of its own
+      // ("outcome: done"), an escape sequence clear or recolour the terminal.
+      turn.lines.push_back(escape(kind, kMaxMessageLine) + ": " + escape(text, kMaxMessageLine));
       refused_ = refused_ || (kind == "error" && contains(text, " refused: "));
       prompt_pending_ = prompt_pending_ || kind == "prompt";
       cancelled_ = cancelled_ || contains(text, " cancelled");

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/config/quote.hpp"
+#include "core/formatted.hpp"
 #include "core/rack/geometry.hpp"
 
 namespace fatc::io {
@@ -57,10 +58,17 @@ std::string escaped(std::string_view text) {
   return out;
 }
 
-std::string number(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.1f", value);
-  return buffer;
+/// A position or size in the drawing's pixels.
+std::string number(double value) { return formatted("%.1f", value); }
+
+/// A machine length for a label as config.json's units write it (4 decimals
+/// in mm, 5 in inch) without the zeros after them, however long it is: 0.75,
+/// 12.5, -1000000000.
+std::string length_words(Units units, double value) {
+  std::string text = formatted("%.*f", units == Units::inch ? 5 : 4, value);
+  text.erase(text.find_last_not_of('0') + 1);
+  if (text.back() == '.') text.pop_back();
+  return text == "-0" ? "0" : text;
 }
 
 /// Machine XY to the drawing's pixels: X right, Y up, the whole rack in view.
@@ -134,15 +142,17 @@ void station(std::ostringstream& svg, const View& view, const Point& p, const St
 }
 
 /// The machine's travel in XY (its soft limits) as a grey outline, and its limits in words.
-void travel_outline(std::ostringstream& svg, const View& view, const SoftLimits& travel) {
+void travel_outline(std::ostringstream& svg, const View& view, const SoftLimits& travel,
+                    Units units) {
   const double left = view.x(travel.x.min);
   const double top = view.y(travel.y.max);
   svg << "<rect class=\"travel\" x=\"" << number(left) << "\" y=\"" << number(top) << "\" width=\""
       << number(view.x(travel.x.max) - left) << "\" height=\"" << number(view.y(travel.y.min) - top)
       << "\" fill=\"none\" stroke=\"#888\" stroke-width=\"2\"/>\n"
       << "<text x=\"" << number(left) << "\" y=\"" << number(top - 8) << "\" fill=\"#888\">"
-      << "travel X " << number(travel.x.min) << " to " << number(travel.x.max) << ", Y "
-      << number(travel.y.min) << " to " << number(travel.y.max) << "</text>\n";
+      << "travel X " << length_words(units, travel.x.min) << " to "
+      << length_words(units, travel.x.max) << ", Y " << length_words(units, travel.y.min) << " to "
+      << length_words(units, travel.y.max) << "</text>\n";
 }
 
 }  // namespace
@@ -168,7 +178,7 @@ std::string rack_svg(const Config& config, const ToolState& tools, const Simulat
 
   std::vector<std::string> legend = {
       "Seen from above, machine X to the right, Y up. Dashed squares: each pocket's keep-out (" +
-          number(margin) + " around it);",
+          length_words(config.units, margin) + " around it);",
       "arrows: the side approach, from the side into the pocket; circles: top pockets.",
       "Green dot: safe; blue dot: loading; orange ring: the touch-off sensor."};
   if (travel)
@@ -191,7 +201,7 @@ std::string rack_svg(const Config& config, const ToolState& tools, const Simulat
       << "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
       << "<text x=\"" << number(kMargin) << "\" y=\"26\" font-size=\"16\">" << escaped(title)
       << "</text>\n";
-  if (travel) travel_outline(svg, view, *travel);
+  if (travel) travel_outline(svg, view, *travel, config.units);
 
   for (const auto& [n, pocket] : config.pockets) {
     const PocketWaypoints w = pocket_waypoints(config, n);

@@ -10,7 +10,10 @@
 #include <string>
 #include <thread>
 
+#include "io/capped_lines.hpp"
 #include "io/files.hpp"
+#include "io/ini.hpp"
+#include "io/interruption.hpp"
 #include "io/operator_watch.hpp"
 
 namespace fatc::linuxcnc {
@@ -139,10 +142,10 @@ std::string asked(const io::Options& options) {
   return "";
 }
 
-/// The request from its press to its end, once connected to HAL.
+/// The request from its press to its end, once connected to HAL; `pressed`:
+/// its button was pressed (a signal before that presses nothing).
 OperatorOutcome follow(const io::Options& options, const std::string& status_path,
-                       std::ostream& out, const volatile std::sig_atomic_t& stop,
-                       Failure& failure) {
+                       std::ostream& out, Failure& failure, bool& pressed) {
   const auto pins = read_pins(failure);
   if (!pins) return failure.outcome;
   const auto before = read_status(status_path);
@@ -158,8 +161,11 @@ OperatorOutcome follow(const io::Options& options, const std::string& status_pat
     return failure.outcome;
   }
   out << "fixed_atc_probe: " << asked(options) << std::endl;
+  // Ended before the press (a reader gone from the pipe that line went to among them): nothing asked.
+  if (io::Interruptible::signal() != 0) return OperatorOutcome::timeout;  // run_operator says it
   io::OperatorWatch watch(*options.request, options.answer_yes, before->serial);
-  const auto pressed = Clock::now();
+  const auto pressed_at = Clock::now();
+  pressed = true;
   if (!press(io::press_of(*options.request, options.into_pocket, options.spindle_tool,
                           options.pocket_holds_tool),
              failure)) {
@@ -172,7 +178,7 @@ OperatorOutcome follow(const io::Options& options, const std::string& status_pat
     for (const std::string& line : turn.lines) out << line << std::endl;
     if (turn.outcome) return *turn.outcome;
     if (turn.press_continue && !press({{}, "continue"}, failure)) return failure.outcome;
-    const auto waited = Clock::now() - pressed;
+    const auto waited = Clock::now() - pressed_at;
     if (!watch.answered() && waited > kAnswerWithin) {
       failure = {OperatorOutcome::timeout,
                  "fixed_atc_probe did not take the request up within 10 s"};
@@ -182,21 +188,27 @@ OperatorOutcome follow(const io::Options& options, const std::string& status_pat
       failure = {OperatorOutcome::timeout, "stopped waiting after --timeout; the request goes on"};
       return failure.outcome;
     }
-    if (stop) {
-      failure = {OperatorOutcome::timeout, "stopped waiting (a signal); the request goes on"};
-      return failure.outcome;
-    }
+    if (io::Interruptible::signal() != 0) return OperatorOutcome::timeout;  // run_operator says it
     std::this_thread::sleep_for(kPoll);
   }
 }
 
 }  // namespace
 
-int run_operator(const io::Options& options, std::ostream& out, std::ostream& err,
-                 const volatile std::sig_atomic_t& stop) {
+int run_operator(const io::Options& options, std::ostream& given_out, std::ostream& given_err) {
+  // The status file's words and the INI's path are a file's text: each line terminal_safe.
+  io::CappedLines out_lines(given_out), err_lines(given_err);
+  std::ostream out(&out_lines), err(&err_lines);
   if (options.state_path.empty()) {
-    err << "fixed_atc_probe: " << io::shown_path(*options.ini_path)
-        << " names no [FIXED_ATC_PROBE]STATE: give --state FILE" << std::endl;
+    std::string error;
+    // The INI gave no state file: it cannot be read (missing, a folder ...), or names none.
+    if (io::IniFile::read(*options.ini_path, error)) {
+      const auto stamp = io::stamp_of(*options.ini_path);
+      error = io::shown_path(*options.ini_path) +
+              (stamp && stamp->size == 0 ? " is empty, so it" : "") +
+              " names no [FIXED_ATC_PROBE]STATE: give --state FILE";
+    }
+    err << "fixed_atc_probe: " << error << std::endl;
     return 2;
   }
   const std::string status_path = options.state_path + ".status";
@@ -216,8 +228,16 @@ int run_operator(const io::Options& options, std::ostream& out, std::ostream& er
   }
   hal_ready(id);
   Failure failure{OperatorOutcome::done, ""};
-  const OperatorOutcome outcome = follow(options, status_path, out, stop, failure);
+  bool pressed = false;
+  const OperatorOutcome outcome = follow(options, status_path, out, failure, pressed);
   hal_exit(id);
+  if (const int signal = io::Interruptible::signal(); signal != 0) {
+    // The caller's Interruptible ends the program by the signal, as the shell expects.
+    err << "fixed_atc_probe: stopped " << (pressed ? "waiting" : "before asking") << " ("
+        << io::signal_name(signal) << "), out of HAL; "
+        << (pressed ? "the request goes on in the component" : "nothing was asked") << std::endl;
+    return 128 + signal;
+  }
   if (!failure.line.empty()) err << "fixed_atc_probe: " << failure.line << std::endl;
   const int status = io::operator_exit_status(outcome);
   out << "outcome: " << io::outcome_word(outcome) << " (exit " << status << ")" << std::endl;

@@ -1,6 +1,5 @@
 #pragma once
 
-#include <csignal>
 #include <iosfwd>
 
 #include "io/cli.hpp"
@@ -11,9 +10,9 @@ namespace fatc::linuxcnc {
 /// the pins the panel pulses (HAL's own lookup, from a HAL component of its
 /// own) and the words of the status file beside the state file; prints each
 /// message meanwhile and the outcome; returns the exit status
-/// (io::operator_exit_status). `stop` set (SIGINT, SIGTERM) ends the watching;
-/// the request goes on in the component.
-int run_operator(const io::Options& options, std::ostream& out, std::ostream& err,
-                 const volatile std::sig_atomic_t& stop);
+/// (io::operator_exit_status). A signal io::Interruptible notes (the caller
+/// keeps one alive around it) ends the watching: it leaves HAL, says so and
+/// returns 128 + the signal; the request goes on in the component.
+int run_operator(const io::Options& options, std::ostream& out, std::ostream& err);
 
 }  // namespace fatc::linuxcnc

@@ -133,6 +133,7 @@ def configs():
         # control characters, escape sequences, direction overrides echoed back
         "escape_sequence_key.json": spoil(CONFIG, lambda j: j.update({"\u001b[31mred\u001b[0m": 1})),
         "escape_sequence_value.json": spoil(CONFIG, lambda j: j.update(units="\u001b]0;pwned\u0007mm")),
+        "c1_control_value.json": spoil(CONFIG, lambda j: j.update(units="\u009b31mmm")),
         "bidi_override_value.json": spoil(CONFIG, lambda j: j.update(units="\u202emm")),
         "bidi_isolate_key.json": spoil(CONFIG, lambda j: j.update({"\u2067safe\u2069": 1})),
         "tag_characters_value.json": spoil(CONFIG, lambda j: j.update(units="mm\U000e0041\U000e007f")),
@@ -196,6 +197,8 @@ def states():
         "in_pocket_object.json": spoil(STATE, lambda j: j.update(in_pocket={})),
         "in_progress_escape.json": spoil(STATE, lambda j: j.update(
             in_progress={"sequence": "M6 T4", "step": "\u001b[2Jreturning", "pocket": 3})),
+        "in_progress_c1.json": spoil(STATE, lambda j: j.update(
+            in_progress={"sequence": "M6 T4", "step": "\u009b2Jreturning", "pocket": 3})),
         "in_progress_long.json": spoil(STATE, lambda j: j.update(
             in_progress={"sequence": "M6 " * 3000, "step": "returning", "pocket": 3})),
         "in_progress_text.json": spoil(STATE, lambda j: j.update(in_progress="M6 T4")),
@@ -242,6 +245,8 @@ def inis():
         "overflow.ini": replace_once(i, "MIN_LIMIT = -120", "MIN_LIMIT = -1e999"),
         "beyond_no_limit.ini": replace_once(i, "MIN_LIMIT = -120", "MIN_LIMIT = -1e200"),
         "escape_sequence_value.ini": replace_once(i, "MAX_LIMIT = 400", "MAX_LIMIT = \u001b[31m400"),
+        "c1_control_value.ini": replace_once(i, "MAX_LIMIT = 400", "MAX_LIMIT = \u009b31m400"),
+        "empty.ini": "",
         "linear_units_zero.ini": replace_once(i, "LINEAR_UNITS = mm", "LINEAR_UNITS = 0"),
         "linear_units_nan.ini": replace_once(i, "LINEAR_UNITS = mm", "LINEAR_UNITS = nan"),
         "linear_units_with_junk.ini": replace_once(i, "LINEAR_UNITS = mm", "LINEAR_UNITS = 1.0 mm"),

@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+
+#include "../formatted.hpp"
 
 namespace fatc {
 
@@ -86,9 +87,8 @@ std::optional<std::string> loading_note(const Config& config) {
   const double off = std::hypot(config.loading.x - config.probe_limit.x,
                                 config.loading.y - config.probe_limit.y);
   if (off <= (config.units == Units::inch ? 0.04 : 1.0)) return std::nullopt;
-  char where[160];
-  std::snprintf(where, sizeof where,
-                "loading X%.3f Y%.3f is not over the touch-off sensor (probe_limit X%.3f Y%.3f)",
+  const std::string where =
+      formatted("loading X%.3f Y%.3f is not over the touch-off sensor (probe_limit X%.3f Y%.3f)",
                 config.loading.x, config.loading.y, config.probe_limit.x, config.probe_limit.y);
   return std::string("note: ") + where + ", " + format_length(config, off) +
          " off: a load measures straight down from loading, so each load needs a jog over the "

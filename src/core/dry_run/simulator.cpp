@@ -2,16 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <functional>
 #include <iterator>
 
+#include "../formatted.hpp"
 #include "../rack/geometry.hpp"
 
 namespace fatc {
 
 std::string describe(const Record& record) {
-  char buffer[96];
   switch (record.kind) {
     case Record::Kind::step:
       return describe(record.step);
@@ -22,8 +21,7 @@ std::string describe(const Record& record) {
     case Record::Kind::blast:
       return record.on ? "air blast  on" : "air blast  off";
     case Record::Kind::dwell:
-      std::snprintf(buffer, sizeof buffer, "dwell      %.2f s", record.seconds);
-      return buffer;
+      return formatted("dwell      %.2f s", record.seconds);
     case Record::Kind::message:
       return "message    " + record.text;
     case Record::Kind::save:

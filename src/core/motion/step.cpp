@@ -1,6 +1,6 @@
 #include "step.hpp"
 
-#include <cstdio>
+#include "../formatted.hpp"
 
 namespace fatc {
 
@@ -76,36 +76,28 @@ const char* step_kind_name(StepKind kind) {
 
 std::string describe(const Step& step) {
   std::string coordinates;
-  char buffer[64];
   if (is_motion(step.kind)) {
     const char* names[] = {"X", "Y", "Z"};
     const double values[] = {step.target.x, step.target.y, step.target.z};
     for (int i = 0; i < 3; ++i) {
       if (step.axes & (1u << i)) {
-        std::snprintf(buffer, sizeof buffer, "%s%s=%.3f", coordinates.empty() ? "" : " ", names[i],
-                      values[i]);
-        coordinates += buffer;
+        coordinates += formatted("%s%s=%.3f", coordinates.empty() ? "" : " ", names[i], values[i]);
       }
     }
     if (step.kind != StepKind::rapid) {
-      std::snprintf(buffer, sizeof buffer, " F%.0f", step.feed);
-      coordinates += buffer;
+      coordinates += formatted(" F%.0f", step.feed);
     }
   } else if (step.kind == StepKind::set_tool_length) {
-    std::snprintf(buffer, sizeof buffer, "T%d length=%.4f", step.tool, step.value);
-    coordinates = buffer;
+    coordinates = formatted("T%d length=%.4f", step.tool, step.value);
   } else if (step.kind == StepKind::set_spindle_tool || step.kind == StepKind::done) {
-    std::snprintf(buffer, sizeof buffer, "T%d", step.tool);
-    coordinates = buffer;
+    coordinates = "T" + std::to_string(step.tool);
   }
-  std::snprintf(buffer, sizeof buffer, "%-10s ", step_kind_name(step.kind));
-  std::string line = buffer;
+  std::string line = formatted("%-10s ", step_kind_name(step.kind));
   line += coordinates;
   if (line.size() < 48) line.resize(48, ' ');
   line += " " + step.label;
   if (step.blend > 0.0) {
-    std::snprintf(buffer, sizeof buffer, ", on into the next within %.3f", step.blend);
-    line += buffer;
+    line += formatted(", on into the next within %.3f", step.blend);
   }
   return line;
 }

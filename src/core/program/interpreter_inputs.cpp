@@ -2,11 +2,12 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cstdio>
 #include <cstdlib>
 #include <optional>
 #include <set>
 #include <string_view>
+
+#include "../formatted.hpp"
 
 namespace fatc::program {
 
@@ -20,10 +21,7 @@ InterpreterTable interpreter_table(const ToolTable& table, double length_scale) 
     for (const std::string& field : entry.fields) {
       const char letter = static_cast<char>(std::toupper(static_cast<unsigned char>(field[0])));
       if (std::string_view("XYZUVWD").find(letter) != std::string_view::npos) {
-        char scaled[64];
-        std::snprintf(scaled, sizeof scaled, "%c%.9g", letter,
-                      std::strtod(field.c_str() + 1, nullptr) * length_scale);
-        line += scaled;
+        line += formatted("%c%.9g", letter, std::strtod(field.c_str() + 1, nullptr) * length_scale);
       } else {
         line += field;
       }
@@ -70,9 +68,7 @@ std::string interpreter_parameters(std::string_view text, double length_scale) {
       result += line;
       continue;
     }
-    char scaled[80];
-    std::snprintf(scaled, sizeof scaled, "%ld\t%.9g\n", number, value * length_scale);
-    result += scaled;
+    result += formatted("%ld\t%.9g\n", number, value * length_scale);
   }
   return result;
 }

@@ -4,11 +4,11 @@
 #include <array>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <utility>
 
-#include "../machine/admission.hpp"
 #include "../dry_run/simulator.hpp"
+#include "../formatted.hpp"
+#include "../machine/admission.hpp"
 #include "canonical_call.hpp"
 
 namespace fatc {
@@ -51,11 +51,8 @@ double mm_of(std::string_view units) {
 
 /// "X150.000 Y20.000 Z-25.000", machine coordinates in the config's units.
 std::string machine_words(const Config& config, const Point& at) {
-  char words[112];
-  std::snprintf(words, sizeof words,
-                config.units == Units::inch ? "X%.4f Y%.4f Z%.4f" : "X%.3f Y%.3f Z%.3f", at.x,
-                at.y, at.z);
-  return words;
+  return formatted(config.units == Units::inch ? "X%.4f Y%.4f Z%.4f" : "X%.3f Y%.3f Z%.3f", at.x,
+                   at.y, at.z);
 }
 
 /// The length a G10 line wrote, in the program's units (`program_mm` mm

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <map>
 #include <set>
@@ -10,6 +9,7 @@
 #include <utility>
 
 #include "../dry_run/sequence_check.hpp"
+#include "../formatted.hpp"
 #include "interpreter_output.hpp"
 
 namespace fatc {
@@ -210,9 +210,7 @@ class Checker {
         missing = "Z0 in the tool table " + in_.table_name + " (line " +
                   std::to_string(entry->second.line) + ")";
       } else {
-        char z[48];
-        std::snprintf(z, sizeof z, "Z%.4f (tool table)", *entry->second.z);
-        stored = z;
+        stored = formatted("Z%.4f (tool table)", *entry->second.z);
       }
     } else {
       const auto entry = tools_.lengths.find(tool);

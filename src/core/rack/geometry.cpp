@@ -2,19 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 
+#include "../formatted.hpp"
+
 namespace fatc {
-namespace {
-
-std::string format(const char* pattern, double value) {
-  char buffer[96];
-  std::snprintf(buffer, sizeof buffer, pattern, value);
-  return buffer;
-}
-
-}  // namespace
 
 PocketWaypoints pocket_waypoints(const Config& config, int number) {
   const Pocket& entry = config.pockets.at(number);
@@ -72,9 +64,9 @@ std::vector<std::string> check_move(const Config& config, const Point& from, uns
     for (int axis = 0; axis < 3; ++axis) {
       if (!(step.axes & (1u << axis))) continue;
       if (values[axis] < axes[axis].min - 1e-9 || values[axis] > axes[axis].max + 1e-9) {
-        problems.push_back(std::string(names[axis]) + format("=%.3f", values[axis]) +
-                           " is outside the soft limits " + format("%.3f", axes[axis].min) +
-                           " .. " + format("%.3f", axes[axis].max));
+        problems.push_back(std::string(names[axis]) + formatted("=%.3f", values[axis]) +
+                           " is outside the soft limits " + formatted("%.3f", axes[axis].min) +
+                           " .. " + formatted("%.3f", axes[axis].max));
       }
     }
   }

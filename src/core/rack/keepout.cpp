@@ -2,7 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+
+#include "../formatted.hpp"
 
 namespace fatc {
 std::optional<RackEntry> rack_entry(const std::vector<RackPart>& volume, const Point& from,
@@ -92,8 +93,7 @@ std::string held_words(const Config& config, int tool, double tool_length) {
 
 std::string keepout_refusal(const Config& config, const std::string& what, int pocket, int tool,
                             double tool_length, const Point& at) {
-  char where[96];
-  std::snprintf(where, sizeof where, "X%.3f Y%.3f Z%.3f", at.x, at.y, at.z);
+  const std::string where = formatted("X%.3f Y%.3f Z%.3f", at.x, at.y, at.z);
   return what + " would have entered the rack at pocket " + std::to_string(pocket) + " " +
          held_words(config, tool, tool_length) + ": stopped near " + where +
          " and aborted; move clear above or beside the rack";

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -599,6 +600,85 @@ TEST_F(CheckRun, shouldReadTheStateFileTheIniNamesWhenNoStateIsGiven) {
   EXPECT_NE(r.err.find(state), std::string::npos) << r.err;
   const CliRun given = run({"--check", "--config", kConfig, "--ini", ini, "--state", state + "x"});
   EXPECT_EQ(given.err.find(state + ":"), std::string::npos) << "--state wins: " << given.err;
+}
+
+TEST_F(CheckRun, shouldListFiftySkippedToolTableLinesAndCountTheRest) {
+  // --lint caps its findings; --check read the same table line by line, 100,000 of them.
+  std::string table = "T1 Z1\n";
+  for (int i = 0; i < 100000; ++i) table += "T1 Z1\n";
+  const std::string path = file("tool.tbl", table);
+  const CliRun r =
+      run({"--check", "--config", kConfig, "--tool-table", path, "--state", folder_ + "/none"});
+  EXPECT_LT(std::count(r.out.begin(), r.out.end(), '\n'), 150) << r.out.substr(0, 2000);
+  EXPECT_NE(r.out.find("  not read, as LinuxCNC skips it: line 51: tool 1 again (first on line 1)\n"
+                       "  ... and 99950 more\n"),
+            std::string::npos)
+      << r.out.substr(0, 2000);
+}
+
+TEST_F(CheckRun, shouldListFiftyToolsOfNoLengthAndCountTheRestBeforeWhatFits) {
+  std::string table;
+  for (int tool = 1; tool <= 1000; ++tool) table += "T" + std::to_string(tool) + " P1 Z0\n";
+  const std::string path = file("tool.tbl", table);
+  const CliRun r =
+      run({"--check", "--config", kConfig, "--tool-table", path, "--state", folder_ + "/none"});
+  EXPECT_NE(r.out.find("  T50: LinuxCNC's tool table gives Z0.0000 mm"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("  T51: "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("  ... and 950 more\n  1000 tools of the table fit every pocket\n"),
+            std::string::npos)
+      << r.out;
+}
+
+/// --operator with `ini`: it needs no LinuxCNC to say what is wrong with the path.
+CliRun operator_with_ini(const std::string& ini) {
+  return run_program("--operator continue --ini '" + ini + "'");
+}
+
+TEST_F(CheckRun, shouldSayWhatIsWrongWithTheOperatorsIniPathItself) {
+  const CliRun missing = operator_with_ini(folder_ + "/none.ini");
+  EXPECT_EQ(missing.code, 2);
+  EXPECT_EQ(missing.out,
+            "fixed_atc_probe: " + folder_ + "/none.ini: cannot open (No such file or directory)\n");
+  const CliRun folder = operator_with_ini(folder_);
+  EXPECT_EQ(folder.code, 2);
+  EXPECT_EQ(folder.out,
+            "fixed_atc_probe: " + folder_ + ": expected a regular file, got a directory\n");
+  const std::string empty = file("empty.ini", "");
+  const CliRun nothing = operator_with_ini(empty);
+  EXPECT_EQ(nothing.code, 2);
+  EXPECT_EQ(nothing.out,
+            "fixed_atc_probe: " + empty +
+                " is empty, so it names no [FIXED_ATC_PROBE]STATE: give --state FILE\n");
+  const std::string other = file("other.ini", "[EMC]\nMACHINE = mill\n");
+  EXPECT_EQ(operator_with_ini(other).out,
+            "fixed_atc_probe: " + other + " names no [FIXED_ATC_PROBE]STATE: give --state FILE\n");
+  if (::geteuid() != 0) {  // root reads it all the same
+    const std::string locked = file("locked.ini", "[FIXED_ATC_PROBE]\nSTATE = s.json\n");
+    ::chmod(locked.c_str(), 0);
+    const CliRun unreadable = operator_with_ini(locked);
+    EXPECT_EQ(unreadable.code, 2);
+    EXPECT_EQ(unreadable.out, "fixed_atc_probe: " + locked + ": cannot open (Permission denied)\n");
+  }
+}
+
+TEST_F(CheckRun, shouldShowTheEscapeSequencesOfAnIniPathNotActOnThem) {
+  const CliRun r = operator_with_ini(folder_ + "/\x1b[2J.ini");
+  EXPECT_EQ(r.out, "fixed_atc_probe: " + folder_ +
+                       "/\\x1b[2J.ini: cannot open (No such file or directory)\n");
+}
+
+TEST_F(CheckRun, shouldSayAStateFileOfThePlanIsNotThereRatherThanNameItAsTheRacks) {
+  const std::string none = folder_ + "/none.state";
+  const CliRun r =
+      run({"--plan", "--config", kConfig, "--from", "1", "--to", "2", "--state", none});
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out.substr(0, r.out.find('\n')),
+            "M6 T2 with T1 in the spindle, the rack as at first start: no state saved in " + none +
+                " yet");
+  const CliRun folder =
+      run({"--plan", "--config", kConfig, "--from", "1", "--to", "2", "--state", folder_});
+  EXPECT_EQ(folder.code, 1);
+  EXPECT_EQ(folder.err, folder_ + ": expected a regular file, got a directory\n");
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -115,6 +116,28 @@ TEST_F(Confirm, shouldRefuseAStateFileThatIsTheConfig) {
   EXPECT_EQ(r.code, 2);
   EXPECT_EQ(r.err, "--state \"" + config_ + "\" is the file given as --config: nothing written\n");
   EXPECT_TRUE(io::load_config_file(config_).config) << "the config is as it was";
+}
+
+TEST_F(Confirm, shouldRefuseAStateFileThatIsNotThereAndWriteNone) {
+  // A mistyped --state would get a state file of its own while the real one stays uncertain.
+  const CliRun r = confirm({"--spindle", "0"});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_EQ(r.err, state_ +
+                       ": no such state file, so nothing to confirm and nothing written (is "
+                       "it the --state the component was given?)\n");
+  EXPECT_FALSE(std::filesystem::exists(state_));
+}
+
+TEST_F(Confirm, shouldSayWhatIsWrongWithAStatePathThatIsAFolderOrEmpty) {
+  const CliRun folder =
+      run({"--confirm", "--config", config_, "--state", folder_, "--spindle", "0"});
+  EXPECT_EQ(folder.code, 1);
+  EXPECT_EQ(folder.err, folder_ + ": expected a regular file, got a directory\n");
+  std::ofstream(state_).close();
+  const CliRun empty = confirm({"--spindle", "0"});
+  EXPECT_EQ(empty.code, 1);
+  EXPECT_EQ(empty.err.rfind(state_ + ": ", 0), 0u) << empty.err;
+  EXPECT_EQ(std::count(empty.err.begin(), empty.err.end(), '\n'), 1) << empty.err;
 }
 
 }  // namespace

@@ -5,11 +5,13 @@
 
 #include <gtest/gtest.h>
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <thread>
 
 #include "program_run.hpp"
@@ -98,6 +100,47 @@ TEST_F(Interrupted, shouldLeaveNoScratchFolderWhenStoppedWhileTheProgramIsCopied
     EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == signal)
         << io::signal_name(signal) << ": status " << status;
     EXPECT_EQ(left_behind(), std::vector<std::string>{}) << io::signal_name(signal);
+  }
+}
+
+/// In a child of its own (`ignored`: the signal ignored first, as nohup
+/// does): an Interruptible, `signal` raised while it lives; the child's wait
+/// status, exit 1 when the Interruptible did not note it, 2 when it noted one it was to leave.
+int raised_inside(int signal, bool ignored) {
+  const pid_t child = ::fork();
+  if (child != 0) return test::wait_for(child);
+  const struct rlimit no_core = {0, 0};
+  ::setrlimit(RLIMIT_CORE, &no_core);  // SIGQUIT's default leaves a core file
+  ::signal(signal, ignored ? SIG_IGN : SIG_DFL);
+  sigset_t none;
+  sigemptyset(&none);
+  ::sigprocmask(SIG_SETMASK, &none, nullptr);
+  {
+    const io::Interruptible interruptible;
+    ::raise(signal);
+    if (io::Interruptible::signal() != (ignored ? 0 : signal)) ::_exit(ignored ? 2 : 1);
+  }
+  ::_exit(0);  // the signal raised again did not end it
+}
+
+TEST(Interruptible, shouldNoteEverySignalATerminalSessionEndsAProgramWithThenEndByIt) {
+  // --operator and --lint clean up on each (leave HAL, remove the scratch folder), then end
+  // by it: a dropped SSH session's SIGHUP, Ctrl-C, Ctrl-\, kill and a closed pipe alike.
+  EXPECT_EQ(std::vector<int>(std::begin(io::kEndingSignals), std::end(io::kEndingSignals)),
+            (std::vector<int>{SIGINT, SIGTERM, SIGHUP, SIGQUIT, SIGPIPE}));
+  for (const int signal : io::kEndingSignals) {
+    const int status = raised_inside(signal, false);
+    EXPECT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == signal)
+        << io::signal_name(signal) << ": status " << status;
+    EXPECT_STRNE(io::signal_name(signal), "a signal");
+  }
+}
+
+TEST(Interruptible, shouldLeaveASignalIgnoredAsItFoundIt) {
+  for (const int signal : io::kEndingSignals) {
+    const int status = raised_inside(signal, true);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0)
+        << io::signal_name(signal) << ": status " << status;
   }
 }
 

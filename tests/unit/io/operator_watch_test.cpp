@@ -141,6 +141,23 @@ TEST(OperatorStatus, shouldReadTheStatusFileAndNothingHalfWritten) {
   EXPECT_FALSE(parse_status_words(R"({"phase": "loading"})"));
 }
 
+TEST(OperatorStatus, shouldTakeNoNumberOfTheStatusFileThatIsNoWholeCodeOrCount) {
+  // fuzz_status: "state": 6e22 was converted to int with undefined behaviour; a negative serial
+  // would overflow the count of fresh messages.
+  const auto words = [](const std::string& state, const std::string& serial) {
+    return parse_status_words(R"({"state": )" + state + R"(, "awaiting": 0, "activity": "",
+                                  "serial": )" +
+                              serial + R"(, "messages": []})");
+  };
+  EXPECT_TRUE(words("3", "4"));
+  for (const char* state : {"6e22", "2.5", "-1", "99999999999", "true", "\"3\""}) {
+    EXPECT_FALSE(words(state, "4")) << state;
+  }
+  for (const char* serial : {"-9223372036854775808", "18446744073709551615", "1e300", "4.5"}) {
+    EXPECT_FALSE(words("3", serial)) << serial;
+  }
+}
+
 TEST(OperatorStatus, shouldRefuseContinueCancelAndClearWithNothingToActOn) {
   const ComponentPins idle{1, false, false, false};
   EXPECT_EQ(nothing_to_act_on({Action::continue_prompt, 0}, idle),
@@ -248,6 +265,23 @@ TEST(OperatorWatch, shouldEndInFaultWhenTheChangerFaults) {
   const auto turn = watch.observe(status, {5, false, false, true});
   EXPECT_EQ(turn.outcome, OperatorOutcome::fault);
   EXPECT_EQ(turn.lines, std::vector<std::string>{"error: fault: the probe missed"});
+}
+
+TEST(OperatorWatch, shouldShowTheControlCharactersOfTheStatusFileNotActOnThem) {
+  // The status file is anyone's text once written: a message (or its kind) that would clear the
+  // screen, recolour it, set the window title or start a line of its own is shown, not obeyed.
+  StatusWords status;
+  status.state = 1;
+  OperatorWatch watch({Action::unload, 2}, false, 0);
+  status =
+      said(status, 4, 5,
+           {{"prompt", "\x1b[2J\x1b]0;owned\x07Remove tool 2\r\noutcome: done (exit 0)"},
+            {"info\x1b[31m", std::string("C1 \xc2\x9b") + "31m, DEL \x7f, a tab\there, \xff"}});
+  const auto turn = watch.observe(status, {4, true, true, false});
+  EXPECT_EQ(turn.lines,
+            (std::vector<std::string>{
+                "prompt: \\x1b[2J\\x1b]0;owned\\x07Remove tool 2\\r\\noutcome: done (exit 0)",
+                "info\\x1b[31m: C1 \\u{009b}31m, DEL \\x7f, a tab\\there, \\xff"}));
 }
 
 TEST(OperatorWatch, shouldWaitForAStatusFileItCanRead) {

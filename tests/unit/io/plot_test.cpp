@@ -77,7 +77,9 @@ TEST(Plot, shouldWriteTheFileAndSayWhatItDrew) {
   const auto r = test::run_cli({"--plot", path, "--config", FATC_SOURCE_DIR "/config/config.json",
                                 "--from", "2", "--to", "5"});
   EXPECT_EQ(r.code, 0) << r.err;
-  EXPECT_NE(r.out.find(": 6 pockets, and the path of the change\n"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(": 6 pockets, and the path of the change, the rack as at first start\n"),
+            std::string::npos)
+      << r.out;
   std::ostringstream written;
   written << std::ifstream(path).rdbuf();
   std::remove(path.c_str());
@@ -107,7 +109,7 @@ TEST(Plot, shouldOutlineTheMachinesTravelWithItsLimits) {
   const std::string svg =
       io::rack_svg(config, ToolState::fresh(config), nullptr, &travel, "the machine");
   EXPECT_EQ(count(svg, "<rect class=\"travel\""), 1) << svg;
-  EXPECT_NE(svg.find(">travel X -10.0 to 400.0, Y -20.0 to 300.0</text>"), std::string::npos);
+  EXPECT_NE(svg.find(">travel X -10 to 400, Y -20 to 300</text>"), std::string::npos);
   EXPECT_NE(svg.find("Grey outline: the machine's travel"), std::string::npos);
   // Its corners where the rack's coordinates put them: pocket 1 (x 20, y 20)
   // drawn as far from the outline's left edge as 30 mm are from 50 mm.
@@ -154,6 +156,33 @@ TEST(Plot, shouldKeepLoadingVisibleOnTheSensorAndSafeOnBoth) {
   EXPECT_NE(label_y[0], label_y[2]);
 }
 
+TEST(Plot, shouldWriteTheTravelOfHugeSoftLimitsInFull) {
+  // LinuxCNC takes soft limits up to 1e99: a label cut by a buffer would name another machine.
+  const Config config = valid_config();
+  const SoftLimits travel{{-1e99, 1e99}, {-2.5e50, 123456789012.5}, {-120.0, 0.0}};
+  const std::string svg =
+      io::rack_svg(config, ToolState::fresh(config), nullptr, &travel, "the machine");
+  char x_min[128], y_min[128];
+  std::snprintf(x_min, sizeof x_min, "%.0f", -1e99);
+  std::snprintf(y_min, sizeof y_min, "%.0f", -2.5e50);
+  EXPECT_NE(svg.find(std::string(">travel X ") + x_min + " to " + (x_min + 1) + ", Y " + y_min +
+                     " to 123456789012.5</text>"),
+            std::string::npos)
+      << svg.substr(0, 3000);
+}
+
+TEST(Plot, shouldWriteLengthsInTheConfigsUnitsToTheirPrecision) {
+  // A 0.75 inch keep-out margin is 0.75, not 0.8; 0.03125 inch keeps its five decimals.
+  Config config = test::valid_config();
+  config.units = Units::inch;
+  config.rack_keepout_margin = 0.75;
+  const SoftLimits travel{{-0.03125, 16.0}, {-0.5, 12.0}, {-5.0, 0.0}};
+  const std::string svg =
+      io::rack_svg(config, ToolState::fresh(config), nullptr, &travel, "the machine");
+  EXPECT_NE(svg.find("each pocket's keep-out (0.75 around it)"), std::string::npos);
+  EXPECT_NE(svg.find(">travel X -0.03125 to 16, Y -0.5 to 12</text>"), std::string::npos);
+}
+
 TEST(Plot, shouldDrawTheTravelOfTheIniItIsGiven) {
   const std::string path = ::testing::TempDir() + "fatc_travel.svg";
   const auto r = test::run_cli({"--plot", path, "--config", FATC_SOURCE_DIR "/config/config.json",
@@ -161,7 +190,7 @@ TEST(Plot, shouldDrawTheTravelOfTheIniItIsGiven) {
   EXPECT_EQ(r.code, 0) << r.err;
   const std::string written = test::text_of(path);
   std::remove(path.c_str());
-  EXPECT_NE(written.find(">travel X -10.0 to 400.0, Y -10.0 to 300.0</text>"), std::string::npos);
+  EXPECT_NE(written.find(">travel X -10 to 400, Y -10 to 300</text>"), std::string::npos);
 }
 
 /// A folder with a config and a state file, where --plot draws.

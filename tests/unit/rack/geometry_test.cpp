@@ -1,6 +1,9 @@
+#include "core/rack/geometry.hpp"
+
 #include <gtest/gtest.h>
 
-#include "core/rack/geometry.hpp"
+#include <cstdio>
+
 #include "core/dry_run/simulator.hpp"
 #include "test_config.hpp"
 
@@ -75,6 +78,19 @@ TEST(SoftLimits, shouldFlagATargetOutsideTheLimits) {
   const auto violations = check_steps(config, {rapid(axis_z, {0, 0, -90})}, limits);
   ASSERT_EQ(violations.size(), 1u);
   EXPECT_EQ(violations[0].what, "Z=-90.000 is outside the soft limits -85.000 .. 0.000");
+}
+
+TEST(SoftLimits, shouldNameHugeLimitsInFull) {
+  // LinuxCNC takes limits up to 1e99: a message cut by a buffer would name limits the INI has not.
+  const Config config = test::valid_config();
+  const SoftLimits limits{{0, 400}, {0, 300}, {-1e99, -1e98}};
+  const auto violations = check_steps(config, {rapid(axis_z, {0, 0, -90})}, limits);
+  ASSERT_EQ(violations.size(), 1u);
+  char min[160], max[160];
+  std::snprintf(min, sizeof min, "%.3f", -1e99);
+  std::snprintf(max, sizeof max, "%.3f", -1e98);
+  EXPECT_EQ(violations[0].what,
+            std::string("Z=-90.000 is outside the soft limits ") + min + " .. " + max);
 }
 
 TEST(SoftLimits, shouldAcceptEveryPlannedStepWithinGenerousLimits) {
