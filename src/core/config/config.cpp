@@ -2,14 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <initializer_list>
 #include <limits>
 #include <nlohmann/json.hpp>
 #include <set>
-#include <tuple>
 #include <sstream>
+#include <tuple>
 
+#include "../formatted.hpp"
 #include "rack_volume.hpp"
 #include "json_text.hpp"
 #include "reader.hpp"
@@ -421,10 +421,7 @@ std::optional<int> Config::first_pocket_of(int tool) const {
 }
 
 std::string format_length(const Config& config, double length) {
-  char buffer[48];
-  std::snprintf(buffer, sizeof buffer, config.units == Units::inch ? "%.5f inch" : "%.4f mm",
-                length);
-  return buffer;
+  return formatted(config.units == Units::inch ? "%.5f inch" : "%.4f mm", length);
 }
 
 double Config::blend_room(std::string* why) const {

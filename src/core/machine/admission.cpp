@@ -1,6 +1,6 @@
 #include "admission.hpp"
 
-#include <cstdio>
+#include "../formatted.hpp"
 
 namespace fatc {
 
@@ -46,10 +46,7 @@ std::optional<std::string> why_not_busy(const Context& ctx) {
 
 /// "X20.000 Y150.000 Z-10.000 mm", machine coordinates.
 std::string position_words(const Config& config, const Point& at) {
-  char buffer[96];
-  std::snprintf(buffer, sizeof buffer, "X%.3f Y%.3f Z%.3f %s", at.x, at.y, at.z,
-                units_name(config.units));
-  return buffer;
+  return formatted("X%.3f Y%.3f Z%.3f %s", at.x, at.y, at.z, units_name(config.units));
 }
 
 std::optional<std::string> why_chuck_held_open(const Context& ctx) {
