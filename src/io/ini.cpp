@@ -289,8 +289,8 @@ ExpandedIni expand_includes(const std::string& text, const std::string& name,
   while (at < text.size() && expanded.text.size() <= kMaxExpandedBytes) {
     const int line = physical;
     const ReadLine read_line = bash_read(text, at, physical);
-    auto problem = [&](const std::string& text) {
-      expanded.problems.push_back(program::finding(name, line, text));
+    auto problem = [&](const std::string& said) {
+      expanded.problems.push_back(program::finding(name, line, said));
     };
     if (!read_line.ended) {
       if (!read_line.chars.empty()) {
@@ -341,8 +341,8 @@ ExpandedIni expand_includes(const std::string& text, const std::string& name,
       start = end + 1;
       ++number;
       // Said at the #INCLUDE line: the INI is the file the user gave.
-      auto problem_there = [&](const std::string& text) {
-        problem("#INCLUDE " + quote(*file) + ": its line " + std::to_string(number) + " " + text);
+      auto problem_there = [&](const std::string& said) {
+        problem("#INCLUDE " + quote(*file) + ": its line " + std::to_string(number) + " " + said);
       };
       ReadLine words;
       words.chars = included;
@@ -365,7 +365,10 @@ ExpandedIni expand_includes(const std::string& text, const std::string& name,
     }
     emit("#*** End   #INCLUDE file: " + *file, index, number);
   }
-  if (expanded.text.size() > kMaxExpandedBytes) expanded.text.clear();
+  if (expanded.text.size() > kMaxExpandedBytes) {
+    expanded = ExpandedIni{};
+    expanded.too_big = true;
+  }
   return expanded;
 }
 
@@ -377,7 +380,7 @@ std::optional<IniFile> IniFile::read(const std::string& path, std::string& error
   const ExpandedIni expanded = expand_includes(
       *text, name, folder_of(path),
       [](const std::string& file, std::string& why) { return read_small_file(file, why); });
-  if (expanded.text.empty() && !text->empty()) {
+  if (expanded.too_big) {
     error = name + ": over " + std::to_string(kMaxExpandedBytes / (1024 * 1024)) +
             " MiB with the files its #INCLUDE lines name";
     return std::nullopt;

@@ -43,6 +43,8 @@ struct ExpandedIni {
   /// one the shell would have to evaluate, one the script does not expand,
   /// a line the script drops or joins with its mark.
   std::vector<program::Finding> problems;
+  /// With the included files over kMaxFileBytes: nothing else is kept.
+  bool too_big = false;
 };
 ExpandedIni expand_includes(const std::string& text, const std::string& name,
                             const std::string& folder, const IncludeReader& read);

@@ -70,7 +70,7 @@ class Checker {
   /// The spindle set turning, or M19, while a probe is in it or may be (a
   /// cut-off sequence: spindle_probe, as the component holds the spindle):
   /// the guard holds it and the changer aborts. The program stops at the
-  /// first, so one a probe's time in the spindle is named.
+  /// first, so it is named once each time a probe goes into the spindle.
   void spindle_started(const program::SpindleStart& start) {
     const int probe = spindle_known_ ? spindle_probe(config_, tools_) : 0;
     if (probe == 0) return;

@@ -1354,12 +1354,13 @@ TEST(ToolTable, shouldReadALineOverLinuxCncsBufferAsItsFgetsDoes) {
             "313 characters, over the 255 LinuxCNC reads as one line: it reads tool 3 from the "
             "first 255, its comment cut there; characters 256 on as a line it skips");
   // A field cut by the 255th character: LinuxCNC reads the number short.
-  const std::string pad(240, ' ');
+  const std::string pad(245, ' ');  // Z40.125 from the 251st character
   table = parse_tool_table("T5 P5" + pad + "Z40.125 D6\n");
   ASSERT_EQ(table.tools.count(5), 1u);
   EXPECT_DOUBLE_EQ(*table.tools.at(5).z, 40.1);
+  ASSERT_EQ(table.problems.size(), 1u);
   EXPECT_EQ(table.problems[0].text,
-            "258 characters, over the 255 LinuxCNC reads as one line: it reads tool 5 from the "
+            "260 characters, over the 255 LinuxCNC reads as one line: it reads tool 5 from the "
             "first 255, its field \"Z40.125\" read as \"Z40.1\", without what follows; characters "
             "256 on as a line it skips");
   // The rest may read as a tool of its own, as LinuxCNC would take it.
@@ -1367,6 +1368,7 @@ TEST(ToolTable, shouldReadALineOverLinuxCncsBufferAsItsFgetsDoes) {
   EXPECT_EQ(table.tools.count(6), 1u);
   ASSERT_EQ(table.tools.count(7), 1u);
   EXPECT_DOUBLE_EQ(*table.tools.at(7).z, 11.0);
+  ASSERT_EQ(table.problems.size(), 1u);
   EXPECT_EQ(table.problems[0].text,
             "264 characters, over the 255 LinuxCNC reads as one line: it reads tool 6 from the "
             "first 255, without what follows; characters 256 on as tool 7");
@@ -1405,6 +1407,16 @@ TEST_F(Lint, shouldReadTheIniAsTheLinuxcncScriptExpandsItsIncludes) {
   EXPECT_EQ(r.code, 0) << r.out;
   EXPECT_NO_LINE(r, "remaps no M6");
   EXPECT_NO_LINE(r, "soft limits");
+  // Included again and again past 1 MiB: refused in one line, at once.
+  write("machine/parts/big.inc", "; " + std::string(600 * 1024, 'x') + "\n");
+  write("machine/big.ini", "#INCLUDE parts/big.inc\n#INCLUDE parts/big.inc\n");
+  const LintRun big =
+      run({"--check", "--config", kConfig, "--state", no_state(), "--ini", path("machine/big.ini")});
+  EXPECT_EQ(big.code, 1);
+  EXPECT_TRUE(has(big.err, path("machine/big.ini") +
+                               ": over 1 MiB with the files its #INCLUDE lines name\n"))
+      << big.err;
+  EXPECT_LT(big.seconds, 5.0);
   // One line for an include that cannot be read; a key's line in its own file.
   write("machine/broken.ini", "[TRAJ]\nLINEAR_UNITS = mm\n#INCLUDE parts/gone.inc\n"
                               "#INCLUDE parts/axes.inc\n#INCLUDE\n[EMCIO]\nTOOL_CHANGE_QUILL_UP = 1\n");
