@@ -324,7 +324,7 @@ ExpandedIni expand_includes(const std::string& text, const std::string& name,
     const auto content = read(path, error);
     if (!content) {
       emit(header + "CANNOT READ " + *file, 0, line);
-      problem("#INCLUDE " + quote(*file) + ": " + error + ": none of its keys are read");
+      problem("#INCLUDE " + error + ": none of its keys are read");  // the error names the file
       continue;
     }
     const std::size_t index = expanded.files.size();

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "invariants.hpp"
+#include "io/files.hpp"
 #include "io/ini.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -19,7 +20,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       text, "fuzz.ini", "/nonexistent",
       [&](const std::string& path, std::string& why) -> std::optional<std::string> {
         if (path == "/nonexistent/a.inc") return text;
-        why = path + ": cannot open (No such file or directory)";
+        why = fatc::io::shown_path(path) + ": cannot open (No such file or directory)";
         return std::nullopt;
       });
   if (!expanded.origins.empty() &&
