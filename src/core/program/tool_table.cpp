@@ -145,7 +145,7 @@ LineRead read_line(std::string line, int line_number) {
   return read;
 }
 
-/// The note of a line LinuxCNC reads as it is; empty when it is fine.
+/// What is said of a line LinuxCNC refuses, or of which it reads numbers that mean nothing.
 std::string refusal(const LineRead& read) {
   return read.skipped ? "LinuxCNC skips this line: " + read.why
                       : read.why + "; the line is left out of the table here";
@@ -183,19 +183,27 @@ std::string long_line(const std::string& line, int line_number, Reads reads) {
     said += "the first " + std::to_string(kLinuxCncRead) + " hold no tool";
   }
   reads(first);
-  // The rest, kLinuxCncRead characters at a time, each a line to LinuxCNC.
-  std::string rest;
+  // The rest, kLinuxCncRead characters at a time, each a line to LinuxCNC:
+  // said in a few words however many there are.
+  std::vector<std::string> tools;
+  std::size_t pieces = 0;
+  std::size_t skips = 0;
   for (std::size_t at = kLinuxCncRead; at < line.size(); at += kLinuxCncRead) {
     const LineRead piece = read_line(line.substr(at, kLinuxCncRead), line_number);
     reads(piece);
-    const std::string which = "characters " + std::to_string(at + 1) + " on";
-    if (piece.kind == LineRead::Kind::tool) {
-      rest += "; " + which + " as tool " + std::to_string(piece.entry.tool);
-    } else if (piece.kind == LineRead::Kind::refused) {
-      rest += "; " + which + " as a line it skips";
-    }
+    ++pieces;
+    if (piece.kind == LineRead::Kind::tool) tools.push_back("T" + std::to_string(piece.entry.tool));
+    if (piece.kind == LineRead::Kind::refused) ++skips;
   }
-  return said + (rest.empty() ? "; the rest it reads as nothing" : rest);
+  said += "; characters " + std::to_string(kLinuxCncRead + 1) + " on as ";
+  if (pieces == 1) {
+    return said + "a line of their own, " +
+           (!tools.empty() ? "read as tool " + tools[0].substr(1)
+                           : skips != 0 ? std::string("which it skips") : std::string("which holds nothing"));
+  }
+  return said + std::to_string(pieces) + " lines of their own: " + std::to_string(tools.size()) +
+         " read as tools" + (tools.empty() ? "" : " (" + listed(tools, ", ", 5) + ")") + ", " +
+         std::to_string(skips) + " skipped";
 }
 
 }  // namespace

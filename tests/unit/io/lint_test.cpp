@@ -1352,7 +1352,8 @@ TEST(ToolTable, shouldReadALineOverLinuxCncsBufferAsItsFgetsDoes) {
   EXPECT_EQ(table.problems[0].line, 1);
   EXPECT_EQ(table.problems[0].text,
             "313 characters, over the 255 LinuxCNC reads as one line: it reads tool 3 from the "
-            "first 255, its comment cut there; characters 256 on as a line it skips");
+            "first 255, its comment cut there; characters 256 on as a line of their own, which it "
+            "skips");
   // A field cut by the 255th character: LinuxCNC reads the number short.
   const std::string pad(245, ' ');  // Z40.125 from the 251st character
   table = parse_tool_table("T5 P5" + pad + "Z40.125 D6\n");
@@ -1362,7 +1363,7 @@ TEST(ToolTable, shouldReadALineOverLinuxCncsBufferAsItsFgetsDoes) {
   EXPECT_EQ(table.problems[0].text,
             "260 characters, over the 255 LinuxCNC reads as one line: it reads tool 5 from the "
             "first 255, its field \"Z40.125\" read as \"Z40.1\", without what follows; characters "
-            "256 on as a line it skips");
+            "256 on as a line of their own, which it skips");
   // The rest may read as a tool of its own, as LinuxCNC would take it.
   table = parse_tool_table("T6 P6 Z10 " + std::string(245, ' ') + "T7 P7 Z11\n");
   EXPECT_EQ(table.tools.count(6), 1u);
@@ -1371,7 +1372,15 @@ TEST(ToolTable, shouldReadALineOverLinuxCncsBufferAsItsFgetsDoes) {
   ASSERT_EQ(table.problems.size(), 1u);
   EXPECT_EQ(table.problems[0].text,
             "264 characters, over the 255 LinuxCNC reads as one line: it reads tool 6 from the "
-            "first 255, without what follows; characters 256 on as tool 7");
+            "first 255, without what follows; characters 256 on as a line of their own, read as "
+            "tool 7");
+  // A megabyte on one line: read piece by piece, said in one short line.
+  std::string many = "T4 P4 Z1 ;";
+  for (int i = 0; i < 4000; ++i) many += std::string(250, ' ') + "T" + std::to_string(100 + i % 3) + " Z9";
+  table = parse_tool_table(many + "\n");
+  ASSERT_FALSE(table.problems.empty());
+  EXPECT_LT(table.problems[0].text.size(), 300u) << table.problems[0].text;
+  EXPECT_NE(table.problems[0].text.find(" lines of their own: "), std::string::npos);
   // 255 characters are read whole: nothing to say.
   table = parse_tool_table("T8 P8 Z12 ;" + std::string(244, 'c') + "\n");
   EXPECT_TRUE(table.problems.empty());
@@ -1387,7 +1396,8 @@ TEST_F(Lint, shouldKeepTheLengthOfAToolOnALongTableLine) {
   EXPECT_NO_LINE(r, "not in the tool table");
   EXPECT_LINE(r, path("long.tbl") + ": line 1: 411 characters, over the 255 LinuxCNC reads as one "
                                     "line: it reads tool 1 from the first 255, its comment cut "
-                                    "there; characters 256 on as a line it skips\n");
+                                    "there; characters 256 on as a line of their own, which "
+                                    "it skips\n");
 }
 
 TEST_F(Lint, shouldReadTheIniAsTheLinuxcncScriptExpandsItsIncludes) {
