@@ -35,12 +35,21 @@ std::string format_point(double x, double y, double z) {
   return formatted("%10.3f %10.3f %10.3f", x, y, z);
 }
 
-/// The INI's soft limits in `units`; nullopt and one line on `err` when it cannot be read.
-std::optional<SoftLimits> read_limits(const std::string& ini_path, Units units, std::ostream& err) {
+/// The INI's soft limits in `units`; nullopt and one line on `err` when it
+/// cannot be read. Its #INCLUDE problems go first on `err`, one line each,
+/// counted in `problems`: they say why a key is missing.
+std::optional<SoftLimits> read_limits(const std::string& ini_path, Units units, std::ostream& err,
+                                      int& problems) {
   std::string error;
   const auto ini = IniFile::read(ini_path, error);
   std::optional<SoftLimits> limits;
-  if (ini) limits = soft_limits(*ini, units, error);
+  if (ini) {
+    for (const program::Finding& problem : ini->include_problems()) {
+      err << problem.where.file << ": line " << problem.where.line << ": " << problem.text << "\n";
+    }
+    problems += static_cast<int>(ini->include_problems().size());
+    limits = soft_limits(*ini, units, error);
+  }
   if (!limits) err << error << "\n";
   return limits;
 }
@@ -58,7 +67,7 @@ struct Loaded {
   /// units: the lengths the sequences are checked with.
   ToolLengths lengths;
   std::optional<std::string> table_path;  ///< the table read, if any
-  std::vector<std::string> table_skipped;  ///< its lines LinuxCNC skips
+  std::vector<std::string> table_skipped;  ///< what its lines say of themselves, "line N: why"
   std::map<int, double> measured;          ///< the state file's measured lengths
   /// Why the INI's tool table was not read (LinuxCNC starts without one).
   std::optional<std::string> table_unread;
@@ -73,7 +82,7 @@ struct TableRead {
   std::optional<std::string> path;  ///< none: no table named
   std::map<int, double> lengths;
   std::string error;  ///< why it could not be read, empty when it was
-  std::vector<std::string> skipped;  ///< lines LinuxCNC skips, as "line N: why"
+  std::vector<std::string> skipped;  ///< ToolTable::problems, as "line N: why"
 };
 TableRead read_table(const Options& options, Units units) {
   TableRead read;
@@ -132,8 +141,9 @@ Loaded load(const Options& options, std::ostream& err) {
   }
   if (options.ini_path) {
     // Without a valid config the INI is still checked, its numbers as in mm.
-    loaded.limits =
-        read_limits(*options.ini_path, loaded.config ? loaded.config->units : Units::mm, err);
+    loaded.limits = read_limits(*options.ini_path,
+                                loaded.config ? loaded.config->units : Units::mm, err,
+                                loaded.problems);
     if (!loaded.limits) {
       ++loaded.problems;
       loaded.not_checked.push_back(fault_of("INI", *options.ini_path) +
@@ -222,17 +232,13 @@ int partial_verdict(const Loaded& loaded, std::ostream& out) {
 }
 
 /// The tools of the table the rack cannot carry across (carried_tools),
-/// after the lines of the table LinuxCNC skips.
+/// after what the table's lines say of themselves (skipped, read in pieces, a tool twice).
 void report_carried(const Config& config, const Loaded& loaded, const SequencesChecked& checked,
                     std::ostream& out) {
   out << "\ntools of " << shown_path(*loaded.table_path)
       << " carried across the rack (a tool of no known length counts as "
       << format_length(config, loaded.lengths.longest) << ", the longest the config allows):\n";
-  std::vector<std::string> skipped;
-  for (const std::string& line : loaded.table_skipped) {
-    skipped.push_back("not read, as LinuxCNC skips it: " + line);
-  }
-  print_capped(out, skipped);
+  print_capped(out, loaded.table_skipped);
   // The tools it cannot carry, then how many fit.
   std::vector<std::string> lines = carried_tools(config, loaded.lengths, loaded.measured, checked);
   const std::string fit = lines.back();
@@ -251,6 +257,10 @@ int check(const Options& options, std::ostream& out, std::ostream& err) {
       const auto section = executor_problems(*ini, config);
       for (const auto& problem : section) err << problem << "\n";
       problems += static_cast<int>(section.size());
+      for (const auto& move : builtin_m6_moves(*ini)) {
+        err << ini->path() << ": " << move << "\n";
+        ++problems;
+      }
       if (!section.empty()) {
         loaded.not_checked.push_back("INI [FIXED_ATC_PROBE] not valid (" +
                                      std::to_string(section.size()) +
@@ -480,7 +490,8 @@ int teach_position(const Options& options, std::ostream& out, std::ostream& err)
     }
     std::optional<SoftLimits> limits;
     if (options.ini_path) {
-      limits = read_limits(*options.ini_path, declared_units(*text), err);
+      int problems = 0;  // said; a teach needs only the limits
+      limits = read_limits(*options.ini_path, declared_units(*text), err, problems);
       if (!limits) return 2;
     }
     TableRead table = read_table(options, declared_units(*text));

@@ -24,7 +24,8 @@ const std::vector<OptionDeclaration> kOptions = {
    "appended; --plan and --plot: the first-start map); never the config file itself. The "
    "status file for panels is FILE.status", ""},
   {"--ini", "FILE",
-   "the machine's INI, read by LinuxCNC's own reader: soft limits, [FIXED_ATC_PROBE], "
+   "the machine's INI as LinuxCNC runs with it (its #INCLUDE lines expanded as the linuxcnc "
+   "script does), read by LinuxCNC's own reader: soft limits, [FIXED_ATC_PROBE], "
    "velocities and accelerations, REMAP and SUBROUTINE_PATH", ""},
   {"--from", "A", "the tool in the spindle before the change (0: none)",
    "the tool in the spindle, 0 none"},
@@ -64,7 +65,9 @@ const std::vector<ModeDeclaration> kModes = {
    "check the config, the state file (--state or its default) and, with --ini, the machine INI "
    "(read by LinuxCNC's own reader: its soft limits and, when it has the section, "
    "[FIXED_ATC_PROBE]: every key there, the motion pin numbers two digits, three different "
-   "analog outputs, STEP_TIMEOUT longer than the longest wait between steps the plans report), "
+   "analog outputs, STEP_TIMEOUT longer than the longest wait between steps the plans report; "
+   "[EMCIO]TOOL_CHANGE_POSITION, TOOL_CHANGE_QUILL_UP and TOOL_CHANGE_AT_G30, which would move "
+   "the machine after every change; an #INCLUDE that names no file or cannot be read), "
    "print the pockets and waypoints and check every sequence against the rack keep-out and the "
    "soft limits, each tool carried with its length in LinuxCNC's tool table (--tool-table, "
    "else [EMCIO]TOOL_TABLE; a Z of 0 or below counts as the longest tool the config allows), "

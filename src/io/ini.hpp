@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdio>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -9,8 +10,44 @@
 #include "core/config/config.hpp"
 #include "core/rack/geometry.hpp"
 #include "core/dry_run/timing.hpp"
+#include "core/program/tool_use.hpp"
 
 namespace fatc::io {
+
+/// Reads the file an #INCLUDE names: its text, or nullopt and `error`.
+using IncludeReader =
+    std::function<std::optional<std::string>(const std::string& path, std::string& error)>;
+
+/// An INI's text as the `linuxcnc` start script hands it to LinuxCNC
+/// (handle_includes, the same in 2.9 and 2.10): unchanged unless a line
+/// starts with #INCLUDE; then each line as bash's `read a b` and `echo "$a
+/// $b"` give it back (spaces around the first word made one, backslashes
+/// taken as escapes, a line ending in one joined with the next, a last line
+/// without a line end dropped), and each #INCLUDE line replaced by the text
+/// of the file it names as it is, between two marks; the name as `eval echo`
+/// gives it (`~`, $NAME, ${NAME}), from the INI's `folder`. An included
+/// file's own #INCLUDE lines are not expanded. Nothing is run.
+struct ExpandedIni {
+  std::string text;
+  /// Shown names of the INI (first) and the files it includes.
+  std::vector<std::string> files;
+  /// Where each line of `text` came from (line n at [n - 1]): an index into
+  /// `files` and the line there (0: a mark the script writes). Empty: `text`
+  /// is the INI's own, line for line.
+  struct Origin {
+    std::size_t file = 0;
+    int line = 0;
+  };
+  std::vector<Origin> origins;
+  /// One each, at its file and line: an #INCLUDE that names no file, one that cannot be read,
+  /// one the shell would have to evaluate, one the script does not expand,
+  /// a line the script drops or joins with its mark.
+  std::vector<program::Finding> problems;
+  /// With the included files over kMaxFileBytes: nothing else is kept.
+  bool too_big = false;
+};
+ExpandedIni expand_includes(const std::string& text, const std::string& name,
+                            const std::string& folder, const IncludeReader& read);
 
 /// A LinuxCNC INI file, read by LinuxCNC's own reader (IniFile of
 /// liblinuxcncini): what get() finds is what LinuxCNC finds, first of
@@ -18,11 +55,22 @@ namespace fatc::io {
 class IniFile {
  public:
   /// nullopt and one line in `error` when the file cannot be read, is no
-  /// regular file, is over 1 MiB, or has a NUL byte or a lone carriage return.
+  /// regular file, is over 1 MiB (with the files it includes), or has a NUL
+  /// byte or a lone carriage return. Its #INCLUDE lines are expanded as the
+  /// `linuxcnc` script does (expand_includes): every reader of the user's INI
+  /// sees what LinuxCNC will run with; include_problems() says what went wrong.
   static std::optional<IniFile> read(const std::string& path, std::string& error);
-  /// The same from text already in memory; `name` stands for the path in messages.
+  /// The same from text already in memory, its #INCLUDE lines not expanded;
+  /// `name` stands for the path in messages.
   static std::optional<IniFile> from_text(const std::string& text, const std::string& name,
                                           std::string& error);
+
+  /// The text LinuxCNC reads: with the included files, as read() expanded it.
+  const std::string& text() const { return text_; }
+  /// ExpandedIni::problems.
+  const std::vector<program::Finding>& include_problems() const { return include_problems_; }
+  /// "line 12", or "line 3 of axes.inc" for a line of `text()` that an #INCLUDE brought in.
+  std::string line_name(int line) const;
 
   std::optional<std::string> get(const std::string& section, const std::string& key) const;
   /// get(), and the line the key is on (0 when it is not there).
@@ -43,6 +91,10 @@ class IniFile {
 
  private:
   std::string path_;
+  std::string text_;
+  std::vector<program::Finding> include_problems_;
+  std::vector<std::string> files_;                 ///< ExpandedIni's
+  std::vector<ExpandedIni::Origin> origins_;       ///< ExpandedIni's
   std::shared_ptr<std::FILE> file_;  ///< a private copy of the text (memfd), never changed
   /// LinuxCNC 2.10's reader (linuxcnc::IniFile) of the same text, read once at
   /// from_text; empty with 2.9's, which reads file_ at each lookup.
@@ -71,6 +123,20 @@ std::optional<MotionLimits> motion_limits(const IniFile& ini, Units units, std::
 /// component that stopped answering. Nothing when the INI has no key of the
 /// section at all (an INI checked for its limits only).
 std::vector<std::string> executor_problems(const IniFile& ini, const Config* config);
+
+/// The [EMCIO] keys that make LinuxCNC's own M6, which the changer's remap
+/// calls once its change ends at safe, move the machine after every change:
+/// TOOL_CHANGE_POSITION (a rapid there, canon's CHANGE_TOOL),
+/// TOOL_CHANGE_QUILL_UP (Z up to machine zero) and TOOL_CHANGE_AT_G30 (to
+/// the G30 position), the two from the interpreter before CHANGE_TOOL; 2.9
+/// and 2.10 read them from [EMCIO] only. One line each, without the path:
+/// "[EMCIO]TOOL_CHANGE_POSITION (line 12): ...". TOOL_CHANGE_WITH_SPINDLE_ON
+/// is not named: the remap stops the spindle itself.
+std::vector<std::string> builtin_m6_moves(const IniFile& ini);
+
+/// A folder of the INI as LinuxCNC's IniFile::TildeExpansion gives it:
+/// `~/` at its start is $HOME's, anything else as it is.
+std::string tilde_expanded(const std::string& folder);
 
 /// The user M-codes (100-199) LinuxCNC's task finds for the INI, as it looks
 /// for them when it starts: an executable named M1nn in [DISPLAY]PROGRAM_PREFIX

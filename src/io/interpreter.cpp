@@ -62,7 +62,7 @@ std::string absolute_folders(const std::string& folders) {
   std::string result;
   for (const std::string& folder : folders_of(folders)) {
     if (folder.empty()) continue;
-    result += (result.empty() ? "" : ":") + (folder[0] == '~' ? folder : absolute(folder));
+    result += (result.empty() ? "" : ":") + absolute(tilde_expanded(folder));
   }
   return result;
 }
@@ -437,9 +437,18 @@ std::optional<program::InterpreterRun> run_interpreter(const InterpreterInput& i
       return std::nullopt;
     }
   }
+  // rs274 runs with the scratch folder as its HOME: a `~/` of the INI's is
+  // the user's, given as such. The INI's folders stay relative: rs274 runs
+  // in the INI's folder, as LinuxCNC does.
   if (ini) {
+    // Searched before SUBROUTINE_PATH: where it is the user's home, it goes first of them.
+    if (const auto prefix = ini->get("DISPLAY", "PROGRAM_PREFIX"); prefix && prefix->rfind("~/", 0) == 0) {
+      folders += (folders.empty() ? "" : ":") + tilde_expanded(*prefix);
+    }
     if (const auto own = ini->get("RS274NGC", "SUBROUTINE_PATH")) {
-      folders += (folders.empty() ? "" : ":") + *own;
+      for (const std::string& folder : folders_of(*own)) {
+        if (!folder.empty()) folders += (folders.empty() ? "" : ":") + tilde_expanded(folder);
+      }
     }
   }
   if (!stub_folder.empty()) folders += (folders.empty() ? "" : ":") + stub_folder;
@@ -451,19 +460,26 @@ std::optional<program::InterpreterRun> run_interpreter(const InterpreterInput& i
   for (const program::StandIn& stand_in : program::preflight_stand_ins()) {
     if (!scratch.write("stand_ins/" + stand_in.name + ".ngc", stand_in.text, error)) return std::nullopt;
   }
-  folders += (folders.empty() ? "" : ":") + stand_in_folder;
-  std::string ini_text;
-  if (input.ini_path) {
-    const auto text = read_small_file(*input.ini_path, error);
-    if (!text) return std::nullopt;
-    ini_text = *text;
+  // First where the INI's M6 runs it: LinuxCNC reads at most ten folders
+  // (those that exist), and the undefined calls' folder, last, matters less.
+  const auto remaps = ini ? ini->get_all("RS274NGC", "REMAP") : std::vector<std::string>{};
+  if (std::any_of(remaps.begin(), remaps.end(), program::is_own_m6_remap)) {
+    folders = stand_in_folder + (folders.empty() ? "" : ":") + folders;
   }
-  const auto written =
-      scratch.write("machine.ini",
-                    program::ini_for_preflight(
-                        ini_text, folders,
-                        ini ? user_m_codes(*ini, machine_folder) : std::vector<int>{}),
-                    error);
+  // The INI's user M-codes, which LinuxCNC's task runs and tells the interpreter of.
+  std::string toplevel;
+  if (const auto codes = ini ? user_m_codes(*ini, machine_folder) : std::vector<int>{};
+      !codes.empty()) {
+    const auto module = scratch.write(
+        "user_m_codes.py", program::user_m_code_module(codes, ini->get("PYTHON", "TOPLEVEL")),
+        error);
+    if (!module) return std::nullopt;
+    toplevel = *module;
+  }
+  // The INI as LinuxCNC runs with it: its #INCLUDE lines expanded.
+  const auto written = scratch.write(
+      "machine.ini",
+      program::ini_for_preflight(ini ? ini->text() : std::string(), folders, toplevel), error);
   if (!written) return std::nullopt;
   const std::vector<std::string> argv = {
       input.rs274,     "-i", *written, "-t", *table_copy,  "-v",

@@ -13,6 +13,7 @@
 #include <memory>
 #include <ostream>
 
+#include "core/config/quote.hpp"
 #include "core/dry_run/sequence_check.hpp"
 #include "core/program/interpreter_inputs.hpp"
 #include "core/program/keepout_check.hpp"
@@ -39,6 +40,8 @@ struct MachineIni {
   bool return_to_xy = false;              ///< [FIXED_ATC_PROBE]RETURN_TO_XY
   std::optional<SoftLimits> limits;       ///< [AXIS_n]MIN_LIMIT, MAX_LIMIT
   std::string limits_error;               ///< why there are none
+  std::vector<std::string> builtin_m6_moves;  ///< [EMCIO] keys that move after every change
+  std::vector<program::Finding> include_problems;  ///< IniFile's
 };
 
 }  // namespace
@@ -112,6 +115,8 @@ bool read_ini(const Options& options, const Config& config, MachineIni& machine,
   }
   if (const auto units = ini->linear_units(); units && *units > 0.0) machine.units_per_mm = units;
   machine.limits = soft_limits(*ini, config.units, machine.limits_error);
+  machine.builtin_m6_moves = builtin_m6_moves(*ini);
+  machine.include_problems = ini->include_problems();
   if (const auto back = ini->get("FIXED_ATC_PROBE", "RETURN_TO_XY")) {
     machine.return_to_xy = *back == "1" || strcasecmp(back->c_str(), "true") == 0;
   }
@@ -360,6 +365,9 @@ int lint(const Options& options, std::ostream& out, std::ostream& err) {
       problems.push_back(program::finding(shown_path(options.config_path), 0, describe(violation)));
     }
   }
+  for (const std::string& move : machine.builtin_m6_moves) {
+    problems.push_back(program::finding(shown_path(*options.ini_path), 0, move));
+  }
   if (!machine.remaps_m6 && first_change != run->uses.end()) {
     problems.push_back({first_change->where,
                         "the INI remaps no M6: LinuxCNC's own M6 would run here, not "
@@ -378,19 +386,36 @@ int lint(const Options& options, std::ostream& out, std::ostream& err) {
         name, 0, machine.limits_error + ": the config is not checked against the soft limits"));
   }
   sort_by_line(unknowns);
+  // The files' own problems after the program's, each file's in its order.
+  problems.insert(problems.end(), machine.include_problems.begin(), machine.include_problems.end());
   if (table) {
     for (const auto& note : table->problems) problems.push_back(program::finding(table_name, note.line, note.text));
   }
 
   struct stat st;
   const bool first_start = ::stat(options.state_path.c_str(), &st) != 0 && errno == ENOENT;
-  const int spindle = state.state->spindle;
-  out << name << ": at the start the spindle holds "
-      << (spindle == 0 ? std::string("nothing") : "T" + std::to_string(spindle))
-      << (first_start ? " (no state file yet at " + input.state_name +
-                            ": each pocket holds its first-start tool)"
-                      : " (state file " + input.state_name + ")")
-      << "\n";
+  const ToolState& start = *state.state;
+  const std::string last = start.spindle == 0 ? "nothing" : "T" + std::to_string(start.spindle);
+  if (start.uncertain) {
+    // As the component holds the spindle after a cut-off sequence.
+    const int probe = spindle_probe(config, start);
+    // The state file is named at the first M6 it refuses; this line stays short.
+    out << name << ": at the start the spindle is uncertain (the state file's "
+        << (start.in_progress ? escape(start.in_progress->sequence) : std::string("sequence"))
+        << " was cut off; last known: " << last << "): "
+        << (probe != 0 ? "it may hold T" + std::to_string(probe) + ", a probe (tools." +
+                             std::to_string(probe) +
+                             ".kind): fatc-spindle-guard holds the spindle until the fault is "
+                             "cleared (panel, or --confirm)"
+                       : "the changer refuses M6 until the fault is cleared (panel, or --confirm)")
+        << "\n";
+  } else {
+    out << name << ": at the start the spindle holds " << last
+        << (first_start ? " (no state file yet at " + input.state_name +
+                              ": each pocket holds its first-start tool)"
+                        : " (state file " + input.state_name + ")")
+        << "\n";
+  }
   if (!checked.order.empty()) {
     out << "tools in the order of the changes:";
     for (const auto& tool : checked.order) out << " T" << (tool ? std::to_string(*tool) : "?");

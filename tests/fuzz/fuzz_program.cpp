@@ -126,7 +126,7 @@ void check_output(std::string_view text) {
   }
   const InterpreterRun run = output.finish();
   if (run.uses.size() > kMaxToolUses || run.problems.size() > kMaxErrors + 1 ||
-      run.unknowns.size() > kMaxErrors) {
+      run.unknowns.size() > kMaxErrors || run.spindle_starts.size() > kMaxToolUses) {
     fatc::fuzz::broken("what rs274 prints is kept within its bounds",
                        std::to_string(run.uses.size()));
   }
@@ -139,6 +139,8 @@ void check_table(std::string_view text) {
       fatc::fuzz::broken("a tool's length is a number a tool can have", std::to_string(*entry.z));
     }
   }
+  // A line over LinuxCNC's 255 characters is said in one line, its pieces included.
+  for (const fatc::LineNote& note : table.problems) fatc::fuzz::check_messages({note.text});
 }
 
 }  // namespace

@@ -257,9 +257,24 @@ def inis():
         "analog_out_twice_escape.ini": replace_once(
             replace_once(EXECUTOR_INI, "PROBE_Z_OUT = 00", "PROBE_Z_OUT = \u001b[8m"),
             "PROBE_RESULT_OUT = 01", "PROBE_RESULT_OUT = \u001b[8m"),
+        # the INI as the linuxcnc script expands its #INCLUDE lines
+        "include_missing.ini": i[: i.index("[AXIS_X]")] + "#INCLUDE gone_axes.inc\n",
+        "include_nested.ini": i[: i.index("[AXIS_X]")] + "#INCLUDE nested_axes.inc\n",
+        "include_shell.ini": i[: i.index("[AXIS_X]")] + "#INCLUDE $(cat axes.inc)\n",
+        "include_no_line_end.ini": i[: i.index("[AXIS_X]")] + "#INCLUDE axes_no_line_end.inc\n",
+        "include_itself.ini": "#INCLUDE include_itself.ini\n" + i,
+        "include_indented.ini": i[: i.index("[AXIS_X]")] + "  #INCLUDE axes.inc\n",
+        "include_dev_zero.ini": i[: i.index("[AXIS_X]")] + "#INCLUDE /dev/zero\n",
+        # LinuxCNC's own M6 moving after the changer's change
+        "tool_change_position.ini": i + "[EMCIO]\nTOOL_CHANGE_POSITION = 0 0 0\n",
     }
     for name, content in cases.items():
         write("bad_inis", name, content)
+    # the files those #INCLUDE lines name
+    axes = i[i.index("[AXIS_X]"):]
+    write("bad_inis", "axes.inc", axes)
+    write("bad_inis", "nested_axes.inc", "#INCLUDE axes.inc\n")
+    write("bad_inis", "axes_no_line_end.inc", axes.rstrip("\n"))
 
 
 if __name__ == "__main__":

@@ -112,7 +112,6 @@ std::string remapped_code(std::string_view remap) {
 }
 
 constexpr const char* kStandInM6 = "fixed_atc_probe_preflight_m6";
-constexpr const char* kStandInUserM = "fixed_atc_probe_preflight_user_m";
 
 }  // namespace
 
@@ -125,16 +124,55 @@ std::vector<StandIn> preflight_stand_ins() {
   auto sub = [](const std::string& name, const std::string& body) {
     return StandIn{name, "o<" + name + "> sub\n" + body + "o<" + name + "> endsub\nM2\n"};
   };
-  return {sub(kStandInM6, "M6\nG43\n"), sub(kStandInUserM, "")};
+  // The remap stops the spindle before it asks for the change, whatever
+  // TOOL_CHANGE_WITH_SPINDLE_ON; after it the spindle stays stopped (M72
+  // restores what M70 saved after the M5).
+  return {sub(kStandInM6, "M5\nM6\nG43\n")};
+}
+
+std::string user_m_code_module(const std::vector<int>& codes,
+                               const std::optional<std::string>& own_toplevel) {
+  std::string list;
+  for (const int code : codes) list += std::to_string(code) + ", ";
+  // A Python string of any path: each byte as \xNN.
+  auto literal = [](const std::string& text) {
+    std::string quoted = "b'";
+    char hex[8];
+    for (const unsigned char c : text) {
+      std::snprintf(hex, sizeof hex, "\\x%02x", c);
+      quoted += hex;
+    }
+    return quoted + "'.decode('utf-8', 'surrogateescape')";
+  };
+  std::string text =
+      "# fixed_atc_probe --lint: LinuxCNC's task runs the INI's user M-codes, not its\n"
+      "# interpreter, and tells the interpreter of each (USER_DEFINED_FUNCTION); rs274\n"
+      "# is told the same, each a function that does nothing.\n"
+      "import ctypes as _fatc_ctypes\n"
+      "try:\n"
+      "    _fatc_user_m = _fatc_ctypes.CFUNCTYPE(None, _fatc_ctypes.c_int, _fatc_ctypes.c_double,\n"
+      "                                          _fatc_ctypes.c_double)(lambda code, p, q: None)\n"
+      "    _fatc_table = (_fatc_ctypes.c_void_p * 100).in_dll(_fatc_ctypes.CDLL(None),\n"
+      "                                                       'USER_DEFINED_FUNCTION')\n"
+      "    for _fatc_code in (" + list + "):\n"
+      "        _fatc_table[_fatc_code - 100] = _fatc_ctypes.cast(_fatc_user_m, _fatc_ctypes.c_void_p).value\n"
+      "except (AttributeError, ValueError, OSError):\n"
+      "    pass  # an rs274 that does not show the table: the codes stay unknown to it\n";
+  if (own_toplevel) {
+    // The INI's own TOPLEVEL, run as the plugin runs it: into the same namespace.
+    text += "_fatc_own = " + literal(*own_toplevel) +
+            "\nexec(compile(open(_fatc_own).read(), _fatc_own, 'exec'))\n";
+  }
+  return text;
 }
 
 std::string ini_for_preflight(std::string_view ini_text, const std::string& folders,
-                              const std::vector<int>& user_m_codes) {
+                              const std::string& python_toplevel) {
   // One folder a line: LinuxCNC reads at most LINELEN (255) characters of
   // one, and joins a line ending in a backslash with the next.
   std::string path;
   for (const char c : folders) path += c == ':' ? std::string(":\\\n") : std::string(1, c);
-  std::string lines =
+  const std::string rs274ngc_lines =
       "HAL_PIN_VARS = 0\n" + (folders.empty() ? "" : "SUBROUTINE_PATH = " + path + "\n");
   std::vector<std::string_view> rows;
   for (std::size_t start = 0; start < ini_text.size();) {
@@ -144,23 +182,21 @@ std::string ini_for_preflight(std::string_view ini_text, const std::string& fold
     start = end;
   }
   auto is_section = [](std::string_view row) { return trimmed(row).substr(0, 1) == "["; };
-  auto is_rs274ngc = [](std::string_view row) { return trimmed(row).substr(0, 10) == "[RS274NGC]"; };
-  std::set<std::string> remapped;
+  auto section_is = [](std::string_view row, std::string_view name) {
+    return trimmed(row).substr(0, name.size()) == name;
+  };
+  // The lines go first in their section, where LinuxCNC takes the first of a key.
+  struct Insert {
+    std::string_view section;
+    std::string lines;
+    bool done = false;
+  };
+  std::vector<Insert> inserts = {{"[RS274NGC]", rs274ngc_lines}};
+  if (!python_toplevel.empty()) inserts.push_back({"[PYTHON]", "TOPLEVEL = " + python_toplevel + "\n"});
+  std::string text;
   bool in_rs274ngc = false;
   for (const std::string_view row : rows) {
-    if (is_section(row)) in_rs274ngc = is_rs274ngc(row);
-    if (const auto remap = remap_value(row); in_rs274ngc && remap) remapped.insert(remapped_code(*remap));
-  }
-  for (const int code : user_m_codes) {
-    const std::string name = "M" + std::to_string(code);
-    if (remapped.count(name)) continue;  // LinuxCNC runs the remap
-    lines += "REMAP = " + name + " modalgroup=10 argspec=pq ngc=" + kStandInUserM + "\n";
-  }
-  std::string text;
-  bool inserted = false;
-  in_rs274ngc = false;
-  for (const std::string_view row : rows) {
-    if (is_section(row)) in_rs274ngc = is_rs274ngc(row);
+    if (is_section(row)) in_rs274ngc = section_is(row, "[RS274NGC]");
     const auto remap = remap_value(row);
     if (in_rs274ngc && remap && is_own_m6_remap(*remap)) {
       const std::size_t ngc = upper(*remap).find("NGC=") + 4;
@@ -170,15 +206,17 @@ std::string ini_for_preflight(std::string_view ini_text, const std::string& fold
       continue;
     }
     text += row;
-    if (in_rs274ngc && !inserted && is_rs274ngc(row)) {
+    for (Insert& insert : inserts) {
+      if (insert.done || !is_section(row) || !section_is(row, insert.section)) continue;
       if (text.back() != '\n') text += '\n';
-      text += lines;
-      inserted = true;
+      text += insert.lines;
+      insert.done = true;
     }
   }
-  if (!inserted) {
+  for (const Insert& insert : inserts) {
+    if (insert.done) continue;
     if (!text.empty() && text.back() != '\n') text += '\n';
-    text += "[RS274NGC]\n" + lines;
+    text += std::string(insert.section) + "\n" + insert.lines;
   }
   return text;
 }

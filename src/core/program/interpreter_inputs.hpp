@@ -1,5 +1,6 @@
 #pragma once
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -38,22 +39,29 @@ InterpreterTable any_tool_table();
 /// is this changer's M6.
 bool is_own_m6_remap(std::string_view remap);
 
-/// The subroutines the preflight's interpreter runs in place of the
-/// machine's, by name, each with its text (written to a folder of
-/// ini_for_preflight's `folders`):
-/// - fixed_atc_probe_preflight_m6, for this changer's M6: rs274 runs the
-///   remap's preview branch, which only tells the interpreter of the new
-///   tool, where the machine's run ends in G43. The stand-in does both, so
-///   every offset rs274 prints, and every move it works out through them
-///   (G53, G28, G92, G10 L20), is the machine's.
-/// - fixed_atc_probe_preflight_user_m, for a user M-code (M100-M199, an
-///   executable in [RS274NGC]USER_M_PATH): LinuxCNC's task runs it, not the
-///   interpreter (rs274 calls it unknown); the stand-in does nothing.
+/// The subroutine the preflight's interpreter runs in place of the
+/// machine's, by name, with its text (written to a folder of
+/// ini_for_preflight's `folders`): fixed_atc_probe_preflight_m6, for this
+/// changer's M6. rs274 runs the remap's preview branch, which only tells the
+/// interpreter of the new tool, where the machine's run stops the spindle
+/// first and ends in G43. The stand-in does all three, so every offset rs274
+/// prints, every move it works out through them (G53, G28, G92, G10 L20),
+/// and the spindle after the change are the machine's.
 struct StandIn {
   std::string name;
   std::string text;
 };
 std::vector<StandIn> preflight_stand_ins();
+
+/// A Python file for the INI's [PYTHON]TOPLEVEL that tells rs274 of the
+/// user M-codes `codes` (100-199, executables of USER_M_PATH) as LinuxCNC's
+/// task tells its interpreter (USER_DEFINED_FUNCTION, which rs274 shows):
+/// each a function that does nothing, so M101 P1 Q2 reads as on the machine
+/// and runs nothing. (A REMAP of M100-M199 is never run in 2.9: those codes
+/// are not remappable.) Then it runs the INI's own TOPLEVEL, `own_toplevel`,
+/// into the same namespace, as the plugin would have.
+std::string user_m_code_module(const std::vector<int>& codes,
+                               const std::optional<std::string>& own_toplevel);
 
 /// The machine's INI text as the preflight's interpreter reads it: HAL pins
 /// off (`HAL_PIN_VARS = 0`: with a LinuxCNC running, rs274 would read its live
@@ -62,11 +70,10 @@ std::vector<StandIn> preflight_stand_ins();
 /// first of a key, so the lines go first in [RS274NGC] (a new section when
 /// there is none), one folder a line (a line ending in a backslash goes on in
 /// the next: LinuxCNC reads at most 255 characters of a line). `folders` ends
-/// with the INI's own. The changer's M6 remap runs its stand-in, and each of
-/// `user_m_codes` (100-199) the INI does not remap runs the user M-code's
-/// (preflight_stand_ins): LinuxCNC refuses a code remapped twice.
+/// with the INI's own. The changer's M6 remap runs its stand-in; with
+/// `python_toplevel` (user_m_code_module's file), [PYTHON]TOPLEVEL is that.
 std::string ini_for_preflight(std::string_view ini_text, const std::string& folders,
-                              const std::vector<int>& user_m_codes = {});
+                              const std::string& python_toplevel = "");
 
 /// The longest folder ini_for_preflight can give rs274 on a line of its own.
 constexpr std::size_t kMaxFolderLength = 250;

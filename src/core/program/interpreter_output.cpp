@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdlib>
 #include <iterator>
 #include <utility>
@@ -133,16 +134,26 @@ void InterpreterOutput::canonical_call(std::string_view line) {
     use(ToolUse::Kind::change, any_selected_ ? selected_ : std::nullopt,
         any_selected_ ? selected_line_ : line_);
   } else if (starts_with(call, "SET_SPINDLE_SPEED(0, ")) {
-    spindle_speed_ = std::strtod(std::string(call.substr(21)).c_str(), nullptr);
-  } else if (call == "START_SPINDLE_CLOCKWISE(0)" || call == "START_SPINDLE_COUNTERCLOCKWISE(0)" ||
-             starts_with(call, "ORIENT_SPINDLE(0, ")) {
+    spindle_.speed = std::fabs(std::strtod(std::string(call.substr(21)).c_str(), nullptr));
+    spindle_commanded();
+  } else if (starts_with(call, "SET_SPINDLE_MODE(0")) {
+    // 2.9 prints "SET_SPINDLE_MODE(0 1000.0000)": no comma.
+    std::string value(call.substr(18));
+    if (!value.empty() && value[0] == ',') value.erase(0, 1);
+    spindle_.css_maximum = std::fabs(std::strtod(value.c_str(), nullptr));
+  } else if (call == "START_SPINDLE_CLOCKWISE(0)" || call == "START_SPINDLE_COUNTERCLOCKWISE(0)") {
+    spindle_.direction = call == "START_SPINDLE_CLOCKWISE(0)" ? 1 : -1;
+    spindle_commanded();
+  } else if (call == "STOP_SPINDLE_TURNING(0)") {
+    spindle_.direction = 0;
+    spindle_commanded();
+  } else if (starts_with(call, "ORIENT_SPINDLE(0, ")) {
     if (run_.spindle_starts.size() < kMaxToolUses) {
       SpindleStart start;
       start.where = {program_.name, line_};
       start.before_use = run_.uses.size();
-      start.clockwise = call == "START_SPINDLE_CLOCKWISE(0)";
-      start.orients = starts_with(call, "ORIENT_SPINDLE(0, ");
-      start.speed = spindle_speed_;
+      start.orients = true;
+      start.speed = spindle_.speed;
       run_.spindle_starts.push_back(start);
     }
   } else if (const auto row = argument_of(call, "CHANGE_TOOL_NUMBER")) {
@@ -152,6 +163,23 @@ void InterpreterOutput::canonical_call(std::string_view line) {
     }
     use(ToolUse::Kind::set, tool, numbered ? line_ : 0);
   }
+}
+
+void InterpreterOutput::spindle_commanded() {
+  // Canon's EMC_SPINDLE_ON: the direction times G96's D when there is one
+  // (motion runs at D while the surface speed gives it no factor), else times S.
+  const double speed = spindle_.css_maximum != 0.0 ? spindle_.css_maximum : spindle_.speed;
+  const bool turning = spindle_.direction != 0 && speed != 0.0;
+  if (turning && !spindle_.turning && run_.spindle_starts.size() < kMaxToolUses) {
+    SpindleStart start;
+    start.where = {program_.name, line_};
+    start.before_use = run_.uses.size();
+    start.clockwise = spindle_.direction > 0;
+    start.speed = spindle_.speed;
+    start.css_maximum = spindle_.css_maximum;
+    run_.spindle_starts.push_back(start);
+  }
+  spindle_.turning = turning;
 }
 
 void InterpreterOutput::use(ToolUse::Kind kind, std::optional<int> tool, int line) {

@@ -78,7 +78,17 @@ class InterpreterOutput {
 
   ProgramGiven program_;
   std::vector<int> tool_of_row_;
-  double spindle_speed_ = 0.0;  ///< spindle 0's S, as SET_SPINDLE_SPEED last said
+  /// Spindle 0 as canon last commanded motion: set by START_SPINDLE_*,
+  /// SET_SPINDLE_SPEED and STOP_SPINDLE_TURNING; SET_SPINDLE_MODE only
+  /// changes what the next of them commands.
+  struct Spindle {
+    int direction = 0;  ///< 1 M3, -1 M4, 0 stopped
+    double speed = 0.0;
+    double css_maximum = 0.0;
+    bool turning = false;  ///< as last commanded
+  } spindle_;
+  /// A command to spindle 0 reaches motion: a start where it begins to turn.
+  void spindle_commanded();
   InterpreterRun run_;
   int line_ = 0;                   ///< of the last call that named one
   std::optional<int> selected_;    ///< the last T, nullopt when it is not known

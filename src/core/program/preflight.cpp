@@ -67,25 +67,37 @@ class Checker {
     result_.problems.push_back({where, text});
   }
 
-  /// M3 or M4 with a probe in the spindle: the guard holds it, the changer aborts.
-  /// The program stops at the first: later ones with the same probe are not named.
+  /// The spindle set turning, or M19, while a probe is in it or may be (a
+  /// cut-off sequence: spindle_probe, as the component holds the spindle):
+  /// the guard holds it and the changer aborts. The program stops at the
+  /// first, so it is named once each time a probe goes into the spindle.
   void spindle_started(const program::SpindleStart& start) {
-    if (!spindle_known_ || tools_.spindle == 0 || !config_.is_probe(tools_.spindle)) return;
+    const int probe = spindle_known_ ? spindle_probe(config_, tools_) : 0;
+    if (probe == 0) return;
+    const std::string held =
+        (probe == tools_.spindle ? " with " + tool_word(probe) + " in it, a probe (tools."
+                                 : " while it may hold " + tool_word(probe) +
+                                       ", a probe, as the cut-off sequence of the state file left "
+                                       "it (tools.") +
+        std::to_string(probe) + ".kind)";
     if (start.orients) {
-      problem(start.where, "M19 orients the spindle with " + tool_word(tools_.spindle) +
-                               " in it, a probe (tools." + std::to_string(tools_.spindle) +
-                               ".kind): fatc-spindle-guard does not hold an orient; change to "
-                               "a cutter first");
+      problem(start.where, "M19 orients the spindle" + held +
+                               ": fatc-spindle-guard does not hold an orient; change to a cutter "
+                               "first");
       return;
     }
-    if (start.speed == 0.0 || probe_start_said_) return;
+    if (probe_start_said_) return;
     probe_start_said_ = true;
-    problem(start.where,
-            std::string(start.clockwise ? "M3" : "M4") + " starts the spindle with " +
-                tool_word(tools_.spindle) + " in it, a probe (tools." +
-                std::to_string(tools_.spindle) +
-                ".kind): fatc-spindle-guard holds the spindle and the changer aborts the program "
-                "here");
+    char speed[96];
+    if (start.css_maximum != 0.0) {
+      std::snprintf(speed, sizeof speed, "G96 up to D%g", start.css_maximum);
+    } else {
+      std::snprintf(speed, sizeof speed, "S%g", start.speed);
+    }
+    problem(start.where, std::string("the spindle turns here (") + (start.clockwise ? "M3" : "M4") +
+                             " in force, " + speed + ")" + held +
+                             ": fatc-spindle-guard holds the spindle and the changer aborts the "
+                             "program here");
   }
 
   void change(PreflightRow& row) {
@@ -156,6 +168,9 @@ class Checker {
       }
     }
     tools_.put_in_spindle(tool);
+    // The change was planned as if the fault were cleared: the spindle is known from here.
+    tools_.uncertain = false;
+    tools_.in_progress.reset();
     spindle_known_ = true;
     probe_start_said_ = false;
     // Measured at this change: a "new" tool is not measured at the next.

@@ -13,8 +13,10 @@
 namespace fatc {
 namespace {
 
-/// LinuxCNC reads a table line into 256 bytes (CANON_TOOL_ENTRY_LEN) with fgets.
-constexpr std::size_t kMaxTableLine = 254;
+/// LinuxCNC reads the table with fgets into 256 bytes (CANON_TOOL_ENTRY_LEN):
+/// 255 characters at a time, so a longer line is read as several, each
+/// parsed as a line of its own.
+constexpr std::size_t kLinuxCncRead = 255;
 /// No offset, diameter or angle of a tool reaches this, in mm or inches.
 constexpr double kLargestNumber = 100000.0;
 
@@ -107,6 +109,105 @@ std::optional<Token> field_of(std::string_view line, const std::vector<Token>& t
 
 }  // namespace
 
+namespace {
+
+/// What LinuxCNC makes of one line as it reads it (one fgets).
+struct LineRead {
+  enum class Kind { nothing, tool, refused } kind = Kind::nothing;
+  ToolTableEntry entry;
+  std::string why;  ///< refused: why
+  bool skipped = false;  ///< refused: LinuxCNC itself skips it (else it reads numbers that mean nothing)
+};
+
+LineRead read_line(std::string line, int line_number) {
+  LineRead read;
+  while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
+  if (line.empty() || line[0] == ';') return read;
+  const std::string fields = line.substr(0, line.find(';'));
+  if (fields.size() <= 1) return read;  // LinuxCNC's test for a blank line
+  read.entry.line = line_number;
+  bool has_tool = false;
+  std::size_t at = 0;
+  while (read.why.empty() && at < fields.size()) {
+    const std::size_t space = fields.find(' ', at);
+    const std::string field =
+        fields.substr(at, space == std::string::npos ? std::string::npos : space - at);
+    at = space == std::string::npos ? fields.size() : space + 1;
+    if (field.empty()) continue;
+    read.why = field_problem(field, read.entry, has_tool, read.skipped);
+    read.entry.fields.push_back(field);
+  }
+  if (!read.why.empty()) {
+    read.kind = LineRead::Kind::refused;
+  } else if (has_tool) {
+    read.kind = LineRead::Kind::tool;
+  }
+  return read;
+}
+
+/// What is said of a line LinuxCNC refuses, or of which it reads numbers that mean nothing.
+std::string refusal(const LineRead& read) {
+  return read.skipped ? "LinuxCNC skips this line: " + read.why
+                      : read.why + "; the line is left out of the table here";
+}
+
+/// What LinuxCNC reads of a line over kLinuxCncRead characters, in one note:
+/// the first kLinuxCncRead characters as the line (a field or the comment cut
+/// there), the rest as lines of their own, each of which `reads` is told of.
+template <class Reads>
+std::string long_line(const std::string& line, int line_number, Reads reads) {
+  std::string said = std::to_string(line.size()) + " characters, over the " +
+                     std::to_string(kLinuxCncRead) + " LinuxCNC reads as one line: ";
+  const LineRead first = read_line(line.substr(0, kLinuxCncRead), line_number);
+  const std::size_t comment = line.find(';');
+  if (first.kind == LineRead::Kind::tool) {
+    said += "it reads tool " + std::to_string(first.entry.tool) + " from the first " +
+            std::to_string(kLinuxCncRead);
+    if (comment < kLinuxCncRead) {
+      said += ", its comment cut there";
+    } else {
+      // The field the cut falls in, read short: Z40.1 of Z40.125.
+      const std::size_t start = line.rfind(' ', kLinuxCncRead - 1);
+      const std::size_t from = start == std::string::npos ? 0 : start + 1;
+      const std::size_t end = std::min(line.find_first_of(" ;", from), line.size());
+      if (from < kLinuxCncRead && end > kLinuxCncRead) {
+        said += ", its field " + quote(line.substr(from, end - from)) + " read as " +
+                quote(line.substr(from, kLinuxCncRead - from));
+      }
+      said += ", without what follows";
+    }
+  } else if (first.kind == LineRead::Kind::refused) {
+    said += "it reads no tool from the first " + std::to_string(kLinuxCncRead) + " (" +
+            refusal(first) + ")";
+  } else {
+    said += "the first " + std::to_string(kLinuxCncRead) + " hold no tool";
+  }
+  reads(first);
+  // The rest, kLinuxCncRead characters at a time, each a line to LinuxCNC:
+  // said in a few words however many there are.
+  std::vector<std::string> tools;
+  std::size_t pieces = 0;
+  std::size_t skips = 0;
+  for (std::size_t at = kLinuxCncRead; at < line.size(); at += kLinuxCncRead) {
+    const LineRead piece = read_line(line.substr(at, kLinuxCncRead), line_number);
+    reads(piece);
+    ++pieces;
+    if (piece.kind == LineRead::Kind::tool) tools.push_back("T" + std::to_string(piece.entry.tool));
+    if (piece.kind == LineRead::Kind::refused) ++skips;
+  }
+  said += "; characters " + std::to_string(kLinuxCncRead + 1) + " on as ";
+  if (pieces == 1) {
+    return said + "a line of their own, " +
+           (!tools.empty() ? "read as tool " + tools[0].substr(1)
+                           : skips != 0 ? std::string("which it skips") : std::string("which holds nothing"));
+  }
+  return said + std::to_string(pieces) + " lines of their own: " + std::to_string(tools.size()) +
+         " read as tools" + (tools.empty() ? "" : " (" + listed(tools, ", ", 5) + ")") + ", " +
+         std::to_string(skips) + " skipped";
+}
+
+}  // namespace
+
 ToolTable parse_tool_table(std::string_view text) {
   ToolTable table;
   int line_number = 0;
@@ -114,50 +215,33 @@ ToolTable parse_tool_table(std::string_view text) {
   while (start < text.size()) {
     std::size_t end = text.find('\n', start);
     if (end == std::string_view::npos) end = text.size();
-    std::string line(text.substr(start, end - start));
+    const std::string line(text.substr(start, end - start));
     start = end + 1;
     ++line_number;
     if (line.find('\0') != std::string::npos) {
       table.problems.push_back({line_number, "NUL byte: not a tool table; read no further"});
       break;
     }
-    if (line.size() > kMaxTableLine) {
-      table.problems.push_back({line_number, std::to_string(line.size()) +
-                                                 " characters: LinuxCNC reads at most " +
-                                                 std::to_string(kMaxTableLine) + " in a line"});
-      continue;
-    }
-    while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
-    if (line.empty() || line[0] == ';') continue;
-    const std::string fields = line.substr(0, line.find(';'));
-    if (fields.size() <= 1) continue;  // LinuxCNC's test for a blank line
-    ToolTableEntry entry;
-    entry.line = line_number;
-    bool has_tool = false;
-    bool skipped = false;
-    std::string why;
-    std::size_t at = 0;
-    while (why.empty() && at < fields.size()) {
-      const std::size_t space = fields.find(' ', at);
-      const std::string field =
-          fields.substr(at, space == std::string::npos ? std::string::npos : space - at);
-      at = space == std::string::npos ? fields.size() : space + 1;
-      if (field.empty()) continue;
-      why = field_problem(field, entry, has_tool, skipped);
-      entry.fields.push_back(field);
-    }
-    if (!why.empty()) {
-      table.problems.push_back(
-          {line_number, skipped ? "LinuxCNC skips this line: " + why
-                                : why + "; the line is left out of the table here"});
-      continue;
-    }
-    if (!has_tool) continue;
-    const auto [first, inserted] = table.tools.emplace(entry.tool, entry);
-    if (!inserted) {
-      table.problems.push_back({line_number, "tool " + std::to_string(entry.tool) +
-                                                 " again (first on line " +
-                                                 std::to_string(first->second.line) + ")"});
+    auto take = [&](const LineRead& read) {
+      if (read.kind == LineRead::Kind::refused && line.size() <= kLinuxCncRead) {
+        table.problems.push_back({line_number, refusal(read)});
+      }
+      if (read.kind != LineRead::Kind::tool) return;
+      const auto [first, inserted] = table.tools.emplace(read.entry.tool, read.entry);
+      if (!inserted) {
+        table.problems.push_back({line_number, "tool " + std::to_string(read.entry.tool) +
+                                                   " again (first on line " +
+                                                   std::to_string(first->second.line) + ")"});
+      }
+    };
+    if (line.size() > kLinuxCncRead) {
+      // Said before what its pieces read: a tool twice is said after it.
+      const std::size_t note = table.problems.size();
+      const std::string said = long_line(line, line_number, take);
+      table.problems.insert(table.problems.begin() + static_cast<std::ptrdiff_t>(note),
+                            {line_number, said});
+    } else {
+      take(read_line(line, line_number));
     }
   }
   return table;

@@ -29,14 +29,18 @@ struct ToolTable {
   std::map<int, ToolTableEntry> tools;  ///< by tool number; the first line of a tool listed twice
   /// Lines LinuxCNC skips ("Unrecognized line skipped"), lines with a number
   /// LinuxCNC would read but no tool can have (NaN, infinite, over 100000 either way,
-  /// a whole number beyond an int), left out of `tools`; tools listed twice.
+  /// a whole number beyond an int), left out of `tools`; tools listed twice;
+  /// lines LinuxCNC reads in pieces.
   std::vector<LineNote> problems;
 };
 
 /// Reads a tool table as LinuxCNC's tooldata_read_entry does: `;` starts a
 /// comment, fields are separated by spaces, each a letter (T P D X Y Z A B C
 /// U V W I J Q, either case) and a number read with sscanf; a line with a bad
-/// field is skipped whole, and so is one whose numbers mean nothing. Never throws.
+/// field is skipped whole, and so is one whose numbers mean nothing. A line
+/// over 255 characters is read as LinuxCNC's fgets reads it, 255 at a time,
+/// each piece a line (a tool from its start, a field or the comment cut),
+/// with one note saying what it read. Never throws.
 ToolTable parse_tool_table(std::string_view text);
 
 /// The Z of each tool `table` gives one, in `units`: the table is in the

@@ -39,13 +39,17 @@ struct ToolUse {
   bool ran = true;
 };
 
-/// An M3, M4 or M19 LinuxCNC's interpreter ran: whatever the spindle holds then turns.
+/// Where the program sets spindle 0 turning, as LinuxCNC's canon commands
+/// motion from the interpreter's calls: M3 or M4 in force and a speed other
+/// than 0 (S, or G96's D, which canon gives motion whatever S), reached by
+/// M3, M4, an S word or M4 after M5; and every M19. Whatever the spindle holds then turns.
 struct SpindleStart {
   Site where;
   std::size_t before_use = 0;  ///< how many tool uses the interpreter ran before it
-  bool clockwise = true;       ///< M3; false: M4
+  bool clockwise = true;       ///< M3 in force; false: M4
   bool orients = false;        ///< M19
-  double speed = 0.0;          ///< the S in force (0: nothing turns)
+  double speed = 0.0;          ///< the S in force
+  double css_maximum = 0.0;    ///< G96's D in force (0: G97, or G96 without D)
 };
 
 /// What LinuxCNC's interpreter made of a program.

@@ -63,8 +63,17 @@ std::vector<std::string> read_state(const std::string& path) {
 std::vector<std::string> read_ini(const std::string& path) {
   std::string error;
   const auto ini = io::IniFile::read(path, error);
-  if (ini && io::soft_limits(*ini, Units::mm, error)) return io::executor_problems(*ini, nullptr);
-  return {error};
+  if (!ini) return {error};
+  // As --check says them: what its #INCLUDE lines gave first, then the keys.
+  std::vector<std::string> said;
+  for (const program::Finding& problem : ini->include_problems()) {
+    said.push_back(problem.where.file + ": line " + std::to_string(problem.where.line) + ": " +
+                   problem.text);
+  }
+  if (!io::soft_limits(*ini, Units::mm, error)) said.push_back(error);
+  for (const std::string& problem : io::executor_problems(*ini, nullptr)) said.push_back(problem);
+  for (const std::string& move : io::builtin_m6_moves(*ini)) said.push_back(path + ": " + move);
+  return said;
 }
 
 /// Runs `read` on `path`; fails the test if it took a second or more. A reader
@@ -243,6 +252,16 @@ const Hostile kBadInis[] = {
   {"return_to_xy_bidi.ini", "[FIXED_ATC_PROBE]RETURN_TO_XY (line 17): expected 0 or 1 (halcmd setp of a bit), got \"\\u{202e}1\""},
   {"step_timeout_soft_hyphen.ini", "[FIXED_ATC_PROBE]STEP_TIMEOUT (line 24): expected seconds, 1 or more, got \"3\\u{00ad}0\""},
   {"analog_out_twice_escape.ini", "[FIXED_ATC_PROBE]PROBE_Z_OUT (line 21): expected two digits as in the motion pin names (03), got \"\\x1b[8m\""},
+  // the INI as the linuxcnc script expands its #INCLUDE lines, each said at the INI's line
+  {"include_missing.ini", "line 5: #INCLUDE " FATC_BAD_INIS "/gone_axes.inc: cannot open (No such file or directory): none of its keys are read"},
+  {"include_nested.ini", "line 5: #INCLUDE \"nested_axes.inc\": its line 1 is an #INCLUDE, which the linuxcnc script expands only in the INI itself: LinuxCNC reads nothing of the file it names; move it into the INI"},
+  {"include_shell.ini", "line 5: #INCLUDE \"$(cat axes.inc)\": the linuxcnc script evaluates the name with the shell (eval echo), which this reader does not: write the file's name plainly (~, $NAME and ${NAME} are read)"},
+  {"include_no_line_end.ini", "line 5: #INCLUDE \"axes_no_line_end.inc\": its line 9 has no line end: the linuxcnc script writes its end mark onto it (\"#*** End\"); end the file with one"},
+  {"include_itself.ini", "line 1: #INCLUDE \"include_itself.ini\": its line 1 is an #INCLUDE, which the linuxcnc script expands only in the INI itself"},
+  {"include_indented.ini", "line 5: #INCLUDE after a blank, and no #INCLUDE at a line's start: the linuxcnc script takes the line for a comment and includes nothing; start the line with it"},
+  {"include_dev_zero.ini", "line 5: #INCLUDE /dev/zero: expected a regular file, got a character device: none of its keys are read"},
+  // LinuxCNC's own M6, which the changer's remap calls, moving after every change
+  {"tool_change_position.ini", "[EMCIO]TOOL_CHANGE_POSITION (line 15): LinuxCNC's own M6, which fixed_atc_probe_m6 calls once the change is done, would rapid to \"0 0 0\" after every change, from safe; remove it: the changer ends its change at safe"},
 };
 // clang-format on
 

@@ -12,6 +12,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <ctime>
 #include <filesystem>
@@ -278,8 +279,9 @@ TEST_F(Lint, shouldNameALineThatStartsTheSpindleWithAProbeInIt) {
                          state_with_lengths({2, 3})});
   EXPECT_EQ(r.code, 1);
   EXPECT_LINE(r,
-              "probe.ngc: line 2: M3 starts the spindle with T2 in it, a probe (tools.2.kind): "
-              "fatc-spindle-guard holds the spindle and the changer aborts the program here\n");
+              "probe.ngc: line 2: the spindle turns here (M3 in force, S1000) with T2 in it, a "
+              "probe (tools.2.kind): fatc-spindle-guard holds the spindle and the changer aborts "
+              "the program here\n");
   EXPECT_NO_LINE(r, "probe.ngc: line 5:");
   EXPECT_LINE(r, "M6 T2         pocket 2                              probe, spindle held, measured "
                  "if new  22.0000 mm (state file)");
@@ -294,7 +296,7 @@ TEST_F(Lint, shouldNameOnlyTheFirstSpindleStartThatTurnsTheProbeAndAnOrient) {
                          state_with_lengths({2})});
   EXPECT_EQ(r.code, 1);
   EXPECT_NO_LINE(r, "starts.ngc: line 2:");
-  EXPECT_LINE(r, "starts.ngc: line 3: M3 starts the spindle with T2 in it, a probe");
+  EXPECT_LINE(r, "starts.ngc: line 3: the spindle turns here (M3 in force, S900) with T2 in it, a probe");
   EXPECT_NO_LINE(r, "starts.ngc: line 4:");
   EXPECT_LINE(r, "starts.ngc: line 5: M19 orients the spindle with T2 in it, a probe");
 }
@@ -1179,6 +1181,7 @@ TEST_F(Lint, shouldTakeTheUserMCodesOfTheIniWithoutRunningThem) {
                                               "LINEAR_UNITS = mm\n");
   const LintRun r = lint(write("m101.ngc", "M101 P1 Q2\nG0 X0\nM102\nM2\n"), {"--ini", ini});
   EXPECT_NO_LINE(r, "M101");
+  EXPECT_NO_LINE(r, "m101.ngc: line 1:");  // not "P word with no ... user M code to use it"
   EXPECT_LINE(r, "m101.ngc: line 3: LinuxCNC stops the program here: Unknown m code used: M102\n");
   EXPECT_FALSE(fs::exists(ran));
 }
@@ -1225,6 +1228,258 @@ TEST_F(Lint, shouldNameAChangeWhoseOwnMovesWouldCarryAToolsTipIntoAHolder) {
   EXPECT_NO_LINE(set, "carry.ngc: line 1: M6");
   EXPECT_LINE(set, "carry.ngc: line 3: M6 T2 from T1, step ");
   EXPECT_LINE(set, "): carries T1 (length 80.0000 mm)");
+}
+
+// ---- lint round 4 (issue 42): each class, not the case ----
+
+TEST_F(Lint, shouldNameEveryWayTheSpindleStartsTurningOnceEachTimeAProbeIsInIt) {
+  const nlohmann::json tools = {{"2", {{"kind", "probe"}}}};
+  const auto with = [&](const std::string& text) {
+    return run({"--lint", write("turn.ngc", text), "--config", config_with("tools", tools),
+                "--state", state_with_lengths({2, 3})});
+  };
+  // M3 at S0 turns nothing; the S word later does, on a line of its own or in a G1.
+  const LintRun s_word =
+      with("T2 M6\nM3 S0\nG1 X10 F100\nS1000\nS2000\nM5\nT3 M6\nM3 S0\nT2 M6\nM3 S0\nG1 X20 S500\nM2\n");
+  EXPECT_EQ(s_word.code, 1);
+  EXPECT_NO_LINE(s_word, "turn.ngc: line 2:");
+  EXPECT_LINE(s_word, "turn.ngc: line 4: the spindle turns here (M3 in force, S1000) with T2 in it, "
+                      "a probe (tools.2.kind): fatc-spindle-guard holds the spindle and the "
+                      "changer aborts the program here\n");
+  EXPECT_NO_LINE(s_word, "turn.ngc: line 5:");
+  EXPECT_NO_LINE(s_word, "turn.ngc: line 8:");  // T3, a cutter
+  EXPECT_LINE(s_word, "turn.ngc: line 11: the spindle turns here (M3 in force, S500) with T2 in it");
+  // G96 with D turns the spindle at D whatever S (canon gives motion D; no surface speed then).
+  EXPECT_LINE(with("T2 M6\nG96 D1500 S0 M4\nM2\n"),
+              "turn.ngc: line 2: the spindle turns here (M4 in force, G96 up to D1500) with T2");
+  EXPECT_LINE(with("T2 M6\nM3 S0\nG96 D900 S0\nM2\n"),
+              "turn.ngc: line 3: the spindle turns here (M3 in force, G96 up to D900) with T2");
+  // M4 after M5 at the S still in force.
+  EXPECT_LINE(with("T2 M6\nS700\nM5\nM4\nM2\n"),
+              "turn.ngc: line 4: the spindle turns here (M4 in force, S700) with T2");
+  // The S of the program's own subroutine is named on its own line.
+  EXPECT_LINE(with("o<s> sub\nS800\no<s> endsub\nT2 M6\nM3 S0\no<s> call\nM2\n"),
+              "turn.ngc: line 2: the spindle turns here (M3 in force, S800) with T2");
+}
+
+TEST_F(Lint, shouldTakeTheSpindleAsTheRemapLeavesItAfterAChange) {
+  // The changer's M6 stops the spindle whatever TOOL_CHANGE_WITH_SPINDLE_ON:
+  // the M3 after the change starts it again, with the probe in it.
+  const nlohmann::json tools = {{"2", {{"kind", "probe"}}}};
+  const std::string ini = write(
+      "on.ini", "[RS274NGC]\nSUBROUTINE_PATH = " FATC_SOURCE_DIR
+                "/nc_files\nREMAP = M6 modalgroup=6 ngc=fixed_atc_probe_m6\n[EMCIO]\n"
+                "TOOL_CHANGE_WITH_SPINDLE_ON = 1\n[TRAJ]\nLINEAR_UNITS = mm\n");
+  const LintRun r = run({"--lint", write("on.ngc", "M3 S1000\nT2 M6\nM3\nM2\n"), "--config",
+                         config_with("tools", tools), "--state", state_with_lengths({2}),
+                         "--ini", ini});
+  EXPECT_LINE(r, "on.ngc: line 3: the spindle turns here (M3 in force, S1000) with T2 in it");
+  EXPECT_NO_LINE(r, "TOOL_CHANGE_WITH_SPINDLE_ON");
+}
+
+TEST_F(Lint, shouldSayTheSpindleIsUncertainAfterACutOffSequenceAsTheGuardTakesIt) {
+  const nlohmann::json tools = {{"2", {{"kind", "probe"}}}};
+  const std::string config_path = config_with("tools", tools);
+  const Config config = *io::load_config_file(config_path).config;
+  ToolState cut = ToolState::fresh(config);
+  cut.lengths[2] = 22.0;
+  cut.uncertain = true;
+  cut.in_progress = InProgress{"M6 T2", "fetching tool 2 from pocket 2", 2};
+  io::save_state_file(path("cut.state"), cut, io::kCommandLineWait);
+  const LintRun r = run({"--lint", write("cut.ngc", "M3 S1000\nM5\nT2 M6\nM2\n"), "--config",
+                         config_path, "--state", path("cut.state")});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r, "cut.ngc: at the start the spindle is uncertain (the state file's M6 T2 was "
+                 "cut off; last known: nothing): it may hold T2, a probe (tools.2.kind): "
+                 "fatc-spindle-guard holds the spindle until the fault is cleared (panel, or "
+                 "--confirm)\n");
+  EXPECT_NO_LINE(r, "the spindle holds nothing");
+  EXPECT_LINE(r, "cut.ngc: line 1: the spindle turns here (M3 in force, S1000) while it may hold "
+                 "T2, a probe, as the cut-off sequence of the state file left it (tools.2.kind): "
+                 "fatc-spindle-guard holds the spindle and the changer aborts the program here\n");
+  // Cut off at pocket 1 with the probe in its own pocket: the spindle holds no probe.
+  cut.in_progress = InProgress{"M6 T1", "fetching tool 1 from pocket 1", 1};
+  io::save_state_file(path("cut.state"), cut, io::kCommandLineWait);
+  const LintRun cutter = run({"--lint", write("cut.ngc", "M3 S1000\nM5\nT2 M6\nM2\n"), "--config",
+                              config_path, "--state", path("cut.state")});
+  EXPECT_LINE(cutter, "(the state file's M6 T1 was cut off; last known: nothing): the changer "
+                      "refuses M6 until the fault is cleared (panel, or --confirm)\n");
+  EXPECT_NO_LINE(cutter, "cut.ngc: line 1:");
+}
+
+TEST_F(Lint, shouldNameTheIniKeysThatMoveLinuxCncsOwnM6AfterTheChange) {
+  const std::string ini = write(
+      "moves.ini", "[RS274NGC]\nSUBROUTINE_PATH = " FATC_SOURCE_DIR
+                   "/nc_files\nREMAP = M6 modalgroup=6 ngc=fixed_atc_probe_m6\n[EMCIO]\n"
+                   "TOOL_CHANGE_POSITION = 0 0 -5\nTOOL_CHANGE_QUILL_UP = 1\n"
+                   "TOOL_CHANGE_AT_G30 = 0\nTOOL_CHANGE_WITH_SPINDLE_ON = 1\n[TRAJ]\n"
+                   "LINEAR_UNITS = mm\n");
+  const LintRun r = lint(write("moves.ngc", "T1 M6\nM2\n"), {"--ini", ini});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LINE(r, "  " + ini +
+                     ": [EMCIO]TOOL_CHANGE_POSITION (line 5): LinuxCNC's own M6, which "
+                     "fixed_atc_probe_m6 calls once the change is done, would rapid to \"0 0 -5\" "
+                     "after every change, from safe; remove it: the changer ends its change at "
+                     "safe\n");
+  EXPECT_LINE(r, "  " + ini +
+                     ": [EMCIO]TOOL_CHANGE_QUILL_UP (line 6): LinuxCNC's own M6, which "
+                     "fixed_atc_probe_m6 calls once the change is done, would rapid Z up to "
+                     "machine zero (G53 Z0) after every change, from safe; remove it");
+  EXPECT_NO_LINE(r, "TOOL_CHANGE_AT_G30");  // 0: it moves nothing
+  EXPECT_NO_LINE(r, "TOOL_CHANGE_WITH_SPINDLE_ON");
+  // --check names them the same, one line each.
+  const LintRun check = run({"--check", "--config", kConfig, "--state", no_state(), "--ini", ini});
+  EXPECT_EQ(check.code, 1);
+  EXPECT_TRUE(has(check.err, ini + ": [EMCIO]TOOL_CHANGE_POSITION (line 5): LinuxCNC's own M6"))
+      << check.err;
+  EXPECT_TRUE(has(check.err, ini + ": [EMCIO]TOOL_CHANGE_QUILL_UP (line 6): LinuxCNC's own M6"))
+      << check.err;
+  const std::string g30 = write("g30.ini", "[EMCIO]\nTOOL_CHANGE_AT_G30 = true\n");
+  EXPECT_LINE(lint(write("g30.ngc", "M2\n"), {"--ini", g30}),
+              ": [EMCIO]TOOL_CHANGE_AT_G30 (line 2): LinuxCNC's own M6, which fixed_atc_probe_m6 "
+              "calls once the change is done, would rapid to the G30 position after every "
+              "change");
+}
+
+TEST(ToolTable, shouldReadALineOverLinuxCncsBufferAsItsFgetsDoes) {
+  // 255 characters at a time, each a line: T3 from the start, its comment cut.
+  const std::string comment(300, 'x');
+  ToolTable table = parse_tool_table("T3 P3 Z40.5 ;" + comment + "\nT4 P4 Z20\n");
+  ASSERT_EQ(table.tools.count(3), 1u);
+  EXPECT_DOUBLE_EQ(*table.tools.at(3).z, 40.5);
+  EXPECT_EQ(table.tools.count(4), 1u);
+  ASSERT_EQ(table.problems.size(), 1u);
+  EXPECT_EQ(table.problems[0].line, 1);
+  EXPECT_EQ(table.problems[0].text,
+            "313 characters, over the 255 LinuxCNC reads as one line: it reads tool 3 from the "
+            "first 255, its comment cut there; characters 256 on as a line of their own, which it "
+            "skips");
+  // A field cut by the 255th character: LinuxCNC reads the number short.
+  const std::string pad(245, ' ');  // Z40.125 from the 251st character
+  table = parse_tool_table("T5 P5" + pad + "Z40.125 D6\n");
+  ASSERT_EQ(table.tools.count(5), 1u);
+  EXPECT_DOUBLE_EQ(*table.tools.at(5).z, 40.1);
+  ASSERT_EQ(table.problems.size(), 1u);
+  EXPECT_EQ(table.problems[0].text,
+            "260 characters, over the 255 LinuxCNC reads as one line: it reads tool 5 from the "
+            "first 255, its field \"Z40.125\" read as \"Z40.1\", without what follows; characters "
+            "256 on as a line of their own, which it skips");
+  // The rest may read as a tool of its own, as LinuxCNC would take it.
+  table = parse_tool_table("T6 P6 Z10 " + std::string(245, ' ') + "T7 P7 Z11\n");
+  EXPECT_EQ(table.tools.count(6), 1u);
+  ASSERT_EQ(table.tools.count(7), 1u);
+  EXPECT_DOUBLE_EQ(*table.tools.at(7).z, 11.0);
+  ASSERT_EQ(table.problems.size(), 1u);
+  EXPECT_EQ(table.problems[0].text,
+            "264 characters, over the 255 LinuxCNC reads as one line: it reads tool 6 from the "
+            "first 255, without what follows; characters 256 on as a line of their own, read as "
+            "tool 7");
+  // A megabyte on one line: read piece by piece, said in one short line.
+  std::string many = "T4 P4 Z1 ;";
+  for (int i = 0; i < 4000; ++i) many += std::string(250, ' ') + "T" + std::to_string(100 + i % 3) + " Z9";
+  table = parse_tool_table(many + "\n");
+  ASSERT_FALSE(table.problems.empty());
+  EXPECT_LT(table.problems[0].text.size(), 300u) << table.problems[0].text;
+  EXPECT_NE(table.problems[0].text.find(" lines of their own: "), std::string::npos);
+  // 255 characters are read whole: nothing to say.
+  table = parse_tool_table("T8 P8 Z12 ;" + std::string(244, 'c') + "\n");
+  EXPECT_TRUE(table.problems.empty());
+  EXPECT_EQ(table.tools.count(8), 1u);
+}
+
+TEST_F(Lint, shouldKeepTheLengthOfAToolOnALongTableLine) {
+  write("long.tbl", "T1 P1 Z30 ;" + std::string(400, 'c') + "\n");
+  const LintRun r = lint(write("long.ngc", "T1 M6\nM2\n"),
+                         {"--tool-table", path("long.tbl"), "--state", state_with_lengths({})});
+  EXPECT_LINE(r, "M6 T1         pocket 1");
+  EXPECT_LINE(r, "Z30.0000 (tool table)");
+  EXPECT_NO_LINE(r, "not in the tool table");
+  EXPECT_LINE(r, path("long.tbl") + ": line 1: 411 characters, over the 255 LinuxCNC reads as one "
+                                    "line: it reads tool 1 from the first 255, its comment cut "
+                                    "there; characters 256 on as a line of their own, which "
+                                    "it skips\n");
+}
+
+TEST_F(Lint, shouldReadTheIniAsTheLinuxcncScriptExpandsItsIncludes) {
+  fs::create_directories(path("machine/parts"));
+  write("machine/parts/axes.inc",
+        "[AXIS_X]\nMIN_LIMIT = -10\nMAX_LIMIT = 400\n[AXIS_Y]\nMIN_LIMIT = -10\nMAX_LIMIT = 300\n"
+        "[AXIS_Z]\nMIN_LIMIT = -120\nMAX_LIMIT = 0\n");
+  write("machine/parts/remap.inc", "[RS274NGC]\nSUBROUTINE_PATH = " FATC_SOURCE_DIR
+                                   "/nc_files\nREMAP = M6 modalgroup=6 ngc=fixed_atc_probe_m6\n");
+  // Relative to the INI's folder, wherever the command runs.
+  const std::string ini = write("machine/m.ini", "[TRAJ]\nLINEAR_UNITS = mm\n#INCLUDE parts/axes.inc\n"
+                                                 "#INCLUDE parts/remap.inc\n");
+  const LintRun check = run({"--check", "--config", kConfig, "--state", no_state(), "--ini", ini});
+  EXPECT_EQ(check.code, 0) << check.out << check.err;
+  const LintRun r =
+      lint(write("inc.ngc", "T1 M6\nM2\n"), {"--ini", ini, "--state", state_with_lengths({1})});
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NO_LINE(r, "remaps no M6");
+  EXPECT_NO_LINE(r, "soft limits");
+  // Included again and again past 1 MiB: refused in one line, at once.
+  write("machine/parts/big.inc", "; " + std::string(600 * 1024, 'x') + "\n");
+  write("machine/big.ini", "#INCLUDE parts/big.inc\n#INCLUDE parts/big.inc\n");
+  const LintRun big =
+      run({"--check", "--config", kConfig, "--state", no_state(), "--ini", path("machine/big.ini")});
+  EXPECT_EQ(big.code, 1);
+  EXPECT_TRUE(has(big.err, path("machine/big.ini") +
+                               ": over 1 MiB with the files its #INCLUDE lines name\n"))
+      << big.err;
+  EXPECT_LT(big.seconds, 5.0);
+  // One line for an include that cannot be read; a key's line in its own file.
+  write("machine/broken.ini", "[TRAJ]\nLINEAR_UNITS = mm\n#INCLUDE parts/gone.inc\n"
+                              "#INCLUDE parts/axes.inc\n#INCLUDE\n[EMCIO]\nTOOL_CHANGE_QUILL_UP = 1\n");
+  write("machine/parts/axes.inc", "[AXIS_X]\nMIN_LIMIT = -10\nMAX_LIMIT = nan\n");
+  const LintRun broken =
+      run({"--check", "--config", kConfig, "--state", no_state(), "--ini", path("machine/broken.ini")});
+  EXPECT_EQ(broken.code, 1);
+  EXPECT_TRUE(has(broken.err, path("machine/broken.ini") +
+                                  ": line 3: #INCLUDE " + path("machine") +
+                                  "/parts/gone.inc: cannot open (No such file or directory): "
+                                  "none of its keys are read\n"))
+      << broken.err;
+  EXPECT_TRUE(has(broken.err, path("machine/broken.ini") + ": line 5: #INCLUDE names no file\n"))
+      << broken.err;
+  EXPECT_TRUE(has(broken.err, "[AXIS_X]MAX_LIMIT (line 3 of parts/axes.inc): expected a finite "
+                              "number from -1e99 to 1e99, got \"nan\"\n"))
+      << broken.err;
+  EXPECT_TRUE(has(broken.err, "[EMCIO]TOOL_CHANGE_QUILL_UP (line 7): LinuxCNC's own M6"))
+      << broken.err;
+}
+
+TEST_F(Lint, shouldTakeTheUserMCodesOfAnIncludedOrHomeRelativePath) {
+  fs::create_directories(path("machine/mcodes"));
+  write("machine/mcodes/M101", "#!/bin/sh\n");
+  fs::permissions(path("machine/mcodes/M101"), fs::perms::owner_all);
+  write("machine/paths.inc", "[RS274NGC]\nUSER_M_PATH = nothing:mcodes\n");
+  const std::string ini =
+      write("machine/m.ini", "[TRAJ]\nLINEAR_UNITS = mm\n#INCLUDE paths.inc\n");
+  const LintRun r = lint(write("m101.ngc", "M101 P1 Q2\nM101\nM2\n"), {"--ini", ini});
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NO_LINE(r, "m101.ngc: line");
+}
+
+TEST_F(Lint, shouldFindTheIniFoldersUnderTheUsersHomeThoughRs274RunsWithAnotherHome) {
+  // rs274 runs with a scratch HOME; `~/` in the INI is the user's, as LinuxCNC takes it.
+  fs::create_directories(path("home/subs"));
+  fs::create_directories(path("home/mc"));
+  fs::create_directories(path("home/prefix"));
+  write("home/subs/lift.ngc", "o<lift> sub\nG0 Z0\no<lift> endsub\nM2\n");
+  write("home/prefix/park.ngc", "o<park> sub\nG0 X0\no<park> endsub\nM2\n");
+  write("home/mc/M150", "#!/bin/sh\n");
+  fs::permissions(path("home/mc/M150"), fs::perms::owner_all);
+  const std::string ini = write("home.ini", "[DISPLAY]\nPROGRAM_PREFIX = ~/prefix\n[RS274NGC]\n"
+                                            "SUBROUTINE_PATH = ~/subs\nUSER_M_PATH = ~/mc\n"
+                                            "[TRAJ]\nLINEAR_UNITS = mm\n");
+  const char* home = std::getenv("HOME");
+  const std::string saved = home ? home : "";
+  ::setenv("HOME", path("home").c_str(), 1);
+  const LintRun r =
+      lint(write("home.ngc", "o<lift> call\no<park> call\nM150 P2\nM2\n"), {"--ini", ini});
+  home ? ::setenv("HOME", saved.c_str(), 1) : ::unsetenv("HOME");
+  EXPECT_EQ(r.code, 0) << r.out;
+  EXPECT_NO_LINE(r, "home.ngc: line");
 }
 
 }  // namespace

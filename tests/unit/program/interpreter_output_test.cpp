@@ -73,17 +73,60 @@ TEST(InterpreterOutput, shouldKeepEachSpindleStartWithTheToolUsesBeforeIt) {
       "    6 N1000000004 START_SPINDLE_CLOCKWISE(1)\n"
       "    7 N1000000005 ORIENT_SPINDLE(0, 90.0000, 0)\n",
       "executing\n");
-  ASSERT_EQ(run.spindle_starts.size(), 3u) << "spindle 1 is another spindle";
-  EXPECT_EQ(run.spindle_starts[0].where.line, 1);
-  EXPECT_EQ(run.spindle_starts[0].before_use, 0u);
+  // M3 at S0 turns nothing; S500 with M3 in force does (M4 on the same line then changes nothing).
+  ASSERT_EQ(run.spindle_starts.size(), 2u) << "spindle 1 is another spindle";
+  EXPECT_EQ(run.spindle_starts[0].where.line, 3);
+  EXPECT_EQ(run.spindle_starts[0].before_use, 1u);
   EXPECT_TRUE(run.spindle_starts[0].clockwise);
-  EXPECT_EQ(run.spindle_starts[1].where.line, 3);
-  EXPECT_EQ(run.spindle_starts[1].before_use, 1u);
-  EXPECT_FALSE(run.spindle_starts[1].clockwise);
-  EXPECT_DOUBLE_EQ(run.spindle_starts[0].speed, 0.0);
-  EXPECT_DOUBLE_EQ(run.spindle_starts[1].speed, 500.0);
-  EXPECT_TRUE(run.spindle_starts[2].orients);
-  EXPECT_EQ(run.spindle_starts[2].where.line, 5);
+  EXPECT_DOUBLE_EQ(run.spindle_starts[0].speed, 500.0);
+  EXPECT_TRUE(run.spindle_starts[1].orients);
+  EXPECT_EQ(run.spindle_starts[1].where.line, 5);
+}
+
+/// Where the spindle starts turning: "line:M3|M4:S[:Dmax]" each.
+std::string turns_of(const InterpreterRun& run) {
+  std::string text;
+  for (const SpindleStart& start : run.spindle_starts) {
+    char one[96];
+    std::snprintf(one, sizeof one, "%d:%s:%g%s ", start.where.line,
+                  start.orients ? "M19" : start.clockwise ? "M3" : "M4", start.speed,
+                  start.css_maximum != 0.0 ? (":D" + std::to_string(static_cast<int>(start.css_maximum))).c_str() : "");
+    text += one;
+  }
+  return text;
+}
+
+TEST(InterpreterOutput, shouldFindEveryWayTheCommandedSpindleSpeedBecomesNonZero) {
+  // Captured from rs274 (2.9) of: M3 S0 / G1 X1 F100 / S1000 / G1 X2 S2000 /
+  // M5 / S500 / G96 D1000 S100 M3 / G97 / S0 / G96 D1200 S0 / M4 / M5 / M4 S0 / G97 / S300.
+  const auto run = read(
+      "    7 N1000000001 SET_SPINDLE_SPEED(0, 0.0000)\n"
+      "    8 N1000000001 START_SPINDLE_CLOCKWISE(0)\n"
+      "    9 N1000000002 STRAIGHT_FEED(1.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)\n"
+      "   11 N1000000003 SET_SPINDLE_SPEED(0, 1000.0000)\n"
+      "   12 N1000000004 SET_SPINDLE_SPEED(0, 2000.0000)\n"
+      "   14 N1000000005 STOP_SPINDLE_TURNING(0)\n"
+      "   15 N1000000006 SET_SPINDLE_SPEED(0, 500.0000)\n"
+      "   16 N1000000007 SET_SPINDLE_MODE(0 1000.0000)\n"
+      "   17 N1000000007 SET_SPINDLE_SPEED(0, 100.0000)\n"
+      "   18 N1000000007 START_SPINDLE_CLOCKWISE(0)\n"
+      "   19 N1000000008 SET_SPINDLE_MODE(0 0.0000)\n"
+      "   20 N1000000009 SET_SPINDLE_SPEED(0, 0.0000)\n"
+      "   21 N1000000010 SET_SPINDLE_MODE(0 1200.0000)\n"
+      "   22 N1000000010 SET_SPINDLE_SPEED(0, 0.0000)\n"
+      "   23 N1000000011 START_SPINDLE_COUNTERCLOCKWISE(0)\n"
+      "   24 N1000000012 STOP_SPINDLE_TURNING(0)\n"
+      "   25 N1000000013 SET_SPINDLE_SPEED(0, 0.0000)\n"
+      "   26 N1000000013 START_SPINDLE_COUNTERCLOCKWISE(0)\n"
+      "   27 N1000000014 SET_SPINDLE_MODE(0, 0.0000)\n"
+      "   28 N1000000015 SET_SPINDLE_SPEED(0, 300.0000)\n",
+      "executing\n");
+  // S1000 under M3 S0; S2000 while it turns is no new start; S500 after M5
+  // turns nothing; G96 D1000 S100 M3; G97 and S0 stop it; G96 D1200 S0
+  // turns it again under the M3 in force, at D (motion runs at D without a
+  // surface speed), M4 then is no new start; after M5, M4 S0 under G96 D1200
+  // too; G97 (2.10's comma) and S300 keep it turning.
+  EXPECT_EQ(turns_of(run), "3:M3:1000 7:M3:100:D1000 10:M3:0:D1200 13:M4:0:D1200 ");
 }
 
 TEST(InterpreterOutput, shouldTakeAChangeWithoutItsToolAsLinuxCnc210PrintsIt) {
@@ -428,6 +471,20 @@ TEST(InterpreterIni, shouldPutHalPinsOffAndTheSubroutineFoldersFirstInTheSection
   EXPECT_EQ(ini_for_preflight("[EMC]\nA = 1", "/a"),
             "[EMC]\nA = 1\n[RS274NGC]\nHAL_PIN_VARS = 0\nSUBROUTINE_PATH = /a\n");
   EXPECT_EQ(ini_for_preflight("[RS274NGC]\n", ""), "[RS274NGC]\nHAL_PIN_VARS = 0\n");
+}
+
+TEST(InterpreterIni, shouldPutTheUserMCodesModuleFirstInThePythonSection) {
+  EXPECT_EQ(ini_for_preflight("[PYTHON]\nTOPLEVEL = mine.py\n[RS274NGC]\n", "", "/s/user_m.py"),
+            "[PYTHON]\nTOPLEVEL = /s/user_m.py\nTOPLEVEL = mine.py\n[RS274NGC]\nHAL_PIN_VARS = 0\n");
+  EXPECT_EQ(ini_for_preflight("[EMC]\n", "", "/s/user_m.py"),
+            "[EMC]\n[RS274NGC]\nHAL_PIN_VARS = 0\n[PYTHON]\nTOPLEVEL = /s/user_m.py\n");
+  const std::string module = user_m_code_module({101, 150}, std::string("py/top'.py"));
+  EXPECT_NE(module.find("for _fatc_code in (101, 150, ):"), std::string::npos) << module;
+  // The INI's own TOPLEVEL runs after, its path whatever bytes it has.
+  EXPECT_NE(module.find("_fatc_own = b'\\x70\\x79\\x2f\\x74\\x6f\\x70\\x27\\x2e\\x70\\x79'"),
+            std::string::npos)
+      << module;
+  EXPECT_EQ(user_m_code_module({101}, std::nullopt).find("_fatc_own"), std::string::npos);
 }
 
 }  // namespace
