@@ -315,6 +315,21 @@ def main():
     with open(os.environ["FATC_RESULTS"], "w") as f:
         json.dump(result, f, indent=1)
     screen.quit()
+    end_gui_left_open()
+
+
+def end_gui_left_open(timeout=60):
+    """A GUI whose window never came up for quit() to close (qtvcp under a busy
+    machine) would keep LinuxCNC up until ctest's time-out: ended, once it has
+    had `timeout` seconds to close."""
+    program = os.path.basename(driver.ini().find("DISPLAY", "DISPLAY").split()[0])
+    mine = ["pgrep", "-x", "-u", str(os.getuid()), program]
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        if subprocess.run(mine, stdout=subprocess.DEVNULL).returncode != 0:
+            return
+        time.sleep(0.5)
+    subprocess.run(["pkill", "-TERM", "-x", "-u", str(os.getuid()), program])
 
 
 if __name__ == "__main__":

@@ -304,14 +304,13 @@ void check_side_offset(Reader& reader, const Config& config, const PlanarOffset&
   }
 }
 
-/// A value a relation between keys refuses, as the user knows it: what they
-/// wrote, or the default of a key they left out, which they never typed:
-/// "left out: its default 1, set it too".
-std::string got(const Config& config, const char* key, double value) {
+/// A value in a relation between keys, as the user knows it: what they wrote,
+/// or the default of a key they left out, which they never typed: "1: its
+/// default, left out".
+std::string said(const Config& config, const char* key, double value) {
   const bool left_out = std::find(config.defaulted.begin(), config.defaulted.end(), key) !=
                         config.defaulted.end();
-  return left_out ? std::string("left out: its default ") + format_number(value) + ", set it too"
-                  : "got " + format_number(value);
+  return format_number(value) + (left_out ? ": its default, left out" : "");
 }
 
 void check_geometry(Reader& reader, Config& config) {
@@ -392,13 +391,14 @@ void check_geometry(Reader& reader, Config& config) {
   }
   if (uses_default_tolerance(config) && config.window() <= config.check_tolerance()) {
     reader.error("probe_window", "must be larger than probe_check_tolerance (" +
-                                     format_number(config.check_tolerance()) + "), " +
-                                     got(config, "probe_window", config.window()));
+                                     said(config, "probe_check_tolerance", config.check_tolerance()) +
+                                     "), got " + said(config, "probe_window", config.window()));
   }
   if (config.probe_latch_feed > config.probe_seek_feed) {
-    reader.error("probe_latch_feed", "must not be above probe_seek_feed (" +
-                                         format_number(config.probe_seek_feed) + "), " +
-                                         got(config, "probe_latch_feed", config.probe_latch_feed));
+    reader.error("probe_latch_feed",
+                 "must not be above probe_seek_feed (" +
+                     said(config, "probe_seek_feed", config.probe_seek_feed) + "), got " +
+                     said(config, "probe_latch_feed", config.probe_latch_feed));
   }
 }
 

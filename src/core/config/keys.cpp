@@ -214,7 +214,8 @@ const std::vector<KeyDeclaration> kKeys = {
    "how far this tool's checked length may be from its stored one"},
   {"tools.N.probe_feed", "a probe: `probe_latch_feed`; else none", kFeed, "",
    "the most either probing stage moves this tool on the sensor: a probe's stylus or a spring "
-   "tool touches slowly"},
+   "tool touches slowly. Above `probe_window` over where its length puts the touch it goes down "
+   "at `probe_seek_feed`, and a touch there is refused, nothing written"},
 };
 // clang-format on
 

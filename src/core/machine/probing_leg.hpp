@@ -13,7 +13,8 @@ namespace fatc::machine {
 /// Measures the tool in the spindle on the touch-off sensor
 /// (docs/sequences.md#probing): a fast seek, a back-off, a slow latch;
 /// a tool that seeks slower than probe_seek_feed (a touch probe) first goes
-/// down at that feed to probe_window above where its length puts the touch;
+/// down at that feed to probe_window above where its length puts the touch,
+/// and a touch on the way there is refused: it was not slow;
 /// length = latched machine Z minus probe_length_compensation_offset, written
 /// to the tool table. Over MDI (load, measure all) the operator may cancel
 /// it; inside M6 (`probe_after_change`) the changer fetched the tool itself,
@@ -21,6 +22,7 @@ namespace fatc::machine {
 /// over a stored length.
 struct ProbingLeg_ : Flow<ProbingLeg_> {
   double approach_z = 0.0;     ///< where the fast approach ends, where there is one
+  KeepoutLength approach_length;  ///< the length it was planned from
   double first_touch_z = 0.0;  ///< where the seek touched
   double latched_z = 0.0;      ///< where the latch touched
   std::string problem;         ///< why nothing was measured, in words
@@ -139,6 +141,7 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       fsm.approach_z = *approach_for(*fsm.ctx, fsm.tool);
+      fsm.approach_length = fsm.ctx->motion.keepout_lengths.of(fsm.tool, fsm.ctx->tools.lengths);
     }
   };
   struct RememberFirstTouch {
@@ -190,6 +193,28 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
       c.tell(MessageKind::error, "probe: " + fsm.problem + " Nothing written");
     }
   };
+  /// The tool is longer than the length the approach was planned from, by
+  /// more than probe_window: it met the sensor at probe_seek_feed, not at its own.
+  struct SayTouchedFast {
+    template <class Fsm, class Source, class Target>
+    void operator()(const ProbeResult& e, Fsm& fsm, Source&, Target&) const {
+      const Context& c = *fsm.ctx;
+      const KeepoutLength& length = fsm.approach_length;
+      const char* from = length.source == LengthSource::table ? "LinuxCNC's tool table"
+                         : length.source == LengthSource::measured
+                             ? "the changer's measurement"
+                             : "the longest tool the config allows";
+      fsm.problem = "tool " + std::to_string(fsm.tool) + " touched the sensor at Z " +
+                    format_length(c.config, e.z) +
+                    " on the fast approach (probe_seek_feed), which was to end at Z " +
+                    format_length(c.config, fsm.approach_z) + ": it is longer than " +
+                    format_length(c.config, length.length) + " (" + from +
+                    ") by more than probe_window " + format_length(c.config, c.config.window()) +
+                    "; correct its length in the tool table (0: the longest tool the config "
+                    "allows counts) and measure it again";
+      fsm.ctx->tell(MessageKind::error, "probe: " + fsm.problem + "; nothing written");
+    }
+  };
   struct SayCancelled {
     template <class Fsm, class Source, class Target>
     void operator()(const OperatorCancel&, Fsm& fsm, Source&, Target&) const {
@@ -212,10 +237,8 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
   // +----------------------+---------------+----------------------+-------------------+-----------------------------+
   Row < DecidingHowToGoDown  , none          , Approaching          , RememberApproach  , ApproachSavesTime           >,
   Row < DecidingHowToGoDown  , none          , Seeking              , none              , Not<ApproachSavesTime>      >,
-  // A touch in the approach is the first touch: the tool is longer than its length says.
   Row < Approaching          , ProbeResult   , Seeking              , none              , And<Not<Touched>, Not<TrippedBefore>> >,
-  Row < Approaching          , ProbeResult   , BackingOff           , RememberFirstTouch, And<Touched, Not<OutsideWindow>> >,
-  Row < Approaching          , ProbeResult   , RetractingUnmeasured , SayOutsideWindow  , And<Touched, OutsideWindow>  >,
+  Row < Approaching          , ProbeResult   , RetractingUnmeasured , SayTouchedFast    , Touched                     >,
   Row < Approaching          , ProbeResult   , RetractingUnmeasured , SayNoTouch        , TrippedBefore               >,
   Row < Approaching          , OperatorCancel, RetractingUnmeasured , SayCancelled      , CancelStopsProbe            >,
   Row < Seeking              , ProbeResult   , BackingOff           , RememberFirstTouch, And<Touched, Not<OutsideWindow>> >,

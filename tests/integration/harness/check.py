@@ -363,18 +363,27 @@ def check_modal(r, rack):
     ok("flood coolant off during the change (%d samples), restored after it" % len(busy))
 
 
+def said_modal(r, after):
+    """What the program's DEBUG line says the interpreter holds right after
+    `after` (M6, M312): {"motion": #<_motion_mode>, "feed": #<_feed>, ...}."""
+    no_fault(r)
+    prefix = "modal after %s: " % after
+    line = next((m for m in r["messages"] if prefix in m), None)
+    if line is None:
+        fail("the program never said its modes after %s: %s" % (after, r["messages"]))
+    words = line.split(prefix, 1)[1].split()
+    return {words[i]: float(words[i + 1]) for i in range(0, len(words) - 1, 2)}
+
+
 def modal_back(r, feed, motion, name):
     """After M6 the program's feed is exactly its own and its motion mode is `motion`
     (#<_motion_mode>: G1 10, G80 800), as the program set them before the change."""
-    no_fault(r)
-    snap = r.get("snapshot")
-    if not snap:
-        fail("the program never reached its M0 after M6")
-    if snap["feed"] != feed:
-        fail("the feed after M6 is F%r, the program's was F%r" % (snap["feed"], feed))
-    ok("the feed after M6 is the program's exactly: F%r" % snap["feed"])
-    if snap["gcodes"][1] != motion:
-        fail("the motion mode after M6 is G%g, the program's was %s" % (snap["gcodes"][1] / 10.0, name))
+    modes = said_modal(r, "M6")
+    if abs(modes["feed"] - feed) > 5e-7:
+        fail("the feed after M6 is F%.6f, the program's was F%r" % (modes["feed"], feed))
+    ok("the feed after M6 is the program's exactly: F%.6f" % modes["feed"])
+    if modes["motion"] != motion:
+        fail("the motion mode after M6 is G%g, the program's was %s" % (modes["motion"] / 10.0, name))
     ok("the motion mode after M6 is the program's %s" % name)
 
 
@@ -384,6 +393,14 @@ def check_modal_feed(r, rack):
 
 def check_modal_g80(r, rack):
     modal_back(r, 39.37008, 800, "G80")
+
+
+def check_modal_atom(r, rack):
+    modes = said_modal(r, "M312")
+    if modes["per-rev"] != 1 or abs(modes["feed"] - 0.004) > 5e-7:
+        fail("after M312 the feed is F%.6f (per rev: %g), the program's was F0.004 in G95" % (
+            modes["feed"], modes["per-rev"]))
+    ok("after M312 (eject) the feed is the program's exactly: F%.6f per revolution" % modes["feed"])
 
 
 def check_feed_hold(r, rack):

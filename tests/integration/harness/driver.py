@@ -472,7 +472,7 @@ def run_scenario(scenario):
             elif action["do"] in ("restart", "confirm", "snapshot"):
                 perform(action, result, start)
             elif action["do"] == "snapshot_abort":
-                result["snapshot"] = {"gcodes": list(stat.gcodes), "feed": stat.settings[1],
+                result["snapshot"] = {"gcodes": list(stat.gcodes),
                                       "path_tolerance": stat.settings[3],
                                       "naive_cam_tolerance": stat.settings[4],
                                       "tool_offset": list(stat.tool_offset[:3]),

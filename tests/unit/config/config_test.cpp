@@ -236,8 +236,9 @@ INSTANTIATE_TEST_SUITE_P(Each, BadConfigs, ::testing::Values(
   BadConfig{"keepout_groups", [](Json& j) {
     for (int i = 0; i < 9; ++i) j["pockets"][std::to_string(10 + i)] = {{"x", 1000.0 + 200.0 * i}};
   }, "rack_keepout_all_motion: the pockets lie in 10 groups apart from each other, and the realtime guard holds 4: move pockets together or set it false"},
-  BadConfig{"latch_default_above_seek", [](Json& j) { j["units"] = "inch"; j["probe_seek_feed"] = 0.5; }, "probe_latch_feed: must not be above probe_seek_feed (0.5), left out: its default 1, set it too"},
-  BadConfig{"window_default_not_above_tolerance", [](Json& j) { j["probe_after_change"] = "check"; j["probe_check_tolerance"] = 12; }, "probe_window: must be larger than probe_check_tolerance (12), left out: its default 10, set it too"},
+  BadConfig{"latch_default_above_seek", [](Json& j) { j["units"] = "inch"; j["probe_seek_feed"] = 0.5; }, "probe_latch_feed: must not be above probe_seek_feed (0.5), got 1: its default, left out"},
+  BadConfig{"seek_default_below_latch", [](Json& j) { j["units"] = "inch"; j["probe_latch_feed"] = 15; }, "probe_latch_feed: must not be above probe_seek_feed (12: its default, left out), got 15"},
+  BadConfig{"window_default_not_above_tolerance", [](Json& j) { j["probe_after_change"] = "check"; j["probe_check_tolerance"] = 12; }, "probe_window: must be larger than probe_check_tolerance (12), got 10: its default, left out"},
   BadConfig{"margin_inch_below_floor", [](Json& j) { j["units"] = "inch"; j["rack_keepout_margin"] = 0.01; }, "rack_keepout_margin: must be from 0.04 to 1000 inch, got 0.01"},
   BadConfig{"tools_key", [](Json& j) { j["tools"] = {{"T7", Json::object()}}; }, "tools.T7: the key must be a tool number from 1 to 999999999"},
   BadConfig{"tools_entry", [](Json& j) { j["tools"] = {{"7", "probe"}}; }, "tools.7: expected an object, got \"probe\""},

@@ -193,7 +193,7 @@ const Hostile kBadConfigs[] = {
   {"sensor_timeout_huge.json", "sensor_timeout_seconds: must be from 0.01 to 60 seconds, got 1e+10"},
   {"sensor_timeout_string.json", "sensor_timeout_seconds: expected a number, got \"1s\""},
   {"probe_window_zero.json", "probe_window: must be from 0.001 to 1000 mm, got 0"},
-  {"probe_window_below_tolerance.json", "probe_window: must be larger than probe_check_tolerance (0.1), got 0.05"},
+  {"probe_window_below_tolerance.json", "probe_window: must be larger than probe_check_tolerance (0.1: its default, left out), got 0.05"},
   {"sensor_in_rack.json", "probe_limit: the touch-off sensor at X152 Y24 lies in the rack's keep-out at pocket 3 (rack_keepout_margin 20): place it clear of the rack"},
 };
 

@@ -945,8 +945,9 @@ TEST(ToolKind, shouldGoDownFastToTheWindowAboveWhereAProbesLengthPutsTheTouch) {
   EXPECT_EQ(rig.changer->status().phase, Phase::idle);
 }
 
-TEST(ToolKind, shouldTakeATouchInTheApproachAsTheFirstTouch) {
-  // The table says 10 mm, the probe is 25: it touches at Z-70, above the approach's end.
+TEST(ToolKind, shouldRefuseATouchOnTheFastApproach) {
+  // The table says 10 mm, the probe is 25: it meets the sensor at Z-70 at
+  // probe_seek_feed, above where the approach was to end (Z-75).
   Rig rig(with_tool4(R"({"kind": "probe", "measure": "always"})",
                      R"("probe_seek_feed": 3000, "probe_latch_feed": 60)"),
           0);
@@ -954,10 +955,15 @@ TEST(ToolKind, shouldTakeATouchInTheApproachAsTheFirstTouch) {
   rig.sim.sensor_z = kSensorZ;
   rig.changer->tool_change(4);
   rig.sim.run(*rig.changer);
-  EXPECT_EQ(probing_of(rig.sim.steps()),
-            (Lines{"touch-off sensor (approach)@3000->-75", "back off the sensor@60->-68",
-                   "touch-off sensor (latch)@60->-90"}));
-  EXPECT_DOUBLE_EQ(rig.changer->tools().lengths.at(4), 25.0);
+  EXPECT_EQ(probing_of(rig.sim.steps()), (Lines{"touch-off sensor (approach)@3000->-75"}));
+  EXPECT_EQ(rig.changer->tools().lengths.count(4), 0u) << "nothing written";
+  EXPECT_EQ(rig.changer->status().phase, Phase::fault);
+  const std::string said = rig.sim.messages(MessageKind::error).front();
+  EXPECT_NE(said.find("tool 4 touched the sensor at Z -70.0000 mm on the fast approach "
+                      "(probe_seek_feed), which was to end at Z -75.0000 mm: it is longer than "
+                      "10.0000 mm (LinuxCNC's tool table) by more than probe_window 10.0000 mm"),
+            std::string::npos)
+      << said;
 }
 
 TEST(ToolKind, shouldApproachFromTheLongestToolTheConfigAllowsWithoutALength) {
@@ -985,8 +991,11 @@ TEST(ToolKind, shouldNotApproachWhereTheSeekIsAsFastOrNoLengthIsKnown) {
   // The spindle already jogged down to within a back-off of it: nothing to save.
   EXPECT_FALSE(plan::probe_approach_z(probe, 4, 25.0, -59.0));
   EXPECT_DOUBLE_EQ(*plan::probe_approach_z(probe, 4, 25.0, -57.0), -60.0);
-  // Where the approach would end below probe_limit, the seek goes alone.
-  EXPECT_FALSE(plan::probe_approach_z(probe, 4, -20.0, -10.0));
+  // Where the approach would end below probe_limit, the seek goes alone:
+  // 3 - 95 + a window of 1 is Z-91, under probe_limit's Z-90.
+  const Config narrow = with_tool4(R"({"kind": "probe"})", R"("probe_window": 1)");
+  EXPECT_FALSE(plan::probe_approach_z(narrow, 4, 3.0, -10.0));
+  EXPECT_DOUBLE_EQ(*plan::probe_approach_z(narrow, 4, 6.0, -10.0), -88.0);
   EXPECT_FALSE(plan::probe_approach_z(probe, 4, 25.0, std::nullopt));
 }
 
