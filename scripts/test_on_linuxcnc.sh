@@ -87,12 +87,16 @@ fi
 # debian/control that debian/configure writes): a run-in-place tree is no
 # package, and its GUIs need them (2.9.10's gladevcp imports GtkSource 4,
 # Debian's 2.9.0~pre1 GtkSource 3). python3-opencv (qtvcp's camera view
-# only, some 160 packages) left out; of alternatives the first.
+# only, some 160 packages) left out; of alternatives the first. Left out too:
+# python3-dbus.mainloop.pyqt5, with which qtvcp crashes as it starts where no
+# notification service runs (docs/qtdragon.md) - and it stays installed: the
+# project's own QtDragon tests on the same machine crashed at every start after
+# a run of this script had installed it (6 December 2026).
 [ -f "$src/debian/control" ] || (cd "$src" && debian/configure no-docs) > /dev/null
 mapfile -t runtime < <(awk '/^Package: linuxcnc-uspace$/ {p = 1} p && /^Depends:/ {d = 1; next}
                             d && /^[^ \t]/ {exit} d' "$src/debian/control" |
   tr ',' '\n' | sed -e 's/|.*//' -e 's/(.*)//' -e 's/^[ \t]*//' -e 's/[ \t]*$//' |
-  grep -v -e '^\$' -e '^$' -e '^python3-opencv$')
+  grep -v -e '^\$' -e '^$' -e '^python3-opencv$' -e '^python3-dbus.mainloop.pyqt5$')
 # A name may be a virtual package (tclx, tclreadline: tclx8.4 and
 # tcl-tclreadline provide them): one that an installed package provides is there.
 provided=$(dpkg-query -W -f='${db:Status-Abbrev} ${Provides}\n' 2>/dev/null | awk '/^ii/ {$1 = ""; print}' |

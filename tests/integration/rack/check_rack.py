@@ -402,20 +402,22 @@ def verify_runs(r):
 
 def holds(r, first, last):
     """Where the spindle stood each time the dry run held for Continue, in order:
-    the last sample of each hold. A hold begins where waiting-for-operator
-    rises (it falls between two holds, even of one place) and keeps the step
-    number it began with: the driver reads the pins one by one, so the next
-    step number may show a sample before waiting-for-operator falls."""
-    places, waiting, step = [], False, None
+    a sample late in each hold. A hold begins where waiting-for-operator rises
+    (it falls between two holds, even of one place) and keeps the step number
+    it began with. The driver reads the pins one by one, so the hold's last
+    sample may be torn by the Continue that ends it (can-cancel already low,
+    waiting-for-operator not yet, the next step number): the one before it
+    stands for the hold."""
+    holds_seen, waiting, step = [], False, None
     for s in r["samples"][first:last]:
         now = s["fixed_atc_probe.waiting-for-operator"]
         if now and not waiting:
-            places.append(s)
+            holds_seen.append([s])
             step = s["fixed_atc_probe.step-number"]
         elif now and s["fixed_atc_probe.step-number"] == step:
-            places[-1] = s
+            holds_seen[-1].append(s)
         waiting = now
-    return places
+    return [hold[-2] if len(hold) > 1 else hold[-1] for hold in holds_seen]
 
 
 def check_rack_verify(r, rack, expected):
