@@ -314,22 +314,33 @@ def main():
     result["messages"] = driver.messages
     with open(os.environ["FATC_RESULTS"], "w") as f:
         json.dump(result, f, indent=1)
-    screen.quit()
-    end_gui_left_open()
+    try:
+        screen.quit()
+    finally:  # quit() may fail where the window never came up
+        end_gui_left_open()
 
 
 def end_gui_left_open(timeout=60):
     """A GUI whose window never came up for quit() to close (qtvcp under a busy
     machine) would keep LinuxCNC up until ctest's time-out: ended, once it has
-    had `timeout` seconds to close."""
+    had `timeout` seconds to close; a qtvcp stuck before its window may not
+    take SIGTERM, so SIGKILL after ten more."""
     program = os.path.basename(driver.ini().find("DISPLAY", "DISPLAY").split()[0])
-    mine = ["pgrep", "-x", "-u", str(os.getuid()), program]
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        if subprocess.run(mine, stdout=subprocess.DEVNULL).returncode != 0:
+    mine = ["-x", "-u", str(os.getuid()), program]
+
+    def gone_within(seconds):
+        deadline = time.monotonic() + seconds
+        while subprocess.run(["pgrep"] + mine, stdout=subprocess.DEVNULL).returncode == 0:
+            if time.monotonic() > deadline:
+                return False
+            time.sleep(0.5)
+        return True
+
+    for signal_name, grace in ((None, timeout), ("-TERM", 10), ("-KILL", 10)):
+        if signal_name:
+            subprocess.run(["pkill", signal_name] + mine)
+        if gone_within(grace):
             return
-        time.sleep(0.5)
-    subprocess.run(["pkill", "-TERM", "-x", "-u", str(os.getuid()), program])
 
 
 if __name__ == "__main__":
