@@ -112,8 +112,20 @@ M2
     return path
 
 
+def probe_input_from(signal):
+    """motion.probe-input from `signal`: with the probe in the spindle the
+    spindle guard gives motion the probe's input (fatc-probe-input), and the
+    program of the probe measured as before must touch the sensor (fatc-sensor)."""
+    subprocess.run(["halcmd", "unlinkp", "motion.probe-input"], check=True)
+    subprocess.run(["halcmd", "linkps", "motion.probe-input", signal], check=True)
+
+
 def all_the_way(c, program):
-    result = stepping(c, program)
+    probe_input_from("fatc-sensor")
+    try:
+        result = stepping(c, program)
+    finally:
+        probe_input_from("fatc-probe-input")
     stat.poll()
     result["length"] = stat.probed_position[2] - c["probe_length_compensation_offset"]
     return result
