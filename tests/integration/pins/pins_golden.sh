@@ -6,19 +6,8 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../../.." && pwd)
-binary=$(readlink -f "$1")
-# One LinuxCNC (or halrun) per machine: wait for a run_sim.sh run to end.
-exec 9>>/tmp/fixed_atc_probe-linuxcnc.lock
-flock -w 3600 9
-user=${FATC_SIM_USER:-fatc}
-id "$user" >/dev/null 2>&1 || useradd -m -s /bin/bash "$user"
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-chmod 755 "$work"
-chown "$user" "$work"  # the component writes its state file there at start
-for d in "$(dirname "$binary")" "$root"; do
-  while [ "$d" != "/" ]; do chmod o+rx "$d" 2>/dev/null || true; d=$(dirname "$d"); done
-done
+# The lock, the test user and $work: harness/halrun_work.sh.
+. "$root/tests/integration/harness/halrun_work.sh" "$1"
 
 cat > "$work/pins.hal" <<HAL
 loadusr -W $binary --config $root/config/config.json --state $work/state.json

@@ -1,0 +1,19 @@
+# Sourced by a test that runs halrun itself (pins/pins_golden.sh,
+# operator/operator_signals.sh), with the checkout's root in $root and the
+# binary as its argument: sets $binary (made absolute), takes the machine-wide
+# lock (one LinuxCNC or halrun at a time: a run_sim.sh run ends first), makes
+# the test user $user, and $work, a folder of that user's (the component
+# writes its state and status files there) removed at exit, with the binary
+# and the checkout readable to that user.
+binary=$(readlink -f "$1")
+exec 9>>/tmp/fixed_atc_probe-linuxcnc.lock
+flock -w 3600 9
+user=${FATC_SIM_USER:-fatc}
+id "$user" >/dev/null 2>&1 || useradd -m -s /bin/bash "$user"
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+chmod 755 "$work"
+chown "$user" "$work"
+for d in "$(dirname "$binary")" "$root"; do
+  while [ "$d" != "/" ]; do chmod o+rx "$d" 2>/dev/null || true; d=$(dirname "$d"); done
+done
