@@ -480,49 +480,6 @@ void read_unit_defaulted(Reader& reader, const Json& root, Config& config) {
 
 }  // namespace
 
-std::vector<std::string> defaulted_words(const Config& config) {
-  const bool inch = config.units == Units::inch;
-  // The default each key takes, and where it comes from: the same amount in
-  // the other unit, so that a reader sees they agree, or the key it follows.
-  struct Taken {
-    const char* key;
-    double value;
-    bool feed;
-    std::optional<UnitDefault> fallback;
-    const char* follows;
-  };
-  const Taken taken[] = {
-      {"pocket_feed", config.pocket_feed, true, unit_default::pocket_feed, ""},
-      {"probe_seek_feed", config.probe_seek_feed, true, unit_default::probe_seek_feed, ""},
-      {"probe_latch_feed", config.probe_latch_feed, true, unit_default::probe_latch_feed, ""},
-      {"probe_backoff", config.probe_backoff, false, unit_default::probe_backoff, ""},
-      {"probe_check_tolerance", config.check_tolerance(), false,
-       unit_default::probe_check_tolerance, ""},
-      {"probe_window", config.window(), false, unit_default::probe_window, ""},
-      {"rack_keepout_above", config.keepout_above(), false, unit_default::rack_keepout_above, ""},
-      {"verify_feed", config.dry_run_feed(), true, std::nullopt, "pocket_feed"},
-      {"rack_keepout_margin", config.keepout_margin(), false, std::nullopt,
-       "half the side offset's length"}};
-  const auto amount = [](double value, bool feed, bool in_inch) {
-    return format_number(value) + (feed ? (in_inch ? " in/min" : " mm/min")
-                                        : (in_inch ? " inch" : " mm"));
-  };
-  std::vector<std::string> words;
-  for (const Taken& key : taken) {
-    if (std::find(config.defaulted.begin(), config.defaulted.end(), key.key) ==
-        config.defaulted.end()) {
-      continue;
-    }
-    words.push_back(std::string(key.key) + " " + amount(key.value, key.feed, inch) +
-                    (key.fallback ? " (default; " +
-                                        amount(key.fallback->in(inch ? Units::mm : Units::inch),
-                                               key.feed, !inch) +
-                                        (inch ? " in a mm config)" : " in an inch config)")
-                                  : std::string(" (default: ") + key.follows + ")"));
-  }
-  return words;
-}
-
 ConfigResult parse_config(const std::string& json_text) {
   ConfigResult result;
   JsonText parsed = parse_json_text(json_text);
