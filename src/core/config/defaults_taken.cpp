@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "config.hpp"
+#include "settings.hpp"
 #include "reader.hpp"
 
 namespace fatc {

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "config.hpp"
+#include "settings.hpp"
 
 namespace fatc {
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "../motion/point.hpp"
-#include "config.hpp"
+#include "settings.hpp"
 
 namespace fatc {
 

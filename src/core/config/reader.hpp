@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "config.hpp"
+#include "settings.hpp"
 #include "json_text.hpp"
 #include "keys.hpp"
 
