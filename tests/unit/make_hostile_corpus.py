@@ -10,27 +10,19 @@ import os
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 
-CONFIG = {
-    "units": "mm",
-    "probe_length_compensation_offset": -95.0,
-    "probe_retract_offset_z": 5.0,
-    "pocket_side_offset": {"x": 0.0, "y": 40.0},
-    "pocket_above_chuck_offset_z": 20.0,
-    "pocket_above_clearance_offset_z": 60.0,
-    "chuck_seconds": 0.5,
-    "loading": {"x": 20.0, "y": 150.0, "z": -10.0},
-    "probe_limit": {"x": 20.0, "y": 150.0, "z": -90.0},
-    "safe": {"x": 120.0, "y": 80.0, "z": -5.0},
-    "pocket_default": {"y": 20.0, "z": -80.0},
-    "pockets": {"1": {"x": 50.0}, "2": {"x": 100.0}, "3": {"x": 150.0},
-                "4": {"x": 200.0}, "5": {"x": 250.0}, "6": {"x": 300.0}},
+# The unit tests' sample config (sample_config.json) in mm, pocket 6 at the
+# others' Z, with the feeds, the flush and the spindle's timeout given.
+with open(os.path.join(HERE, "sample_config.json"), encoding="utf-8") as sample:
+    CONFIG = {"units": "mm", **json.load(sample)}
+del CONFIG["pockets"]["6"]["z"]
+CONFIG.update({
     "pocket_feed": 600.0,
     "probe_seek_feed": 3000.0,
     "probe_latch_feed": 60.0,
     "probe_backoff": 0.5,
     "flush": {"pulses": 1, "pulse_seconds": 0.2, "pause_seconds": 0.2},
     "spindle_stop_timeout_seconds": 10.0,
-}
+})
 
 STATE = {"version": 1, "spindle": 3, "uncertain": False, "in_pocket": [1, 2, 4, 5, 6],
          "lengths": {"1": 42.125, "3": 17.5}}
@@ -173,7 +165,7 @@ def configs():
         "sensor_timeout_huge.json": spoil(CONFIG, lambda j: j.update(sensor_timeout_seconds=1e10)),
         "sensor_timeout_string.json": spoil(CONFIG, lambda j: j.update(sensor_timeout_seconds="1s")),
         "probe_window_zero.json": spoil(CONFIG, lambda j: j.update(probe_window=0)),
-        "probe_window_below_tolerance.json": spoil(CONFIG, lambda j: j.update(probe_window=0.05)),
+        "probe_window_below_tolerance.json": spoil(CONFIG, lambda j: j.update(probe_window=0.05, probe_after_change="check")),
         # the touch-off sensor in a pocket's column, with no probing after a change
         "sensor_in_rack.json": spoil(CONFIG, lambda j: j.update(
             probe_after_change="off", probe_limit={"x": 152.0, "y": 24.0, "z": -90.0})),

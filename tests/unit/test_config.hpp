@@ -1,6 +1,10 @@
 #pragma once
 
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <set>
+#include <sstream>
+#include <stdexcept>
 #include <string>
 
 #include "core/config/config.hpp"
@@ -8,40 +12,44 @@
 
 namespace fatc::test {
 
-/// A small valid config: six pockets along X, side offset +Y.
-inline const char* const kValidConfig = R"({
-  "probe_length_compensation_offset": -95.0,
-  "probe_retract_offset_z": 5.0,
-  "pocket_side_offset": {"x": 0.0, "y": 40.0},
-  "pocket_above_chuck_offset_z": 20.0,
-  "pocket_above_clearance_offset_z": 60.0,
-  "chuck_seconds": 0.5,
-  "loading": {"x": 20.0, "y": 150.0, "z": -10.0},
-  "probe_limit": {"x": 20.0, "y": 150.0, "z": -90.0},
-  "safe": {"x": 120.0, "y": 80.0, "z": -5.0},
-  "pocket_default": {"y": 20.0, "z": -80.0},
-  "pockets": {"1": {"x": 50.0}, "2": {"x": 100.0}, "3": {"x": 150.0},
-              "4": {"x": 200.0}, "5": {"x": 250.0}, "6": {"x": 300.0, "z": -82.5}}
-})";
+/// The sample config (sample_config.json): six pockets along X, side offset
+/// +Y. The rack tests and make_hostile_corpus.py build theirs on it.
+inline const std::string kValidConfig = [] {
+  const char* const path = FATC_SOURCE_DIR "/tests/unit/sample_config.json";
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error(std::string("cannot read ") + path);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}();
+
+/// The sample config with `patch` merged into it (RFC 7386: null removes a key).
+inline std::string sample_config_with(const char* patch) {
+  auto config = nlohmann::ordered_json::parse(kValidConfig);
+  config.merge_patch(nlohmann::ordered_json::parse(patch));
+  return config.dump(2);
+}
+
+/// The sample config with `pockets` for its pockets, written as given, so a
+/// test spoiling them finds its words in the text (pockets is the last key).
+inline std::string sample_config_with_pockets(const std::string& pockets) {
+  const std::string key = "\"pockets\": ";
+  std::string text = kValidConfig;
+  const std::size_t at = text.find(key) + key.size();
+  const std::size_t end = text.rfind('}', text.rfind('}') - 1) + 1;
+  return text.replace(at, end - at, pockets);
+}
 
 /// Pockets 1-4 entered from the top, T1-T4 in them, safe placed between
 /// pockets 2 and 3 at a Z the nose clears (5 mm over every above-clearance):
 /// the sequences leave 45 mm below the nose over the holders, so a longer
 /// tool drags its tip through them on the way back to safe (issue 32).
-inline const char* const kTopRack = R"({
-  "probe_length_compensation_offset": -95.0,
-  "probe_retract_offset_z": 5.0,
-  "pocket_side_offset": {"x": 0.0, "y": 40.0},
-  "pocket_above_chuck_offset_z": 20.0,
-  "pocket_above_clearance_offset_z": 60.0,
-  "chuck_seconds": 0.5,
+inline const std::string kTopRack = sample_config_with(R"({
   "path": "direct",
-  "loading": {"x": 20.0, "y": 150.0, "z": -10.0},
-  "probe_limit": {"x": 20.0, "y": 150.0, "z": -90.0},
   "safe": {"x": 125.0, "y": 20.0, "z": -15.0},
-  "pocket_default": {"y": 20.0, "z": -80.0, "approach": "top"},
-  "pockets": {"1": {"x": 50.0}, "2": {"x": 100.0}, "3": {"x": 150.0}, "4": {"x": 200.0}}
-})";
+  "pocket_default": {"approach": "top"},
+  "pockets": {"5": null, "6": null}
+})");
 
 /// The valid config with `extra` keys added at the top level, e.g. R"("manual_tools": false)".
 inline Config valid_config(const std::string& extra = "") {

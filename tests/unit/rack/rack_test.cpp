@@ -21,21 +21,10 @@ using test::Lines;
 
 /// Pocket 1 holds T12, pocket 2 T7, pocket 3 starts empty, pocket 4 holds T3
 /// from above, pocket 5 its own tool with the side facing -X.
-const char* const kRack = R"({
-  "probe_length_compensation_offset": -95.0,
-  "probe_retract_offset_z": 5.0,
-  "pocket_side_offset": {"x": 0.0, "y": 40.0},
-  "pocket_above_chuck_offset_z": 20.0,
-  "pocket_above_clearance_offset_z": 60.0,
-  "chuck_seconds": 0.5,
-  "loading": {"x": 20.0, "y": 150.0, "z": -10.0},
-  "probe_limit": {"x": 20.0, "y": 150.0, "z": -90.0},
-  "safe": {"x": 120.0, "y": 80.0, "z": -5.0},
-  "pocket_default": {"y": 20.0, "z": -80.0},
-  "pockets": {"1": {"x": 50.0, "tool": 12}, "2": {"x": 100.0, "tool": 7},
+const std::string kRack = test::sample_config_with_pockets(
+    R"({"1": {"x": 50.0, "tool": 12}, "2": {"x": 100.0, "tool": 7},
               "3": {"x": 150.0, "tool": 0}, "4": {"x": 200.0, "tool": 3, "approach": "top"},
-              "5": {"x": 300.0, "side_offset": {"x": -40.0, "y": 0.0}}}
-})";
+              "5": {"x": 300.0, "side_offset": {"x": -40.0, "y": 0.0}}})");
 
 Config rack_config() {
   const auto parsed = parse_config(kRack);
