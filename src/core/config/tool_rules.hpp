@@ -1,7 +1,7 @@
 #pragma once
 
 // Reading what config.json says of single tools (tool_rules.cpp); the rules
-// themselves are Config's (config.hpp).
+// themselves are Config's (settings.hpp).
 
 #include "reader.hpp"
 

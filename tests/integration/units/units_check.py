@@ -15,7 +15,7 @@ from check import fail, load_results, no_fault, ok, scenario, tool_table_length 
 
 MM = 25.4
 FEED, PROBE = 2, 3  # step-kind codes (src/core/motion/step.hpp)
-# The mm defaults in mm/min (unit_default in src/core/config/config.hpp).
+# The mm defaults in mm/min (unit_default in src/core/config/settings.hpp).
 MM_DEFAULTS = {"pocket_feed": 500.0, "probe_seek_feed": 300.0, "probe_latch_feed": 25.0}
 SENSOR_Z_MM = -70.0  # [FIXED_ATC_PROBE]SIM_SENSOR_Z of config/sim, before to_inch.py
 
