@@ -1,13 +1,14 @@
 #pragma once
 
 // The command line, declared once: the modes and options below are what
-// parse_options (CLI11) accepts, and --help, the man page's SYNOPSIS and
-// OPTIONS and docs/command-line.md are generated from them (fatc_docs).
+// parse_options (CLI11, parse_options.hpp) accepts, and --help, the man
+// page's SYNOPSIS and OPTIONS and docs/command-line.md are generated from
+// them (usage.hpp, fatc_docs).
 
 #include <string>
 #include <vector>
 
-#include "cli.hpp"
+#include "options.hpp"
 
 namespace fatc::io {
 
@@ -31,14 +32,11 @@ struct ModeDeclaration {
 const std::vector<ModeDeclaration>& modes();
 const std::vector<OptionDeclaration>& options();
 
-/// --help: a synopsis line and a summary for each mode, then each option.
-std::string usage();
-/// The man page's SYNOPSIS and OPTIONS sections' bodies.
-std::string synopsis_man();
-std::string options_man();
-/// `text` for the man page: a backslash escaped, `code` in bold.
-std::string man_text(const std::string& text);
-/// docs/command-line.md's body.
-std::string command_line_markdown();
+/// The option declared as `name` ("--ini"): one of options().
+const OptionDeclaration& option(const std::string& name);
+/// Whether `mode` needs or may read the option `name`.
+bool reads(const ModeDeclaration& mode, const std::string& name);
+/// "--ini FILE", or "--yes" for a flag.
+std::string named_value(const char* name);
 
 }  // namespace fatc::io

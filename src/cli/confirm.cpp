@@ -5,7 +5,7 @@
 #include <cerrno>
 #include <ostream>
 
-#include "files.hpp"
+#include "io/files.hpp"
 
 namespace fatc::io {
 namespace {

@@ -2,7 +2,7 @@
 
 #include <iosfwd>
 
-#include "cli.hpp"
+#include "options.hpp"
 
 namespace fatc::io {
 

@@ -1,6 +1,5 @@
 #include "lint.hpp"
 
-#include <strings.h>
 #include <sys/stat.h>
 
 #include <algorithm>
@@ -15,14 +14,13 @@
 
 #include "core/config/quote.hpp"
 #include "core/dry_run/sequence_check.hpp"
-#include "core/program/interpreter_inputs.hpp"
 #include "core/program/keepout_check.hpp"
 #include "core/program/preflight.hpp"
 #include "core/program/tool_table.hpp"
-#include "files.hpp"
-#include "ini.hpp"
-#include "interpreter.hpp"
-#include "interruption.hpp"
+#include "io/files.hpp"
+#include "io/interruption.hpp"
+#include "linuxcnc/offline/machine_ini.hpp"
+#include "linuxcnc/offline/program_tools.hpp"
 
 namespace fatc::io {
 namespace {
@@ -31,58 +29,7 @@ namespace {
 constexpr std::size_t kMaxRows = 200;
 constexpr std::size_t kMaxFindings = 50;
 
-/// What the INI adds: the motion limits, and whether M6 runs this changer's remap.
-struct MachineIni {
-  MachineMotion motion;   ///< the limits for the estimate, and where they came from
-  bool remaps_m6 = true;     ///< false: the INI has no REMAP=M6 ... ngc=fixed_atc_probe_m6
-  std::optional<std::string> tool_table;  ///< [EMCIO]TOOL_TABLE, from the INI's folder
-  std::optional<double> units_per_mm;     ///< [TRAJ]LINEAR_UNITS: the tool table's units
-  bool return_to_xy = false;              ///< [FIXED_ATC_PROBE]RETURN_TO_XY
-  std::optional<SoftLimits> limits;       ///< [AXIS_n]MIN_LIMIT, MAX_LIMIT
-  std::string limits_error;               ///< why there are none
-  std::vector<std::string> builtin_m6_moves;  ///< [EMCIO] keys that move after every change
-  std::vector<program::Finding> include_problems;  ///< IniFile's
-};
-
 }  // namespace
-
-std::optional<MachineMotion> machine_motion(const std::optional<std::string>& ini_path,
-                                            const Config& config, std::string& error) {
-  const bool inch = config.units == Units::inch;
-  MachineMotion machine;
-  MotionLimits& limits = machine.timing.limits;
-  const double velocity = inch ? kAssumedVelocityInch : kAssumedVelocityMm;
-  const double acceleration = inch ? kAssumedAccelerationInch : kAssumedAccelerationMm;
-  limits.velocity = {velocity, velocity, velocity};
-  limits.acceleration = {acceleration, acceleration, acceleration};
-  limits.linear_velocity = velocity;
-  limits.linear_acceleration = acceleration;
-  char buffer[120];
-  std::snprintf(buffer, sizeof buffer, "the moves at %.0f %s and %.0f %s, assumed (",
-                velocity * 60.0, inch ? "inch/min" : "mm/min", acceleration,
-                inch ? "inch/s²" : "mm/s²");
-  if (!ini_path) {
-    machine.source = buffer + std::string("--ini gives the machine's [AXIS_*] and [TRAJ] limits)");
-    return machine;
-  }
-  const auto ini = IniFile::read(*ini_path, error);
-  if (!ini) return std::nullopt;
-  // iocontrol's cycle as LinuxCNC reads it; its default where it is none.
-  const auto cycle = ini->number("EMCIO", "CYCLE_TIME");
-  if (cycle && std::isfinite(*cycle) && *cycle > 0.0 && *cycle <= 10.0) {
-    machine.timing.iocontrol_cycle_seconds = *cycle;
-  }
-  std::string why;
-  if (const auto found = motion_limits(*ini, config.units, why)) {
-    limits = *found;
-    machine.source = "the moves at the velocities and accelerations of " + shown_path(*ini_path);
-    return machine;
-  }
-  machine.source = buffer + shown_path(*ini_path) +
-                   " has no usable MAX_VELOCITY and MAX_ACCELERATION of [AXIS_X], [AXIS_Y] "
-                   "and [AXIS_Z]: --plan --ini says why)";
-  return machine;
-}
 
 std::string estimate_costs_text(const MachineTiming& timing) {
   char buffer[320];
@@ -95,35 +42,6 @@ std::string estimate_costs_text(const MachineTiming& timing) {
                 kIocontrolCycles, timing.iocontrol_cycle_seconds, kChangeSeconds * 1000.0);
   return buffer;
 }
-
-namespace {
-
-/// Reads what --lint uses of the INI; false and one line in `error` when it cannot be read.
-bool read_ini(const Options& options, const Config& config, MachineIni& machine,
-              std::string& error) {
-  const auto motion = machine_motion(options.ini_path, config, error);
-  if (!motion) return false;
-  machine.motion = *motion;
-  if (!options.ini_path) return true;
-  const auto ini = IniFile::read(*options.ini_path, error);
-  if (!ini) return false;
-  const auto remaps = ini->get_all("RS274NGC", "REMAP");
-  machine.remaps_m6 = std::any_of(remaps.begin(), remaps.end(),
-                                  [](const std::string& remap) { return program::is_own_m6_remap(remap); });
-  if (const auto table = ini->get("EMCIO", "TOOL_TABLE")) {
-    machine.tool_table = (*table)[0] == '/' ? *table : folder_of(*options.ini_path) + "/" + *table;
-  }
-  if (const auto units = ini->linear_units(); units && *units > 0.0) machine.units_per_mm = units;
-  machine.limits = soft_limits(*ini, config.units, machine.limits_error);
-  machine.builtin_m6_moves = builtin_m6_moves(*ini);
-  machine.include_problems = ini->include_problems();
-  if (const auto back = ini->get("FIXED_ATC_PROBE", "RETURN_TO_XY")) {
-    machine.return_to_xy = *back == "1" || strcasecmp(back->c_str(), "true") == 0;
-  }
-  return true;
-}
-
-}  // namespace
 
 std::string seconds_text(double seconds) {
   char buffer[48];
@@ -236,39 +154,17 @@ void sort_by_line(std::vector<program::Finding>& findings) {
 std::optional<program::InterpreterRun> interpret(const Options& options, const Config& config,
                                                  const std::optional<std::string>& tool_table,
                                                  std::string& error,
-                                                 program::CallListener* listener = nullptr) {
-  const auto rs274 = find_rs274(error);
-  if (!rs274) return std::nullopt;
+                                                 program::CallListener* listener) {
   InterpreterInput input;
-  input.rs274 = *rs274;
   input.program_path = options.program_path;
   input.ini_path = options.ini_path;
   input.tool_table_path = tool_table;
   input.subroutine_path = options.subroutine_path;
-  input.inch_machine = config.units == Units::inch;
   input.listener = listener;
-  return run_interpreter(input, error);
+  return io::interpret(input, config, error);
 }
 
 }  // namespace
-
-std::optional<std::vector<int>> program_tools(const std::string& program_path,
-                                              const std::string& ini_path, const Config& config,
-                                              std::string& error) {
-  Options options;
-  options.program_path = program_path;
-  if (!ini_path.empty()) options.ini_path = ini_path;
-  MachineIni machine;
-  if (!read_ini(options, config, machine, error)) return std::nullopt;
-  const auto run = interpret(options, config, machine.tool_table, error);
-  if (!run) return std::nullopt;
-  std::vector<int> tools;
-  for (const auto& use : run->uses) {
-    if (!use.tool || *use.tool == 0) continue;
-    if (std::find(tools.begin(), tools.end(), *use.tool) == tools.end()) tools.push_back(*use.tool);
-  }
-  return tools;
-}
 
 int lint(const Options& options, std::ostream& out, std::ostream& err) {
   // Interrupted, it removes its copy of the program before it ends.
@@ -285,11 +181,12 @@ int lint(const Options& options, std::ostream& out, std::ostream& err) {
     return 2;
   }
   std::string error;
-  MachineIni machine;
-  if (!read_ini(options, config, machine, error)) {
+  const auto read = read_machine_ini(options.ini_path, config, error);
+  if (!read) {
     err << error << "\n";
     return 2;
   }
+  const MachineIni& machine = *read;
   // The table rs274 is given: --tool-table, else the INI's. Its problems are
   // the program's; its lengths stand for the state file's only when given.
   const auto table_path = options.tool_table_path ? options.tool_table_path : machine.tool_table;

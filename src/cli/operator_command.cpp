@@ -12,9 +12,9 @@
 
 #include "io/capped_lines.hpp"
 #include "io/files.hpp"
-#include "io/ini.hpp"
 #include "io/interruption.hpp"
-#include "io/operator_watch.hpp"
+#include "linuxcnc/offline/ini.hpp"
+#include "operator_watch.hpp"
 
 namespace fatc::linuxcnc {
 namespace {

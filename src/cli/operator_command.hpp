@@ -2,7 +2,7 @@
 
 #include <iosfwd>
 
-#include "io/cli.hpp"
+#include "options.hpp"
 
 namespace fatc::linuxcnc {
 

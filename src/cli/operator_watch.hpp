@@ -2,8 +2,8 @@
 
 // --operator: a request to the running component through its public channels
 // (the operator pins a panel pulses, and the status file it reads for words),
-// followed to its end. Nothing here touches HAL or a clock: the LinuxCNC side
-// (src/linuxcnc/operator_command.cpp) feeds each poll's readings in and does
+// followed to its end. Nothing here touches HAL or a clock: the HAL side
+// (operator_command.cpp) feeds each poll's readings in and does
 // what comes back, so the judging can be tested without a machine.
 
 #include <optional>

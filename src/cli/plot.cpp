@@ -1,6 +1,7 @@
 #include "plot.hpp"
 
 #include <algorithm>
+#include <ostream>
 #include <cstdio>
 #include <limits>
 #include <sstream>
@@ -10,6 +11,9 @@
 #include "core/config/quote.hpp"
 #include "core/formatted.hpp"
 #include "core/rack/geometry.hpp"
+#include "inputs.hpp"
+#include "io/file_writer.hpp"
+#include "io/files.hpp"
 
 namespace fatc::io {
 
@@ -258,6 +262,39 @@ std::string rack_svg(const Config& config, const ToolState& tools, const Simulat
   }
   svg << "</svg>\n";
   return svg.str();
+}
+
+int plot(const Options& options, std::ostream& out, std::ostream& err) {
+  const Loaded loaded = load(options, err);
+  if (!loaded.config || loaded.problems > 0) return 1;
+  const Config& config = *loaded.config;
+  auto rack = rack_of(options, config, err);
+  if (!rack) return 1;
+  std::string title = shown_path(options.config_path);
+  std::optional<Simulator> change;
+  if (options.from_tool) {
+    rack->put_in_spindle(*options.from_tool);
+    change = plan_change(config, *rack, *options.to_tool, config.probe_limit.z);
+    if (const auto why = refusal(*change)) {
+      err << *why << "\n";
+      return 1;
+    }
+    title += ": M6 T" + std::to_string(*options.to_tool) + " with " +
+             spindle_words(*options.from_tool) + ", the " +
+             (config.path == Path::direct ? "direct" : "prototype") + " path";
+  }
+  try {
+    const std::string drawing = rack_svg(config, *rack, change ? &*change : nullptr,
+                                         loaded.limits ? &*loaded.limits : nullptr, title);
+    write_file(options.plot_path, drawing, kCommandLineWait);
+  } catch (const std::exception& e) {
+    err << e.what() << "\n";
+    return 2;
+  }
+  out << "wrote " << shown_path(options.plot_path) << ": " << config.pockets.size()
+      << (config.pockets.size() == 1 ? " pocket" : " pockets")
+      << (change ? ", and the path of the change" : "") << ", " << rack_words(options) << "\n";
+  return 0;
 }
 
 }  // namespace fatc::io

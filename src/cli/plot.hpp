@@ -1,10 +1,12 @@
 #pragma once
 
+#include <iosfwd>
 #include <string>
 
 #include "core/config/config.hpp"
 #include "core/dry_run/simulator.hpp"
 #include "core/rack/tool_state.hpp"
+#include "options.hpp"
 
 namespace fatc::io {
 
@@ -19,5 +21,10 @@ namespace fatc::io {
 /// Pure: the caller writes the text where it likes.
 std::string rack_svg(const Config& config, const ToolState& tools, const Simulator* plan,
                      const SoftLimits* travel, const std::string& title);
+
+/// --plot: the rack from above into an SVG file, with the path of one change
+/// if asked; 0 written, 1 the config or state is invalid or the change
+/// refused, 2 the drawing cannot be written.
+int plot(const Options& options, std::ostream& out, std::ostream& err);
 
 }  // namespace fatc::io

@@ -4,7 +4,6 @@
 
 #include "core/config/sensor_list.hpp"
 #include "core/rack/keepout.hpp"
-#include "hal_pins.hpp"
 
 namespace fatc::linuxcnc {
 

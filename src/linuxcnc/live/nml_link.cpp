@@ -10,7 +10,7 @@
 #include <stat_msg.hh>
 #include <thread>
 
-#include "io/ini.hpp"
+#include "linuxcnc/offline/ini.hpp"
 
 namespace fatc::linuxcnc {
 namespace {

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "io/command_line.hpp"
+#include "io/man_text.hpp"
 #include "pin_list.hpp"
 
 namespace fatc::linuxcnc {

@@ -5,7 +5,7 @@
 
 #include "core/machine/changer.hpp"
 #include "core/machine/measure_which.hpp"
-#include "io/lint.hpp"
+#include "linuxcnc/offline/program_tools.hpp"
 
 namespace fatc::linuxcnc {
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/config/quote.hpp"
-#include "files.hpp"
+#include "io/files.hpp"
 
 namespace fatc::io {
 namespace {

@@ -1,4 +1,5 @@
-#include "io/cli.hpp"
+#include "cli/cli.hpp"
+#include "cli/parse_options.hpp"
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>

@@ -5,8 +5,10 @@
 #include <clocale>
 #include <cstdio>
 
+#include "cli/command_line.hpp"
+#include "cli/parse_options.hpp"
+#include "cli/usage.hpp"
 #include "core/config/quote.hpp"
-#include "io/command_line.hpp"
 
 namespace fatc::io {
 namespace {

@@ -3,7 +3,7 @@
 // feature and each hostile input asserts its exact line. The programs are in
 // lint_programs/ (linuxcnc/: samples LinuxCNC installs); binary, FIFO and
 // endless cases are made here at run time.
-#include "io/lint.hpp"
+#include "cli/lint.hpp"
 
 #include <gtest/gtest.h>
 #include <sys/resource.h>
@@ -21,11 +21,12 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "cli/cli.hpp"
+#include "cli/parse_options.hpp"
 #include "core/program/preflight.hpp"
 #include "core/program/tool_table.hpp"
-#include "io/cli.hpp"
 #include "io/files.hpp"
-#include "io/interpreter.hpp"
+#include "linuxcnc/offline/interpreter.hpp"
 #include "test_config.hpp"
 
 namespace fatc {

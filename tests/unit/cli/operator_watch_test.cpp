@@ -1,10 +1,11 @@
 // --operator: its arguments, and how the watching of one request judges its
 // end from what the component's pins and status file say, poll by poll.
-#include "io/operator_watch.hpp"
+#include "cli/operator_watch.hpp"
 
 #include <gtest/gtest.h>
 
-#include "io/command_line.hpp"
+#include "cli/parse_options.hpp"
+#include "cli/usage.hpp"
 
 namespace fatc::io {
 namespace {

@@ -1,6 +1,6 @@
 // --plot: the rack from above as SVG, from the config and the tool state, and
 // the path of one change.
-#include "io/plot.hpp"
+#include "cli/plot.hpp"
 
 #include <gtest/gtest.h>
 #include <sys/stat.h>

@@ -3,8 +3,8 @@
 #include <gtest/gtest.h>
 
 #include "core/protocol/executor_link.hpp"
-#include "linuxcnc/hal_pins_detail.hpp"
-#include "linuxcnc/hal_pins_view.hpp"
+#include "linuxcnc/live/hal_pins_detail.hpp"
+#include "linuxcnc/live/hal_pins_view.hpp"
 
 namespace fatc::linuxcnc {
 namespace {

@@ -7,7 +7,7 @@
 #include <fstream>
 #include <string>
 
-#include "linuxcnc/nml_link.hpp"
+#include "linuxcnc/live/nml_link.hpp"
 #include "temp_folder.hpp"
 
 namespace fatc::linuxcnc {
