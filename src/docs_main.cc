@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
+#include "cli/usage.hpp"
 #include "core/config/keys.hpp"
-#include "io/command_line.hpp"
 #include "io/files.hpp"
-#include "linuxcnc/pin_reference.hpp"
+#include "linuxcnc/live/pin_reference.hpp"
 
 namespace {
 
@@ -45,14 +45,14 @@ std::string fill(const std::string& text, const std::string& marker, const std::
 int main(int argc, char** argv) {
   const std::vector<std::string> args(argv + 1, argv + argc);
   if (args.size() == 1 && args[0] == "pins-md") {
-    std::cout << page("HAL pins", "src/linuxcnc/pin_list.hpp",
+    std::cout << page("HAL pins", "src/linuxcnc/live/pin_list.hpp",
                       "The component's pins, all `fixed_atc_probe.*`, in the order the component\n"
                       "creates them; `man fixed_atc_probe` lists the same.\n",
                       fatc::linuxcnc::pins_markdown());
     return 0;
   }
   if (args.size() == 1 && args[0] == "cli-md") {
-    std::cout << page("The command line", "src/io/command_line.cpp",
+    std::cout << page("The command line", "src/cli/command_line.cpp",
                       "Every mode and option `fixed_atc_probe` accepts (`--help` and the man page "
                       "say\nthe same). A usage mistake (an unknown option, one given twice, two "
                       "modes, an\nempty value, an option the mode does not read) is one line and "

@@ -18,19 +18,20 @@
 #include <thread>
 #include <vector>
 
+#include "cli/cli.hpp"
+#include "cli/operator_command.hpp"
+#include "cli/parse_options.hpp"
 #include "core/config/quote.hpp"
 #include "core/machine/changer.hpp"
-#include "io/cli.hpp"
 #include "io/files.hpp"
-#include "io/ini.hpp"
 #include "io/interruption.hpp"
 #include "io/message_log.hpp"
 #include "io/standard_output.hpp"
 #include "io/version.hpp"
-#include "linuxcnc/component.hpp"
-#include "linuxcnc/hal_pins.hpp"
-#include "linuxcnc/nml_link.hpp"
-#include "linuxcnc/operator_command.hpp"
+#include "linuxcnc/live/component.hpp"
+#include "linuxcnc/live/hal_pins.hpp"
+#include "linuxcnc/live/nml_link.hpp"
+#include "linuxcnc/offline/ini.hpp"
 
 namespace {
 

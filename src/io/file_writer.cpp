@@ -14,7 +14,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "files.hpp"
+#include "paths.hpp"
 
 namespace fatc::io {
 namespace {

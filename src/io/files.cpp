@@ -20,16 +20,6 @@ namespace {
 
 std::string why(int error) { return std::string("(") + std::strerror(error) + ")"; }
 
-/// What a non-regular file is, for "expected a regular file, got ...".
-const char* kind_of(mode_t mode) {
-  if (S_ISDIR(mode)) return "a directory";
-  if (S_ISFIFO(mode)) return "a FIFO";
-  if (S_ISCHR(mode)) return "a character device";
-  if (S_ISBLK(mode)) return "a block device";
-  if (S_ISSOCK(mode)) return "a socket";
-  return "something that is not a file";
-}
-
 /// One line when `st` is not a regular file, or (`limit_size`) one over kMaxFileBytes.
 std::string refusal(const std::string& path, const struct stat& st, bool limit_size = true) {
   if (std::string refused = not_a_regular_file(path, st.st_mode); !refused.empty()) return refused;
@@ -55,15 +45,6 @@ bool missing(const std::string& path) {
 
 }  // namespace
 
-std::string shown_path(const std::string& path) {
-  return path.empty() ? std::string("\"\" (an empty path)") : escape(path, 200);
-}
-
-std::string not_a_regular_file(const std::string& path, mode_t mode) {
-  if (S_ISREG(mode)) return "";
-  return shown_path(path) + ": expected a regular file, got " + kind_of(mode);
-}
-
 std::optional<std::string> scratch_root(std::size_t longest, std::string& error) {
   const char* given = std::getenv("TMPDIR");
   std::string folder = given != nullptr && *given != '\0' ? given : "/tmp";
@@ -83,17 +64,6 @@ std::optional<std::string> scratch_root(std::size_t longest, std::string& error)
     return std::nullopt;
   }
   return folder;
-}
-
-std::string folder_of(const std::string& path) {
-  const auto slash = path.rfind('/');
-  if (slash == std::string::npos) return ".";
-  if (slash == 0) return "/";
-  return path.substr(0, slash);
-}
-
-std::string beside(const std::string& ini_path, const std::string& path) {
-  return !path.empty() && path[0] == '/' ? path : folder_of(ini_path) + "/" + path;
 }
 
 namespace {

@@ -10,6 +10,7 @@
 #include "core/config/config.hpp"
 #include "core/rack/tool_state.hpp"
 #include "file_writer.hpp"
+#include "paths.hpp"
 
 namespace fatc::io {
 
@@ -45,18 +46,6 @@ using Take = std::function<void(std::string_view piece)>;
 /// the file was cut.
 bool read_file_pieces(const std::string& path, std::size_t max_bytes, std::uint64_t& file_bytes,
                       std::string& error, const Take& take);
-
-/// A file path for a message: control characters escaped, cut short if huge.
-std::string shown_path(const std::string& path);
-
-/// "PATH: expected a regular file, got a FIFO", or empty for a regular file.
-std::string not_a_regular_file(const std::string& path, mode_t mode);
-
-/// The folder of `path`: "." for a bare name, "/" for one at the root.
-std::string folder_of(const std::string& path);
-/// A path an INI file gives, as LinuxCNC takes it: absolute as it is, else
-/// from the folder of the INI file `ini_path`.
-std::string beside(const std::string& ini_path, const std::string& path);
 
 /// Where scratch files go: $TMPDIR (else /tmp) as an absolute folder, a
 /// relative one taken from the current folder (rs274 runs in another, the

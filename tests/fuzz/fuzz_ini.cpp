@@ -11,7 +11,8 @@
 
 #include "invariants.hpp"
 #include "io/files.hpp"
-#include "io/ini.hpp"
+#include "linuxcnc/offline/ini.hpp"
+#include "linuxcnc/offline/machine_ini.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

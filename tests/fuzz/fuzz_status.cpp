@@ -5,9 +5,9 @@
 #include <cstdint>
 #include <string>
 
+#include "cli/operator_watch.hpp"
 #include "invariants.hpp"
 #include "io/capped_lines.hpp"
-#include "io/operator_watch.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);

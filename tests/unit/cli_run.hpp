@@ -4,7 +4,8 @@
 #include <string>
 #include <vector>
 
-#include "io/cli.hpp"
+#include "cli/cli.hpp"
+#include "cli/parse_options.hpp"
 
 namespace fatc::test {
 

@@ -18,7 +18,7 @@ runuser -u "$user" -- halrun -f "$work/pins.hal" > "$work/out.txt" 2>&1 || { cat
 grep 'fixed_atc_probe\.' "$work/out.txt" |
   awk '{value = $5 ~ /\.heartbeat$/ ? "*" : $4; print $2, $3, value, $5}' > "$work/pins.txt"
 if ! diff -u "$here/pins.golden" "$work/pins.txt"; then
-  echo "FAIL: the pins HAL shows are not those src/linuxcnc/pin_list.hpp declares (pins.golden, generated: cmake --build build --target references)"
+  echo "FAIL: the pins HAL shows are not those src/linuxcnc/live/pin_list.hpp declares (pins.golden, generated: cmake --build build --target references)"
   exit 1
 fi
 echo "ok: $(wc -l < "$work/pins.txt") pins as in pins.golden"

@@ -23,7 +23,8 @@
 #include "core/config/quote.hpp"
 #include "core/rack/tool_state.hpp"
 #include "io/files.hpp"
-#include "io/ini.hpp"
+#include "linuxcnc/offline/ini.hpp"
+#include "linuxcnc/offline/machine_ini.hpp"
 #include "test_config.hpp"
 
 namespace fatc {

@@ -7,9 +7,10 @@
 #include <fstream>
 #include <sstream>
 
-#include "core/machine/changer.hpp"
+#include "cli/cli.hpp"
+#include "cli/parse_options.hpp"
 #include "core/dry_run/simulator.hpp"
-#include "io/cli.hpp"
+#include "core/machine/changer.hpp"
 #include "io/files.hpp"
 #include "test_config.hpp"
 
