@@ -8,7 +8,7 @@
 
 #include "../dry_run/simulator.hpp"
 #include "../formatted.hpp"
-#include "../machine/admission.hpp"
+#include "../machine/base/admission.hpp"
 #include "canonical_call.hpp"
 
 namespace fatc {

@@ -1,7 +1,7 @@
 // Typed prompts: the words the operator reads, made in one place, and the
 // simulated operator acting on the fields; measure-which decided in the core.
 
-#include "core/machine/prompt.hpp"
+#include "core/machine/base/prompt.hpp"
 
 #include <gtest/gtest.h>
 

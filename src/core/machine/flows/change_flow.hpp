@@ -8,6 +8,7 @@
 #include "../legs/probing_leg.hpp"
 #include "../legs/retrieve_leg.hpp"
 #include "../legs/return_leg.hpp"
+#include "change.hpp"
 
 namespace fatc::machine {
 

@@ -5,6 +5,7 @@
 #include "../legs/handover.hpp"
 #include "../legs/probing_leg.hpp"
 #include "../legs/return_leg.hpp"
+#include "load.hpp"
 
 namespace fatc::machine {
 

@@ -5,6 +5,7 @@
 #include "../legs/probing_leg.hpp"
 #include "../legs/retrieve_leg.hpp"
 #include "../legs/return_leg.hpp"
+#include "measure_all.hpp"
 
 namespace fatc::machine {
 

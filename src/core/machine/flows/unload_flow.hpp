@@ -5,6 +5,7 @@
 #include "../legs/handover.hpp"
 #include "../legs/retrieve_leg.hpp"
 #include "../legs/return_leg.hpp"
+#include "unload.hpp"
 
 namespace fatc::machine {
 

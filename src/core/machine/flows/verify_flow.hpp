@@ -3,6 +3,7 @@
 // The dry run through one pocket's approach.
 
 #include "../legs/cover.hpp"
+#include "verify.hpp"
 
 namespace fatc::machine {
 
