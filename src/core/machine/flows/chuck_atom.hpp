@@ -24,7 +24,7 @@ namespace fatc::machine {
 struct ChuckFlow_;
 struct AnswerChuckDone;
 
-/// A chuck atom from G-code (chuck_flow.hpp): nothing moves, so nothing to rehearse.
+/// A chuck atom from G-code (chuck_flow.hpp); Operating does not rehearse it.
 struct ChuckAtom : FlowKind {
   using request = ChuckRequest;
   using front = ChuckFlow_;
