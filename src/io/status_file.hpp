@@ -4,8 +4,8 @@
 #include <optional>
 #include <string>
 
-#include "core/machine/ports.hpp"
-#include "core/machine/status.hpp"
+#include "core/machine/base/ports.hpp"
+#include "core/machine/base/status.hpp"
 #include "core/rack/tool_state.hpp"
 
 namespace fatc::io {

@@ -1,6 +1,6 @@
 #include "dry_run.hpp"
 
-#include "../machine/context.hpp"
+#include "../machine/base/context.hpp"
 #include "simulator.hpp"
 
 namespace fatc {

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "../machine/rehearsal.hpp"
+#include "../machine/base/rehearsal.hpp"
 
 namespace fatc {
 

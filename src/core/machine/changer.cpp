@@ -1,8 +1,7 @@
 #include "changer.hpp"
 
-#include "admission.hpp"
+#include "base/admission.hpp"
 #include "engine.hpp"
-#include "flows.hpp"
 
 namespace fatc {
 
@@ -70,6 +69,15 @@ void Changer::verify(int pocket) { engine_->take(VerifyRequest{pocket}); }
 void Changer::chuck(ChuckRequest::Action action, std::optional<Point> at) {
   engine_->take(ChuckRequest{action, at});
 }
+void Changer::request(const machine::FlowRequest& request) {
+  std::visit([this](const auto& e) { engine_->take(e); }, request);
+}
+
+namespace machine {
+std::optional<std::string> rehearse(const Context& c, const FlowRequest& request) {
+  return c.rehearse([request](Changer& copy) { copy.request(request); });
+}
+}  // namespace machine
 void Changer::in_position() {
   // Within a phase the next waypoint follows; the tables see a phase's end.
   if (engine_->context.next_waypoint()) return;

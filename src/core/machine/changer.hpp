@@ -5,13 +5,14 @@
 #include <string>
 
 #include "../config/config.hpp"
-#include "events.hpp"
 #include "../rack/geometry.hpp"
-#include "ports.hpp"
-#include "rehearsal.hpp"
 #include "../rack/sensors.hpp"
-#include "status.hpp"
 #include "../rack/tool_state.hpp"
+#include "base/events.hpp"
+#include "base/ports.hpp"
+#include "base/rehearsal.hpp"
+#include "base/status.hpp"
+#include "flows/flows.hpp"
 
 namespace fatc {
 
@@ -64,6 +65,8 @@ class Changer {
   void verify(int pocket);
   /// A chuck atom from G-code; `at`: where the machine stands, if known.
   void chuck(ChuckRequest::Action action, std::optional<Point> at);
+  /// Any flow's request, as the calls above make it.
+  void request(const machine::FlowRequest& request);
   void in_position();
   void command_done();
   void probe_result(bool touched, double machine_z, bool tripped_before = false);

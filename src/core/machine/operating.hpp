@@ -3,21 +3,28 @@
 // The machine on and homed: idle, or running one flow; the requests and
 // their refusals.
 
-#include "admission.hpp"
-#include "changer.hpp"
-#include "chuck.hpp"
-#include "flow_run.hpp"
-#include "flows.hpp"
+#include "answers.hpp"
+#include "base/admission.hpp"
+#include "base/chuck.hpp"
+#include "base/flow_run.hpp"
+#include "flows/flows.hpp"
 
 namespace fatc::machine {
 
 // ================================================================ requests and refusals
+/// Why a copy of the changer would not take `request` (a move of its sequence
+/// breaks the keep-out or the soft limits), or nothing; changer.cpp, where
+/// the Changer is whole.
+std::optional<std::string> rehearse(const Context& c, const FlowRequest& request);
 /// Why a request cannot be taken now, or nothing if it can. A request the
-/// changer could take is rehearsed last (each flow's why_not): its whole
-/// sequence is checked with the tools it carries before anything moves.
+/// changer could take by its flow's own rule (why_not) is rehearsed last:
+/// its whole sequence is checked with the tools it carries before anything moves.
 template <class Request>
 std::optional<std::string> why_not(const Context& c, const Request& e) {
-  return kind_of<Request>::why_not(c, e);
+  using Flow = kind_of<Request>;
+  if (auto why = Flow::why_not(c, e)) return why;
+  if constexpr (Flow::rehearsed) return rehearse(c, e);
+  return std::nullopt;
 }
 inline std::optional<std::string> why_not(const Context& c, const ConfigChanged&) {
   return why_not_reconfigure(c, true, false);
@@ -249,7 +256,7 @@ struct Operating_ : Flow<Operating_> {
   >; };
   template <class Flow>
   using request_rows = typename RequestRows<Flow>::type;
-  /// Where a flow ends (flows.hpp says which of these it has).
+  /// Where a flow ends (its declaration, flows/NAME.hpp, says which of these it has).
   template <class Flow, class Ending = Running<Flow>>
   using end_rows_of = joined<
   boost::mpl::vector1<

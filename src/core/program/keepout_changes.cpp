@@ -4,7 +4,7 @@
 #include <utility>
 
 #include "../dry_run/simulator.hpp"
-#include "../machine/admission.hpp"
+#include "../machine/base/admission.hpp"
 #include "keepout_axes.hpp"
 #include "keepout_check.hpp"
 

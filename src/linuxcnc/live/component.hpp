@@ -7,7 +7,7 @@
 #include "config_teacher.hpp"
 #include "core/machine/changer.hpp"
 #include "core/protocol/executor_link.hpp"
-#include "core/machine/ports.hpp"
+#include "core/machine/base/ports.hpp"
 #include "core/dry_run/teach.hpp"
 #include "io/status_file.hpp"
 #include "program_tools_job.hpp"

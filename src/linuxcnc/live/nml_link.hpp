@@ -6,7 +6,7 @@
 #include <string>
 #include <string_view>
 
-#include "core/machine/ports.hpp"
+#include "core/machine/base/ports.hpp"
 
 class RCS_CMD_MSG;
 

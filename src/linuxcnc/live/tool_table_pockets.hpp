@@ -4,7 +4,7 @@
 #include <optional>
 #include <string>
 
-#include "core/machine/ports.hpp"
+#include "core/machine/base/ports.hpp"
 #include "core/rack/tool_state.hpp"
 #include "io/files.hpp"
 

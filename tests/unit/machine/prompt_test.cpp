@@ -1,13 +1,13 @@
 // Typed prompts: the words the operator reads, made in one place, and the
 // simulated operator acting on the fields; measure-which decided in the core.
 
-#include "core/machine/prompt.hpp"
+#include "core/machine/base/prompt.hpp"
 
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "core/machine/measure_which.hpp"
+#include "core/machine/flows/measure_which.hpp"
 #include "sim_rig.hpp"
 #include "test_config.hpp"
 

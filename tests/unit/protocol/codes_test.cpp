@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/protocol/executor_link.hpp"
-#include "core/machine/status.hpp"
+#include "core/machine/base/status.hpp"
 #include "core/motion/step.hpp"
 
 // The numeric codes the core shares with the NGC step executor and the panel

@@ -7,7 +7,7 @@
 #include "core/machine/changer.hpp"
 #include "core/config/config.hpp"
 #include "core/rack/geometry.hpp"
-#include "core/machine/admission.hpp"
+#include "core/machine/base/admission.hpp"
 #include "core/dry_run/sequence_check.hpp"
 #include "core/dry_run/simulator.hpp"
 #include "core/rack/tool_state.hpp"

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "chuck.hpp"
+#include "../base/chuck.hpp"
 
 namespace fatc::machine {
 

@@ -3,7 +3,7 @@
 #include <optional>
 #include <string>
 
-#include "../motion/point.hpp"
+#include "../../motion/point.hpp"
 
 namespace fatc {
 

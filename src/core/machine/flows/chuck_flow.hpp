@@ -2,7 +2,8 @@
 
 // The chuck atoms from G-code: release and clamp.
 
-#include "chuck.hpp"
+#include "../base/chuck.hpp"
+#include "chuck_atom.hpp"
 
 namespace fatc::machine {
 

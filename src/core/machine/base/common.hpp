@@ -11,7 +11,7 @@
 #include <cstdio>
 #include <type_traits>
 
-#include "../rack/geometry.hpp"
+#include "../../rack/geometry.hpp"
 #include "admission.hpp"
 #include "events.hpp"
 #include "flow_run.hpp"
@@ -37,7 +37,7 @@ namespace flag {
 struct NotReady {};
 struct Idle {};
 struct Faulted {};
-struct Busy {};          ///< a flow runs (its kind, flows.hpp, is a flag too)
+struct Busy {};          ///< a flow runs (its kind, flows/NAME.hpp, is a flag too)
 struct AwaitsMotion {};  ///< the executor performs a move or a command
 struct AwaitsProbe {};   ///< the executor performs a probe move
 struct AwaitsTimer {};

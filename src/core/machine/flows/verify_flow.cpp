@@ -1,11 +1,11 @@
-// Verify a pocket: the words of its request, whether it can start (its own rule, then
-// the rehearsal) and its run. The flow's event dispatch is generated here
-// and nowhere else (flow_run_of.hpp): a compiler run reads only its tables.
+// Verify a pocket: the words of its request, whether it can start (its own
+// rule; Operating rehearses it after) and its run. The flow's event dispatch is
+// generated here and nowhere else (flow_run_of.hpp): a compiler run reads only
+// its tables.
 
 #include "verify_flow.hpp"
 
-#include "admission.hpp"
-#include "changer.hpp"
+#include "../base/admission.hpp"
 #include "flow_run_of.hpp"
 
 namespace fatc::machine {
@@ -41,8 +41,7 @@ std::string Verify::name(const VerifyRequest& e) {
 }
 
 std::optional<std::string> Verify::why_not(const Context& c, const VerifyRequest& e) {
-  if (auto why = why_not_verify(c, e.pocket)) return why;
-  return c.rehearse([pocket = e.pocket](Changer& copy) { copy.verify(pocket); });
+  return why_not_verify(c, e.pocket);
 }
 
 std::string Verify::busy(const Context& c) {

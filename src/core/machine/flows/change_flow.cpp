@@ -1,11 +1,10 @@
-// M6: the words of its request, whether it can start (its own rule, then
-// the rehearsal) and its run. The flow's event dispatch is generated here
+// M6: the words of its request, whether it can start (its own rule; Operating
+// rehearses it after) and its run. The flow's event dispatch is generated here
 // and nowhere else (flow_run_of.hpp): a compiler run reads only its tables.
 
 #include "change_flow.hpp"
 
-#include "admission.hpp"
-#include "changer.hpp"
+#include "../base/admission.hpp"
 #include "flow_run_of.hpp"
 
 namespace fatc::machine {
@@ -33,8 +32,7 @@ std::optional<std::string> why_not_change(const Context& ctx, int tool) {
 std::string Change::name(const ToolChange& e) { return "M6 T" + std::to_string(e.tool); }
 
 std::optional<std::string> Change::why_not(const Context& c, const ToolChange& e) {
-  if (auto why = why_not_change(c, e.tool)) return why;
-  return c.rehearse([tool = e.tool](Changer& copy) { copy.tool_change(tool); });
+  return why_not_change(c, e.tool);
 }
 
 std::string Change::busy(const Context& c) {

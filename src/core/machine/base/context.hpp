@@ -5,12 +5,12 @@
 #include <string>
 #include <vector>
 
-#include "../config/config.hpp"
-#include "../motion/step.hpp"
-#include "../plan/routes.hpp"
-#include "../rack/geometry.hpp"
-#include "../rack/sensors.hpp"
-#include "../rack/tool_state.hpp"
+#include "../../config/config.hpp"
+#include "../../motion/step.hpp"
+#include "../../plan/routes.hpp"
+#include "../../rack/geometry.hpp"
+#include "../../rack/sensors.hpp"
+#include "../../rack/tool_state.hpp"
 #include "events.hpp"
 #include "ports.hpp"
 #include "prompt.hpp"

@@ -1,11 +1,11 @@
-// Unload: the words of its request, whether it can start (its own rule, then
-// the rehearsal) and its run. The flow's event dispatch is generated here
-// and nowhere else (flow_run_of.hpp): a compiler run reads only its tables.
+// Unload: the words of its request, whether it can start (its own rule;
+// Operating rehearses it after) and its run. The flow's event dispatch is
+// generated here and nowhere else (flow_run_of.hpp): a compiler run reads only
+// its tables.
 
 #include "unload_flow.hpp"
 
-#include "admission.hpp"
-#include "changer.hpp"
+#include "../base/admission.hpp"
 #include "flow_run_of.hpp"
 
 namespace fatc::machine {
@@ -30,8 +30,7 @@ std::string Unload::name(const UnloadRequest& e) {
 }
 
 std::optional<std::string> Unload::why_not(const Context& c, const UnloadRequest& e) {
-  if (auto why = why_not_unload(c, e.tool)) return why;
-  return c.rehearse([tool = e.tool](Changer& copy) { copy.unload(tool); });
+  return why_not_unload(c, e.tool);
 }
 
 std::string Unload::busy(const Context& c) {

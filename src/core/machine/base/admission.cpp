@@ -1,6 +1,6 @@
 #include "admission.hpp"
 
-#include "../formatted.hpp"
+#include "../../formatted.hpp"
 
 namespace fatc {
 

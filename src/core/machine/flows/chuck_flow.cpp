@@ -1,13 +1,14 @@
-// A chuck atom: the words of its request, whether it can start (its own rule, then
-// the rehearsal) and its run. The flow's event dispatch is generated here
-// and nowhere else (flow_run_of.hpp): a compiler run reads only its tables.
+// A chuck atom: the words of its request, whether it can start (its own rule;
+// Operating does not rehearse it) and its run. The flow's event dispatch is
+// generated here and nowhere else (flow_run_of.hpp): a compiler run reads only
+// its tables.
 
 #include "chuck_flow.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "admission.hpp"
+#include "../base/admission.hpp"
 #include "flow_run_of.hpp"
 
 namespace fatc::machine {

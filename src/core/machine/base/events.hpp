@@ -2,10 +2,8 @@
 
 #include <optional>
 #include <string>
-#include <vector>
 
-#include "../config/config.hpp"
-#include "../motion/point.hpp"
+#include "../../config/config.hpp"
 
 namespace fatc {
 
@@ -13,35 +11,6 @@ namespace fatc {
 struct Ready {};
 /// The machine went off, out of homing, or into estop.
 struct NotReady {};
-/// M6: put `tool` in the spindle (0 leaves it empty).
-struct ToolChange {
-  int tool = 0;
-};
-/// The operator asks to load tool `tool` by hand, measure it and store it.
-struct LoadRequest {
-  int tool = 0;
-  int pocket = 0;  ///< where it goes; 0: its own pocket, else the nearest free one
-};
-/// The operator asks to measure `tools` one after another (measure all).
-struct MeasureRequest {
-  std::vector<int> tools;
-};
-/// The operator asks to take tool `tool` out of the machine.
-struct UnloadRequest {
-  int tool = 0;
-};
-/// The operator asks for a dry run through pocket `pocket`'s approach (verify).
-struct VerifyRequest {
-  int pocket = 0;
-};
-/// A chuck atom from G-code (nc_files/fixed_atc_probe_chuck_*.ngc): release
-/// (open) the chuck and leave it open, or clamp (close) it. `at`: where the
-/// machine stands (machine coordinates, config units), when LinuxCNC says.
-struct ChuckRequest {
-  enum class Action { release, clamp };
-  Action action = Action::clamp;
-  std::optional<Point> at;
-};
 /// The executor finished the last published move.
 struct InPosition {};
 /// The executor finished the last published command (M61, G10): nothing moved.

@@ -1,7 +1,7 @@
 #pragma once
 
 // Whether the changer can take a request now: the rules every flow shares.
-// Each flow's own rule is its why_not (flows.hpp), in the flow's own .cpp.
+// Each flow's own rule is its why_not, in the flow's own .cpp (flows/NAME.cpp).
 
 #include <optional>
 #include <string>

@@ -2,7 +2,8 @@
 
 // The dry run through one pocket's approach.
 
-#include "cover.hpp"
+#include "../legs/cover.hpp"
+#include "verify.hpp"
 
 namespace fatc::machine {
 

@@ -1,14 +1,14 @@
-// Load and probe: the words of its request, whether it can start (its own rule, then
-// the rehearsal) and its run. The flow's event dispatch is generated here
-// and nowhere else (flow_run_of.hpp): a compiler run reads only its tables.
+// Load and probe: the words of its request, whether it can start (its own rule;
+// Operating rehearses it after) and its run. The flow's event dispatch is
+// generated here and nowhere else (flow_run_of.hpp): a compiler run reads only
+// its tables.
 
 #include "load_flow.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "admission.hpp"
-#include "changer.hpp"
+#include "../base/admission.hpp"
 #include "flow_run_of.hpp"
 
 namespace fatc {
@@ -88,8 +88,7 @@ std::string Load::name(const LoadRequest& e) {
 }
 
 std::optional<std::string> Load::why_not(const Context& c, const LoadRequest& e) {
-  if (auto why = why_not_load(c, e.tool, e.pocket)) return why;
-  return c.rehearse([e](Changer& copy) { copy.load(e.tool, e.pocket); });
+  return why_not_load(c, e.tool, e.pocket);
 }
 
 std::string Load::busy(const Context& c) {

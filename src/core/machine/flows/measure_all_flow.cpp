@@ -1,14 +1,14 @@
-// Measure all: the words of its request, whether it can start (its own rule, then
-// the rehearsal) and its run. The flow's event dispatch is generated here
-// and nowhere else (flow_run_of.hpp): a compiler run reads only its tables.
+// Measure all: the words of its request, whether it can start (its own rule;
+// Operating rehearses it after) and its run. The flow's event dispatch is
+// generated here and nowhere else (flow_run_of.hpp): a compiler run reads only
+// its tables.
 
 #include "measure_all_flow.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "admission.hpp"
-#include "changer.hpp"
+#include "../base/admission.hpp"
 #include "flow_run_of.hpp"
 
 namespace fatc {
@@ -62,8 +62,7 @@ std::string MeasureAll::name(const MeasureRequest& e) {
 }
 
 std::optional<std::string> MeasureAll::why_not(const Context& c, const MeasureRequest& e) {
-  if (auto why = why_not_measure(c, e.tools)) return why;
-  return c.rehearse([e](Changer& copy) { copy.measure_all(e.tools); });
+  return why_not_measure(c, e.tools);
 }
 
 std::string MeasureAll::busy(const Context& c) {

@@ -2,9 +2,10 @@
 
 // Unloading a tool: fetched, then taken out by the operator.
 
-#include "handover.hpp"
-#include "retrieve_leg.hpp"
-#include "return_leg.hpp"
+#include "../legs/handover.hpp"
+#include "../legs/retrieve_leg.hpp"
+#include "../legs/return_leg.hpp"
+#include "unload.hpp"
 
 namespace fatc::machine {
 

@@ -2,8 +2,8 @@
 
 #include <string>
 
-#include "../motion/step.hpp"
-#include "../rack/tool_state.hpp"
+#include "../../motion/step.hpp"
+#include "../../rack/tool_state.hpp"
 #include "prompt.hpp"
 
 namespace fatc {
