@@ -24,24 +24,27 @@ struct ChangeFlow_ : Flow<ChangeFlow_> {
     return c.tools.pocket_holding(c.request.tool).has_value();
   }
 
-  /// The route M6's first leg walks: the return of the spindle's rack tool,
-  /// else the fetch of the requested one. None for a handover at `loading`,
-  /// where the operator's hand meets the spindle once it stands.
-  static plan::Route first_leg_route(const Context& c) {
+  /// M6's first leg: the return of the spindle's rack tool, else the fetch
+  /// of the requested one. None for a handover at `loading`, where the
+  /// operator's hand meets the spindle once it stands.
+  static std::optional<plan::FirstLeg> first_leg(const Context& c) {
     if (c.tools.spindle != 0) {
       const auto pocket = c.return_pocket(c.tools.spindle);
-      return pocket ? plan::return_to_approach(c.config, *pocket) : plan::Route{};
+      if (!pocket) return std::nullopt;
+      return plan::FirstLeg{true, *pocket};
     }
     const auto pocket = c.tools.pocket_holding(c.request.tool);
-    if (c.request.tool == 0 || !pocket) return {};
-    return plan::fetch_to_above_chuck(c.config, *pocket);
+    if (c.request.tool == 0 || !pocket) return std::nullopt;
+    return plan::FirstLeg{false, *pocket};
   }
   /// Up to safe Z and across toward the first leg's pocket while the spindle
   /// runs down (plan::while_spindle_stops); the leg then starts from there.
   struct MovingWhileRunningDown : Walking<MovingWhileRunningDown> {
     template <class Flow>
     static plan::Route route(const Context& c, const Flow&) {
-      return plan::while_spindle_stops(c.config, first_leg_route(c));
+      const auto first = first_leg(c);
+      if (!first) return {};
+      return plan::phase(c.config, c.standing(), plan::while_spindle_stops_before, *first);
     }
   };
   /// The spindle still turns, and part of the way needs no standstill.

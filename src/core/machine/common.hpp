@@ -131,8 +131,9 @@ struct Flow : msmf::state_machine_def<Derived> {
 // ---------------------------------------------------------------- kinds of state
 
 /// A phase: a run of moves with no decision between them. On entry it walks
-/// the route `Derived::route(ctx, leg)` makes, one waypoint after the other
-/// (Context::walk); its table sees one InPosition, at the route's end.
+/// the route `Derived::route(ctx, leg)` makes in one call into plan/
+/// (plan::phase), one waypoint after the other (Context::walk); its table
+/// sees one InPosition, at the route's end.
 /// Leaving it early (a fault, an abort) drops the rest of the route.
 template <class Derived>
 struct Walking : msmf::state<> {
@@ -151,7 +152,7 @@ template <plan::Route (*Plan)(const Config&)>
 struct Going : Walking<Going<Plan>> {
   template <class Leg>
   static plan::Route route(const Context& c, const Leg&) {
-    return Plan(c.config);
+    return plan::phase(c.config, c.standing(), Plan);
   }
 };
 /// A phase whose route comes from the config and the pocket the leg serves.
@@ -159,7 +160,7 @@ template <plan::Route (*Plan)(const Config&, int)>
 struct GoingAtPocket : Walking<GoingAtPocket<Plan>> {
   template <class Leg>
   static plan::Route route(const Context& c, const Leg& leg) {
-    return Plan(c.config, leg.pocket);
+    return plan::phase(c.config, c.standing(), Plan, leg.pocket);
   }
 };
 

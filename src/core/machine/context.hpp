@@ -122,11 +122,11 @@ class Context {
   /// Why `request`, made of a copy of this changer, would break the keep-out
   /// or the soft limits on the way; nothing if it would not, or no rehearsal is set.
   std::optional<std::string> rehearse(const std::function<void(Changer&)>& request) const;
-  /// A phase walks `route`: its first waypoint is published now, each
-  /// following one when the one before is reached (next_waypoint). The way
-  /// at safe Z to where the spindle already stands is left out
-  /// (plan::from_where_it_stands): M6's first leg after its moves while the
-  /// spindle ran down, a fetch from safe or (direct path) from safe Z.
+  /// Where the spindle stands, as plan::phase walks a route from there.
+  plan::Standing standing() const { return {motion.position, motion.known_axes}; }
+  /// A phase walks `route`, as plan::phase made it from where the spindle
+  /// stands: its first waypoint is published now, each following one when
+  /// the one before is reached (next_waypoint).
   void walk(plan::Route route);
   /// The waypoint under way was reached: publishes the next one of the route
   /// walked and says true; false when the route is done, or none is walked.

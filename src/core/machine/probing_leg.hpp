@@ -80,7 +80,8 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
   struct BackingOff : Walking<BackingOff> {
     template <class Leg>
     static plan::Route route(const Context& c, const Leg& leg) {
-      return {plan::probe_back_off(c.config, leg.tool, leg.first_touch_z)};
+      return plan::phase(c.config, c.standing(), plan::probe_back_off, leg.tool,
+                         leg.first_touch_z);
     }
   };
   struct Latching : Probing<Latch> {};
@@ -88,13 +89,13 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
   struct Retracting : Walking<Retracting> {
     template <class Leg>
     static plan::Route route(const Context& c, const Leg& leg) {
-      return {plan::retract_from_sensor(c.config, leg.latched_z)};
+      return plan::phase(c.config, c.standing(), plan::retract_from_sensor, leg.latched_z);
     }
   };
   struct RetractingUnmeasured : Walking<RetractingUnmeasured> {
     template <class Leg>
     static plan::Route route(const Context& c, const Leg&) {
-      return {plan::loading_z(c.config)};
+      return plan::phase(c.config, c.standing(), plan::loading_z);
     }
   };
 
