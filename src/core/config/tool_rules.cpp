@@ -3,6 +3,8 @@
 
 #include "tool_rules.hpp"
 
+#include "measuring.hpp"
+
 #include <algorithm>
 #include <cstdio>
 #include <utility>
@@ -119,8 +121,7 @@ bool Config::is_probe(int tool) const {
 }
 
 double Config::check_tolerance_of(int tool) const {
-  const ToolConfig* own = declared_tool(*this, tool);
-  return own && own->check_tolerance ? *own->check_tolerance : check_tolerance();
+  return check_tolerance_for(*this, tool).length;
 }
 
 namespace {
@@ -172,20 +173,6 @@ bool uses_default_tolerance(const Config& config) {
   if (config.probe_after_change == MeasureRule::check) return true;  // every tool not listed
   for (const auto& [tool, own] : config.tools) {
     if (config.rule_of(tool) == MeasureRule::check && !own.check_tolerance) return true;
-  }
-  return false;
-}
-
-bool measures_after_change(const Config& config, int tool, bool measured) {
-  switch (config.rule_of(tool)) {
-    case MeasureRule::always:
-    case MeasureRule::check:
-      return true;
-    case MeasureRule::when_new:
-      return !measured;
-    case MeasureRule::off:
-    case MeasureRule::never:
-      return false;
   }
   return false;
 }

@@ -74,8 +74,7 @@ struct ChangeFlow_ : Flow<ChangeFlow_> {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       const Context& c = *fsm.ctx;
-      return measures_after_change(c.config, c.request.tool,
-                                   c.tools.lengths.count(c.request.tool) != 0);
+      return c.measuring(c.request.tool).after_change;
     }
   };
 

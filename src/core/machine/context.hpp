@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "../config/config.hpp"
+#include "../config/measuring.hpp"
 #include "../motion/step.hpp"
 #include "../plan/routes.hpp"
 #include "../rack/geometry.hpp"
@@ -148,6 +149,11 @@ class Context {
   void end_sequence();
   /// The pocket the sequence under way serves (its last progress), 0 if none.
   int sequence_pocket() const { return tools.in_progress ? tools.in_progress->pocket : 0; }
+
+  /// What `tool`'s measuring rule asks, with the length the changer has of it or not.
+  Measuring measuring(int tool) const {
+    return measuring_of(config, tool, tools.lengths.count(tool) != 0);
+  }
 
   /// The pocket the tool in the spindle goes back to: its own, or, for a tool
   /// from outside the rack, its first-start pocket if that is free.

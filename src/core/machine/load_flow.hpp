@@ -46,7 +46,7 @@ struct LoadFlow_ : Flow<LoadFlow_> {
   struct MeasuredAtLoad {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      return fsm.ctx->config.rule_of(fsm.ctx->request.tool) != MeasureRule::never;
+      return !fsm.ctx->measuring(fsm.ctx->request.tool).never;
     }
   };
   /// A "never" tool already in the spindle: nothing to insert or measure.
@@ -63,7 +63,7 @@ struct LoadFlow_ : Flow<LoadFlow_> {
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       const Context& c = *fsm.ctx;
       std::string length;
-      if (c.config.rule_of(c.request.tool) == MeasureRule::never) {
+      if (c.measuring(c.request.tool).never) {
         length = " not measured (\"never\": LinuxCNC's tool table length),";
       } else if (c.activity.last_length) {
         length = " measured " + format_length(c.config, *c.activity.last_length) + ",";

@@ -134,8 +134,7 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       const Context& c = *fsm.ctx;
-      return !c.request.in_program || c.config.rule_of(fsm.tool) != MeasureRule::check ||
-             c.tools.lengths.count(fsm.tool) == 0;
+      return !c.request.in_program || !c.measuring(fsm.tool).checks;
     }
   };
   struct RememberApproach {
@@ -266,14 +265,6 @@ using ProbingLeg = Machine_of<ProbingLeg_>;
 struct MeasureLeg_ : Flow<MeasureLeg_> {
   using Probe = ProbingLeg;
 
-  /// Where the tolerance of `tool` comes from, for the fault's words.
-  static std::string tolerance_name(const Config& config, int tool) {
-    const auto own = config.tools.find(tool);
-    return own != config.tools.end() && own->second.check_tolerance
-               ? "tools." + std::to_string(tool) + ".check_tolerance"
-               : std::string("probe_check_tolerance");
-  }
-
   struct LengthDiffers {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
@@ -296,14 +287,14 @@ struct MeasureLeg_ : Flow<MeasureLeg_> {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       Context& c = *fsm.ctx;
+      const CheckTolerance tolerance = check_tolerance_for(c.config, fsm.tool);
       c.activity.fault_reason =
           "tool " + std::to_string(fsm.tool) + " measures " +
           format_length(c.config, *c.activity.last_length) + " but its stored length is " +
           format_length(c.config, c.tools.lengths.at(fsm.tool)) + ", " +
           format_length(c.config, std::abs(*c.activity.last_length - c.tools.lengths.at(fsm.tool))) +
           (*c.activity.last_length < c.tools.lengths.at(fsm.tool) ? " shorter" : " longer") +
-          " (" + tolerance_name(c.config, fsm.tool) + " " +
-          format_length(c.config, c.config.check_tolerance_of(fsm.tool)) +
+          " (" + tolerance.key + " " + format_length(c.config, tolerance.length) +
           "): tool broken or pulled out?";
     }
   };
