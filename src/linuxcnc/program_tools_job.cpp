@@ -4,7 +4,7 @@
 #include <new>
 
 #include "core/machine/changer.hpp"
-#include "core/machine/measure_which.hpp"
+#include "core/machine/flows/measure_which.hpp"
 #include "io/lint.hpp"
 
 namespace fatc::linuxcnc {

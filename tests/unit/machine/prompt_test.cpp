@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "core/machine/measure_which.hpp"
+#include "core/machine/flows/measure_which.hpp"
 #include "sim_rig.hpp"
 #include "test_config.hpp"
 

@@ -7,8 +7,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "admission.hpp"
-#include "changer.hpp"
+#include "../admission.hpp"
+#include "../changer.hpp"
 #include "flow_run_of.hpp"
 
 namespace fatc {

@@ -3,9 +3,9 @@
 // The run of one flow; included only by that flow's own file, where its
 // event dispatch is generated (for the events of FlowEvent) and nowhere else.
 
-#include "common.hpp"
-#include "flow_run.hpp"
-#include "flows.hpp"
+#include "../common.hpp"
+#include "../flow_run.hpp"
+#include "../flows.hpp"
 
 namespace fatc::machine {
 

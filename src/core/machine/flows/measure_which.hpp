@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "../rack/tool_state.hpp"
+#include "../../rack/tool_state.hpp"
 
 namespace fatc {
 

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "chuck.hpp"
+#include "../chuck.hpp"
 
 namespace fatc::machine {
 

@@ -2,7 +2,7 @@
 
 // The dry run through one pocket's approach.
 
-#include "cover.hpp"
+#include "../legs/cover.hpp"
 
 namespace fatc::machine {
 

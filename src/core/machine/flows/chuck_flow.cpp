@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "admission.hpp"
+#include "../admission.hpp"
 #include "flow_run_of.hpp"
 
 namespace fatc::machine {

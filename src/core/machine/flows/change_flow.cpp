@@ -4,8 +4,8 @@
 
 #include "change_flow.hpp"
 
-#include "admission.hpp"
-#include "changer.hpp"
+#include "../admission.hpp"
+#include "../changer.hpp"
 #include "flow_run_of.hpp"
 
 namespace fatc::machine {

@@ -4,10 +4,10 @@
 
 #include <boost/mpl/vector/vector30.hpp>
 
-#include "handover.hpp"
-#include "probing_leg.hpp"
-#include "retrieve_leg.hpp"
-#include "return_leg.hpp"
+#include "../legs/handover.hpp"
+#include "../legs/probing_leg.hpp"
+#include "../legs/retrieve_leg.hpp"
+#include "../legs/return_leg.hpp"
 
 namespace fatc::machine {
 

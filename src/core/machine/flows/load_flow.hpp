@@ -2,9 +2,9 @@
 
 // Loading a tool by hand, measuring it and putting it away.
 
-#include "handover.hpp"
-#include "probing_leg.hpp"
-#include "return_leg.hpp"
+#include "../legs/handover.hpp"
+#include "../legs/probing_leg.hpp"
+#include "../legs/return_leg.hpp"
 
 namespace fatc::machine {
 

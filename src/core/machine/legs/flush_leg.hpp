@@ -3,7 +3,7 @@
 // Flushing the chuck before the spindle receives a tool.
 // docs/sequences.md#flush.
 
-#include "chuck.hpp"
+#include "../chuck.hpp"
 
 namespace fatc::machine {
 

@@ -2,7 +2,7 @@
 
 // The chuck atoms from G-code: release and clamp.
 
-#include "chuck.hpp"
+#include "../chuck.hpp"
 
 namespace fatc::machine {
 

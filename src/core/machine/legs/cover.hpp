@@ -3,7 +3,7 @@
 // The rack cover (`rack_cover`): it opens before a leg's first move into
 // the rack; docs/sequences.md#rack-cover.
 
-#include "chuck.hpp"
+#include "../chuck.hpp"
 
 namespace fatc::machine {
 

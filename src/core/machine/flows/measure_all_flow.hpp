@@ -2,9 +2,9 @@
 
 // Measuring every tool of the rack, one after another.
 
-#include "probing_leg.hpp"
-#include "retrieve_leg.hpp"
-#include "return_leg.hpp"
+#include "../legs/probing_leg.hpp"
+#include "../legs/retrieve_leg.hpp"
+#include "../legs/return_leg.hpp"
 
 namespace fatc::machine {
 

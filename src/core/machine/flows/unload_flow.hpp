@@ -2,9 +2,9 @@
 
 // Unloading a tool: fetched, then taken out by the operator.
 
-#include "handover.hpp"
-#include "retrieve_leg.hpp"
-#include "return_leg.hpp"
+#include "../legs/handover.hpp"
+#include "../legs/retrieve_leg.hpp"
+#include "../legs/return_leg.hpp"
 
 namespace fatc::machine {
 
