@@ -74,7 +74,11 @@ struct Outputs {
 struct Activity {
   std::string dwell;                  ///< what the running timer waits for
   Prompt prompt;                      ///< the last question put to the operator
-  std::optional<double> last_length;  ///< the last length a probe measured
+  /// The last length a probe measured, for the status: flows take it from
+  /// their probing leg.
+  std::optional<double> last_length;
+  /// Why the changer is in fault: a flow's failure (FlowFailed), a refused
+  /// step, a failed check, an abort.
   std::string fault_reason;
 };
 

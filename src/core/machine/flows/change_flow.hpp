@@ -61,12 +61,11 @@ struct ChangeFlow_ : Flow<ChangeFlow_> {
   struct SaySpindleDidNotStop {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      const Context& c = *fsm.ctx;
-      fsm.ctx->activity.fault_reason =
-          "the spindle did not stop within spindle_stop_timeout_seconds";
-      if (const std::string turning = c.sensors.turning_words(); !turning.empty()) {
-        fsm.ctx->activity.fault_reason += " (" + turning + ")";
+      std::string why = "the spindle did not stop within spindle_stop_timeout_seconds";
+      if (const std::string turning = fsm.ctx->sensors.turning_words(); !turning.empty()) {
+        why += " (" + turning + ")";
       }
+      *fsm.failure = std::move(why);
     }
   };
   /// The requested tool's measuring rule asks for it (`tools`, `probe_after_change`).

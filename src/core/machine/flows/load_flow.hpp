@@ -65,8 +65,8 @@ struct LoadFlow_ : Flow<LoadFlow_> {
       std::string length;
       if (c.measuring(c.request.tool).never) {
         length = " not measured (\"never\": LinuxCNC's tool table length),";
-      } else if (c.activity.last_length) {
-        length = " measured " + format_length(c.config, *c.activity.last_length) + ",";
+      } else if (const auto measured = fsm.template get_state<Probe&>().length) {
+        length = " measured " + format_length(c.config, *measured) + ",";
       }
       fsm.ctx->tell(MessageKind::info, "tool " + std::to_string(c.request.tool) + length +
                                            " in pocket " + std::to_string(fsm.load_pocket));
