@@ -34,4 +34,8 @@ CheckTolerance check_tolerance_for(const Config& config, int tool) {
   return {config.check_tolerance(), "probe_check_tolerance"};
 }
 
+double Config::check_tolerance_of(int tool) const {
+  return check_tolerance_for(*this, tool).length;
+}
+
 }  // namespace fatc

@@ -3,8 +3,6 @@
 
 #include "tool_rules.hpp"
 
-#include "measuring.hpp"
-
 #include <algorithm>
 #include <cstdio>
 #include <utility>
@@ -118,10 +116,6 @@ MeasureRule Config::rule_of(int tool) const {
 bool Config::is_probe(int tool) const {
   const ToolConfig* own = declared_tool(*this, tool);
   return own && own->kind == ToolKind::probe;
-}
-
-double Config::check_tolerance_of(int tool) const {
-  return check_tolerance_for(*this, tool).length;
 }
 
 namespace {
