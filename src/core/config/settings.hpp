@@ -196,9 +196,6 @@ std::string spindle_held_refusal(int tool);
 /// Some tool is checked against `probe_check_tolerance` (its rule "check", no
 /// tolerance of its own): only then must probe_window exceed it.
 bool uses_default_tolerance(const Config& config);
-/// Whether M6 measures `tool` after putting it in the spindle, by its rule;
-/// `measured`: the changer has a length of it.
-bool measures_after_change(const Config& config, int tool, bool measured);
 /// What the changer does with `tool` at a change, in a few words for --lint
 /// and the panel: "measured", "checked ±0.05", "probe, spindle held, measured if new".
 std::string rule_words(const Config& config, int tool);

@@ -118,11 +118,6 @@ bool Config::is_probe(int tool) const {
   return own && own->kind == ToolKind::probe;
 }
 
-double Config::check_tolerance_of(int tool) const {
-  const ToolConfig* own = declared_tool(*this, tool);
-  return own && own->check_tolerance ? *own->check_tolerance : check_tolerance();
-}
-
 namespace {
 /// The cap of a tool's probing feeds: its own, a probe's the slow one.
 std::optional<double> feed_cap(const Config& config, int tool) {
@@ -172,20 +167,6 @@ bool uses_default_tolerance(const Config& config) {
   if (config.probe_after_change == MeasureRule::check) return true;  // every tool not listed
   for (const auto& [tool, own] : config.tools) {
     if (config.rule_of(tool) == MeasureRule::check && !own.check_tolerance) return true;
-  }
-  return false;
-}
-
-bool measures_after_change(const Config& config, int tool, bool measured) {
-  switch (config.rule_of(tool)) {
-    case MeasureRule::always:
-    case MeasureRule::check:
-      return true;
-    case MeasureRule::when_new:
-      return !measured;
-    case MeasureRule::off:
-    case MeasureRule::never:
-      return false;
   }
   return false;
 }

@@ -32,7 +32,7 @@ void Engine::take_flow_end() {
       fsm.process_event(FlowCancelled{});
       break;
     case FlowEnd::failed:
-      fsm.process_event(FlowFailed{});
+      fsm.process_event(FlowFailed{flow()->failure()});
       break;
     case FlowEnd::running:
       break;

@@ -42,8 +42,13 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
     using flag_list = boost::mpl::vector1<flag::Faulted>;
     using internal_transition_table = RefusesRequests<BecauseFaulted>;
     template <class Event, class Fsm>
-    void on_entry(const Event&, Fsm& fsm) {
+    void on_entry([[maybe_unused]] const Event& e, Fsm& fsm) {
       Context& c = *fsm.ctx;
+      // A flow's failure carries its reason; where Operating itself failed (the
+      // sensors disagree) it has said why already.
+      if constexpr (std::is_same_v<Event, FlowFailed>) {
+        if (!e.reason.empty()) c.activity.fault_reason = e.reason;
+      }
       c.close_chuck();
       // An executor still waiting for its next step aborts the program on this.
       c.publish(failure_step(c.activity.fault_reason));

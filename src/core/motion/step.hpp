@@ -33,7 +33,8 @@ struct Step {
   int tool = 0;           ///< for set_tool_length, set_spindle_tool and done
   double value = 0.0;     ///< tool length, for set_tool_length
   int pocket = 0;         ///< the pocket this move serves (its number), 0 if none
-  bool approach = false;  ///< part of the way into or out of `pocket`: may enter its column
+  /// Part of the way into or out of `pocket`: the move may enter its keep-out column.
+  bool may_enter_column = false;
   /// The tool the spindle holds during this move, 0 none: the keep-out
   /// counts its length below the nose (set as the step is published).
   int held = 0;

@@ -11,14 +11,14 @@ namespace fatc::plan {
 namespace {
 
 Step move(StepKind kind, unsigned axes, const Point& target, std::string label, int pocket = 0,
-          bool approach = false, double feed = 0.0) {
+          bool may_enter_column = false, double feed = 0.0) {
   Step step;
   step.kind = kind;
   step.axes = axes;
   step.target = target;
   step.label = std::move(label);
   step.pocket = pocket;
-  step.approach = approach;
+  step.may_enter_column = may_enter_column;
   step.feed = feed;
   return step;
 }
@@ -32,8 +32,9 @@ bool from_above(const Config& c, int pocket) {
   return c.pockets.at(pocket).approach == Approach::top;
 }
 
-// The waypoints of a pocket's approach, each named as --plan prints it.
-struct Pocket {
+// The moves to the waypoints of one pocket's approach, each named as --plan
+// prints it (not fatc::Pocket, the config's entry).
+struct PocketMoves {
   const Config& c;
   int number;
   PocketWaypoints at = pocket_waypoints(c, number);
@@ -145,7 +146,7 @@ Step tool_length(int tool, double length) {
 }
 
 Route return_to_approach(const Config& c, int pocket) {
-  const Pocket p{c, pocket};
+  const PocketMoves p{c, pocket};
   Route route{safe_z(c)};
   if (!direct(c)) route.push_back(safe_xy(c));
   if (!from_above(c, pocket)) {
@@ -159,16 +160,18 @@ Route return_to_approach(const Config& c, int pocket) {
 }
 
 Route return_into_pocket(const Config& c, int pocket) {
-  const Pocket p{c, pocket};
+  const PocketMoves p{c, pocket};
   if (from_above(c, pocket)) return {p.slowly_down()};
   if (direct(c)) return {p.column_edge(), p.slowly_into()};
   return {p.slowly_into()};
 }
 
-Route return_up_from_tool(const Config& c, int pocket) { return {Pocket{c, pocket}.above_chuck()}; }
+Route return_up_from_tool(const Config& c, int pocket) {
+  return {PocketMoves{c, pocket}.above_chuck()};
+}
 
 Route return_away(const Config& c, int pocket, bool fetch_follows) {
-  const Pocket p{c, pocket};
+  const PocketMoves p{c, pocket};
   Route route;
   if (!direct(c)) route.push_back(p.above_clearance());
   route.push_back(p.safe_z());
@@ -177,7 +180,7 @@ Route return_away(const Config& c, int pocket, bool fetch_follows) {
 }
 
 Route fetch_to_above_chuck(const Config& c, int pocket) {
-  const Pocket p{c, pocket};
+  const PocketMoves p{c, pocket};
   Route route{safe_z(c)};
   if (!direct(c)) route.push_back(safe_xy(c));
   route.push_back(p.over_pocket());
@@ -186,10 +189,12 @@ Route fetch_to_above_chuck(const Config& c, int pocket) {
   return route;
 }
 
-Route fetch_down_to_tool(const Config& c, int pocket) { return {Pocket{c, pocket}.slowly_down()}; }
+Route fetch_down_to_tool(const Config& c, int pocket) {
+  return {PocketMoves{c, pocket}.slowly_down()};
+}
 
 Route fetch_out_and_away(const Config& c, int pocket) {
-  const Pocket p{c, pocket};
+  const PocketMoves p{c, pocket};
   Route route;
   if (!from_above(c, pocket)) {
     if (direct(c)) {
@@ -222,6 +227,11 @@ Route while_spindle_stops(const Config& c, const Route& first) {
   // Across at a Z nobody knows is safe: only once up at safe Z.
   if (route.empty() || route.front().axes != axis_z) return {};
   return route;
+}
+
+Route while_spindle_stops_before(const Config& c, const FirstLeg& first) {
+  return while_spindle_stops(c, first.returns ? return_to_approach(c, first.pocket)
+                                              : fetch_to_above_chuck(c, first.pocket));
 }
 
 Route from_where_it_stands(const Config& c, Route route, const Point& at, unsigned known_axes) {
@@ -316,12 +326,17 @@ Route blended(const Config& c, const Route& route, const Point& at, unsigned kno
   return runs;
 }
 
+Route walked(const Config& c, Route route, const Standing& from) {
+  return blended(c, from_where_it_stands(c, std::move(route), from.at, from.known_axes), from.at,
+                 from.known_axes);
+}
+
 Route to_safe_z(const Config& c) { return {safe_z(c)}; }
 Route to_loading(const Config& c) { return {loading_z(c), loading_xy(c)}; }
 Route to_sensor(const Config& c) { return {loading_z(c), sensor_xy(c)}; }
 
 Route verify_pocket(const Config& c, int pocket) {
-  const Pocket p{c, pocket};
+  const PocketMoves p{c, pocket};
   Route route{safe_z(c), safe_xy(c)};
   if (from_above(c, pocket)) {
     route.insert(route.end(), {p.over_pocket(), p.above_clearance(), p.slowly_down(),

@@ -7,6 +7,7 @@
 // docs/sequences.md is the contract they follow.
 
 #include <optional>
+#include <type_traits>
 #include <vector>
 
 #include "../config/config.hpp"
@@ -74,6 +75,14 @@ Route fetch_out_and_away(const Config& c, int pocket);
 /// shape the config does not give, only up to safe Z. Nothing lower, the
 /// chuck closed. None where `move_while_spindle_stops` is false.
 Route while_spindle_stops(const Config& c, const Route& first);
+/// M6's first leg: the return of the spindle's tool into `pocket`, or the
+/// fetch of the tool in it.
+struct FirstLeg {
+  bool returns = false;
+  int pocket = 0;
+};
+/// while_spindle_stops of the route `first` walks first.
+Route while_spindle_stops_before(const Config& c, const FirstLeg& first);
 
 /// `route` from where the spindle stands (`at`, known on the axes of
 /// `known_axes`): a leading run of moves at safe Z that ends there is left
@@ -87,6 +96,29 @@ Route from_where_it_stands(const Config& c, Route route, const Point& at, unsign
 /// (Step::before), so that their corners at safe Z are rounded; from `at`
 /// (known on `known_axes`). Unchanged with a tolerance of 0.
 Route blended(const Config& c, const Route& route, const Point& at, unsigned known_axes);
+
+// ---------------------------------------------------------------- a phase
+/// Where the spindle stands as a phase starts: `at`, known on the axes of `known_axes`.
+struct Standing {
+  Point at;
+  unsigned known_axes = 0;
+};
+
+/// `route` as a phase walks it from where the spindle stands: from there
+/// (from_where_it_stands), blended.
+Route walked(const Config& c, Route route, const Standing& from);
+
+/// The whole route a phase walks, the one call it makes into plan/: the
+/// route (or the single step) `make` makes of the config and `args`, walked
+/// from where the spindle stands.
+template <class Make, class... Args>
+Route phase(const Config& c, const Standing& from, Make make, const Args&... args) {
+  if constexpr (std::is_same_v<std::invoke_result_t<Make, const Config&, const Args&...>, Step>) {
+    return walked(c, Route{make(c, args...)}, from);
+  } else {
+    return walked(c, make(c, args...), from);
+  }
+}
 
 // ---------------------------------------------------------------- the operator and the sensor
 /// Up to safe Z where the spindle stands.

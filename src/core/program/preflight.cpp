@@ -8,6 +8,7 @@
 #include <tuple>
 #include <utility>
 
+#include "../config/measuring.hpp"
 #include "../dry_run/sequence_check.hpp"
 #include "../formatted.hpp"
 #include "interpreter_output.hpp"
@@ -174,7 +175,7 @@ class Checker {
     spindle_known_ = true;
     probe_start_said_ = false;
     // Measured at this change: a "new" tool is not measured at the next.
-    if (tool != 0 && measures_after_change(config_, tool, measured(tool))) {
+    if (tool != 0 && measuring_of(config_, tool, measured(tool)).after_change) {
       measured_here_.insert(tool);
     }
   }
@@ -209,8 +210,8 @@ class Checker {
     const bool change = use.kind == program::ToolUse::Kind::change;
     // M6 of the tool already in the spindle answers at once: it measures nothing.
     const bool already = change && spindle_known_ && tool == tools_.spindle;
-    const bool measures =
-        change && !already && measures_after_change(config_, tool, measured(tool));
+    const Measuring measuring = measuring_of(config_, tool, measured(tool));
+    const bool measures = change && !already && measuring.after_change;
     std::optional<std::string> stored;  // the length as the column shows it
     std::string missing;                // why there is none
     if (in_.table != nullptr) {
@@ -236,19 +237,16 @@ class Checker {
       }
     }
     if (measures) {
-      // A check of a tool the changer has no length of measures it.
-      const bool checks = config_.rule_of(tool) == MeasureRule::check && measured(tool);
-      return std::string(checks ? "checked" : "measured") + " at the change" +
+      return std::string(measuring.checks ? "checked" : "measured") + " at the change" +
              (stored ? ", stored " + *stored : "");
     }
     if (measured_here_.count(tool) != 0) return "measured at an earlier change";
     if (stored) return *stored;
     if (never_measured_.insert(tool).second) {
-      const MeasureRule rule = config_.rule_of(tool);
       const std::string why =
           already ? "this M6 measures nothing (the tool is in the spindle already)"
                   : "M6 measures nothing (" + rule_said(config_, tool) +
-                        (rule == MeasureRule::never ? ": give its length in the tool table" : "") +
+                        (measuring.never ? ": give its length in the tool table" : "") +
                         ")";
       problem(use.where, tool_word(tool) + " was never measured: " + missing + ", and " + why);
     }

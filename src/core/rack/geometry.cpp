@@ -29,7 +29,7 @@ TipRoom tip_room(const Config& config, const Point& from, const Step& move) {
   if (vertical && to.z >= from.z) return least;
   constexpr double kAllHeights = 1e12;
   for (const auto& [number, pocket] : config.pockets) {
-    if (number == move.pocket && (move.approach || vertical)) continue;
+    if (number == move.pocket && (move.may_enter_column || vertical)) continue;
     Box footprint = pocket_column(config, pocket.at, 0.0);
     footprint.low.z = -kAllHeights;
     footprint.high.z = kAllHeights;
@@ -79,7 +79,7 @@ std::vector<std::string> check_move(const Config& config, const Point& from, uns
       // Touching a face, as at above_clearance, is no entry.
       const Box column = pocket_column(config, pocket.at, config.pocket_above_clearance_offset_z);
       if (!entry_along(from, target, column)) continue;
-      if (number == step.pocket && step.approach) continue;
+      if (number == step.pocket && step.may_enter_column) continue;
       problems.push_back("passes through the rack at pocket " + std::to_string(number) +
                          (number == step.pocket ? " outside its approach" : ""));
     }

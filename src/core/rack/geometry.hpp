@@ -61,10 +61,10 @@ const char* tip_remedy();
 /// Checks every move of a step list against the rack keep-out and the soft
 /// limits. The keep-out is a column per pocket (XY half-width
 /// Config::keepout_margin(), up to its above_clearance height): only the
-/// approach moves of the pocket being served may enter that pocket's column,
-/// and no move may enter any other. A tool the spindle holds (Step::held)
-/// hangs `held_length` below the nose: its tip may not enter a holder
-/// (tip_room).
+/// moves into or out of the pocket being served (Step::may_enter_column) may
+/// enter that pocket's column, and no move may enter any other. A tool the
+/// spindle holds (Step::held) hangs `held_length` below the nose: its tip may
+/// not enter a holder (tip_room).
 /// The problems of one move from `from` (of which the axes `known` are
 /// known), against the same rules; empty when it is safe.
 std::vector<std::string> check_move(const Config& config, const Point& from, unsigned known,

@@ -10,13 +10,13 @@
 namespace fatc {
 namespace {
 
-Step rapid(unsigned axes, Point target, int pocket = 0, bool approach = false) {
+Step rapid(unsigned axes, Point target, int pocket = 0, bool may_enter_column = false) {
   Step step;
   step.kind = StepKind::rapid;
   step.axes = axes;
   step.target = target;
   step.pocket = pocket;
-  step.approach = approach;
+  step.may_enter_column = may_enter_column;
   return step;
 }
 
@@ -53,7 +53,7 @@ TEST(KeepOut, shouldAllowOnlyTheApproachIntoTheServedPocket) {
   const Config config = test::valid_config();
   std::vector<Step> steps = {rapid(axis_xyz, {100, 60, -80}), rapid(axis_xy, {100, 20, -80}, 2, true)};
   EXPECT_TRUE(check_steps(config, steps, std::nullopt).empty());
-  steps[1].approach = false;
+  steps[1].may_enter_column = false;
   const auto violations = check_steps(config, steps, std::nullopt);
   ASSERT_EQ(violations.size(), 1u);
   EXPECT_EQ(violations[0].what, "passes through the rack at pocket 2 outside its approach");

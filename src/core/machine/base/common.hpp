@@ -66,12 +66,15 @@ struct LegDone {
 struct Finished;
 struct Failed;
 struct Cancelled;
-/// A leg or a flow cannot go on; ctx.activity.fault_reason says why.
+/// A leg or a flow cannot go on. A leg's failure is its flow's (Flow::failure
+/// says why); the flow's end carries `reason` to the machine above (Engine).
 struct FlowFailed {
   using ends_at = Failed;  ///< where the diagram draws it from
   FlowFailed() = default;
+  explicit FlowFailed(std::string why) : reason(std::move(why)) {}
   template <class Event>
   FlowFailed(const Event&) {}
+  std::string reason;
 };
 /// A flow reached its end, or ended early for the operator's Cancel.
 struct FlowFinished {
@@ -102,12 +105,16 @@ struct Cancelled : msmf::exit_pseudo_state<LegDone> {
 template <class Derived>
 struct Flow : msmf::state_machine_def<Derived> {
   Context* ctx = nullptr;
+  /// Why the flow failed, once it has: the run's (FlowRunOf), which a leg
+  /// writes for its flow; the flow's end carries it (FlowFailed).
+  std::string* failure = nullptr;
   int tool = 0;
   int pocket = 0;  ///< the pocket the tool comes from or goes to, 0 none
 
   template <class Event, class Parent>
   void on_entry(const Event&, Parent& parent) {
     ctx = parent.ctx;
+    failure = parent.failure;
     tool = Derived::served_tool(*ctx);
     pocket = Derived::served_pocket(*ctx, tool, parent);
   }
@@ -131,8 +138,9 @@ struct Flow : msmf::state_machine_def<Derived> {
 // ---------------------------------------------------------------- kinds of state
 
 /// A phase: a run of moves with no decision between them. On entry it walks
-/// the route `Derived::route(ctx, leg)` makes, one waypoint after the other
-/// (Context::walk); its table sees one InPosition, at the route's end.
+/// the route `Derived::route(ctx, leg)` makes in one call into plan/
+/// (plan::phase), one waypoint after the other (Context::walk); its table
+/// sees one InPosition, at the route's end.
 /// Leaving it early (a fault, an abort) drops the rest of the route.
 template <class Derived>
 struct Walking : msmf::state<> {
@@ -151,7 +159,7 @@ template <plan::Route (*Plan)(const Config&)>
 struct Going : Walking<Going<Plan>> {
   template <class Leg>
   static plan::Route route(const Context& c, const Leg&) {
-    return Plan(c.config);
+    return plan::phase(c.config, c.standing(), Plan);
   }
 };
 /// A phase whose route comes from the config and the pocket the leg serves.
@@ -159,7 +167,7 @@ template <plan::Route (*Plan)(const Config&, int)>
 struct GoingAtPocket : Walking<GoingAtPocket<Plan>> {
   template <class Leg>
   static plan::Route route(const Context& c, const Leg& leg) {
-    return Plan(c.config, leg.pocket);
+    return plan::phase(c.config, c.standing(), Plan, leg.pocket);
   }
 };
 

@@ -49,10 +49,7 @@ std::optional<std::string> Context::rehearse(const std::function<void(Changer&)>
 
 void Context::walk(plan::Route route) {
   if (route.empty()) throw std::logic_error("a phase with no waypoints");
-  route_ = plan::blended(
-      config,
-      plan::from_where_it_stands(config, std::move(route), motion.position, motion.known_axes),
-      motion.position, motion.known_axes);
+  route_ = std::move(route);
   route_next_ = 1;
   publish(route_.front());
 }

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "../../config/config.hpp"
+#include "../../config/measuring.hpp"
 #include "../../motion/step.hpp"
 #include "../../plan/routes.hpp"
 #include "../../rack/geometry.hpp"
@@ -73,7 +74,11 @@ struct Outputs {
 struct Activity {
   std::string dwell;                  ///< what the running timer waits for
   Prompt prompt;                      ///< the last question put to the operator
-  std::optional<double> last_length;  ///< the last length a probe measured
+  /// The last length a probe measured, for the status: flows take it from
+  /// their probing leg.
+  std::optional<double> last_length;
+  /// Why the changer is in fault: a flow's failure (FlowFailed), a refused
+  /// step, a failed check, an abort.
   std::string fault_reason;
 };
 
@@ -122,11 +127,11 @@ class Context {
   /// Why `request`, made of a copy of this changer, would break the keep-out
   /// or the soft limits on the way; nothing if it would not, or no rehearsal is set.
   std::optional<std::string> rehearse(const std::function<void(Changer&)>& request) const;
-  /// A phase walks `route`: its first waypoint is published now, each
-  /// following one when the one before is reached (next_waypoint). The way
-  /// at safe Z to where the spindle already stands is left out
-  /// (plan::from_where_it_stands): M6's first leg after its moves while the
-  /// spindle ran down, a fetch from safe or (direct path) from safe Z.
+  /// Where the spindle stands, as plan::phase walks a route from there.
+  plan::Standing standing() const { return {motion.position, motion.known_axes}; }
+  /// A phase walks `route`, as plan::phase made it from where the spindle
+  /// stands: its first waypoint is published now, each following one when
+  /// the one before is reached (next_waypoint).
   void walk(plan::Route route);
   /// The waypoint under way was reached: publishes the next one of the route
   /// walked and says true; false when the route is done, or none is walked.
@@ -148,6 +153,11 @@ class Context {
   void end_sequence();
   /// The pocket the sequence under way serves (its last progress), 0 if none.
   int sequence_pocket() const { return tools.in_progress ? tools.in_progress->pocket : 0; }
+
+  /// What `tool`'s measuring rule asks, with the length the changer has of it or not.
+  Measuring measuring(int tool) const {
+    return measuring_of(config, tool, tools.lengths.count(tool) != 0);
+  }
 
   /// The pocket the tool in the spindle goes back to: its own, or, for a tool
   /// from outside the rack, its first-start pocket if that is free.

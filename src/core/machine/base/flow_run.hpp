@@ -9,6 +9,7 @@
 
 #include <boost/msm/back/common_types.hpp>
 #include <memory>
+#include <string>
 #include <type_traits>
 #include <typeindex>
 #include <variant>
@@ -48,6 +49,8 @@ class FlowRun {
   virtual bool flagged(std::type_index flag) const = 0;
   /// How the flow ended, told once: `running` until it ends and after.
   virtual FlowEnd take_end() = 0;
+  /// Why it failed, once it has.
+  virtual const std::string& failure() const = 0;
   virtual BatchCount batch() const = 0;
   /// Leaves the flow's states, as the machine above leaves Running<Flow>.
   virtual void stop() = 0;

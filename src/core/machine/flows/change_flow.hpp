@@ -25,24 +25,27 @@ struct ChangeFlow_ : Flow<ChangeFlow_> {
     return c.tools.pocket_holding(c.request.tool).has_value();
   }
 
-  /// The route M6's first leg walks: the return of the spindle's rack tool,
-  /// else the fetch of the requested one. None for a handover at `loading`,
-  /// where the operator's hand meets the spindle once it stands.
-  static plan::Route first_leg_route(const Context& c) {
+  /// M6's first leg: the return of the spindle's rack tool, else the fetch
+  /// of the requested one. None for a handover at `loading`, where the
+  /// operator's hand meets the spindle once it stands.
+  static std::optional<plan::FirstLeg> first_leg(const Context& c) {
     if (c.tools.spindle != 0) {
       const auto pocket = c.return_pocket(c.tools.spindle);
-      return pocket ? plan::return_to_approach(c.config, *pocket) : plan::Route{};
+      if (!pocket) return std::nullopt;
+      return plan::FirstLeg{true, *pocket};
     }
     const auto pocket = c.tools.pocket_holding(c.request.tool);
-    if (c.request.tool == 0 || !pocket) return {};
-    return plan::fetch_to_above_chuck(c.config, *pocket);
+    if (c.request.tool == 0 || !pocket) return std::nullopt;
+    return plan::FirstLeg{false, *pocket};
   }
   /// Up to safe Z and across toward the first leg's pocket while the spindle
   /// runs down (plan::while_spindle_stops); the leg then starts from there.
   struct MovingWhileRunningDown : Walking<MovingWhileRunningDown> {
     template <class Flow>
     static plan::Route route(const Context& c, const Flow&) {
-      return plan::while_spindle_stops(c.config, first_leg_route(c));
+      const auto first = first_leg(c);
+      if (!first) return {};
+      return plan::phase(c.config, c.standing(), plan::while_spindle_stops_before, *first);
     }
   };
   /// The spindle still turns, and part of the way needs no standstill.
@@ -59,12 +62,11 @@ struct ChangeFlow_ : Flow<ChangeFlow_> {
   struct SaySpindleDidNotStop {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      const Context& c = *fsm.ctx;
-      fsm.ctx->activity.fault_reason =
-          "the spindle did not stop within spindle_stop_timeout_seconds";
-      if (const std::string turning = c.sensors.turning_words(); !turning.empty()) {
-        fsm.ctx->activity.fault_reason += " (" + turning + ")";
+      std::string why = "the spindle did not stop within spindle_stop_timeout_seconds";
+      if (const std::string turning = fsm.ctx->sensors.turning_words(); !turning.empty()) {
+        why += " (" + turning + ")";
       }
+      *fsm.failure = std::move(why);
     }
   };
   /// The requested tool's measuring rule asks for it (`tools`, `probe_after_change`).
@@ -72,8 +74,7 @@ struct ChangeFlow_ : Flow<ChangeFlow_> {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       const Context& c = *fsm.ctx;
-      return measures_after_change(c.config, c.request.tool,
-                                   c.tools.lengths.count(c.request.tool) != 0);
+      return c.measuring(c.request.tool).after_change;
     }
   };
 

@@ -14,6 +14,7 @@ class FlowRunOf final : public FlowRun {
   template <class Request>
   FlowRunOf(Context& ctx, const Request& request) {
     fsm_.ctx = &ctx;
+    fsm_.failure = &failure_;
     fsm_.start(request);
   }
   boost::msm::back::HandledEnum take(const FlowEvent& event) override {
@@ -29,6 +30,7 @@ class FlowRunOf final : public FlowRun {
     told_ = end != FlowEnd::running;
     return end;
   }
+  const std::string& failure() const override { return failure_; }
   BatchCount batch() const override { return fsm_.batch_count(); }
   void stop() override { fsm_.stop(); }
 
@@ -37,6 +39,7 @@ class FlowRunOf final : public FlowRun {
   bool flagged(std::type_index flag, flag::List<Flags...>) const {
     return ((flag == typeid(Flags) && fsm_.template is_flag_active<Flags>()) || ...);
   }
+  std::string failure_;
   Machine_of<Front> fsm_;
   bool told_ = false;
 };

@@ -47,7 +47,7 @@ struct LoadFlow_ : Flow<LoadFlow_> {
   struct MeasuredAtLoad {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      return fsm.ctx->config.rule_of(fsm.ctx->request.tool) != MeasureRule::never;
+      return !fsm.ctx->measuring(fsm.ctx->request.tool).never;
     }
   };
   /// A "never" tool already in the spindle: nothing to insert or measure.
@@ -64,10 +64,10 @@ struct LoadFlow_ : Flow<LoadFlow_> {
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       const Context& c = *fsm.ctx;
       std::string length;
-      if (c.config.rule_of(c.request.tool) == MeasureRule::never) {
+      if (c.measuring(c.request.tool).never) {
         length = " not measured (\"never\": LinuxCNC's tool table length),";
-      } else if (c.activity.last_length) {
-        length = " measured " + format_length(c.config, *c.activity.last_length) + ",";
+      } else if (const auto measured = fsm.template get_state<Probe&>().length) {
+        length = " measured " + format_length(c.config, *measured) + ",";
       }
       fsm.ctx->tell(MessageKind::info, "tool " + std::to_string(c.request.tool) + length +
                                            " in pocket " + std::to_string(fsm.load_pocket));

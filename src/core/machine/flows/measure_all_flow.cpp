@@ -19,7 +19,7 @@ std::vector<int> measurable_tools(const Context& ctx, const std::vector<int>& as
   for (const int tool : asked) {
     if (std::find(tools.begin(), tools.end(), tool) != tools.end()) continue;
     const bool in_spindle = tool != 0 && tool == ctx.tools.spindle && ctx.return_pocket(tool);
-    if (ctx.config.rule_of(tool) == MeasureRule::never) {
+    if (ctx.measuring(tool).never) {
       never += (never.empty() ? "" : ", ") + ("T" + std::to_string(tool));
     } else if (ctx.tools.pocket_holding(tool) || in_spindle) {
       tools.push_back(tool);

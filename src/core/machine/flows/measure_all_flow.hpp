@@ -78,7 +78,7 @@ struct MeasureAllFlow_ : Flow<MeasureAllFlow_> {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       Context& c = *fsm.ctx;
-      const double now = *c.activity.last_length;
+      const double now = *fsm.template get_state<Probe&>().length;
       std::string line = "T" + std::to_string(c.request.tool) + " " + format_length(c.config, now);
       if (fsm.batch.stored) {
         char change[32];

@@ -32,8 +32,8 @@ struct VerifyFlow_ : Flow<VerifyFlow_> {
   /// One waypoint at a time: the run holds at each.
   struct ToWaypoint : Walking<ToWaypoint> {
     template <class Leg>
-    static plan::Route route(const Context&, const Leg& leg) {
-      return {leg.route.at(leg.reached)};
+    static plan::Route route(const Context& c, const Leg& leg) {
+      return plan::walked(c.config, {leg.route.at(leg.reached)}, c.standing());
     }
   };
   struct StopPrompt {

@@ -25,11 +25,15 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
   KeepoutLength approach_length;  ///< the length it was planned from
   double first_touch_z = 0.0;  ///< where the seek touched
   double latched_z = 0.0;      ///< where the latch touched
-  std::string problem;         ///< why nothing was measured, in words
+  /// The leg's result, which its flow takes as it ends: the length measured
+  /// (latched Z minus probe_length_compensation_offset), or why none was.
+  std::optional<double> length;
+  std::string problem;
 
   template <class Event, class Parent>
   void on_entry(const Event& e, Parent& parent) {
     Flow::on_entry(e, parent);
+    length.reset();
     problem.clear();
     ctx->record_progress("measuring tool " + std::to_string(tool), 0);
   }
@@ -80,7 +84,8 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
   struct BackingOff : Walking<BackingOff> {
     template <class Leg>
     static plan::Route route(const Context& c, const Leg& leg) {
-      return {plan::probe_back_off(c.config, leg.tool, leg.first_touch_z)};
+      return plan::phase(c.config, c.standing(), plan::probe_back_off, leg.tool,
+                         leg.first_touch_z);
     }
   };
   struct Latching : Probing<Latch> {};
@@ -88,13 +93,13 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
   struct Retracting : Walking<Retracting> {
     template <class Leg>
     static plan::Route route(const Context& c, const Leg& leg) {
-      return {plan::retract_from_sensor(c.config, leg.latched_z)};
+      return plan::phase(c.config, c.standing(), plan::retract_from_sensor, leg.latched_z);
     }
   };
   struct RetractingUnmeasured : Walking<RetractingUnmeasured> {
     template <class Leg>
     static plan::Route route(const Context& c, const Leg&) {
-      return {plan::loading_z(c.config)};
+      return plan::phase(c.config, c.standing(), plan::loading_z);
     }
   };
 
@@ -133,8 +138,7 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       const Context& c = *fsm.ctx;
-      return !c.request.in_program || c.config.rule_of(fsm.tool) != MeasureRule::check ||
-             c.tools.lengths.count(fsm.tool) == 0;
+      return !c.request.in_program || !c.measuring(fsm.tool).checks;
     }
   };
   struct RememberApproach {
@@ -150,18 +154,22 @@ struct ProbingLeg_ : Flow<ProbingLeg_> {
       fsm.first_touch_z = e.z;
     }
   };
+  /// A check: the length is the leg's result and the status shows it; the
+  /// stored one stays.
   struct RememberLatch {
     template <class Fsm, class Source, class Target>
     void operator()(const ProbeResult& e, Fsm& fsm, Source&, Target&) const {
       fsm.latched_z = e.z;
-      fsm.ctx->activity.last_length = e.z - fsm.ctx->config.probe_length_compensation_offset;
+      fsm.length = e.z - fsm.ctx->config.probe_length_compensation_offset;
+      fsm.ctx->activity.last_length = fsm.length;
     }
   };
   struct RecordLength {
     template <class Fsm, class Source, class Target>
     void operator()(const ProbeResult& e, Fsm& fsm, Source&, Target&) const {
       fsm.latched_z = e.z;
-      fsm.ctx->record_length(fsm.tool, e.z - fsm.ctx->config.probe_length_compensation_offset);
+      fsm.length = e.z - fsm.ctx->config.probe_length_compensation_offset;
+      fsm.ctx->record_length(fsm.tool, *fsm.length);
     }
   };
   struct SayNoTouch {
@@ -265,19 +273,17 @@ using ProbingLeg = Machine_of<ProbingLeg_>;
 struct MeasureLeg_ : Flow<MeasureLeg_> {
   using Probe = ProbingLeg;
 
-  /// Where the tolerance of `tool` comes from, for the fault's words.
-  static std::string tolerance_name(const Config& config, int tool) {
-    const auto own = config.tools.find(tool);
-    return own != config.tools.end() && own->second.check_tolerance
-               ? "tools." + std::to_string(tool) + ".check_tolerance"
-               : std::string("probe_check_tolerance");
+  /// What the probe measured, as it finished.
+  template <class Fsm>
+  static double measured(Fsm& fsm) {
+    return *fsm.template get_state<Probe&>().length;
   }
 
   struct LengthDiffers {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       const Context& c = *fsm.ctx;
-      return std::abs(*c.activity.last_length - c.tools.lengths.at(fsm.tool)) >
+      return std::abs(measured(fsm) - c.tools.lengths.at(fsm.tool)) >
              c.config.check_tolerance_of(fsm.tool);
     }
   };
@@ -286,7 +292,7 @@ struct MeasureLeg_ : Flow<MeasureLeg_> {
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
       const Context& c = *fsm.ctx;
       fsm.ctx->tell(MessageKind::info, "tool " + std::to_string(fsm.tool) + " measures " +
-                                           format_length(c.config, *c.activity.last_length) +
+                                           format_length(c.config, measured(fsm)) +
                                            ", stored " +
                                            format_length(c.config, c.tools.lengths.at(fsm.tool)));
     }
@@ -294,22 +300,23 @@ struct MeasureLeg_ : Flow<MeasureLeg_> {
   struct SayBrokenOrPulledOut {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      Context& c = *fsm.ctx;
-      c.activity.fault_reason =
-          "tool " + std::to_string(fsm.tool) + " measures " +
-          format_length(c.config, *c.activity.last_length) + " but its stored length is " +
-          format_length(c.config, c.tools.lengths.at(fsm.tool)) + ", " +
-          format_length(c.config, std::abs(*c.activity.last_length - c.tools.lengths.at(fsm.tool))) +
-          (*c.activity.last_length < c.tools.lengths.at(fsm.tool) ? " shorter" : " longer") +
-          " (" + tolerance_name(c.config, fsm.tool) + " " +
-          format_length(c.config, c.config.check_tolerance_of(fsm.tool)) +
+      const Context& c = *fsm.ctx;
+      const CheckTolerance tolerance = check_tolerance_for(c.config, fsm.tool);
+      const double length = measured(fsm);
+      const double stored = c.tools.lengths.at(fsm.tool);
+      *fsm.failure =
+          "tool " + std::to_string(fsm.tool) + " measures " + format_length(c.config, length) +
+          " but its stored length is " + format_length(c.config, stored) + ", " +
+          format_length(c.config, std::abs(length - stored)) +
+          (length < stored ? " shorter" : " longer") +
+          " (" + tolerance.key + " " + format_length(c.config, tolerance.length) +
           "): tool broken or pulled out?";
     }
   };
   struct SayNotMeasured {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      fsm.ctx->activity.fault_reason =
+      *fsm.failure =
           "tool " + std::to_string(fsm.tool) +
           " could not be measured after the change (" + rule_said(fsm.ctx->config, fsm.tool) +
           "): " +

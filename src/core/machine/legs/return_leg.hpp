@@ -61,7 +61,7 @@ struct ReturnLeg_ : Flow<ReturnLeg_<Which>> {
   struct Away : Walking<Away> {
     template <class Leg>
     static plan::Route route(const Context& c, const Leg& leg) {
-      return plan::return_away(c.config, leg.pocket, leg.fetch_follows);
+      return plan::phase(c.config, c.standing(), plan::return_away, leg.pocket, leg.fetch_follows);
     }
   };
 
