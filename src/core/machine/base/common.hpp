@@ -102,6 +102,13 @@ struct Cancelled : msmf::exit_pseudo_state<LegDone> {
 /// Base of every flow and leg front: takes the context from its parent on
 /// entry (a flow, a machine of its own, from itself: FlowRunOf sets it) and
 /// remembers which tool it serves and at which pocket.
+/// Whether a parent has a flow run's failure to share: a flow or a leg has,
+/// the machine above Operating has not.
+template <class T, class = void>
+struct HasFailure : std::false_type {};
+template <class T>
+struct HasFailure<T, std::void_t<decltype(std::declval<T&>().failure)>> : std::true_type {};
+
 template <class Derived>
 struct Flow : msmf::state_machine_def<Derived> {
   Context* ctx = nullptr;
@@ -114,7 +121,7 @@ struct Flow : msmf::state_machine_def<Derived> {
   template <class Event, class Parent>
   void on_entry(const Event&, Parent& parent) {
     ctx = parent.ctx;
-    failure = parent.failure;
+    if constexpr (HasFailure<Parent>::value) failure = parent.failure;
     tool = Derived::served_tool(*ctx);
     pocket = Derived::served_pocket(*ctx, tool, parent);
   }
