@@ -48,6 +48,8 @@ for want in /usr/bin/fixed_atc_probe /usr/lib/linuxcnc/modules/fatc_chuck_guard.
             /usr/share/fixed_atc_probe/nc_files/fixed_atc_probe_on_abort.ngc \
             /usr/share/fixed_atc_probe/hal/fixed_atc_probe.hal \
             /usr/share/fixed_atc_probe/hal/fixed_atc_probe_panel.ui \
+            /usr/share/fixed_atc_probe/hal/wiring/mesa_7i76e.hal \
+            /usr/share/fixed_atc_probe/hal/wiring/vfd_huanyang.hal \
             /usr/share/fixed_atc_probe/config/config.json \
             /usr/share/fixed_atc_probe/config/sim/fixed_atc_sim.ini \
             /usr/share/doc/fixed-atc-probe/README.md \

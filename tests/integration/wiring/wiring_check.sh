@@ -40,6 +40,8 @@ for snippet in "$root"/hal/wiring/*.hal; do
   cat > "$work/run.hal" <<HAL
 # what the machine's own HAL gives the changer: motion, the card, iocontrol
 loadrt trivkins coordinates=xyz
+loadrt tpmod
+loadrt homemod
 loadrt [EMCMOT]EMCMOT servo_period_nsec=[EMCMOT]SERVO_PERIOD num_joints=3 num_dio=4 num_aio=4
 addf motion-command-handler servo-thread
 addf motion-controller servo-thread
