@@ -66,3 +66,51 @@ HAL
   fi
   cat "$out/$name.txt"
 done
+
+# The stand-ins against the real drivers where they are installed and load
+# without their hardware: hy_vfd opens any serial device, a pseudo-terminal
+# here, makes its pins and waits for enable. Its pins as halcmd shows them
+# must be stand_ins.json's, type, direction and name.
+if command -v hy_vfd > /dev/null; then
+  # The terminal is held open until the file done appears (2 minutes at most).
+  runuser -u "$user" -- /usr/bin/python3 -c '
+import os, pty, sys, time
+master, slave = pty.openpty()
+open(sys.argv[1] + "/pty", "w").write(os.ttyname(slave))
+end = time.monotonic() + 120
+while not os.path.exists(sys.argv[1] + "/done") and time.monotonic() < end:
+    time.sleep(0.1)' "$work" &
+  holder=$!
+  for _ in $(seq 100); do [ -s "$work/pty" ] && break; sleep 0.1; done
+  cat > "$work/real.hal" <<HAL
+loadusr -Wn hy-real hy_vfd -n hy-real -d $(cat "$work/pty")
+show pin hy-real
+HAL
+  if runuser -u "$user" -- timeout 60 halrun -f "$work/real.hal" > "$work/real.txt" 2>&1; then
+    awk '$5 ~ /^hy-real\./ {sub(/^hy-real\./, "", $5); print $2, tolower($3), $5}' "$work/real.txt" | sort > "$work/real-pins.txt"
+    /usr/bin/python3 - "$here" > "$work/stand-in-pins.txt" <<'PY'
+import json, sys
+sys.dont_write_bytecode = True
+sys.path.insert(0, sys.argv[1])
+import stand_in
+entry = json.load(open(sys.argv[1] + "/stand_ins.json"))["hy_vfd"]
+print("\n".join(sorted("%s %s %s" % (kind, direction, name) for name, kind, direction in stand_in.pins_of(entry))))
+PY
+    if diff -u "$work/stand-in-pins.txt" "$work/real-pins.txt" > "$work/diff.txt"; then
+      echo "ok: the installed hy_vfd ($(dpkg-query -W -f '${Version}' linuxcnc-uspace 2>/dev/null)) has the $(wc -l < "$work/real-pins.txt") pins stand_ins.json lists" > "$out/stand_ins.txt"
+      echo pass > "$out/stand_ins.result"
+    else
+      { cat "$work/diff.txt"; echo "FAIL: the installed hy_vfd's pins (+) are not stand_ins.json's (-)"; } > "$out/stand_ins.txt"
+      echo fail > "$out/stand_ins.result"
+    fi
+  else
+    { cat "$work/real.txt"; echo "FAIL: the installed hy_vfd did not load on a pseudo-terminal"; } > "$out/stand_ins.txt"
+    echo fail > "$out/stand_ins.result"
+  fi
+  touch "$work/done"
+  wait "$holder"
+else
+  echo "ok: hy_vfd is not installed: its stand-in not compared" > "$out/stand_ins.txt"
+  echo pass > "$out/stand_ins.result"
+fi
+cat "$out/stand_ins.txt"
