@@ -54,10 +54,11 @@ HAL
   chmod a+r "$work"/*
   if ! runuser -u "$user" -- env PATH="$(dirname "$binary"):$PATH" timeout 120 halrun -i "$work/wiring.ini" -f "$work/run.hal" > "$work/out.txt" 2>&1 ||
      [ "$(cat "$work/result-$name" 2>/dev/null)" != pass ]; then
-    # halcmd names the copy; the line is the snippet's.
-    { grep -h "FAIL:\|does not exist\|not found\|rror" "$work/out.txt" | sed "s|$copy|hal/wiring/$name|g" ||
+    # halcmd's own lines start with the file and line it stopped at (the
+    # copy's line is the snippet's).
+    { grep -hE "FAIL:|\.hal:[0-9]+: " "$work/out.txt" | sed "s|$copy|hal/wiring/$name|g" ||
         cat "$work/out.txt"
-      echo "FAIL: hal/wiring/$name: not as it should be with the stand-ins of tests/integration/wiring/stand_ins.json"
+      echo "FAIL: hal/wiring/$name, loaded with the stand-ins of tests/integration/wiring/stand_ins.json"
     } > "$out/$name.txt"
     echo fail > "$out/$name.result"
   else
