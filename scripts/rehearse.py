@@ -54,6 +54,16 @@ class Refused(Exception):
     """One line: what is wrong and where; nothing starts."""
 
 
+def text_of(path):
+    with open(path) as f:
+        return f.read()
+
+
+def write(path, text):
+    with open(path, "w") as f:
+        f.write(text)
+
+
 def units_of(word, where):
     unit = (word or "").strip().lower()
     if unit not in MM:
@@ -65,7 +75,9 @@ def read_ini(path):
     """LinuxCNC's reader of the INI, after the checks it cannot make."""
     if not os.path.isfile(path):
         raise Refused("%s: no such file" % path)
-    for number, line in enumerate(open(path, errors="replace"), 1):
+    with open(path, errors="replace") as f:
+        lines = f.read().splitlines()
+    for number, line in enumerate(lines, 1):
         if line.startswith("#INCLUDE"):
             raise Refused("%s line %d: #INCLUDE: give the INI LinuxCNC expanded (%s.expanded, "
                           "written when it starts)" % (path, number, os.path.basename(path)))
@@ -148,7 +160,7 @@ def sim_ini(ini, path, config, config_path, work):
     [FIXED_ATC_PROBE] behaviour keys and iocontrol's cycle, the simulated setter
     where theirs is and the simulated rack (tests/integration/sensors) wired;
     the touch-off sensor's HAL on the user's joints."""
-    template = open(os.path.join(ROOT, "config", "sim", "fixed_atc_sim.ini")).read()
+    template = text_of(os.path.join(ROOT, "config", "sim", "fixed_atc_sim.ini"))
     head = template[:template.index("\n[TRAJ]") + 1]
     sensor, length = setter(config, config_path)
     for key, value in list(sensor.items()) + [(k, ini.find("FIXED_ATC_PROBE", k)) for k in BEHAVIOUR_KEYS]:
@@ -162,12 +174,12 @@ def sim_ini(ini, path, config, config_path, work):
     joints = joints_of(ini, path)
     touchoff = os.path.join(ROOT, "config", "sim", "touchoff_sensor.hal")
     if joints != {"X": 0, "Y": 1, "Z": 2}:
-        text = open(touchoff).read()
+        text = text_of(touchoff)
         for axis, name in (("X", "x"), ("Y", "y"), ("Z", "z")):
             text = text.replace("net fatc-sim-%s joint.%d.pos-fb" % (name, "XYZ".index(axis)),
                                 "net fatc-sim-%s joint.%d.pos-fb" % (name, joints[axis]))
         touchoff = os.path.join(work, "touchoff_sensor.hal")
-        open(touchoff, "w").write(text)
+        write(touchoff, text)
     head = head.replace("HALFILE = touchoff_sensor.hal", "HALFILE = %s\nHALFILE = %s\nHALFILE = %s" % (
         touchoff, os.path.join(work, "rack_sim.hal"), os.path.join(ROOT, "tests", "soak", "soak_rack.hal")))
     return head + "\n" + machine_sections(ini, path), length
@@ -175,8 +187,8 @@ def sim_ini(ini, path, config, config_path, work):
 
 def rack_hal(config):
     """tests/integration/sensors/rack_sim.hal with a pocket sensor for each of the user's pockets."""
-    lines = [line for line in open(os.path.join(ROOT, "tests", "integration", "sensors",
-                                                "rack_sim.hal")).read().splitlines()
+    lines = [line for line in text_of(os.path.join(ROOT, "tests", "integration", "sensors",
+                                                   "rack_sim.hal")).splitlines()
              if "pocket-occupied-" not in line]
     lines += ["net fatc-sim-pocket-%s fatc-rack-sim.pocket-occupied-%s => "
               "fixed_atc_probe.pocket-occupied-%s" % (p, p, p) for p in sorted(config["pockets"], key=int)]
@@ -184,14 +196,23 @@ def rack_hal(config):
 
 
 def check(binary, ini_path, config_path, table):
-    """`fixed_atc_probe --check`: the config against this machine's limits."""
-    run = subprocess.run([binary, "--check", "--config", config_path, "--ini", ini_path,
-                          "--tool-table", table], stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
-                         text=True)
+    """`fixed_atc_probe --check`: the config against this machine's limits; its
+    first problem, and the command that lists them all."""
+    command = [binary, "--check", "--config", config_path, "--ini", ini_path, "--tool-table", table]
+    run = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
     if run.returncode != 0:
-        problems = [line for line in run.stdout.splitlines() if line.strip()]
-        raise Refused("%s does not fit %s (fixed_atc_probe --check, exit %d): %s" % (
-            config_path, ini_path, run.returncode, " | ".join(problems[-8:])))
+        problems = [line for line in run.stderr.splitlines() if line.strip()]
+        # The sequences' problems are on stdout, indented under their heading.
+        lines = run.stdout.splitlines()
+        heading = next((i for i, line in enumerate(lines) if line.startswith("checking every sequence")),
+                       len(lines))
+        for line in lines[heading + 1:]:
+            if not line.startswith("  "):
+                break
+            problems.append(line.strip())
+        problems = problems or ["exit %d" % run.returncode]
+        raise Refused("%s does not fit %s: %s (the first problem `%s` names)" % (
+            config_path, ini_path, problems[0], " ".join(command)))
 
 
 def prepare(args):
@@ -208,7 +229,8 @@ def prepare(args):
     if not os.path.isfile(table):
         raise Refused("%s: no such file (the tool table)" % table)
     try:
-        config = json.load(open(config_path))
+        with open(config_path) as f:
+            config = json.load(f)
     except ValueError as e:
         raise Refused("%s: not JSON: %s" % (config_path, e))
     machine = units_of(need(ini, "TRAJ", "LINEAR_UNITS", ini_path), ini_path + ": [TRAJ]LINEAR_UNITS")
@@ -225,8 +247,8 @@ def prepare(args):
     if length <= 0:
         raise Refused("%s: probe_length_compensation_offset %s is not below probe_limit.z: no "
                       "tool length to measure" % (config_path, config["probe_length_compensation_offset"]))
-    open(os.path.join(work, "rehearsal.ini"), "w").write(text)
-    open(os.path.join(work, "rack_sim.hal"), "w").write(rack_hal(config))
+    write(os.path.join(work, "rehearsal.ini"), text)
+    write(os.path.join(work, "rack_sim.hal"), rack_hal(config))
     env = dict(os.environ, FATC_BINARY=args.binary, FATC_SIM_INI=os.path.join(work, "rehearsal.ini"),
                FATC_CONFIG=config_path, FATC_TOOL_TABLE=table, FATC_CONFIG_SET=json.dumps(CONFIG_SET),
                FATC_SOAK_TRUE_LENGTH=repr(length))
@@ -237,7 +259,7 @@ def prepare(args):
 
 def summary(soak, ini_path, wanted):
     """What held, what faulted, the slowest change: from the soak's report."""
-    report = json.load(open(os.path.join(soak, "soak_report.json")))
+    report = json.loads(text_of(os.path.join(soak, "soak_report.json")))
     faults = report["faults"]
     slow = report["slowest_change"]
     lines = [

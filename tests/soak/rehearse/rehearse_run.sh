@@ -38,5 +38,5 @@ status=0
 "$here/../../../scripts/rehearse.py" --ini "$machine/machine.ini" --changes "$changes" --seed 3 \
   --workdir "$work/rehearsal" > "$work/rehearse.out" 2>&1 || status=$?
 cat "$work/rehearse.out"
-python3 "$here/rehearse_check.py" "$machine/machine.ini" "$work/rehearsal" "$work/rehearse.out" "$changes"
+/usr/bin/python3 "$here/rehearse_check.py" "$machine/machine.ini" "$work/rehearsal" "$work/rehearse.out" "$changes"
 exit "$status"

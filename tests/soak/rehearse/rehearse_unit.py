@@ -34,6 +34,10 @@ MACHINE_ON_SIGNAL = machine-is-enabled
 """
 
 
+def config_of(name):
+    return json.loads(rehearse.text_of(os.path.join(HERE, name)))
+
+
 def without_m6_moves(text):
     return "".join(line for line in text.splitlines(True) if not line.startswith("TOOL_CHANGE_"))
 
@@ -47,8 +51,8 @@ class Machine(unittest.TestCase):
 
     def machine(self, sample, config, section=SECTION, edit=lambda text: text):
         ini = os.path.join(self.folder, "machine.ini")
-        text = without_m6_moves(open(os.path.join(SAMPLES, sample)).read())
-        open(ini, "w").write(edit(text) + section)
+        text = without_m6_moves(rehearse.text_of(os.path.join(SAMPLES, sample)))
+        rehearse.write(ini, edit(text) + section)
         table = linuxcnc.ini(os.path.join(SAMPLES, sample)).find("EMCIO", "TOOL_TABLE")
         shutil.copy(os.path.join(SAMPLES, os.path.dirname(sample), table), self.folder)
         shutil.copy(os.path.join(HERE, config), os.path.join(self.folder, "fixed_atc_probe.json"))
@@ -73,10 +77,10 @@ class Translation(Machine):
     def test_the_copy_keeps_the_machine_and_its_behaviour_keys(self):
         ini_path = self.machine("gmoccapy/gmoccapy.ini", "rehearse_mm.json")
         ini = linuxcnc.ini(ini_path)
-        config = json.load(open(os.path.join(HERE, "rehearse_mm.json")))
+        config = config_of("rehearse_mm.json")
         text, length = rehearse.sim_ini(ini, ini_path, config, "c.json", self.folder)
         copy = os.path.join(self.folder, "copy.ini")
-        open(copy, "w").write(text)
+        rehearse.write(copy, text)
         sim = linuxcnc.ini(copy)
         for section in ("AXIS_X", "AXIS_Z", "JOINT_0", "JOINT_2"):
             for key in ("MIN_LIMIT", "MAX_LIMIT", "MAX_VELOCITY", "MAX_ACCELERATION"):
@@ -99,7 +103,7 @@ class Translation(Machine):
 
     def test_inches_stay_inches(self):
         ini_path = self.machine("axis/axis.ini", "rehearse_inch.json")
-        config = json.load(open(os.path.join(HERE, "rehearse_inch.json")))
+        config = config_of("rehearse_inch.json")
         sensor, length = rehearse.setter(config, "c.json")
         self.assertEqual(length, 1.0)
         self.assertAlmostEqual(sensor["SIM_SENSOR_XMAX"] - sensor["SIM_SENSOR_XMIN"], 10 / 25.4)
@@ -111,7 +115,7 @@ class Translation(Machine):
         self.assertEqual(rehearse.joints_of(linuxcnc.ini(ini), ini), {"X": 0, "Y": 1, "Z": 3})
 
     def test_the_rack_has_a_sensor_for_each_of_the_users_pockets(self):
-        hal = rehearse.rack_hal(json.load(open(os.path.join(HERE, "rehearse_inch.json"))))
+        hal = rehearse.rack_hal(config_of("rehearse_inch.json"))
         self.assertEqual([line.split()[1] for line in hal.splitlines() if "pocket-occupied" in line],
                          ["fatc-sim-pocket-1", "fatc-sim-pocket-2", "fatc-sim-pocket-3"])
 
@@ -152,13 +156,15 @@ class BadInput(Machine):
 
     def test_a_config_the_limits_cannot_hold(self):
         # The inch machine's Z ends at 0.12 inch; its config moved 10 inches down the table.
-        config = json.load(open(os.path.join(HERE, "rehearse_inch.json")))
+        config = config_of("rehearse_inch.json")
         config["pocket_default"]["y"] = -18.0
         ini = self.machine("axis/axis.ini", "rehearse_inch.json")
-        json.dump(config, open(os.path.join(self.folder, "fixed_atc_probe.json"), "w"))
+        rehearse.write(os.path.join(self.folder, "fixed_atc_probe.json"), json.dumps(config))
         line = self.refused("--ini", ini)
         self.assertIn("fixed_atc_probe.json does not fit", line)
-        self.assertIn("fixed_atc_probe --check, exit 1", line)
+        self.assertIn("machine.ini: M6 T1 from empty (pocket 1), step 2 (rapid to over pocket 1): "
+                      "Y=-18.000 is outside the soft limits -10.000 .. 10.000 (the first problem `%s --check "
+                      "--config " % sys.argv[1], line)
 
     def test_an_m6_that_moves(self):
         ini = self.machine("axis/axis.ini", "rehearse_inch.json",
