@@ -195,6 +195,26 @@ def rack_hal(config):
     return "\n".join(lines) + "\n"
 
 
+def rack_of(config, config_path, tools, table):
+    """The tool each pocket holds at the first start (`"tool"`, default the
+    pocket's number), each one a tool of the table. A rack all empty (setup
+    step 2's first start) gets the table's tools in order, so that the
+    rehearsal changes tools; the pockets as the copy's config.json has them,
+    and what was filled."""
+    pockets = {p: dict(own) for p, own in config["pockets"].items()}
+    held = {p: int(own.get("tool", p)) for p, own in pockets.items()}
+    filled = []
+    if not any(held.values()):
+        for (p, own), tool in zip(sorted(pockets.items(), key=lambda kv: int(kv[0])), sorted(tools)):
+            own["tool"] = held[p] = tool
+            filled.append("pocket %s T%d" % (p, tool))
+    for p, tool in sorted(held.items(), key=lambda kv: int(kv[0])):
+        if tool and tool not in tools:
+            raise Refused("%s: pocket %s holds tool %d at the first start, which %s does not list"
+                          % (config_path, p, tool, table))
+    return pockets, filled
+
+
 def check(binary, ini_path, config_path, table):
     """`fixed_atc_probe --check`: the config against this machine's limits; its
     first problem, and the command that lists them all."""
@@ -239,6 +259,10 @@ def prepare(args):
         raise Refused("%s: units %s, but %s [TRAJ]LINEAR_UNITS %s: the simulated rack reads both "
                       "in one unit" % (config_path, own, ini_path, machine))
     joints_of(ini, ini_path)
+    sys.path.insert(0, os.path.join(ROOT, "tests", "integration", "harness"))
+    import tool_table  # a tool table file's lines, as the soak reads them
+    tools = [t for t in tool_table.file_lines(text_of(table)) if t > 0]
+    pockets, filled = rack_of(config, config_path, tools, table)
     check(args.binary, ini_path, config_path, table)
     work = os.path.abspath(args.workdir)
     os.makedirs(work, exist_ok=True)
@@ -250,11 +274,11 @@ def prepare(args):
     write(os.path.join(work, "rehearsal.ini"), text)
     write(os.path.join(work, "rack_sim.hal"), rack_hal(config))
     env = dict(os.environ, FATC_BINARY=args.binary, FATC_SIM_INI=os.path.join(work, "rehearsal.ini"),
-               FATC_CONFIG=config_path, FATC_TOOL_TABLE=table, FATC_CONFIG_SET=json.dumps(CONFIG_SET),
+               FATC_CONFIG=config_path, FATC_TOOL_TABLE=table, FATC_CONFIG_SET=json.dumps(dict(CONFIG_SET, pockets=pockets)),
                FATC_SOAK_TRUE_LENGTH=repr(length))
     for key in ("FATC_INI_SED", "FATC_INI_EXTRA", "FATC_INI_FILTER", "FATC_SOAK_CYCLE"):
         env.pop(key, None)
-    return env, soak
+    return env, soak, filled
 
 
 def summary(soak, ini_path, wanted):
@@ -292,10 +316,13 @@ def main(argv):
         parser.error("--changes: expected 1 or more, got %d" % args.changes)
     args.workdir = args.workdir or tempfile.mkdtemp(prefix="fatc-rehearsal-")
     try:
-        env, soak = prepare(args)
+        env, soak, filled = prepare(args)
     except Refused as e:
         print("%s: %s; nothing started" % (NAME, e), file=sys.stderr)
         return 2
+    if filled:
+        print("%s: the rack is empty at the first start; the rehearsal fills it: %s" % (
+            NAME, ", ".join(filled)))
     here = os.path.join(ROOT, "tests", "soak")
     run = subprocess.run([sys.executable, os.path.join(here, "soak_run.py"), soak, str(args.changes),
                           str(args.seed)], env=env)

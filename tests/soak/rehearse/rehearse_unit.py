@@ -124,11 +124,27 @@ class Translation(Machine):
         work = os.path.join(self.folder, "work")
         args = type("Args", (), {"ini": ini, "config": None, "tool_table": None, "workdir": work,
                                  "binary": sys.argv[1]})
-        env, soak = rehearse.prepare(args)
+        env, soak, filled = rehearse.prepare(args)
+        self.assertEqual(filled, [])
+        self.assertEqual(json.loads(env["FATC_CONFIG_SET"])["pockets"],
+                         {"1": {"x": -4.5}, "2": {"x": -3.0}, "3": {"x": -1.5}})
         self.assertEqual(env["FATC_SOAK_TRUE_LENGTH"], "1.0")
         self.assertEqual(env["FATC_TOOL_TABLE"], os.path.join(self.folder, "sim.tbl"))
         self.assertEqual(soak, os.path.join(work, "soak"))
         self.assertTrue(os.path.exists(os.path.join(work, "rehearsal.ini")))
+
+
+    def test_an_empty_rack_is_filled_from_the_table(self):
+        config = {"pockets": {"2": {"x": 1, "tool": 0}, "1": {"x": 0, "tool": 0}}}
+        pockets, filled = rehearse.rack_of(config, "c.json", [5, 3, 9], "t.tbl")
+        self.assertEqual(pockets, {"1": {"x": 0, "tool": 3}, "2": {"x": 1, "tool": 5}})
+        self.assertEqual(filled, ["pocket 1 T3", "pocket 2 T5"])
+        self.assertEqual(config["pockets"]["1"]["tool"], 0)  # the user's config as it was
+
+    def test_a_rack_partly_empty_stays_so(self):
+        config = {"pockets": {"1": {"x": 0, "tool": 0}, "2": {"x": 1}}}
+        self.assertEqual(rehearse.rack_of(config, "c.json", [2], "t.tbl"),
+                         ({"1": {"x": 0, "tool": 0}, "2": {"x": 1}}, []))
 
 
 class BadInput(Machine):
@@ -165,6 +181,14 @@ class BadInput(Machine):
         self.assertIn("machine.ini: M6 T1 from empty (pocket 1), step 2 (rapid to over pocket 1): "
                       "Y=-18.000 is outside the soft limits -10.000 .. 10.000 (the first problem `%s --check "
                       "--config " % sys.argv[1], line)
+
+    def test_a_rack_tool_the_table_does_not_list(self):
+        config = config_of("rehearse_inch.json")
+        config["pockets"]["3"]["tool"] = 77
+        ini = self.machine("axis/axis.ini", "rehearse_inch.json")
+        rehearse.write(os.path.join(self.folder, "fixed_atc_probe.json"), json.dumps(config))
+        self.assertIn("fixed_atc_probe.json: pocket 3 holds tool 77 at the first start, which "
+                      "%s does not list" % os.path.join(self.folder, "sim.tbl"), self.refused("--ini", ini))
 
     def test_an_m6_that_moves(self):
         ini = self.machine("axis/axis.ini", "rehearse_inch.json",
