@@ -96,9 +96,9 @@ class Translation(Machine):
         self.assertEqual(sim.find("FIXED_ATC_PROBE", "MACHINE_ON_SIGNAL"), "sample:enable")
         self.assertNotIn("gmoccapy", " ".join(sim.findall("HAL", "HALFILE")))
         self.assertIn(os.path.join(self.folder, "rack_sim.hal"), sim.findall("HAL", "HALFILE"))
-        # The setter under probe_limit, a quarter of the way up to loading: config/sim's.
+        # The setter under probe_limit (X 60 +- 5), a quarter of the way up to loading.
         self.assertEqual(float(sim.find("FIXED_ATC_PROBE", "SIM_SENSOR_Z")), -70.0)
-        self.assertEqual(float(sim.find("FIXED_ATC_PROBE", "SIM_SENSOR_XMIN")), 15.0)
+        self.assertEqual(float(sim.find("FIXED_ATC_PROBE", "SIM_SENSOR_XMIN")), 55.0)
         self.assertEqual(length, 25.0)
 
     def test_inches_stay_inches(self):
@@ -127,7 +127,7 @@ class Translation(Machine):
         env, soak, filled = rehearse.prepare(args)
         self.assertEqual(filled, [])
         self.assertEqual(json.loads(env["FATC_CONFIG_SET"])["pockets"],
-                         {"1": {"x": -4.5}, "2": {"x": -3.0}, "3": {"x": -1.5}})
+                         {"1": {"x": 0.5}, "2": {"x": 1.5}, "3": {"x": 2.5}})
         self.assertEqual(env["FATC_SOAK_TRUE_LENGTH"], "1.0")
         self.assertEqual(env["FATC_TOOL_TABLE"], os.path.join(self.folder, "sim.tbl"))
         self.assertEqual(soak, os.path.join(work, "soak"))
