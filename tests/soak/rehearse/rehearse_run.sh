@@ -20,20 +20,7 @@ cp "$config" "$machine/fixed_atc_probe.json"
 # As a user following setup step 4: LinuxCNC's own M6 moves out of [EMCIO]
 # (--check refuses them), the changer's section in.
 grep -v '^TOOL_CHANGE_\(POSITION\|QUILL_UP\|AT_G30\)' "$sample" > "$machine/machine.ini"
-cat >> "$machine/machine.ini" <<'INI'
-
-[FIXED_ATC_PROBE]
-CONFIG = fixed_atc_probe.json
-STATE = fixed_atc_state.json
-STEP_READY_IN = 03
-STEP_REQUEST_OUT = 03
-PROBE_Z_OUT = 02
-PROBE_RESULT_OUT = 03
-EXECUTOR_CALL_OUT = 01
-STEP_TIMEOUT = 30
-RETURN_TO_XY = 0
-MACHINE_ON_SIGNAL = machine-is-enabled
-INI
+cat "$here/fixed_atc_probe_section.ini" >> "$machine/machine.ini"
 status=0
 "$here/../../../scripts/rehearse.py" --ini "$machine/machine.ini" --changes "$changes" --seed 3 \
   --workdir "$work/rehearsal" > "$work/rehearse.out" 2>&1 || status=$?

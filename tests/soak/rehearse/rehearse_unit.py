@@ -19,19 +19,9 @@ import linuxcnc  # noqa: E402
 import rehearse  # noqa: E402
 
 SAMPLES = "/usr/share/doc/linuxcnc/examples/sample-configs/sim"
-SECTION = """
-[FIXED_ATC_PROBE]
-CONFIG = fixed_atc_probe.json
-STATE = fixed_atc_state.json
-STEP_READY_IN = 03
-STEP_REQUEST_OUT = 03
-PROBE_Z_OUT = 02
-PROBE_RESULT_OUT = 03
-EXECUTOR_CALL_OUT = 01
-STEP_TIMEOUT = 45
-RETURN_TO_XY = 1
-MACHINE_ON_SIGNAL = machine-is-enabled
-"""
+# Setup step 4's section with behaviour keys other than its own, to be seen in the copy.
+SECTION = rehearse.text_of(os.path.join(HERE, "fixed_atc_probe_section.ini")).replace(
+    "STEP_TIMEOUT = 30", "STEP_TIMEOUT = 45").replace("RETURN_TO_XY = 0", "RETURN_TO_XY = 1")
 
 
 def config_of(name):
