@@ -155,6 +155,14 @@ def setter(config, config_path):
             "SIM_SENSOR_YMAX": limit["y"] + half}, z - offset
 
 
+def length_tolerance(config):
+    """How far a length measured on the simulated setter may be from its truth:
+    the config's probe_check_tolerance, within which the changer itself takes
+    a checked length as the stored one (a latch feed of its own moves the
+    touch by a servo period's travel)."""
+    return float(config.get("probe_check_tolerance", 0.1 / MM[config.get("units", "mm")]))
+
+
 def sim_ini(ini, path, config, config_path, work):
     """The simulated mill's INI (config/sim) with the user's machine in it, its
     [FIXED_ATC_PROBE] behaviour keys and iocontrol's cycle, the simulated setter
@@ -275,7 +283,8 @@ def prepare(args):
     write(os.path.join(work, "rack_sim.hal"), rack_hal(config))
     env = dict(os.environ, FATC_BINARY=args.binary, FATC_SIM_INI=os.path.join(work, "rehearsal.ini"),
                FATC_CONFIG=config_path, FATC_TOOL_TABLE=table, FATC_CONFIG_SET=json.dumps(dict(CONFIG_SET, pockets=pockets)),
-               FATC_SOAK_TRUE_LENGTH=repr(length))
+               FATC_SOAK_TRUE_LENGTH=repr(length),
+               FATC_SOAK_LENGTH_TOLERANCE=repr(length_tolerance(config)))
     for key in ("FATC_INI_SED", "FATC_INI_EXTRA", "FATC_INI_FILTER", "FATC_SOAK_CYCLE"):
         env.pop(key, None)
     return env, soak, filled

@@ -196,7 +196,7 @@ class Soak:
             if abs(table.get(int(tool), 0.0) - length) > 1e-3:
                 problems.append("T%s: state %.4f, LinuxCNC's table %.4f" % (
                     tool, length, table.get(int(tool), 0.0)))
-            if abs(length - PLAN["true_length"]) > 0.01:
+            if abs(length - PLAN["true_length"]) > PLAN["length_tolerance"]:
                 problems.append("T%s measured %.4f, its true length %.4f" % (
                     tool, length, PLAN["true_length"]))
         if problems:

@@ -12,7 +12,8 @@ tests/soak/CMakeLists.txt or scripts/soak.sh, or a user's own (scripts/rehearse.
 The rack is the config's pockets with the tools they hold at the first start
 (`"tool"`, default the pocket's number), the manual tools the table's others;
 FATC_SOAK_TRUE_LENGTH: the length every tool measures on the simulated setter
-(25 on config/sim's). Writes WORKDIR/soak_events.jsonl; soak_report.py turns
+(25 on config/sim's), FATC_SOAK_LENGTH_TOLERANCE how far a measured one may
+be from it (0.01). Writes WORKDIR/soak_events.jsonl; soak_report.py turns
 it into the report."""
 import json
 import os
@@ -60,6 +61,7 @@ for start in range(1, 2 * budget + 20):
             "seconds_per_change": 2.5, "sensor_timeout": config.get("sensor_timeout_seconds", 1.0),
             "drawbar_seconds": 0.05,
             "true_length": float(os.environ.get("FATC_SOAK_TRUE_LENGTH") or 25.0),
+            "length_tolerance": float(os.environ.get("FATC_SOAK_LENGTH_TOLERANCE") or 0.01),
             "rack": {str(p): t for p, t in rack.items()}, "manual_tools": manual,
             "fault_cycle": bool(os.environ.get("FATC_SOAK_CYCLE")),
             "quiet_tail": 300 if changes >= 600 else 0}

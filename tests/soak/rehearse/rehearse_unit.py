@@ -119,6 +119,7 @@ class Translation(Machine):
         self.assertEqual(json.loads(env["FATC_CONFIG_SET"])["pockets"],
                          {"1": {"x": 0.5}, "2": {"x": 1.5}, "3": {"x": 2.5}})
         self.assertEqual(env["FATC_SOAK_TRUE_LENGTH"], "1.0")
+        self.assertEqual(float(env["FATC_SOAK_LENGTH_TOLERANCE"]), 0.1 / 25.4)  # the inch default
         self.assertEqual(env["FATC_TOOL_TABLE"], os.path.join(self.folder, "sim.tbl"))
         self.assertEqual(soak, os.path.join(work, "soak"))
         self.assertTrue(os.path.exists(os.path.join(work, "rehearsal.ini")))
