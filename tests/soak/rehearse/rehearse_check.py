@@ -54,12 +54,14 @@ expect("the picture's title", "Soak: %d tool changes" % wanted in svg, True)
 # The copy is the user's machine: its units, soft limits, velocities and accelerations.
 mine, copy = linuxcnc.ini(user_ini), linuxcnc.ini(os.path.join(soak, "sim.ini"))
 expect("units", copy.find("TRAJ", "LINEAR_UNITS"), mine.find("TRAJ", "LINEAR_UNITS"))
+differ = []
 for section in ["AXIS_X", "AXIS_Y", "AXIS_Z"] + ["JOINT_%d" % j for j in range(int(mine.find("KINS", "JOINTS")))]:
     for key in ("MIN_LIMIT", "MAX_LIMIT", "MAX_VELOCITY", "MAX_ACCELERATION"):
         if copy.find(section, key) != mine.find(section, key):
-            bad.append("[%s]%s: the copy %s, the machine %s" % (section, key, copy.find(section, key),
-                                                               mine.find(section, key)))
-print("the copy's limits, velocities and accelerations: %s" % ("as the machine's" if not bad else bad))
+            differ.append("[%s]%s: the copy %s, the machine %s" % (
+                section, key, copy.find(section, key), mine.find(section, key)))
+print("the copy's limits, velocities and accelerations: %s" % (differ or "as the machine's"))
+bad += differ
 for b in bad:
     print("FAIL: " + b)
 sys.exit(1 if bad else 0)
