@@ -19,7 +19,9 @@ id "$user" >/dev/null 2>&1 || useradd -m -s /bin/bash "$user"
 
 # One LinuxCNC per machine: a run from another checkout or test waits its turn
 # (two at once share LinuxCNC's IPC keys and both fail).
-exec 9>>/tmp/fixed_atc_probe-linuxcnc.lock
+lock=/tmp/fixed_atc_probe-linuxcnc.lock
+# Read only where another user made it (a lock needs no write).
+{ exec 9>>"$lock"; } 2>/dev/null || exec 9<"$lock"
 flock -w 3600 9 || { echo "run_sim.sh: another LinuxCNC run held the machine for an hour" >&2; exit 1; }
 # Under the lock: what LinuxCNC's IPC is there now was left by one that died.
 "$(dirname "$0")/stale_ipc.sh" "$user"
