@@ -244,8 +244,9 @@ def check(binary, ini_path, config_path, table):
 
 
 def prepare(args):
-    """Everything read and written before LinuxCNC starts: the environment
-    soak_run.py and run_sim.sh take, and the true tool length."""
+    """Everything read, checked and written before LinuxCNC starts: the
+    environment soak_run.py and run_sim.sh take, the soak's folder and the
+    pockets an empty rack had filled."""
     ini_path = os.path.abspath(args.ini)
     ini = read_ini(ini_path)
     folder = os.path.dirname(ini_path)
@@ -253,7 +254,8 @@ def prepare(args):
         folder, need(ini, "FIXED_ATC_PROBE", "CONFIG", ini_path)))
     if not os.path.isfile(config_path):
         raise Refused("%s: no such file ([FIXED_ATC_PROBE]CONFIG of %s)" % (config_path, ini_path))
-    table = os.path.abspath(args.tool_table or os.path.join(folder, need(ini, "EMCIO", "TOOL_TABLE", ini_path)))
+    table = os.path.abspath(args.tool_table or os.path.join(
+        folder, need(ini, "EMCIO", "TOOL_TABLE", ini_path)))
     if not os.path.isfile(table):
         raise Refused("%s: no such file (the tool table)" % table)
     try:
@@ -282,7 +284,8 @@ def prepare(args):
     write(os.path.join(work, "rehearsal.ini"), text)
     write(os.path.join(work, "rack_sim.hal"), rack_hal(config))
     env = dict(os.environ, FATC_BINARY=args.binary, FATC_SIM_INI=os.path.join(work, "rehearsal.ini"),
-               FATC_CONFIG=config_path, FATC_TOOL_TABLE=table, FATC_CONFIG_SET=json.dumps(dict(CONFIG_SET, pockets=pockets)),
+               FATC_CONFIG=config_path, FATC_TOOL_TABLE=table,
+               FATC_CONFIG_SET=json.dumps(dict(CONFIG_SET, pockets=pockets)),
                FATC_SOAK_TRUE_LENGTH=repr(length),
                FATC_SOAK_LENGTH_TOLERANCE=repr(length_tolerance(config)))
     for key in ("FATC_INI_SED", "FATC_INI_EXTRA", "FATC_INI_FILTER", "FATC_SOAK_CYCLE"):

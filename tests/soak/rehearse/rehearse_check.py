@@ -55,7 +55,8 @@ expect("the picture's title", "Soak: %d tool changes" % wanted in svg, True)
 mine, copy = linuxcnc.ini(user_ini), linuxcnc.ini(os.path.join(soak, "sim.ini"))
 expect("units", copy.find("TRAJ", "LINEAR_UNITS"), mine.find("TRAJ", "LINEAR_UNITS"))
 differ = []
-for section in ["AXIS_X", "AXIS_Y", "AXIS_Z"] + ["JOINT_%d" % j for j in range(int(mine.find("KINS", "JOINTS")))]:
+joints = ["JOINT_%d" % j for j in range(int(mine.find("KINS", "JOINTS")))]
+for section in ["AXIS_X", "AXIS_Y", "AXIS_Z"] + joints:
     for key in ("MIN_LIMIT", "MAX_LIMIT", "MAX_VELOCITY", "MAX_ACCELERATION"):
         if copy.find(section, key) != mine.find(section, key):
             differ.append("[%s]%s: the copy %s, the machine %s" % (

@@ -155,7 +155,8 @@ class BadInput(Machine):
     def test_no_config(self):
         ini = self.machine("axis/axis.ini", "rehearse_inch.json")
         os.remove(os.path.join(self.folder, "fixed_atc_probe.json"))
-        self.assertIn("fixed_atc_probe.json: no such file ([FIXED_ATC_PROBE]CONFIG of", self.refused("--ini", ini))
+        self.assertIn("fixed_atc_probe.json: no such file ([FIXED_ATC_PROBE]CONFIG of",
+                      self.refused("--ini", ini))
 
     def test_units_that_differ(self):
         ini = self.machine("axis/axis.ini", "rehearse_mm.json")
