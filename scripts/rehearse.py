@@ -50,6 +50,12 @@ CONFIG_SET = {"sensors": {"tool_present": True, "drawbar_open": True, "drawbar_c
 MM = {"mm": 1.0, "inch": 25.4, "in": 25.4}
 
 
+class Parser(argparse.ArgumentParser):
+    def error(self, message):
+        """A usage mistake: one line, exit 2, as fixed_atc_probe's own."""
+        self.exit(2, "%s: %s\n" % (NAME, message))
+
+
 class Refused(Exception):
     """One line: what is wrong and where; nothing starts."""
 
@@ -314,7 +320,7 @@ def summary(soak, ini_path, wanted):
 
 
 def main(argv):
-    parser = argparse.ArgumentParser(prog=NAME, description=__doc__.split("\n\n")[0])
+    parser = Parser(prog=NAME, description=__doc__.split("\n\n")[0])
     parser.add_argument("--ini", required=True, help="your machine's INI")
     parser.add_argument("--config", help="config.json (else the INI's [FIXED_ATC_PROBE]CONFIG)")
     parser.add_argument("--tool-table", help="LinuxCNC's tool table (else the INI's [EMCIO]TOOL_TABLE)")

@@ -139,6 +139,14 @@ class Translation(Machine):
 
 
 class BadInput(Machine):
+    def test_a_usage_mistake(self):
+        err = io.StringIO()
+        with contextlib.redirect_stderr(err), self.assertRaises(SystemExit) as end:
+            rehearse.main(["--ini", "m.ini", "--changes", "many"])
+        self.assertEqual(end.exception.code, 2)
+        self.assertEqual(err.getvalue(), "fixed_atc_probe-rehearse: argument --changes: invalid int "
+                                         "value: 'many'\n")
+
     def test_no_ini(self):
         line = self.refused("--ini", os.path.join(self.folder, "nowhere.ini"))
         self.assertIn("nowhere.ini: no such file", line)
