@@ -4,13 +4,14 @@
 # table, setup step 4's [FIXED_ATC_PROBE] added and config.json placed to fit
 # it; then rehearse_check.py holds the printed report against the soak's
 # events file.
-#   rehearse_run.sh SAMPLE_INI CONFIG_JSON WORKDIR CHANGES
+#   rehearse_run.sh SAMPLE_INI CONFIG_JSON WORKDIR CHANGES SEED
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 sample=$1
 config=$2
 work=$3
 changes=$4
+seed=$5
 machine=$work/machine
 rm -rf "$work"
 mkdir -p "$machine"
@@ -22,7 +23,7 @@ cp "$config" "$machine/fixed_atc_probe.json"
 grep -v '^TOOL_CHANGE_\(POSITION\|QUILL_UP\|AT_G30\)' "$sample" > "$machine/machine.ini"
 cat "$here/fixed_atc_probe_section.ini" >> "$machine/machine.ini"
 status=0
-"$here/../../../scripts/rehearse.py" --ini "$machine/machine.ini" --changes "$changes" --seed 3 \
+"$here/../../../scripts/rehearse.py" --ini "$machine/machine.ini" --changes "$changes" --seed "$seed" \
   --workdir "$work/rehearsal" > "$work/rehearse.out" 2>&1 || status=$?
 cat "$work/rehearse.out"
 /usr/bin/python3 "$here/rehearse_check.py" "$machine/machine.ini" "$work/rehearsal" "$work/rehearse.out" "$changes"
