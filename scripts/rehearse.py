@@ -332,7 +332,10 @@ def main(argv):
     args = parser.parse_args(argv)
     if args.changes < 1:
         parser.error("--changes: expected 1 or more, got %d" % args.changes)
-    args.workdir = args.workdir or tempfile.mkdtemp(prefix="fatc-rehearsal-")
+    if not args.workdir:
+        # Open to the user LinuxCNC runs as (as root: run_sim.sh's own).
+        args.workdir = tempfile.mkdtemp(prefix="fatc-rehearsal-")
+        os.chmod(args.workdir, 0o755)
     try:
         env, soak, filled = prepare(args)
     except Refused as e:
