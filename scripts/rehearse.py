@@ -332,13 +332,16 @@ def main(argv):
     args = parser.parse_args(argv)
     if args.changes < 1:
         parser.error("--changes: expected 1 or more, got %d" % args.changes)
-    if not args.workdir:
+    made = not args.workdir
+    if made:
         # Open to the user LinuxCNC runs as (as root: run_sim.sh's own).
         args.workdir = tempfile.mkdtemp(prefix="fatc-rehearsal-")
         os.chmod(args.workdir, 0o755)
     try:
         env, soak, filled = prepare(args)
     except Refused as e:
+        if made:
+            shutil.rmtree(args.workdir)
         print("%s: %s; nothing started" % (NAME, e), file=sys.stderr)
         return 2
     if filled:
