@@ -36,8 +36,12 @@ import linuxcnc  # noqa: E402
 P = "fixed_atc_probe."
 RACK = "fatc-rack-sim."
 PLAN = json.load(open("soak_plan.json"))
-RACK_TOOLS = [1, 2, 3, 4, 5, 6]
-MANUAL_TOOLS = [7]
+# The rack as soak_run.py read it from the config: each pocket and the tool
+# it holds at the first start (0 empty); the table's other tools go by hand.
+HOME_POCKET = {t: int(p) for p, t in PLAN["rack"].items() if t}
+POCKETS = sorted(int(p) for p in PLAN["rack"])
+RACK_TOOLS = sorted(HOME_POCKET)
+MANUAL_TOOLS = PLAN["manual_tools"]
 # Injected into a program at a random moment, with what the operator then does.
 FAULTS = ["flicker", "late", "never", "estop", "abort", "kill", "restart_linuxcnc"]
 CUTS = ("estop", "abort", "kill", "restart_linuxcnc")  # those that cut a sequence off
@@ -137,7 +141,7 @@ class Soak:
     # ------------------------------------------------------------ the rack's truth
     def truth(self):
         return {"spindle": d.pin_value(RACK + "spindle-tool"),
-                "pockets": {p: d.pin_value(RACK + "pocket-tool-%d" % p) for p in RACK_TOOLS}}
+                "pockets": {p: d.pin_value(RACK + "pocket-tool-%d" % p) for p in POCKETS}}
 
     def rack_problems(self, state, truth):
         """Where the state file and the rack disagree. A sequence cut off
@@ -192,7 +196,7 @@ class Soak:
             if abs(table.get(int(tool), 0.0) - length) > 1e-3:
                 problems.append("T%s: state %.4f, LinuxCNC's table %.4f" % (
                     tool, length, table.get(int(tool), 0.0)))
-            if abs(length - PLAN["true_length"]) > 0.01:
+            if abs(length - PLAN["true_length"]) > PLAN["length_tolerance"]:
                 problems.append("T%s measured %.4f, its true length %.4f" % (
                     tool, length, PLAN["true_length"]))
         if problems:
@@ -344,8 +348,11 @@ class Soak:
 
     # ------------------------------------------------------------ work
     def program(self):
-        n = self.rng.randint(3, 12)
-        tools = [self.rng.choice(RACK_TOOLS + RACK_TOOLS + [0] + MANUAL_TOOLS) for _ in range(n)]
+        # No more than the soak has left to make: it ends on exactly its number.
+        n = min(self.rng.randint(3, 12), PLAN["changes"] - self.changes)
+        # One manual tool a program, however many the table has besides the rack's.
+        manual = MANUAL_TOOLS if len(MANUAL_TOOLS) <= 1 else [self.rng.choice(MANUAL_TOOLS)]
+        tools = [self.rng.choice(RACK_TOOLS + RACK_TOOLS + [0] + manual) for _ in range(n)]
         self.programs += 1
         path = os.path.abspath("soak_program_%d.ngc" % (self.programs % 2))
         with open(path, "w") as f:
@@ -400,7 +407,7 @@ class Soak:
         tool = self.rng.choice(RACK_TOOLS)
         self.event("operator", flow="unload, verify, load", tool=tool)
         hal.set_p(P + "tool-number", str(tool))
-        hal.set_p(P + "pocket-number", str(tool))
+        hal.set_p(P + "pocket-number", str(HOME_POCKET[tool]))
         for flow in ("unload", "verify-pocket", "load"):
             self.wait(lambda: d.pin_value(P + "accepting"), 60, "accepting for " + flow)
             self.press(flow)

@@ -66,6 +66,11 @@ drift = {name: {"n": len(s), "first": s[0], "slowest": max(s), "ratio": max(s) /
 worst = max(drift.items(), key=lambda kv: kv[1]["ratio"]) if drift else None
 trend = max(drift.items(), key=lambda kv: kv[1]["late_over_early"]) if drift else None
 
+# The slowest change the machine makes on its own: no fault injected, no
+# operator's hand in it.
+timed = [e for e in changes if e["clean"] and e["seconds"] and not e.get("manual")]
+slowest = max(timed, key=lambda e: e["seconds"]) if timed else None
+
 cpu = [e for e in events if e["kind"] == "program cpu"]
 cpu_changes = sum(e["changes"] for e in cpu)
 cpu_per_change = 1000.0 * sum(e["cpu_s"] for e in cpu) / cpu_changes if cpu_changes else None
@@ -111,6 +116,8 @@ report = {
     "errors": [e["what"] for e in errors], "processes": lifetimes,
     "cpu_ms_per_change_in_programs": cpu_per_change,
     "drift": drift, "drift_worst": {"class": worst[0], **worst[1]} if worst else None,
+    "slowest_change": {"seconds": slowest["seconds"], "frm": slowest["frm"], "to": slowest["to"],
+                       "change": slowest["changes"]} if slowest else None,
     "classes_over_5_percent": sorted(n for n, v in drift.items() if v["ratio"] > 1.05),
     "classes_trending_over_5_percent": sorted(n for n, v in drift.items()
                                               if v["late_over_early"] > 1.05),
@@ -130,6 +137,9 @@ print("faults injected: %s (planned, not reached before the program ended: %s); 
           unprovoked[:4]))
 print("checks against the rack: %d (after every change and every recovery), mismatches: %d" % (
     report["checks"], report["mismatches"]))
+if slowest:
+    print("slowest change without a fault or a hand in it: %.2f s, T%d to T%d (change %d of %d)" % (
+        slowest["seconds"], slowest["frm"], slowest["to"], slowest["changes"], len(changes)))
 if cpu_per_change is not None:
     print("component CPU: %.1f ms a change inside programs" % cpu_per_change)
 for p in lifetimes:

@@ -9,11 +9,19 @@ root=${FATC_INSTALLED:-$(cd "$(dirname "$0")/../../.." && pwd)}
 work=$1
 display=$2
 user=${FATC_SIM_USER:-fatc}
+as_user=(runuser -u "$user" --)
+if [ "$(id -u)" -ne 0 ]; then
+  # Not root (a user rehearsing their machine): LinuxCNC runs as that user.
+  user=$(id -un)
+  as_user=()
+fi
 id "$user" >/dev/null 2>&1 || useradd -m -s /bin/bash "$user"
 
 # One LinuxCNC per machine: a run from another checkout or test waits its turn
 # (two at once share LinuxCNC's IPC keys and both fail).
-exec 9>>/tmp/fixed_atc_probe-linuxcnc.lock
+lock=/tmp/fixed_atc_probe-linuxcnc.lock
+# Read only where another user made it (a lock needs no write).
+{ exec 9>>"$lock"; } 2>/dev/null || exec 9<"$lock"
 flock -w 3600 9 || { echo "run_sim.sh: another LinuxCNC run held the machine for an hour" >&2; exit 1; }
 # Under the lock: what LinuxCNC's IPC is there now was left by one that died.
 "$(dirname "$0")/stale_ipc.sh" "$user"
@@ -32,13 +40,15 @@ if [ -n "${FATC_CONFIG_SET:-}" ]; then
   python3 -c 'import json, sys; c = json.load(open(sys.argv[1])); c.update(json.loads(sys.argv[2]));
 json.dump(c, open(sys.argv[1], "w"), indent=2)' "$work/config.json" "$FATC_CONFIG_SET"
 fi
+# FATC_SIM_INI: another machine's INI in place of config/sim's, its paths
+# as config/sim's (a user's machine rehearsed, scripts/rehearse.py).
 sed -e "s|^DISPLAY = .*|DISPLAY = $display|" \
     -e "s|\.\./\.\./nc_files|$root/nc_files|g" \
     -e "s|\.\./\.\./hal/|$root/hal/|g" \
     -e "s|^CONFIG = .*|CONFIG = $work/config.json|" \
     -e "s|^HALFILE = touchoff_sensor.hal|HALFILE = $root/config/sim/touchoff_sensor.hal|" \
     -e "s|^HALFILE = spindle_sim.hal|HALFILE = $root/config/sim/spindle_sim.hal|" \
-    "$root/config/sim/fixed_atc_sim.ini" > "$work/sim.ini"
+    "${FATC_SIM_INI:-$root/config/sim/fixed_atc_sim.ini}" > "$work/sim.ini"
 if [ -n "${FATC_INI_EXTRA:-}" ]; then
   sed -i "s|^RETURN_TO_XY = .*|$FATC_INI_EXTRA|" "$work/sim.ini"
 fi
@@ -63,7 +73,7 @@ for d in "$bin_dir" "$root"; do
 done
 cd "$work"
 # FATC_WRAP: a command LinuxCNC runs under (the GUI test's D-Bus session).
-exec runuser -u "$user" -- ${FATC_WRAP:-} env PATH="$bin_dir:$PATH" HOME="$(getent passwd "$user" | cut -d: -f6)" \
+exec "${as_user[@]}" ${FATC_WRAP:-} env PATH="$bin_dir:$PATH" HOME="$(getent passwd "$user" | cut -d: -f6)" \
   FATC_ROOT="$root" FATC_SCENARIOS="${FATC_SCENARIOS:-}" FATC_RESULTS="${FATC_RESULTS:-}" \
   FATC_ARTIFACTS="${FATC_ARTIFACTS:-}" FATC_MATRIX_MODE="${FATC_MATRIX_MODE:-}" FATC_MATRIX_KINDS="${FATC_MATRIX_KINDS:-}" FATC_MATRIX_STEPS="${FATC_MATRIX_STEPS:-}" FATC_MATRIX_PENDING="${FATC_MATRIX_PENDING:-}" FATC_MATRIX_SPINDLE="${FATC_MATRIX_SPINDLE:-}" FATC_MATRIX_HOLD_STEPS="${FATC_MATRIX_HOLD_STEPS:-}" FATC_BENCH_REPEATS="${FATC_BENCH_REPEATS:-}" FATC_NO_CHANGER="${FATC_NO_CHANGER:-}" DISPLAY="${DISPLAY:-}" XAUTHORITY="${XAUTHORITY:-}" \
   RUNTESTS=1 linuxcnc "$work/sim.ini"
