@@ -77,8 +77,9 @@ int plan_in_the_air(const Options& options, const Config& config, const ToolStat
                     const Loaded& loaded, std::ostream& out) {
   const AirSettings air{*options.air_height, options.air_feed.value_or(0.0)};
   const std::string name = "M6 T" + std::to_string(to) + " with " + spindle_words(tools.spindle);
-  const AirPlan plan = plan_air_run(config, tools, {}, 0, [to](Changer& c) { c.tool_change(to); },
-                                    name, air);
+  const AirPlan plan =
+      plan_air_run(config, tools, {}, 0, [to](Changer& c) { c.tool_change(to); }, name, air,
+                   tools.spindle, loaded.lengths.of(tools.spindle, tools.lengths).length);
   if (!plan.request) {
     out << plan.refused << "\n";
     return 1;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "../config/rack_volume.hpp"
+#include "../rack/keepout.hpp"
 #include "../formatted.hpp"
 #include "simulator.hpp"
 
@@ -66,7 +67,7 @@ std::vector<Step> air_route(const Config& config, const std::vector<Step>& steps
 
 AirPlan plan_air_run(const Config& config, const ToolState& tools, const Point& at, unsigned known,
                      const std::function<void(Changer&)>& request, const std::string& name,
-                     const AirSettings& asked) {
+                     const AirSettings& asked, int held, double held_length) {
   AirPlan result;
   AirSettings air = asked;
   if (air.feed == 0.0) air.feed = config.dry_run_feed();
@@ -84,16 +85,37 @@ AirPlan plan_air_run(const Config& config, const ToolState& tools, const Point& 
   }
   const auto errors = planned.messages(MessageKind::error);
   if (!errors.empty()) {
-    result.refused = air_name + " refused: " + errors.front();
+    // "unload of tool 9 refused: tool 9 is not in the rack": the reason, once.
+    const std::string inner = name + " refused: ";
+    const std::string& why = errors.front();
+    result.refused =
+        air_name + " refused: " + (why.rfind(inner, 0) == 0 ? why.substr(inner.size()) : why);
     return result;
   }
-  result.request = AirRunRequest{air_name, air_route(config, planned.steps(), air)};
+  AirRunRequest flown{air_name, air_route(config, planned.steps(), air)};
+  // The keep-out lets a tool's tip into the pocket a move serves (a return);
+  // in the air the spindle's own tool goes over every pocket, full or not.
+  const bool over_the_rack = std::any_of(flown.route.begin(), flown.route.end(),
+                                         [](const Step& move) { return move.pocket != 0; });
+  if (held != 0 && over_the_rack && held_length > air.height + 1e-9) {
+    result.refused = air_name + " refused: T" + std::to_string(held) + " in the spindle (" +
+                     formatted("%g %s", held_length, units_name(config.units)) +
+                     ") would hang " +
+                     formatted("%g %s", held_length - air.height, units_name(config.units)) +
+                     " below the rack's top: fly at least " +
+                     formatted("%g %s", held_length, units_name(config.units)) +
+                     " above it, or empty the spindle";
+    return result;
+  }
+  result.request = std::move(flown);
   return result;
 }
 
 AirPlan plan_air_run(const Changer& changer, const AirAsk& ask, const std::optional<Point>& at) {
   const Config& config = changer.config();
   ToolState tools = changer.tools();
+  const int held = tools.spindle;
+  const double held_length = changer.keepout_lengths().of(held, tools.lengths).length;
   std::function<void(Changer&)> request;
   std::string name;
   const int tool = ask.tool;
@@ -121,7 +143,7 @@ AirPlan plan_air_run(const Changer& changer, const AirAsk& ask, const std::optio
       break;
   }
   return plan_air_run(config, tools, at.value_or(Point{}), at ? axis_xyz : 0u, request, name,
-                      ask.air);
+                      ask.air, held, held_length);
 }
 
 ToolState as_if_holding(const Config& config, ToolState tools, int tool) {

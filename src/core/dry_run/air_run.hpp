@@ -35,14 +35,16 @@ std::vector<Step> air_route(const Config& config, const std::vector<Step>& steps
                       const AirSettings& air);
 
 /// The air run of what `request` does to a changer with `tools` standing at
-/// `at` (known on `known`), named for the operator; or why not.
+/// `at` (known on `known`), named for the operator; or why not. The spindle
+/// really holds `held`, `held_length` long, all the way: refused where its
+/// tip would hang below the rack's top (a height less than its length).
 struct AirPlan {
   std::optional<AirRunRequest> request;
   std::string refused;  ///< one line, when there is no request
 };
 AirPlan plan_air_run(const Config& config, const ToolState& tools, const Point& at, unsigned known,
                      const std::function<void(Changer&)>& request, const std::string& name,
-                     const AirSettings& air);
+                     const AirSettings& air, int held = 0, double held_length = 0.0);
 
 /// What the operator asks to fly, as the `air-run-*` pins and --plan --air say it.
 struct AirAsk {
@@ -53,8 +55,9 @@ struct AirAsk {
   int pocket = 0;           ///< load: into (0: the changer chooses); verify: the pocket
   AirSettings air;
 };
-/// The air run `ask` names, planned from what `changer` knows and where the
-/// spindle stands (`at`, unknown: the sequence starts from nowhere known).
+/// The air run `ask` names, planned from what `changer` knows (the tool in
+/// its spindle as long as its keep-out counts it) and where the spindle
+/// stands (`at`, unknown: the sequence starts from nowhere known).
 AirPlan plan_air_run(const Changer& changer, const AirAsk& ask, const std::optional<Point>& at);
 
 /// `tools` as if `tool` were in the spindle: the one there back in its pocket,

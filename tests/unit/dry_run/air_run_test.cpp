@@ -157,11 +157,11 @@ TEST(AirRun, shouldBeRefusedWithTheReasonTheSequenceItselfWouldBe) {
   const Config config = valid_config();
   const ToolState tools = with_in_spindle(config, 1);
   const AirPlan plan = plan_air_run(config, tools, config.safe, axis_xyz,
-                                    [](Changer& c) { c.unload(4); }, "unload T4", kAir);
+                                    [](Changer& c) { c.unload(9); }, "unload of tool 9", kAir);
   EXPECT_FALSE(plan.request);
-  EXPECT_EQ(plan.refused.rfind("air run of unload T4, 30 mm above the rack at F1000 refused: ", 0),
-            0u)
-      << plan.refused;
+  EXPECT_EQ(plan.refused,
+            "air run of unload of tool 9, 30 mm above the rack at F1000 refused: tool 9 is not in "
+            "the rack");
 }
 
 TEST(AirRun, shouldBeRefusedWhereTheToolInTheSpindleWouldReachIntoTheRack) {
@@ -183,6 +183,29 @@ TEST(AirRun, shouldBeRefusedWhereTheToolInTheSpindleWouldReachIntoTheRack) {
   EXPECT_EQ(rig.changer->status().phase, Phase::idle);
   EXPECT_TRUE(rig.run().empty()) << "nothing moved";
   EXPECT_NE(rig.last_message().find("refused"), std::string::npos) << rig.last_message();
+}
+
+TEST(AirRun, shouldBeRefusedWhereTheSpindlesToolWouldHangBelowTheRacksTop) {
+  // Over its own empty pocket a return may put T1's tip into the holder; in
+  // the air T1 stays in the spindle over every pocket, full ones too.
+  const Config config = valid_config();
+  test::SimRig rig(config, with_in_spindle(config, 1));
+  ToolLengths lengths;
+  lengths.table[1] = 40.0;
+  lengths.longest = 100.0;
+  rig.changer->keepout_lengths(lengths);
+  AirAsk ask;
+  ask.tool = 3;
+  ask.air = {30.0, 1000.0};
+  EXPECT_EQ(plan_air_run(*rig.changer, ask, config.safe).refused,
+            "air run of M6 T3 with T1, 30 mm above the rack at F1000 refused: T1 in the spindle "
+            "(40 mm) would hang 10 mm below the rack's top: fly at least 40 mm above it, or empty "
+            "the spindle");
+  ask.air.height = 40.0;
+  EXPECT_TRUE(plan_air_run(*rig.changer, ask, config.safe).request);
+  ask.from = 0;  // flown as if empty: the real T1 still counts
+  ask.air.height = 30.0;
+  EXPECT_FALSE(plan_air_run(*rig.changer, ask, config.safe).request);
 }
 
 TEST(AirRun, shouldPlanAsIfTheNamedToolWereInTheSpindle) {
