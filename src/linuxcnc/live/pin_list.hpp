@@ -238,7 +238,9 @@ inline const std::vector<PinDeclaration> kPins = joined({{
   {"air-height", &HalPins::air_height, HAL_IN,
    "how far above the rack's top (its forks and the keep-out above them) an air run flies, "
    "the config's units"},
-  {"air-feed", &HalPins::air_feed, HAL_IN, "the feed of every move of an air run, units per minute"},
+  {"air-feed", &HalPins::air_feed, HAL_IN,
+   "the feed of every move of an air run, units per minute; 0 (the default): the config's "
+   "`verify_feed`, else `pocket_feed`"},
   {"pocket-served", &HalPins::pocket_served, HAL_OUT,
    "the pocket the sequence under way serves (0 none)"},
   {"measure-all", &HalPins::measure_all, HAL_IN,

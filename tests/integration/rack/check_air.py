@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Checks the rack run's air runs (scenario rack_air, issue 44): with T3 (40 mm)
-in the spindle, M6 T12, the unload of T7, the load of T30 into pocket 6 and
-the verify of pocket 6, each flown 45 mm above the rack at F4000; then one at
-10 mm (the keep-out refuses it: T3 would reach into the rack) and one at 0.
+in the spindle, M6 T12, the unload of T7 and the verify of pocket 4 (T3's,
+empty), each flown 45 mm above the rack at F4000; one at 10 mm (refused: T3
+would hang into the rack) and one at 0; then, T7 unloaded for real, the load
+of T30 into pocket 2 flown the same way.
 Read back from LinuxCNC: every sampled position over the rack's row no lower
 than its top (holders' top plus rack_keepout_above) plus 45 mm, the keep-out
 armed throughout (never lifted for the changer), the chuck and the air blast
@@ -80,10 +81,12 @@ def main():
     ok("%d samples over the rack's row (X %.0f..%.0f Y %.0f..%.0f), the lowest at Z%.3f, none "
        "below the floor Z%.3f (the rack's top plus %.0f)" % (over, x0, x1, y0, y1, lowest, floor, HEIGHT))
     ok("the chuck and the air blast off, the keep-out armed, no move faster than F%.0f" % FEED)
-    if distinct(samples, "tool_in_spindle") != [3]:
-        fail("LinuxCNC's tool in spindle went %s, expected 3 throughout" %
-             distinct(samples, "tool_in_spindle"))
-    ok("LinuxCNC's tool in spindle 3 throughout")
+    for (first, last), tool in zip(runs, (3, 3, 3, 0)):
+        if distinct(samples[first:last], "tool_in_spindle") != [tool]:
+            fail("LinuxCNC's tool in spindle went %s during an air run, expected %d throughout" %
+                 (distinct(samples[first:last], "tool_in_spindle"), tool))
+    ok("LinuxCNC's tool in spindle 3 throughout the first three air runs, 0 (after the real "
+       "unload of T7) throughout the load")
     trips = distinct([s for first, last in runs for s in samples[first:last]], "fatc-rack-guard.trips")
     if len(trips) != 1:
         fail("the rack guard tripped during the air runs: trips went %s" % trips)
@@ -91,11 +94,12 @@ def main():
     said(r, "refused")
     said(r, "air height 0: expected a height above the rack")
     files = r["files"]
-    for key, what in (("state", "the state file"), ("table", "the tool table")):
-        before, after = files["before_air"][key], files["after_air"][key]
-        if before is None or before != after:
-            fail("%s changed during the air runs:\n%s\n---\n%s" % (what, before, after))
-        ok("%s byte for byte as before (%d bytes)" % (what, len(before)))
+    for first, then in (("before_air", "after_air"), ("before_air_load", "after_air_load")):
+        for key, what in (("state", "the state file"), ("table", "the tool table")):
+            before, after = files[first][key], files[then][key]
+            if before is None or before != after:
+                fail("%s changed from %s to %s:\n%s\n---\n%s" % (what, first, then, before, after))
+            ok("%s from %s to %s byte for byte the same (%d bytes)" % (what, first, then, len(before)))
 
 
 if __name__ == "__main__":
