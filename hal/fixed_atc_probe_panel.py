@@ -23,7 +23,9 @@ OPERATOR_BUTTONS = ("load", "unload", "continue", "cancel", "clear-fault", "meas
                     "verify-pocket")
 # The Setup page: nothing moves, config.json is written.
 TEACH_BUTTONS = ("teach-pocket", "teach-loading", "teach-safe", "teach-sensor")
-BUTTONS = OPERATOR_BUTTONS + TEACH_BUTTONS
+# The Setup page's air runs: a sequence flown above the rack, nothing taken or recorded.
+AIR_BUTTONS = ("air-run-change", "air-run-load", "air-run-unload", "air-run-verify")
+BUTTONS = OPERATOR_BUTTONS + TEACH_BUTTONS + AIR_BUTTONS
 # The component polls every 20 ms at most: high and low phases it cannot miss.
 PULSE_MS = 100
 GAP_MS = 60
@@ -40,6 +42,7 @@ PHASE_FAULT = 5
 PHASE_MEASURING = 6
 PHASE_VERIFYING = 7
 PHASE_CHUCK = 8
+PHASE_AIR_RUN = 9
 # The `awaiting` pin: Awaiting.
 AWAITING_NOTHING = 0
 AWAITING_MOTION = 1
@@ -61,7 +64,8 @@ PHASES = {PHASE_NOT_READY: "Machine off, not homed or in estop", PHASE_IDLE: "Id
           PHASE_FAULT: "FAULT: check spindle and rack, then Clear fault",
           PHASE_MEASURING: "Measuring tools (Cancel stops after the current one)",
           PHASE_VERIFYING: "Verifying a pocket: Continue at each stop, Cancel stops there",
-          PHASE_CHUCK: "Chuck: releasing or clamping for G-code"}
+          PHASE_CHUCK: "Chuck: releasing or clamping for G-code",
+          PHASE_AIR_RUN: "Air run: flown above the rack, nothing taken or recorded (Stop ends it)"}
 # The `measure-which` pin (docs/sequences.md#measure-all): the selector's item ids.
 MEASURE_EVERY = 0
 MEASURE_NEVER_MEASURED = 1
@@ -275,6 +279,10 @@ class Handler:
         halcomp.newpin("pocket-number", hal.HAL_S32, hal.HAL_OUT)
         halcomp.newpin("measure-which", hal.HAL_S32, hal.HAL_OUT)
         halcomp.newpin("rack-keepout-lift", hal.HAL_BIT, hal.HAL_OUT)
+        halcomp.newpin("air-height", hal.HAL_FLOAT, hal.HAL_OUT)
+        halcomp.newpin("air-feed", hal.HAL_FLOAT, hal.HAL_OUT)
+        halcomp.newpin("air-from-tool", hal.HAL_S32, hal.HAL_OUT)
+        halcomp["air-from-tool"] = -1
         for name in ("state", "awaiting", "tool-in-spindle", "step-kind", "cut-off-pocket",
                      "pocket-served", "batch-done", "batch-total"):
             halcomp.newpin(name, hal.HAL_S32, hal.HAL_IN)
@@ -338,6 +346,15 @@ class Handler:
         in the rack; the component skips the others and says so)."""
         self.builder.get_object("measure_which").set_active_id(str(MEASURE_PROGRAM))
         self.on_button_clicked(self.builder.get_object("measure-all"))
+
+    def on_air_height_changed(self, spin):
+        self.comp["air-height"] = spin.get_value()
+
+    def on_air_feed_changed(self, spin):
+        self.comp["air-feed"] = spin.get_value()
+
+    def on_air_from_tool_changed(self, spin):
+        self.comp["air-from-tool"] = spin.get_value_as_int()
 
     def on_keepout_lift_toggled(self, button):
         self.comp["rack-keepout-lift"] = button.get_active()
@@ -408,6 +425,9 @@ class Handler:
                    "teach-pocket": teach and pocket, "teach-loading": teach,
                    "verify-pocket": accepting and pocket,
                    "teach-safe": teach, "teach-sensor": teach}
+        flies = accepting and c["air-height"] > 0
+        enabled.update({"air-run-change": flies and wanted, "air-run-load": flies and wanted,
+                        "air-run-unload": flies and wanted, "air-run-verify": flies and pocket})
         for name, on in enabled.items():
             get(name).set_sensitive(bool(on))
         # The pins after the screen, Load and Continue last: a reader that

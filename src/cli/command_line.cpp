@@ -36,6 +36,14 @@ const std::vector<OptionDeclaration> kOptions = {
   {"--timeout", "SECONDS",
    "--operator: stop waiting after this long (the request goes on: exit 5); without it the "
    "command waits for the end, as long as the operator takes", ""},
+  {"--air", "HEIGHT",
+   "--plan: the change flown in the air, as the panel's air run flies it: no move over the rack "
+   "lower than HEIGHT above its top (the holders' top plus rack_keepout_above, the config's "
+   "units), every move at --air-feed, the chuck, the probe and LinuxCNC's tool commands left "
+   "out, checked with the tool --from in the spindle all the way", ""},
+  {"--air-feed", "FEED",
+   "--plan --air: the feed of every move, units per minute (default: the config's verify_feed, "
+   "else pocket_feed)", ""},
   {"--tool-table", "FILE",
    "--lint, --check, --plan, --teach: LinuxCNC's tool table (else the INI's [EMCIO]TOOL_TABLE)",
    ""},
@@ -70,7 +78,8 @@ const std::vector<ModeDeclaration> kModes = {
    "against the rack keep-out and, last, what was not checked (\"INI unreadable: soft limits "
    "not checked\"). Config, state and INI must be regular files of at most 1 MiB. Exit 0 "
    "valid, 1 invalid, 2 usage"},
-  {Mode::plan, "--plan", "", {"--config", "--from", "--to"}, {"--ini", "--state", "--tool-table"},
+  {Mode::plan, "--plan", "", {"--config", "--from", "--to"},
+   {"--ini", "--state", "--tool-table", "--air", "--air-feed"},
    "print the steps of M6 TB with TA in the spindle",
    "print the steps of M6 TB with TA in the spindle (the tools where --state has them, else "
    "the first-start map, said so when --state names no file yet), then its estimated time on the config's path and on the other one "

@@ -110,6 +110,18 @@ bool take_value(const std::string& arg, const std::string& text, Options& option
     if (!options.into_pocket) error = "--into: expected a pocket number (0: the changer chooses), got " + quote(text);
     return options.into_pocket.has_value();
   }
+  if (arg == "--air" || arg == "--air-feed") {
+    const auto value = decimal_argument(text);
+    const bool height = arg == "--air";
+    if (!value || *value <= 0.0) {
+      error = arg + ": expected " +
+              (height ? "a height above the rack, above 0" : "a feed, units per minute, above 0") +
+              ", got " + quote(text);
+      return false;
+    }
+    (height ? options.air_height : options.air_feed) = *value;
+    return true;
+  }
   if (arg == "--timeout") {
     options.timeout_seconds = decimal_argument(text);
     if (!options.timeout_seconds || *options.timeout_seconds <= 0.0) {
@@ -343,6 +355,10 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
       return std::nullopt;
     }
     options.answer_yes = given.at("--yes")->count() == 1;
+  }
+  if (options.air_feed && !options.air_height) {
+    error = "--air-feed is read only with --air HEIGHT";
+    return std::nullopt;
   }
   options.state_given = !options.state_path.empty();
   // --plan and --plot read a state file only when given one, --operator the INI's; the others

@@ -3,6 +3,7 @@
 #include <ostream>
 
 #include "check.hpp"
+#include "core/dry_run/air_run.hpp"
 #include "core/dry_run/sequence_check.hpp"
 #include "core/dry_run/simulator.hpp"
 #include "core/formatted.hpp"
@@ -70,6 +71,36 @@ void print_estimate(const Options& options, const Config& config, const ToolStat
       << " once it stands\n";
 }
 
+/// --plan --air: the change flown in the air, every move checked with the
+/// tool `from` in the spindle all the way (nothing is taken or handed).
+int plan_in_the_air(const Options& options, const Config& config, const ToolState& tools, int to,
+                    const Loaded& loaded, std::ostream& out) {
+  const AirSettings air{*options.air_height, options.air_feed.value_or(0.0)};
+  const std::string name = "M6 T" + std::to_string(to) + " with " + spindle_words(tools.spindle);
+  const AirPlan plan =
+      plan_air_run(config, tools, {}, 0, [to](Changer& c) { c.tool_change(to); }, name, air,
+                   tools.spindle, loaded.lengths.of(tools.spindle, tools.lengths).length);
+  if (!plan.request) {
+    out << plan.refused << "\n";
+    return 1;
+  }
+  out << plan.request->name << ", " << rack_words(options) << "\n";
+  std::vector<Step> route = plan.request->route;
+  int number = 0;
+  for (Step& step : route) {
+    step.held = tools.spindle;
+    out << formatted("%3d  ", ++number) << describe(step) << "\n";
+  }
+  std::vector<SequenceViolation> violations;
+  const StepsFrom from{{}, 0, loaded.lengths, tools.lengths};
+  for (const Violation& v : check_steps(config, route, loaded.limits, from)) {
+    violations.push_back({"air run", v.step, route[v.step], v.what});
+  }
+  out << "the chuck, the probe, the operator's waits and LinuxCNC's tool commands left out: "
+         "nothing is taken, handed or measured\n";
+  return report(violations, out) != 0 ? 1 : 0;
+}
+
 }  // namespace
 
 int plan(const Options& options, std::ostream& out, std::ostream& err) {
@@ -82,6 +113,7 @@ int plan(const Options& options, std::ostream& out, std::ostream& err) {
   if (!rack) return 1;
   ToolState& tools = *rack;
   tools.put_in_spindle(from);
+  if (options.air_height) return plan_in_the_air(options, config, tools, to, loaded, out);
   const Simulator sim = plan_change(config, tools, to, config.probe_limit.z);
   out << "M6 T" << to << " with " << spindle_words(from) << ", " << rack_words(options) << "\n";
   int number = 0;

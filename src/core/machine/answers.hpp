@@ -65,9 +65,9 @@ struct StopDryRun {
     Context& c = *fsm.ctx;
     std::string why = "the machine went off, lost homing or entered estop";
     if constexpr (std::is_same_v<Event, Abort>) why = e.reason;
-    const int pocket = c.sequence_pocket();
+    const std::string sequence = c.tools.in_progress ? c.tools.in_progress->sequence : "dry run";
     c.end_sequence();
-    c.tell(MessageKind::info, "verify of pocket " + std::to_string(pocket) + " stopped (" + why +
+    c.tell(MessageKind::info, sequence + " stopped (" + why +
                                   "); nothing was recorded. The spindle may be in the rack: jog "
                                   "it out the way it came in before the next change");
   }

@@ -63,11 +63,14 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
       return fsm.template is_flag_active<flag::Busy>();
     }
   };
-  /// A dry run (verify): the chuck stays closed, so the tools are where they were.
+  /// A dry run (verify, an air run): the chuck stays closed, so the tools are where they were.
   struct DryRun {
     template <class Event, class Fsm, class Source, class Target>
     bool operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      return fsm.template is_flag_active<Verify>();
+      return Flows::any([&](auto flow) {
+        using Flow = decltype(flow);
+        return Flow::dry_run && fsm.template is_flag_active<Flow>();
+      });
     }
   };
   struct SpindleUncertain {

@@ -121,6 +121,11 @@ void Component::read_operator() {
                              *changer_, refuse_);
   }
   if (verify_.rose(*pins_->verify_pocket)) changer_->verify(*pins_->pocket_number);
+  using What = AirAsk::What;
+  if (air_change_.rose(*pins_->air_run_change)) fly(What::change);
+  if (air_load_.rose(*pins_->air_run_load)) fly(What::load);
+  if (air_unload_.rose(*pins_->air_run_unload)) fly(What::unload);
+  if (air_verify_.rose(*pins_->air_run_verify)) fly(What::verify);
   if (continue_.rose(*pins_->continue_)) changer_->operator_continue();
   if (cancel_.rose(*pins_->cancel)) {
     if (changer_->status().probe_cancellable && nml_) {
@@ -146,6 +151,21 @@ void Component::read_operator() {
 
 void Component::teach(const TeachTarget& target) {
   teacher_.teach(*changer_, target, nml_ != nullptr, position());
+}
+
+void Component::fly(AirAsk::What what) {
+  AirAsk ask;
+  ask.what = what;
+  ask.tool = *pins_->tool_number;
+  if (*pins_->air_from_tool >= 0) ask.from = *pins_->air_from_tool;
+  ask.pocket = *pins_->pocket_number;
+  ask.air = {*pins_->air_height, *pins_->air_feed};
+  const AirPlan plan = plan_air_run(*changer_, ask, position());
+  if (plan.request) {
+    changer_->request(*plan.request);
+  } else {
+    tell(MessageKind::error, plan.refused);
+  }
 }
 
 std::optional<Point> Component::position() const {

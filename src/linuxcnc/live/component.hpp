@@ -8,6 +8,7 @@
 #include "core/machine/changer.hpp"
 #include "core/protocol/executor_link.hpp"
 #include "core/machine/base/ports.hpp"
+#include "core/dry_run/air_run.hpp"
 #include "core/dry_run/teach.hpp"
 #include "io/status_file.hpp"
 #include "program_tools_job.hpp"
@@ -74,6 +75,8 @@ class Component : public Ports {
   void read_executor(std::optional<bool> interpreter_idle);
   void read_operator();
   void teach(const TeachTarget& target);
+  /// An air-run press: the sequence `what` flown, or refused in one message.
+  void fly(AirAsk::What what);
   /// Where the machine stands, in machine coordinates and config units; nothing without NML.
   std::optional<Point> position() const;
   void abort(const std::string& reason);
@@ -102,6 +105,7 @@ class Component : public Ports {
   };
   Edge abort_, clear_, load_, unload_, continue_, cancel_, spindle_refused_;
   Edge teach_pocket_, teach_loading_, teach_safe_, teach_sensor_, measure_all_, verify_;
+  Edge air_change_, air_load_, air_unload_, air_verify_;
 };
 
 }  // namespace fatc::linuxcnc

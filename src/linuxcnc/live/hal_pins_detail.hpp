@@ -72,6 +72,13 @@ struct HalPins {
   hal_bit_t* teach_safe;
   hal_bit_t* teach_sensor;
   hal_bit_t* verify_pocket;
+  hal_bit_t* air_run_change;
+  hal_bit_t* air_run_load;
+  hal_bit_t* air_run_unload;
+  hal_bit_t* air_run_verify;
+  hal_s32_t* air_from_tool;
+  hal_float_t* air_height;
+  hal_float_t* air_feed;
   hal_s32_t* pocket_served;
   hal_bit_t* measure_all;
   hal_s32_t* measure_which;

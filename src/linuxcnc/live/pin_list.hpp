@@ -155,7 +155,8 @@ inline const std::vector<PinDeclaration> kPins = joined({{
   // What the changer is doing.
   {"state", &HalPins::state, HAL_OUT,
    "0 not ready, 1 idle, 2 changing, 3 loading, 4 unloading, 5 fault, 6 measuring (measure "
-   "all), 7 verifying (a dry run through a pocket), 8 chuck (a chuck atom)"},
+   "all), 7 verifying (a dry run through a pocket), 8 chuck (a chuck atom), 9 air run (a "
+   "sequence flown above the rack)"},
   {"ready", &HalPins::ready, HAL_OUT,
    "idle, able to change tools (not while a release holds the chuck open)"},
   {"busy", &HalPins::busy, HAL_OUT, "a sequence runs"},
@@ -220,6 +221,26 @@ inline const std::vector<PinDeclaration> kPins = joined({{
   {"verify-pocket", &HalPins::verify_pocket, HAL_IN,
    "rising edge: a dry run through the approach of the empty pocket `pocket-number`, held at "
    "each waypoint until `continue`; accepted when `load` would be"},
+  // A change in the air: the sequence flown above the rack, nothing taken or recorded.
+  {"air-run-change", &HalPins::air_run_change, HAL_IN,
+   "rising edge: M6 T`tool-number` flown in the air, as if the spindle held `air-from-tool`; "
+   "every move over the rack no lower than `air-height` above its top, at `air-feed`, the chuck "
+   "closed, nothing measured or recorded (`state` 9); accepted when `load` would be"},
+  {"air-run-load", &HalPins::air_run_load, HAL_IN,
+   "rising edge: the load of `tool-number` into `pocket-number` flown in the air"},
+  {"air-run-unload", &HalPins::air_run_unload, HAL_IN,
+   "rising edge: the unload of `tool-number` flown in the air"},
+  {"air-run-verify", &HalPins::air_run_verify, HAL_IN,
+   "rising edge: the verify of pocket `pocket-number` flown in the air, without its stops"},
+  {"air-from-tool", &HalPins::air_from_tool, HAL_IN,
+   "the tool an air-run M6 starts from (0 an empty spindle); -1 (the default): the one the "
+   "spindle holds", -1},
+  {"air-height", &HalPins::air_height, HAL_IN,
+   "how far above the rack's top (its forks and the keep-out above them) an air run flies, "
+   "the config's units"},
+  {"air-feed", &HalPins::air_feed, HAL_IN,
+   "the feed of every move of an air run, units per minute; 0 (the default): the config's "
+   "`verify_feed`, else `pocket_feed`"},
   {"pocket-served", &HalPins::pocket_served, HAL_OUT,
    "the pocket the sequence under way serves (0 none)"},
   {"measure-all", &HalPins::measure_all, HAL_IN,

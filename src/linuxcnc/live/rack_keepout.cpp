@@ -22,8 +22,8 @@ void RackKeepout::poll(HalPins& pins, const Changer& changer, bool machine_ready
                        double tool_length, Ports& ports) {
   const Config& config = changer.config();
   const auto per_mm = nml ? nml->units_per_mm() : std::nullopt;
-  state_ = keepout_state(config, {machine_ready, per_mm.has_value(), changer.status().busy(),
-                                  *pins.rack_keepout_lift != 0});
+  state_ = keepout_state(config, {machine_ready, per_mm.has_value(),
+                                  changer.status().moves_into_rack(), *pins.rack_keepout_lift != 0});
   *pins.rack_keepout = static_cast<int>(state_);
   const bool off = state_ == KeepoutState::off;
   if (off && !said_off_) {

@@ -586,11 +586,13 @@ def perform(step, result, start):
         command.state(linuxcnc.STATE_ON)
         wait(lambda: stat.task_state == linuxcnc.STATE_ON, 30, "the machine on")
     elif step["do"] == "files":
-        # config.json and its backup as they are on disk now (teaching writes them).
+        # config.json and its backup as they are on disk now (teaching writes them),
+        # the state file and the tool table (an air run writes neither).
         stat.poll()
         result.setdefault("files", {})[step["name"]] = {
             "t": now(), "pos": list(stat.actual_position[:3]),
-            "config": read_text(config_path()), "bak": read_text(config_path() + ".bak")}
+            "config": read_text(config_path()), "bak": read_text(config_path() + ".bak"),
+            "state": read_text(state_path()), "table": read_text(os.path.join(ini_dir(), "sim.tbl"))}
     elif step["do"] == "tool_table":
         table = tool_table.record(stat, os.path.join(ini_dir(), "sim.tbl"), lambda: (
             hal.get_value(COMPONENT + ".state") == 1 and stat.interp_state == linuxcnc.INTERP_IDLE))

@@ -16,6 +16,7 @@ enum class Phase {
   measuring = 6,  ///< measure all
   verifying = 7,  ///< a dry run through one pocket's approach
   chuck = 8,      ///< a chuck atom from G-code releases or clamps the chuck
+  air_run = 9,    ///< a sequence flown above the rack, nothing taken or recorded
 };
 
 /// The phase in words ("changing"), as the status file shows it.
@@ -64,6 +65,10 @@ struct Status {
     return phase != Phase::not_ready && phase != Phase::idle && phase != Phase::fault;
   }
   bool awaits_operator() const { return awaiting == Awaiting::operator_choice; }
+  /// The changer's own moves run into the rack: the keep-out of every motion
+  /// is lifted for them. Not for an air run, which stays out of the rack as
+  /// any motion does.
+  bool moves_into_rack() const { return busy() && phase != Phase::air_run; }
 };
 
 }  // namespace fatc

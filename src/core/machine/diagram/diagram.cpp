@@ -2,6 +2,7 @@
 // walking every table is as heavy as dispatching them).
 
 #include "../changer.hpp"
+#include "../flows/air_run_flow.hpp"
 #include "../flows/change_flow.hpp"
 #include "../flows/chuck_flow.hpp"
 #include "../flows/load_flow.hpp"

@@ -32,6 +32,10 @@ struct FlowKind {
   /// Its request is run on a copy of the changer before it is taken, once
   /// its own rule lets it (Operating's why_not).
   static constexpr bool rehearsed = true;
+  /// A dry run (verify, an air run): the chuck stays closed and nothing is
+  /// recorded, so an abort or the machine going off leaves the tools where
+  /// they were (StopDryRun), no fault.
+  static constexpr bool dry_run = false;
   /// A guard under which the request is answered done without a flow.
   using answered_at_once = NoRow;
   using when_finished = AnswerDone;

@@ -14,6 +14,7 @@
 #include <variant>
 
 #include "../base/events.hpp"
+#include "air_run.hpp"
 #include "change.hpp"
 #include "chuck_atom.hpp"
 #include "load.hpp"
@@ -33,7 +34,7 @@ struct FlowList {
   using requests = std::variant<typename Kinds::request...>;
 };
 /// Every flow, in the order Operating lists them.
-using Flows = FlowList<Change, Load, Unload, MeasureAll, Verify, ChuckAtom>;
+using Flows = FlowList<Change, Load, Unload, MeasureAll, Verify, ChuckAtom, AirRun>;
 /// A request of any flow (Changer::request).
 using FlowRequest = Flows::requests;
 

@@ -25,6 +25,7 @@ struct Verify : FlowKind {
   using front = VerifyFlow_;
   static constexpr Phase phase = Phase::verifying;
   static constexpr const char* word = "verifying";
+  static constexpr bool dry_run = true;
   using when_cancelled = AnswerDone;
   using when_aborted = StopDryRun;
   static int tool(const Context& c, const VerifyRequest&);
