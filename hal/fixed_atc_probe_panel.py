@@ -23,7 +23,10 @@ OPERATOR_BUTTONS = ("load", "unload", "continue", "cancel", "clear-fault", "meas
                     "verify-pocket")
 # The Setup page: nothing moves, config.json is written.
 TEACH_BUTTONS = ("teach-pocket", "teach-loading", "teach-safe", "teach-sensor")
-BUTTONS = OPERATOR_BUTTONS + TEACH_BUTTONS
+# The I/O page: each drives one output once (the component's io-check-* pins).
+IO_BUTTONS = ("io-check-chuck-release", "io-check-chuck-clamp", "io-check-cover-open",
+              "io-check-cover-close", "io-check-air-blast")
+BUTTONS = OPERATOR_BUTTONS + TEACH_BUTTONS + IO_BUTTONS
 # The component polls every 20 ms at most: high and low phases it cannot miss.
 PULSE_MS = 100
 GAP_MS = 60
@@ -275,6 +278,7 @@ class Handler:
         halcomp.newpin("pocket-number", hal.HAL_S32, hal.HAL_OUT)
         halcomp.newpin("measure-which", hal.HAL_S32, hal.HAL_OUT)
         halcomp.newpin("rack-keepout-lift", hal.HAL_BIT, hal.HAL_OUT)
+        halcomp.newpin("io-check-holding-tool", hal.HAL_BIT, hal.HAL_OUT)
         for name in ("state", "awaiting", "tool-in-spindle", "step-kind", "cut-off-pocket",
                      "pocket-served", "batch-done", "batch-total"):
             halcomp.newpin(name, hal.HAL_S32, hal.HAL_IN)
@@ -342,6 +346,9 @@ class Handler:
     def on_keepout_lift_toggled(self, button):
         self.comp["rack-keepout-lift"] = button.get_active()
 
+    def on_holding_tool_toggled(self, button):
+        self.comp["io-check-holding-tool"] = button.get_active()
+
     def on_button_clicked(self, button):
         name = Gtk.Buildable.get_name(button)
         if name in self.pulses:
@@ -408,6 +415,7 @@ class Handler:
                    "teach-pocket": teach and pocket, "teach-loading": teach,
                    "verify-pocket": accepting and pocket,
                    "teach-safe": teach, "teach-sensor": teach}
+        enabled.update(self.show_io_check(status))
         for name, on in enabled.items():
             get(name).set_sensitive(bool(on))
         # The pins after the screen, Load and Continue last: a reader that
@@ -415,6 +423,21 @@ class Handler:
         for name in sorted(enabled, key=lambda name: (name == "load", name == "continue")):
             c[name + "-enabled"] = bool(enabled[name])
         return True
+
+    def show_io_check(self, status):
+        """The I/O page: the sensor lines, why each refused output is refused,
+        the last answer; which of its buttons may be pressed."""
+        get = self.builder.get_object
+        io = (status or {}).get("io_check") or {}
+        get("io_sensors").set_text("\n".join(io.get("sensors", [])) or "no sensor wired")
+        refusals = io.get("refusals", {})
+        get("io_refusals").set_text("\n".join(
+            "%s: %s" % (get(button).get_label(), refusals[button[len("io-check-"):]])
+            for button in IO_BUTTONS if refusals.get(button[len("io-check-"):])) or " ")
+        get("io_last").set_text(io.get("last") or " ")
+        # No words from the component (not started yet): nothing to press.
+        return {button: bool(refusals) and not refusals.get(button[len("io-check-"):])
+                for button in IO_BUTTONS}
 
     def read_status(self):
         """The component's words (STATE.status): None when it cannot be read."""

@@ -10,6 +10,7 @@
 #include "core/machine/base/ports.hpp"
 #include "core/dry_run/teach.hpp"
 #include "io/status_file.hpp"
+#include "io_check_driver.hpp"
 #include "program_tools_job.hpp"
 #include "keepout_lengths.hpp"
 #include "rack_keepout.hpp"
@@ -78,6 +79,8 @@ class Component : public Ports {
   std::optional<Point> position() const;
   void abort(const std::string& reason);
   void start_executor_if_needed();
+  /// The I/O check's buttons, with the changer's belief and the machine's facts.
+  void poll_io_check();
 
   HalPins* pins_;
   NmlLink* nml_;
@@ -90,6 +93,8 @@ class Component : public Ports {
   std::optional<bool> machine_ready_;
   std::optional<bool> spindle_stopped_;
   std::optional<SensorReadings> sensors_;
+  SensorReadings raw_sensors_;  ///< as the pins read, before the I/O check hides any
+  std::optional<std::string> task_busy_;  ///< why task cannot run the executor now
   bool task_free_ = false;
   SpindleToolSync spindle_tool_;
   RackKeepout keepout_;
@@ -102,6 +107,7 @@ class Component : public Ports {
   };
   Edge abort_, clear_, load_, unload_, continue_, cancel_, spindle_refused_;
   Edge teach_pocket_, teach_loading_, teach_safe_, teach_sensor_, measure_all_, verify_;
+  IoCheckDriver io_check_;
 };
 
 }  // namespace fatc::linuxcnc
