@@ -19,6 +19,9 @@ namespace fatc::io {
 /// clear-fault, measure-all[:never|:program], verify:P, io[:OUTPUT].
 struct OperatorRequest {
   enum class Action { load, unload, continue_prompt, cancel, clear_fault, measure_all, verify, io };
+  OperatorRequest() = default;
+  OperatorRequest(Action action, int number, std::optional<IoAction> io = std::nullopt)
+      : action(action), number(number), io(io) {}
   Action action = Action::continue_prompt;
   /// load, unload: the tool; verify: the pocket; measure-all: measure-which (0, 1, 2).
   int number = 0;
