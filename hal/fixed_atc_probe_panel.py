@@ -26,7 +26,8 @@ TEACH_BUTTONS = ("teach-pocket", "teach-loading", "teach-safe", "teach-sensor")
 # The I/O page: each drives one output once (the component's io-check-* pins).
 IO_BUTTONS = ("io-check-chuck-release", "io-check-chuck-clamp", "io-check-cover-open",
               "io-check-cover-close", "io-check-air-blast")
-BUTTONS = OPERATOR_BUTTONS + TEACH_BUTTONS + IO_BUTTONS
+PAGE_BUTTONS = TEACH_BUTTONS + IO_BUTTONS
+BUTTONS = OPERATOR_BUTTONS + PAGE_BUTTONS
 # The component polls every 20 ms at most: high and low phases it cannot miss.
 PULSE_MS = 100
 GAP_MS = 60
