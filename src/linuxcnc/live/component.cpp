@@ -23,7 +23,9 @@ Component::Component(HalPins* pins, const Config& config, std::string config_pat
   *pins_->units_inch = config.units == Units::inch;
 }
 
-bool Component::active() const { return link_.active() || deadline_ || changer_->status().busy(); }
+bool Component::active() const {
+  return link_.active() || deadline_ || changer_->status().busy() || io_check_.timing();
+}
 
 void Component::poll(Clock::time_point now, std::optional<bool> interpreter_idle) {
   now_ = now;

@@ -46,7 +46,8 @@ class Component : public Ports {
   }
   /// `interpreter_idle`: LinuxCNC's interpreter state, when NML is available.
   void poll(Clock::time_point now, std::optional<bool> interpreter_idle);
-  /// Whether the next poll should come soon: a sequence runs or a handshake is open.
+  /// Whether the next poll should come soon: a sequence runs, a handshake is
+  /// open or the I/O check times an answer.
   bool active() const;
 
   void publish(const Step& step) override { link_.publish(step); }

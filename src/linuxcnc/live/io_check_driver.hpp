@@ -36,6 +36,8 @@ class IoCheckDriver {
   /// `facts`: the changer's belief and the machine, the outputs left to this.
   void poll(Clock::time_point now, const Config& config, const SensorReadings& read,
             IoFacts facts, Ports& ports);
+  /// An output's answer is being timed: the next poll should come soon.
+  bool timing() const { return timing_.has_value(); }
   /// What the status file shows of it.
   const io::StatusFile::IoCheckWords& words() const { return words_; }
 
