@@ -377,7 +377,7 @@ class Handler:
         state = c["state"]
         words = PHASES.get(state, "state %d" % state)
         if state == PHASE_IDLE and c["chuck-held"]:
-            words = "Chuck held open by G-code: no motion, no spindle until it is clamped"
+            words = "Chuck held open (G-code, or the I/O page): no motion, no spindle until it is clamped"
         get("state_words").set_text(words)
         status = self.read_status()
         if status is not None:

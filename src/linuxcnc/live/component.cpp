@@ -55,6 +55,7 @@ void Component::poll(Clock::time_point now, std::optional<bool> interpreter_idle
   const Status status = changer_->status();
   write_link(*pins_, link_.write(status.phase == Phase::idle));
   write_status(*pins_, status, *changer_, link_.attached(), nml_ != nullptr);
+  if (io_check_.holds_chuck_open()) *pins_->chuck_held = true;
   status_file_.io_check(io_check_.words());
   status_file_.write(status, changer_->cut_off(), keepout_words(keepout_.state()));
 }

@@ -36,6 +36,11 @@ class IoCheckDriver {
   /// `facts`: the changer's belief and the machine, the outputs left to this.
   void poll(Clock::time_point now, const Config& config, const SensorReadings& read,
             IoFacts facts, Ports& ports);
+  /// The I/O check holds the chuck open: motion and the spindle are held
+  /// as for a G-code release (`chuck-held`).
+  bool holds_chuck_open() const {
+    return outputs_[static_cast<std::size_t>(IoOutput::chuck)].held.value_or(false);
+  }
   /// An output's answer is being timed: the next poll should come soon.
   bool timing() const { return timing_.has_value(); }
   /// What the status file shows of it.

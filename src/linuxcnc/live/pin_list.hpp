@@ -106,7 +106,7 @@ inline const std::vector<PinDeclaration> kPins = joined({{
    "true opens the chuck; the HAL snippet passes it through `fatc-chuck-guard` to the signal "
    "`fatc-chuck`, which the drawbar valve takes"},
   {"chuck-held", &HalPins::chuck_held, HAL_OUT,
-   "a G-code release holds the chuck open until its clamp; the snippet nets it through "
+   "a G-code release (or the I/O check) holds the chuck open until its clamp; the snippet nets it through "
    "`fatc-rack-guard` to `motion.feed-inhibit` and through `fatc-spindle-guard` to "
    "`spindle.0.inhibit` (the chuck atoms)"},
   {"heartbeat", &HalPins::heartbeat, HAL_OUT,
