@@ -18,7 +18,8 @@ bool wired(const Config& config, Sensor sensor) { return config.sensors.wired(se
 IoSensorLine expected(Sensor sensor, const IoFacts& f) {
   IoSensorLine line;
   const std::string chuck = f.chuck_open ? "the chuck is released" : "the chuck is clamped";
-  const std::string cover = f.cover_open ? "the cover is commanded open" : "the cover is commanded closed";
+  const std::string cover =
+      f.cover_open ? "the cover is commanded open" : "the cover is commanded closed";
   switch (sensor) {
     case Sensor::zero_speed:
       line.expected = f.spindle_stopped;
@@ -31,9 +32,9 @@ IoSensorLine expected(Sensor sensor, const IoFacts& f) {
         line.why = "what the spindle holds is not certain since a sequence was cut off";
       } else {
         line.expected = f.tools.spindle != 0;
-        line.why = f.tools.spindle != 0 ? "tool " + std::to_string(f.tools.spindle) +
-                                              " is in the spindle"
-                                        : "the spindle is empty";
+        line.why = f.tools.spindle != 0
+                       ? "tool " + std::to_string(f.tools.spindle) + " is in the spindle"
+                       : "the spindle is empty";
       }
       break;
     case Sensor::drawbar_open:
@@ -69,7 +70,8 @@ std::string what_spindle_holds(const SensorReadings& read, const IoFacts& f) {
   if (f.tools.spindle != 0 && !f.tools.uncertain) {
     return "tool " + std::to_string(f.tools.spindle) + " is in the spindle";
   }
-  if (read.reads(Sensor::tool_present)) return "a tool is in the spindle (" + pin(Sensor::tool_present) + " on)";
+  if (read.reads(Sensor::tool_present))
+    return "a tool is in the spindle (" + pin(Sensor::tool_present) + " on)";
   return "the spindle may hold a tool (a sequence was cut off)";
 }
 
@@ -201,7 +203,8 @@ std::vector<IoSensorLine> io_sensor_lines(const Config& config, const SensorRead
 int io_pocket_under_spindle(const Config& config, const Point& nose, double tool_length) {
   for (const RackPart& part : rack_volume(config)) {
     const Box& b = part.box;
-    const bool over = nose.x > b.low.x && nose.x < b.high.x && nose.y > b.low.y && nose.y < b.high.y;
+    const bool over =
+        nose.x > b.low.x && nose.x < b.high.x && nose.y > b.low.y && nose.y < b.high.y;
     if (over && nose.z - tool_length < b.high.z) return nearest_pocket(part, nose);
   }
   return 0;
@@ -230,21 +233,24 @@ std::optional<std::string> io_refusal(IoAction action, const Config& config,
       return std::nullopt;
     case IoAction::cover_open:
     case IoAction::cover_close: {
-      if (!config.rack_cover) return std::string("config.json has no rack_cover: there is none to drive");
+      if (!config.rack_cover)
+        return std::string("config.json has no rack_cover: there is none to drive");
       if (action == IoAction::cover_open) return std::nullopt;
       if (!f.homed || !f.nose) {
         return std::string(
             "where the spindle stands is not known (not homed): the cover could close on it");
       }
       if (const int pocket = io_pocket_under_spindle(config, *f.nose, f.tool_length)) {
-        return formatted("the spindle is in the rack (X%.3f Y%.3f Z%.3f, by pocket %d): the "
-                         "cover would close on it; move it up out of the rack first",
-                         f.nose->x, f.nose->y, f.nose->z, pocket);
+        return formatted(
+            "the spindle is in the rack (X%.3f Y%.3f Z%.3f, by pocket %d): the "
+            "cover would close on it; move it up out of the rack first",
+            f.nose->x, f.nose->y, f.nose->z, pocket);
       }
       return std::nullopt;
     }
     case IoAction::air_blast:
-      if (!config.air_blast) return std::string("config.json's air_blast is off: the changer drives no air blast");
+      if (!config.air_blast)
+        return std::string("config.json's air_blast is off: the changer drives no air blast");
       return std::nullopt;
   }
   return std::nullopt;
@@ -274,8 +280,8 @@ bool io_answered(IoAction action, const Config& config, const SensorReadings& re
   return true;
 }
 
-std::string io_timing_words(IoAction action, const Config& config,
-                            std::optional<double> seconds, const SensorReadings& read) {
+std::string io_timing_words(IoAction action, const Config& config, std::optional<double> seconds,
+                            const SensorReadings& read) {
   const auto timeout = io_timeout(action, config);
   if (!timeout) return driven(action);
   const std::string yours = formatted("your timeout %g s (", timeout->seconds) + timeout->key + ")";
@@ -290,9 +296,10 @@ std::string io_timing_words(IoAction action, const Config& config,
   }
   std::string words = std::string(happened(action)) + formatted(" in %.2f s; ", *seconds) + yours;
   if (*seconds > kIoSlowShare * timeout->seconds) {
-    words += formatted(": slow, over %.0f%% of the timeout; a change may time out on a cold "
-                       "morning or with less air",
-                       kIoSlowShare * 100);
+    words += formatted(
+        ": slow, over %.0f%% of the timeout; a change may time out on a cold "
+        "morning or with less air",
+        kIoSlowShare * 100);
   }
   return words;
 }

@@ -73,13 +73,13 @@ const char* io_action_name(IoAction action);
 /// What the I/O check judges by: the changer's belief, the outputs as last
 /// commanded (by the changer or by the I/O check), and what LinuxCNC says.
 struct IoFacts {
-  ToolState tools;                 ///< the changer's belief; never changed here
-  bool chuck_open = false;         ///< the `chuck` output as last commanded
-  bool cover_open = false;         ///< `rack-cover-open` as last commanded
-  bool air_blast = false;          ///< `air-blast` as last commanded
-  bool spindle_stopped = true;     ///< LinuxCNC has the spindle off (`spindle-stopped`)
-  bool machine_on = false;         ///< `machine-on`
-  bool homed = false;              ///< `all-homed`: where the spindle stands is known
+  ToolState tools;              ///< the changer's belief; never changed here
+  bool chuck_open = false;      ///< the `chuck` output as last commanded
+  bool cover_open = false;      ///< `rack-cover-open` as last commanded
+  bool air_blast = false;       ///< `air-blast` as last commanded
+  bool spindle_stopped = true;  ///< LinuxCNC has the spindle off (`spindle-stopped`)
+  bool machine_on = false;      ///< `machine-on`
+  bool homed = false;           ///< `all-homed`: where the spindle stands is known
   /// Why nothing may be driven now for the changer's sake: a program or MDI
   /// runs, a sequence is under way, a G-code release holds the chuck.
   std::optional<std::string> busy;
@@ -90,10 +90,10 @@ struct IoFacts {
 
 /// One sensor as the I/O check shows it.
 struct IoSensorLine {
-  std::string pin;                ///< after `fixed_atc_probe.`
-  bool value = false;             ///< what it reads
-  std::optional<bool> expected;   ///< unset: either is right now
-  std::string why;                ///< why it should read that: "the chuck is clamped"
+  std::string pin;               ///< after `fixed_atc_probe.`
+  bool value = false;            ///< what it reads
+  std::optional<bool> expected;  ///< unset: either is right now
+  std::string why;               ///< why it should read that: "the chuck is clamped"
   bool agrees() const { return !expected || *expected == value; }
   /// "drawbar-closed: on, expected on (the chuck is clamped)".
   std::string words() const;
@@ -129,7 +129,7 @@ inline constexpr double kIoSlowShare = 0.5;
 /// answer within its timeout. "drawbar opened in 0.18 s; your timeout 1.0 s
 /// (sensor_timeout_seconds)", with a warning past kIoSlowShare of it; for an
 /// output no wired sensor answers, what was driven and that nothing timed it.
-std::string io_timing_words(IoAction action, const Config& config,
-                            std::optional<double> seconds, const SensorReadings& read);
+std::string io_timing_words(IoAction action, const Config& config, std::optional<double> seconds,
+                            const SensorReadings& read);
 
 }  // namespace fatc

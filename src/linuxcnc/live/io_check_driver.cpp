@@ -7,8 +7,8 @@ namespace {
 
 /// Each action's button, in the order of kIoActions.
 constexpr hal_bit_t* HalPins::*kButtons[] = {
-    &HalPins::io_check_chuck_release, &HalPins::io_check_chuck_clamp,
-    &HalPins::io_check_cover_open, &HalPins::io_check_cover_close, &HalPins::io_check_air_blast};
+    &HalPins::io_check_chuck_release, &HalPins::io_check_chuck_clamp, &HalPins::io_check_cover_open,
+    &HalPins::io_check_cover_close, &HalPins::io_check_air_blast};
 static_assert(std::size(kButtons) == kIoActionCount, "a button for each I/O check action");
 
 constexpr IoOutput kOutputs[] = {IoOutput::chuck, IoOutput::cover, IoOutput::air_blast};
@@ -64,7 +64,8 @@ void IoCheckDriver::give_back(const std::string& why, Ports& ports) {
   for (const IoOutput which : kOutputs) {
     Output& o = output(which);
     if (!o.held) continue;
-    if (*o.held != o.changer) given += (given.empty() ? "" : ", ") + std::string(output_words(which));
+    if (*o.held != o.changer)
+      given += (given.empty() ? "" : ", ") + std::string(output_words(which));
     o.held.reset();
   }
   timing_.reset();
@@ -81,7 +82,8 @@ void IoCheckDriver::drive(IoAction action, Clock::time_point now, const Config& 
   Output& o = output(a.output);
   if (!o.held) {
     // The changer keeps seeing this output's sensors as they were.
-    for (const Sensor sensor : io_sensors_watching(a.output)) frozen_.set(sensor, seen_.reads(sensor));
+    for (const Sensor sensor : io_sensors_watching(a.output))
+      frozen_.set(sensor, seen_.reads(sensor));
   }
   o.held = a.on;
   write_pins();
@@ -137,8 +139,9 @@ void IoCheckDriver::poll(Clock::time_point now, const Config& config, const Sens
     const bool answered = io_answered(timing_->action, config, read);
     if (answered || now >= *timing_->deadline) {
       const std::optional<double> seconds =
-          answered ? std::optional<double>(std::chrono::duration<double>(now - timing_->began).count())
-                   : std::nullopt;
+          answered
+              ? std::optional<double>(std::chrono::duration<double>(now - timing_->began).count())
+              : std::nullopt;
       words_.last = io_timing_words(timing_->action, config, seconds, read);
       ports.tell(answered ? MessageKind::info : MessageKind::error, "I/O check: " + words_.last);
       timing_.reset();

@@ -34,8 +34,8 @@ class IoCheckDriver {
   SensorReadings seen_by_changer(const SensorReadings& read);
   /// One poll: the buttons read, the outputs driven, the answers timed.
   /// `facts`: the changer's belief and the machine, the outputs left to this.
-  void poll(Clock::time_point now, const Config& config, const SensorReadings& read,
-            IoFacts facts, Ports& ports);
+  void poll(Clock::time_point now, const Config& config, const SensorReadings& read, IoFacts facts,
+            Ports& ports);
   /// The I/O check holds the chuck open: motion and the spindle are held
   /// as for a G-code release (`chuck-held`).
   bool holds_chuck_open() const {
@@ -48,8 +48,8 @@ class IoCheckDriver {
 
  private:
   struct Output {
-    bool changer = false;          ///< as the changer last commanded it
-    std::optional<bool> held;      ///< as the I/O check commands it, while it holds it
+    bool changer = false;      ///< as the changer last commanded it
+    std::optional<bool> held;  ///< as the I/O check commands it, while it holds it
   };
   /// An action driven, waiting for its sensors to answer.
   struct Timing {

@@ -61,7 +61,8 @@ TEST(IoCheckTest, shouldExpectTheDrawbarClosedWhenTheChuckIsClamped) {
 }
 
 TEST(IoCheckTest, shouldListOnlyTheWiredSensorsInTheirOrder) {
-  const Config config = test::valid_config(R"("sensors": {"drawbar_closed": true, "zero_speed": true})");
+  const Config config =
+      test::valid_config(R"("sensors": {"drawbar_closed": true, "zero_speed": true})");
   const auto lines = io_sensor_lines(config, {}, idle_facts(config));
   ASSERT_EQ(lines.size(), 2u);
   EXPECT_EQ(lines[0].pin, "zero-speed");
