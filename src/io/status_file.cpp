@@ -43,8 +43,8 @@ void StatusFile::write(const Status& status, const std::optional<InProgress>& cu
                           std::to_string(serial_) + "/" + std::to_string(status.pocket) + "/" +
                           std::to_string(status.batch_done) + "/" + status.activity + "/" +
                           (cut_off ? cut_off->sequence + cut_off->step : std::string("-")) + "/" +
-                          keepout + "/" + status.rule + "/" + std::to_string(status.spindle_probe) + "/" +
-                          std::to_string(io_check_serial_);
+                          keepout + "/" + status.rule + "/" + std::to_string(status.spindle_probe) +
+                          "/" + std::to_string(io_check_serial_);
   if (key == shown_) return;
   shown_ = key;  // a failed write is not retried every poll; the next change writes again
   nlohmann::json root = {{"phase", phase_word(status.phase)},

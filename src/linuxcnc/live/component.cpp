@@ -89,10 +89,10 @@ void Component::read_machine(std::optional<bool> interpreter_idle) {
   }
   // The operator flows run the executor over MDI: task must be free for it.
   task_free_ = nml_ && interpreter_idle.value_or(false);
-  task_busy_ = !nml_                ? std::optional<std::string>("no connection to LinuxCNC's task (NML)")
+  task_busy_ = !nml_ ? std::optional<std::string>("no connection to LinuxCNC's task (NML)")
                : !interpreter_idle ? std::optional<std::string>(kStatusLost)
-               : !task_free_       ? std::optional<std::string>("a program or MDI command is running")
-                                   : std::nullopt;
+               : !task_free_ ? std::optional<std::string>("a program or MDI command is running")
+                             : std::nullopt;
   changer_->task_availability(task_busy_);
   if (abort_.rose(*pins_->abort)) abort("the abort pin was raised");
   // fatc-spindle-guard holds the spindle while a probe is in it: what asked for it stops.
