@@ -167,8 +167,11 @@ OperatorOutcome watch_io(const io::Options& options, const std::string& status_p
     if (!read_pins(failure)) return failure.outcome;
     if (const auto status = read_status(status_path)) {
       std::vector<std::string> lines = status->io_sensors;
-      for (const auto& [action, why] : status->io_refusals) {
-        lines.push_back(action + ": " + (why.empty() ? "allowed" : "refused: " + why));
+      // In the order of the buttons (the file's object sorts its keys).
+      for (const IoActionDeclaration& a : kIoActions) {
+        for (const auto& [action, why] : status->io_refusals) {
+          if (action == a.name) lines.push_back(action + ": " + (why.empty() ? "allowed" : "refused: " + why));
+        }
       }
       if (lines != shown) {
         const double seconds = std::chrono::duration<double>(Clock::now() - began).count();
