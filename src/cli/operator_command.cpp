@@ -170,7 +170,8 @@ OperatorOutcome watch_io(const io::Options& options, const std::string& status_p
       // In the order of the buttons (the file's object sorts its keys).
       for (const IoActionDeclaration& a : kIoActions) {
         for (const auto& [action, why] : status->io_refusals) {
-          if (action == a.name) lines.push_back(action + ": " + (why.empty() ? "allowed" : "refused: " + why));
+          if (action != a.name) continue;
+          lines.push_back(action + ": " + (why.empty() ? "allowed" : "refused: " + why));
         }
       }
       if (lines != shown) {
