@@ -107,10 +107,10 @@ TEST(OperatorArguments, shouldRefuseBadInputWithOneLineSayingWhatIsExpected) {
        "--operator verify: expected verify:N, N a pocket number above 0, got \"verify:-1\""},
       {{"--operator", "continue:2", "--ini", "m.ini"},
        "--operator: expected load:T, unload:T, continue, cancel, clear-fault, measure-all, "
-       "measure-all:never, measure-all:program or verify:P, got \"continue:2\""},
+       "measure-all:never, measure-all:program, verify:P, io or io:OUTPUT, got \"continue:2\""},
       {{"--operator", "measure-all:some", "--ini", "m.ini"},
        "--operator: expected load:T, unload:T, continue, cancel, clear-fault, measure-all, "
-       "measure-all:never, measure-all:program or verify:P, got \"measure-all:some\""},
+       "measure-all:never, measure-all:program, verify:P, io or io:OUTPUT, got \"measure-all:some\""},
       {{"--operator", "load:3"},
        "--operator needs --ini FILE (the machine's INI, whose [FIXED_ATC_PROBE]STATE names the "
        "status file) or --state FILE"},
@@ -135,11 +135,13 @@ TEST(OperatorArguments, shouldRefuseBadInputWithOneLineSayingWhatIsExpected) {
 
 TEST(OperatorArguments, shouldShowTheFlagWithoutAValueInEveryReference) {
   EXPECT_NE(usage().find("fixed_atc_probe --operator ACTION [--ini FILE] [--state FILE] [--into "
-                         "P] [--spindle N] [--pocket yes|no] [--yes] [--timeout SECONDS]"),
+                         "P] [--spindle N] [--pocket yes|no] [--yes] [--holding-tool] [--timeout "
+                         "SECONDS]"),
             std::string::npos)
       << usage();
   EXPECT_NE(options_man().find(".B --yes\n"), std::string::npos);
   EXPECT_NE(command_line_markdown().find("| `--yes` |"), std::string::npos);
+  EXPECT_NE(options_man().find(".B --holding-tool\n"), std::string::npos);
 }
 
 TEST(OperatorExitStatus, shouldGiveEachOutcomeItsOwnStatusBesideUsages2) {
