@@ -25,7 +25,11 @@ OPERATOR_BUTTONS = ("load", "unload", "continue", "cancel", "clear-fault", "meas
 TEACH_BUTTONS = ("teach-pocket", "teach-loading", "teach-safe", "teach-sensor")
 # The Setup page's air runs: a sequence flown above the rack, nothing taken or recorded.
 AIR_BUTTONS = ("air-run-change", "air-run-load", "air-run-unload", "air-run-verify")
-BUTTONS = OPERATOR_BUTTONS + TEACH_BUTTONS + AIR_BUTTONS
+# The I/O page: each drives one output once (the component's io-check-* pins).
+IO_BUTTONS = ("io-check-chuck-release", "io-check-chuck-clamp", "io-check-cover-open",
+              "io-check-cover-close", "io-check-air-blast")
+PAGE_BUTTONS = TEACH_BUTTONS + IO_BUTTONS + AIR_BUTTONS
+BUTTONS = OPERATOR_BUTTONS + PAGE_BUTTONS
 # The component polls every 20 ms at most: high and low phases it cannot miss.
 PULSE_MS = 100
 GAP_MS = 60
@@ -283,6 +287,7 @@ class Handler:
         halcomp.newpin("air-feed", hal.HAL_FLOAT, hal.HAL_OUT)
         halcomp.newpin("air-from-tool", hal.HAL_S32, hal.HAL_OUT)
         halcomp["air-from-tool"] = -1
+        halcomp.newpin("io-check-holding-tool", hal.HAL_BIT, hal.HAL_OUT)
         for name in ("state", "awaiting", "tool-in-spindle", "step-kind", "cut-off-pocket",
                      "pocket-served", "batch-done", "batch-total"):
             halcomp.newpin(name, hal.HAL_S32, hal.HAL_IN)
@@ -359,6 +364,9 @@ class Handler:
     def on_keepout_lift_toggled(self, button):
         self.comp["rack-keepout-lift"] = button.get_active()
 
+    def on_holding_tool_toggled(self, button):
+        self.comp["io-check-holding-tool"] = button.get_active()
+
     def on_button_clicked(self, button):
         name = Gtk.Buildable.get_name(button)
         if name in self.pulses:
@@ -386,7 +394,7 @@ class Handler:
         state = c["state"]
         words = PHASES.get(state, "state %d" % state)
         if state == PHASE_IDLE and c["chuck-held"]:
-            words = "Chuck held open by G-code: no motion, no spindle until it is clamped"
+            words = "Chuck held open (G-code, or the I/O page): no motion, no spindle until it is clamped"
         get("state_words").set_text(words)
         status = self.read_status()
         if status is not None:
@@ -428,6 +436,7 @@ class Handler:
         flies = accepting and c["air-height"] > 0
         enabled.update({"air-run-change": flies and wanted, "air-run-load": flies and wanted,
                         "air-run-unload": flies and wanted, "air-run-verify": flies and pocket})
+        enabled.update(self.show_io_check(status))
         for name, on in enabled.items():
             get(name).set_sensitive(bool(on))
         # The pins after the screen, Load and Continue last: a reader that
@@ -435,6 +444,21 @@ class Handler:
         for name in sorted(enabled, key=lambda name: (name == "load", name == "continue")):
             c[name + "-enabled"] = bool(enabled[name])
         return True
+
+    def show_io_check(self, status):
+        """The I/O page: the sensor lines, why each refused output is refused,
+        the last answer; which of its buttons may be pressed."""
+        get = self.builder.get_object
+        io = (status or {}).get("io_check") or {}
+        get("io_sensors").set_text("\n".join(io.get("sensors", [])) or "no sensor wired")
+        refusals = io.get("refusals", {})
+        get("io_refusals").set_text("\n".join(
+            "%s: %s" % (get(button).get_label(), refusals[button[len("io-check-"):]])
+            for button in IO_BUTTONS if refusals.get(button[len("io-check-"):])) or " ")
+        get("io_last").set_text(io.get("last") or " ")
+        # No words from the component (not started yet): nothing to press.
+        return {button: bool(refusals) and not refusals.get(button[len("io-check-"):])
+                for button in IO_BUTTONS}
 
     def read_status(self):
         """The component's words (STATE.status): None when it cannot be read."""

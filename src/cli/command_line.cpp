@@ -33,6 +33,8 @@ const std::vector<OptionDeclaration> kOptions = {
    "chooses)", ""},
   {"--yes", "", "--operator: answer Continue at each prompt, as the operator would once the "
    "prompt's work is done (a script, a test)", ""},
+  {"--holding-tool", "", "--operator io:chuck-release: the operator holds the tool in the "
+   "spindle, so the chuck may open on it", ""},
   {"--timeout", "SECONDS",
    "--operator: stop waiting after this long (the request goes on: exit 5); without it the "
    "command waits for the end, as long as the operator takes", ""},
@@ -137,13 +139,17 @@ const std::vector<ModeDeclaration> kModes = {
    "FIFO. Exit 0 written, 1 invalid config or state or a refused change, 2 the file cannot be "
    "written"},
   {Mode::operator_request, "--operator", "ACTION", {},
-   {"--ini", "--state", "--into", "--spindle", "--pocket", "--yes", "--timeout"},
+   {"--ini", "--state", "--into", "--spindle", "--pocket", "--yes", "--holding-tool", "--timeout"},
    "ask the running component, as its panel does: load, unload, continue, cancel, ...",
    "the operator without a GUI (a script, a terminal over SSH): asks the running component, "
    "through the pins its panel pulses and the status file it reads, for ACTION: `load:T` "
    "(`--into P`), `unload:T`, `continue`, `cancel`, `clear-fault` (`--spindle N`, `--pocket "
    "yes|no`), `measure-all` (every tool in the rack; `measure-all:never` those never measured, "
-   "`measure-all:program` the loaded program's) or `verify:P`; prints each message the "
+   "`measure-all:program` the loaded program's), `verify:P`, `io` (the I/O check: each sensor, "
+   "what it should read and why, live until Ctrl-C or --timeout) or `io:OUTPUT` (drive one "
+   "output once: `chuck-release` (`--holding-tool` with a tool in the spindle), `chuck-clamp`, "
+   "`cover-open`, `cover-close`, `air-blast`; prints the refusal or how long its sensor took); "
+   "prints each message the "
    "component says meanwhile (the prompts' words among them) and last the outcome, and exits "
    "when the request has ended. A prompt waits for `continue` or `cancel` from another "
    "invocation (or the panel), or is answered by `--yes`. The state file, and so the status "

@@ -5,11 +5,14 @@
 #include <sys/shm.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <ostream>
 #include <string>
 #include <thread>
+#include <vector>
 
+#include "core/formatted.hpp"
 #include "io/capped_lines.hpp"
 #include "io/files.hpp"
 #include "io/interruption.hpp"
@@ -138,8 +141,89 @@ std::string asked(const io::Options& options) {
                                                              : "measure all of the program";
     case Action::verify:
       return "verify of pocket " + n;
+    case Action::io:
+      return r.io ? std::string("I/O check: ") + io_action_name(*r.io) +
+                        (options.holding_tool ? " (the operator holds the tool)" : "")
+                  : "I/O check: the sensors, live (Ctrl-C or --timeout ends it)";
   }
   return "";
+}
+
+/// How long an output's answer may take: longer than any sensor timeout a
+/// config sensibly has; the component says when its own timeout passed.
+constexpr auto kIoAnswerWithin = std::chrono::seconds(60);
+
+bool timed_out(const io::Options& options, Clock::duration waited) {
+  return options.timeout_seconds && waited > std::chrono::duration<double>(*options.timeout_seconds);
+}
+
+/// --operator io: each sensor's line and each output's refusal, printed
+/// again whenever it changes, until a signal or --timeout.
+OperatorOutcome watch_io(const io::Options& options, const std::string& status_path,
+                         std::ostream& out, Failure& failure) {
+  const auto began = Clock::now();
+  std::vector<std::string> shown;
+  for (;;) {
+    if (!read_pins(failure)) return failure.outcome;
+    if (const auto status = read_status(status_path)) {
+      std::vector<std::string> lines = status->io_sensors;
+      // In the order of the buttons (the file's object sorts its keys).
+      for (const IoActionDeclaration& a : kIoActions) {
+        for (const auto& [action, why] : status->io_refusals) {
+          if (action != a.name) continue;
+          lines.push_back(action + ": " + (why.empty() ? "allowed" : "refused: " + why));
+        }
+      }
+      if (lines != shown) {
+        const double seconds = std::chrono::duration<double>(Clock::now() - began).count();
+        out << formatted("at %.2f s:", seconds) << std::endl;
+        for (const std::string& line : lines) out << "  " << line << std::endl;
+        shown = std::move(lines);
+      }
+    }
+    if (timed_out(options, Clock::now() - began)) return OperatorOutcome::done;
+    if (io::Interruptible::signal() != 0) return OperatorOutcome::timeout;  // run_operator says it
+    std::this_thread::sleep_for(kPoll);
+  }
+}
+
+/// --operator io:OUTPUT: its button pressed once (with --holding-tool's pin
+/// up meanwhile), the component's answer printed: refused, or how long its
+/// sensor took.
+OperatorOutcome drive_io(const io::Options& options, const std::string& status_path,
+                         long seen_serial, std::ostream& out, Failure& failure) {
+  const char* holding = "io-check-holding-tool";
+  if (options.holding_tool && !set_and_hold(holding, 1, failure)) return failure.outcome;
+  const bool pressed = press(io::press_of(*options.request, {}, {}, {}), failure);
+  if (options.holding_tool) {
+    Failure dropped{OperatorOutcome::done, ""};
+    set_and_hold(holding, 0, dropped);
+  }
+  if (!pressed) return failure.outcome;
+  const auto pressed_at = Clock::now();
+  for (;;) {
+    if (!read_pins(failure)) return failure.outcome;
+    if (const auto status = read_status(status_path); status && status->serial > seen_serial) {
+      const long fresh = status->serial - seen_serial;
+      const std::size_t count = std::min<std::size_t>(fresh, status->messages.size());
+      for (std::size_t i = status->messages.size() - count; i < status->messages.size(); ++i) {
+        const auto& [kind, text] = status->messages[i];
+        out << kind << ": " << text << std::endl;
+        if (text.rfind("I/O check: ", 0) != 0) continue;
+        if (kind != "error") return OperatorOutcome::done;
+        return text.find(" refused: ") != std::string::npos ? OperatorOutcome::refused
+                                                            : OperatorOutcome::failed;
+      }
+      seen_serial = status->serial;
+    }
+    const auto waited = Clock::now() - pressed_at;
+    if (waited > kIoAnswerWithin || timed_out(options, waited)) {
+      failure = {OperatorOutcome::timeout, "fixed_atc_probe did not answer the I/O check in time"};
+      return failure.outcome;
+    }
+    if (io::Interruptible::signal() != 0) return OperatorOutcome::timeout;  // run_operator says it
+    std::this_thread::sleep_for(kPoll);
+  }
 }
 
 /// The request from its press to its end, once connected to HAL; `pressed`:
@@ -155,6 +239,12 @@ OperatorOutcome follow(const io::Options& options, const std::string& status_pat
                    " to read the component's words from: is " +
                    io::shown_path(options.state_path) + " the state file it was given?"};
     return failure.outcome;
+  }
+  if (options.request->action == io::OperatorRequest::Action::io) {
+    out << "fixed_atc_probe: " << asked(options) << std::endl;
+    if (!options.request->io) return watch_io(options, status_path, out, failure);
+    pressed = true;
+    return drive_io(options, status_path, before->serial, out, failure);
   }
   if (const std::string nothing = io::nothing_to_act_on(*options.request, *pins); !nothing.empty()) {
     failure = {OperatorOutcome::refused, nothing};

@@ -18,7 +18,7 @@ constexpr int kAwaitsOperator = 5;
 
 const char* const kExpected =
     "expected load:T, unload:T, continue, cancel, clear-fault, measure-all, "
-    "measure-all:never, measure-all:program or verify:P";
+    "measure-all:never, measure-all:program, verify:P, io or io:OUTPUT";
 
 /// 1 to 999999999, digits only: what a tool or pocket number may be.
 std::optional<int> positive(const std::string& text) {
@@ -52,9 +52,19 @@ std::optional<OperatorRequest> parse_operator_action(const std::string& text, st
                {"clear-fault", Action::clear_fault, nullptr},
                {"measure-all", Action::measure_all, nullptr},
                {"verify", Action::verify, "a pocket number"}};
+  if (verb == "io") {
+    OperatorRequest request{Action::io, 0, std::nullopt};
+    if (!value) return request;
+    request.io = io_action_named(*value);
+    if (request.io) return request;
+    std::string names;
+    for (const IoActionDeclaration& a : kIoActions) names += std::string(names.empty() ? "" : ", ") + "io:" + a.name;
+    error = "--operator io: expected io (the sensors, live) or one of " + names + ", got " + quote(text);
+    return std::nullopt;
+  }
   for (const auto& v : verbs) {
     if (verb != v.verb) continue;
-    OperatorRequest request{v.action, 0};
+    OperatorRequest request{v.action, 0, std::nullopt};
     if (v.action == Action::measure_all && value) {
       // measure-which: 1 the tools never measured, 2 the loaded program's.
       if (*value != "never" && *value != "program") break;
@@ -129,6 +139,9 @@ Press press_of(const OperatorRequest& request, std::optional<int> into, std::opt
       return {{{"measure-which", request.number}}, "measure-all"};
     case Action::verify:
       return {{{"pocket-number", request.number}}, "verify-pocket"};
+    case Action::io:
+      // --holding-tool's pin is set by the command itself, and dropped after.
+      return {{}, request.io ? declared(*request.io).pin : "io-check-chuck-clamp"};
   }
   return {{}, "continue"};
 }
@@ -169,6 +182,13 @@ std::optional<StatusWords> parse_status_words(const std::string& text) {
     for (const auto& message : root.at("messages")) {
       words.messages.emplace_back(message.at("kind").get<std::string>(),
                                   message.at("text").get<std::string>());
+    }
+    // A component older than the I/O check writes none.
+    if (const auto io = root.find("io_check"); io != root.end()) {
+      for (const auto& line : io->at("sensors")) words.io_sensors.push_back(line.get<std::string>());
+      for (const auto& [action, why] : io->at("refusals").items()) {
+        words.io_refusals.emplace_back(action, why.get<std::string>());
+      }
     }
     return words;
   } catch (const nlohmann::json::exception&) {

@@ -11,15 +11,22 @@
 #include <utility>
 #include <vector>
 
+#include "core/rack/io_check.hpp"
+
 namespace fatc::io {
 
 /// What --operator ACTION asks for: load:T, unload:T, continue, cancel,
-/// clear-fault, measure-all[:never|:program], verify:P.
+/// clear-fault, measure-all[:never|:program], verify:P, io[:OUTPUT].
 struct OperatorRequest {
-  enum class Action { load, unload, continue_prompt, cancel, clear_fault, measure_all, verify };
+  enum class Action { load, unload, continue_prompt, cancel, clear_fault, measure_all, verify, io };
+  OperatorRequest() = default;
+  OperatorRequest(Action action, int number, std::optional<IoAction> io = std::nullopt)
+      : action(action), number(number), io(io) {}
   Action action = Action::continue_prompt;
   /// load, unload: the tool; verify: the pocket; measure-all: measure-which (0, 1, 2).
   int number = 0;
+  /// io: the output the I/O check drives once; unset: its sensors shown live.
+  std::optional<IoAction> io;
 };
 
 /// The request `text` names; nullopt and one line in `error` when it names none.
@@ -57,6 +64,9 @@ struct StatusWords {
   std::string activity;
   long serial = 0;  ///< messages said so far
   std::vector<std::pair<std::string, std::string>> messages;  ///< kind, text; the newest last
+  /// The I/O check's `io_check`: each sensor's line, each output's refusal (empty: allowed).
+  std::vector<std::string> io_sensors;
+  std::vector<std::pair<std::string, std::string>> io_refusals;
 };
 /// nullopt when `text` is no status file (half written, or not one).
 std::optional<StatusWords> parse_status_words(const std::string& text);

@@ -200,6 +200,9 @@ std::string operator_options_misplaced(const Options& options) {
   }
   const Action action = options.request->action;
   if (options.into_pocket && action != Action::load) return "--into is read only by --operator load:T";
+  if (options.holding_tool && !(action == Action::io && options.request->io == IoAction::chuck_release)) {
+    return "--holding-tool is read only by --operator io:chuck-release";
+  }
   if ((options.spindle_tool || options.pocket_holds_tool) && action != Action::clear_fault) {
     return std::string(options.spindle_tool ? "--spindle" : "--pocket") +
            " is read only by --operator clear-fault";
@@ -346,10 +349,13 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
     return std::nullopt;
   }
   if (options.mode == Mode::operator_request) {
-    if (given.at("--yes")->count() > 1) {
-      error = "--yes given twice";
-      return std::nullopt;
+    for (const char* flag : {"--yes", "--holding-tool"}) {
+      if (given.at(flag)->count() > 1) {
+        error = std::string(flag) + " given twice";
+        return std::nullopt;
+      }
     }
+    options.holding_tool = given.at("--holding-tool")->count() == 1;
     if (const std::string wrong = operator_options_misplaced(options); !wrong.empty()) {
       error = wrong;
       return std::nullopt;

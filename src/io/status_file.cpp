@@ -29,6 +29,12 @@ void StatusFile::said(MessageKind kind, const std::string& text) {
   ++serial_;
 }
 
+void StatusFile::io_check(IoCheckWords words) {
+  if (words == io_check_) return;
+  io_check_ = std::move(words);
+  ++io_check_serial_;
+}
+
 void StatusFile::write(const Status& status, const std::optional<InProgress>& cut_off,
                        const std::string& keepout) {
   // Called every poll: compare what it shows before building anything.
@@ -37,7 +43,8 @@ void StatusFile::write(const Status& status, const std::optional<InProgress>& cu
                           std::to_string(serial_) + "/" + std::to_string(status.pocket) + "/" +
                           std::to_string(status.batch_done) + "/" + status.activity + "/" +
                           (cut_off ? cut_off->sequence + cut_off->step : std::string("-")) + "/" +
-                          keepout + "/" + status.rule + "/" + std::to_string(status.spindle_probe);
+                          keepout + "/" + status.rule + "/" + std::to_string(status.spindle_probe) +
+                          "/" + std::to_string(io_check_serial_);
   if (key == shown_) return;
   shown_ = key;  // a failed write is not retried every poll; the next change writes again
   nlohmann::json root = {{"phase", phase_word(status.phase)},
@@ -52,6 +59,12 @@ void StatusFile::write(const Status& status, const std::optional<InProgress>& cu
                          {"rule", status.rule},
                          {"spindle_held", status.spindle_probe != 0},
                          {"serial", serial_}};
+  nlohmann::json refusals = nlohmann::json::object();
+  for (const auto& [action, why] : io_check_.refusals) refusals[action] = why;
+  root["io_check"] = {{"sensors", io_check_.sensors},
+                      {"refusals", refusals},
+                      {"last", io_check_.last},
+                      {"held", io_check_.held}};
   if (cut_off) {
     root["cut_off"] = {
         {"sequence", cut_off->sequence}, {"step", cut_off->step}, {"pocket", cut_off->pocket}};

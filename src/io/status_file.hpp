@@ -3,6 +3,8 @@
 #include <deque>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/machine/base/ports.hpp"
 #include "core/machine/base/status.hpp"
@@ -25,6 +27,20 @@ class StatusFile {
              const std::string& keepout);
   const std::string& path() const { return path_; }
 
+  /// The I/O check's words (linuxcnc/live/io_check_driver): each wired sensor
+  /// against what it should read, each output's refusal (empty: allowed), the
+  /// last answer timed; the file's `io_check`, written with the next write.
+  struct IoCheckWords {
+    std::vector<std::string> sensors;
+    std::vector<std::pair<std::string, std::string>> refusals;  ///< action name, why not
+    std::string last;
+    bool held = false;  ///< an output is held otherwise than the changer commanded it
+    bool operator==(const IoCheckWords& o) const {
+      return sensors == o.sensors && refusals == o.refusals && last == o.last && held == o.held;
+    }
+  };
+  void io_check(IoCheckWords words);
+
  private:
   struct Message {
     MessageKind kind;
@@ -35,6 +51,8 @@ class StatusFile {
   long serial_ = 0;
   std::string written_;
   std::string shown_;  ///< what the last write was asked to show
+  IoCheckWords io_check_;
+  long io_check_serial_ = 0;  ///< changes of io_check_, for the write's key
 };
 
 }  // namespace fatc::io

@@ -175,8 +175,19 @@ def main():
             if head != b"\x89PNG\r\n\x1a\n" or os.path.getsize(path) < 2000:
                 fail("%s is not a screenshot" % path)
         ok("screenshot %s (panel at %s)" % (shot["file"], shot["panel"]))
+    io = r.get("io_checked")
+    shown = r.get("io_shown")
+    if io and shown != ["zero-speed: on, expected on (LinuxCNC has the spindle off)"]:
+        fail("the I/O page shows %r, not the zero-speed line" % shown)
+    if io:
+        ok("the I/O page in %s shows %r" % (r["gui"], shown[0]))
+    # No rack_cover in the sim's config: Open cover refused, the chuck's allowed (spindle empty, off).
+    if io and r["io_sensitive"] != {"Release chuck": True, "Clamp chuck": True, "Open cover": False}:
+        fail("the I/O buttons' sensitivity is %s" % r["io_sensitive"])
+    if io:
+        ok("the I/O buttons enabled as the component allows them: %s" % r["io_sensitive"])
     expect_on_screen(r)
-    wanted = 4 if axis else 2
+    wanted = (4 if axis else 2) + (1 if io else 0)
     if len(r["screenshots"]) != wanted:
         fail("expected %d screenshots, got %d" % (wanted, len(r["screenshots"])))
     ok("the panel wholly on the screen%s in every screenshot" % ("" if axis else " and inside %s's window" % r["gui"]))

@@ -18,11 +18,14 @@ Component::Component(HalPins* pins, const Config& config, std::string config_pat
       state_path_(std::move(state_path)),
       lengths_(tool_table),
       table_pockets_(std::move(tool_table)),
-      status_file_(state_path_ + ".status") {
+      status_file_(state_path_ + ".status"),
+      io_check_(pins) {
   *pins_->units_inch = config.units == Units::inch;
 }
 
-bool Component::active() const { return link_.active() || deadline_ || changer_->status().busy(); }
+bool Component::active() const {
+  return link_.active() || deadline_ || changer_->status().busy() || io_check_.timing();
+}
 
 void Component::poll(Clock::time_point now, std::optional<bool> interpreter_idle) {
   now_ = now;
@@ -38,6 +41,7 @@ void Component::poll(Clock::time_point now, std::optional<bool> interpreter_idle
     changer_->timer_elapsed();
   }
   measure_all_press_.poll(*changer_, refuse_);
+  poll_io_check();
   start_executor_if_needed();
   if (task_free_ && !changer_->status().busy()) {
     // No flow moves a tool meanwhile (off and faulted included: the table
@@ -51,6 +55,8 @@ void Component::poll(Clock::time_point now, std::optional<bool> interpreter_idle
   const Status status = changer_->status();
   write_link(*pins_, link_.write(status.phase == Phase::idle));
   write_status(*pins_, status, *changer_, link_.attached(), nml_ != nullptr);
+  if (io_check_.holds_chuck_open()) *pins_->chuck_held = true;
+  status_file_.io_check(io_check_.words());
   status_file_.write(status, changer_->cut_off(), keepout_words(keepout_.state()));
 }
 
@@ -60,7 +66,8 @@ void Component::read_machine(std::optional<bool> interpreter_idle) {
     spindle_stopped_ = stopped;
     changer_->spindle_stopped(stopped);
   }
-  const SensorReadings sensors = read_sensors(*pins_, changer_->config());
+  raw_sensors_ = read_sensors(*pins_, changer_->config());
+  const SensorReadings sensors = io_check_.seen_by_changer(raw_sensors_);
   if (sensors_ != sensors) {
     sensors_ = sensors;
     changer_->sensors(sensors);
@@ -82,15 +89,11 @@ void Component::read_machine(std::optional<bool> interpreter_idle) {
   }
   // The operator flows run the executor over MDI: task must be free for it.
   task_free_ = nml_ && interpreter_idle.value_or(false);
-  if (!nml_) {
-    changer_->task_availability("no connection to LinuxCNC's task (NML)");
-  } else if (!interpreter_idle) {
-    changer_->task_availability(std::string(kStatusLost));
-  } else if (!task_free_) {
-    changer_->task_availability("a program or MDI command is running");
-  } else {
-    changer_->task_availability(std::nullopt);
-  }
+  task_busy_ = !nml_ ? std::optional<std::string>("no connection to LinuxCNC's task (NML)")
+               : !interpreter_idle ? std::optional<std::string>(kStatusLost)
+               : !task_free_ ? std::optional<std::string>("a program or MDI command is running")
+                             : std::nullopt;
+  changer_->task_availability(task_busy_);
   if (abort_.rose(*pins_->abort)) abort("the abort pin was raised");
   // fatc-spindle-guard holds the spindle while a probe is in it: what asked for it stops.
   if (spindle_refused_.rose(*pins_->spindle_refused)) {
@@ -190,9 +193,24 @@ void Component::start_executor_if_needed() {
   link_.run_started(now_);
 }
 
-void Component::set_chuck_open(bool open) { *pins_->chuck = open; }
-void Component::set_rack_cover_open(bool open) { *pins_->rack_cover_open = open; }
-void Component::set_air_blast(bool on) { *pins_->air_blast = on; }
+void Component::poll_io_check() {
+  const Status status = changer_->status();
+  IoFacts facts;
+  facts.tools = changer_->tools();
+  facts.spindle_stopped = *pins_->spindle_stopped;
+  facts.machine_on = *pins_->machine_on;
+  facts.homed = *pins_->all_homed;
+  facts.busy = status.busy() ? std::optional<std::string>(std::string("a sequence is under way (") +
+                                                          phase_word(status.phase) + ")")
+                             : task_busy_;
+  facts.nose = position();
+  facts.tool_length = lengths_.spindle_length();
+  io_check_.poll(now_, changer_->config(), raw_sensors_, facts, *this);
+}
+
+void Component::set_chuck_open(bool open) { io_check_.changer_sets(IoOutput::chuck, open); }
+void Component::set_rack_cover_open(bool open) { io_check_.changer_sets(IoOutput::cover, open); }
+void Component::set_air_blast(bool on) { io_check_.changer_sets(IoOutput::air_blast, on); }
 
 void Component::start_timer(double seconds) {
   deadline_ =

@@ -11,6 +11,7 @@
 #include "core/dry_run/air_run.hpp"
 #include "core/dry_run/teach.hpp"
 #include "io/status_file.hpp"
+#include "io_check_driver.hpp"
 #include "program_tools_job.hpp"
 #include "keepout_lengths.hpp"
 #include "rack_keepout.hpp"
@@ -46,7 +47,8 @@ class Component : public Ports {
   }
   /// `interpreter_idle`: LinuxCNC's interpreter state, when NML is available.
   void poll(Clock::time_point now, std::optional<bool> interpreter_idle);
-  /// Whether the next poll should come soon: a sequence runs or a handshake is open.
+  /// Whether the next poll should come soon: a sequence runs, a handshake is
+  /// open or the I/O check times an answer.
   bool active() const;
 
   void publish(const Step& step) override { link_.publish(step); }
@@ -81,6 +83,8 @@ class Component : public Ports {
   std::optional<Point> position() const;
   void abort(const std::string& reason);
   void start_executor_if_needed();
+  /// The I/O check's buttons, with the changer's belief and the machine's facts.
+  void poll_io_check();
 
   HalPins* pins_;
   NmlLink* nml_;
@@ -93,6 +97,8 @@ class Component : public Ports {
   std::optional<bool> machine_ready_;
   std::optional<bool> spindle_stopped_;
   std::optional<SensorReadings> sensors_;
+  SensorReadings raw_sensors_;  ///< as the pins read, before the I/O check hides any
+  std::optional<std::string> task_busy_;  ///< why task cannot run the executor now
   bool task_free_ = false;
   SpindleToolSync spindle_tool_;
   RackKeepout keepout_;
@@ -106,6 +112,7 @@ class Component : public Ports {
   Edge abort_, clear_, load_, unload_, continue_, cancel_, spindle_refused_;
   Edge teach_pocket_, teach_loading_, teach_safe_, teach_sensor_, measure_all_, verify_;
   Edge air_change_, air_load_, air_unload_, air_verify_;
+  IoCheckDriver io_check_;
 };
 
 }  // namespace fatc::linuxcnc

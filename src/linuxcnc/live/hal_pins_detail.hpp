@@ -108,6 +108,14 @@ struct HalPins {
   hal_float_t* rack_keepout_at_x;
   hal_float_t* rack_keepout_at_y;
   hal_float_t* rack_keepout_at_z;
+  /// The I/O check (core/rack/io_check.hpp): one button per action of kIoActions.
+  hal_bit_t* io_check_chuck_release;
+  hal_bit_t* io_check_chuck_clamp;
+  hal_bit_t* io_check_cover_open;
+  hal_bit_t* io_check_cover_close;
+  hal_bit_t* io_check_air_blast;
+  hal_bit_t* io_check_holding_tool;
+  hal_bit_t* io_check_held;
 };
 
 }  // namespace fatc::linuxcnc

@@ -106,7 +106,7 @@ inline const std::vector<PinDeclaration> kPins = joined({{
    "true opens the chuck; the HAL snippet passes it through `fatc-chuck-guard` to the signal "
    "`fatc-chuck`, which the drawbar valve takes"},
   {"chuck-held", &HalPins::chuck_held, HAL_OUT,
-   "a G-code release holds the chuck open until its clamp; the snippet nets it through "
+   "a G-code release (or the I/O check) holds the chuck open until its clamp; the snippet nets it through "
    "`fatc-rack-guard` to `motion.feed-inhibit` and through `fatc-spindle-guard` to "
    "`spindle.0.inhibit` (the chuck atoms)"},
   {"heartbeat", &HalPins::heartbeat, HAL_OUT,
@@ -307,6 +307,25 @@ inline const std::vector<PinDeclaration> kPins = joined({{
   {"rack-keepout-at-x", &HalPins::rack_keepout_at_x, HAL_IN, "from `fatc-rack-guard.at-x`"},
   {"rack-keepout-at-y", &HalPins::rack_keepout_at_y, HAL_IN, "from `fatc-rack-guard.at-y`"},
   {"rack-keepout-at-z", &HalPins::rack_keepout_at_z, HAL_IN, "from `fatc-rack-guard.at-z`"},
+  // The I/O check (core/rack/io_check.hpp): each output driven once, its
+  // sensor's answer timed; the words (each sensor, each refusal, the time)
+  // are in the status file's `io_check`. Nothing changes the changer's belief.
+  {"io-check-chuck-release", &HalPins::io_check_chuck_release, HAL_IN,
+   "rising edge: open the chuck, the spindle still and with air; with a tool in the spindle "
+   "only with `io-check-holding-tool`"},
+  {"io-check-chuck-clamp", &HalPins::io_check_chuck_clamp, HAL_IN, "rising edge: close the chuck"},
+  {"io-check-cover-open", &HalPins::io_check_cover_open, HAL_IN,
+   "rising edge: open the rack cover (`rack_cover`)"},
+  {"io-check-cover-close", &HalPins::io_check_cover_close, HAL_IN,
+   "rising edge: close the rack cover; refused while the spindle (with its tool) is in the "
+   "rack or not homed"},
+  {"io-check-air-blast", &HalPins::io_check_air_blast, HAL_IN,
+   "rising edge: `air-blast` on for 1 s (`air_blast`)"},
+  {"io-check-holding-tool", &HalPins::io_check_holding_tool, HAL_IN,
+   "the operator holds the tool in the spindle: `io-check-chuck-release` may open the chuck on it"},
+  {"io-check-held", &HalPins::io_check_held, HAL_OUT,
+   "the I/O check holds an output otherwise than the changer commanded it; a sequence, a program "
+   "or MDI, or the machine off gives it back"},
 }});
 // clang-format on
 

@@ -265,6 +265,64 @@ def check_sensors_atoms(r, rack, log):
     ok("confirmed empty: the changer is out of fault, the spindle recorded empty")
 
 
+IO_TIMINGS = {"chuck-release": ("drawbar opened in ", 1.0), "chuck-clamp": ("drawbar closed in ", 1.0),
+              "cover-open": ("rack cover opened in ", 2.0), "cover-close": ("rack cover closed in ", 2.0)}
+
+
+def io_command(r, name, code):
+    run = r["operator_commands"][name]
+    if run["code"] != code:
+        fail("--operator %s exited %s, not %s: %s %s" % (name, run["code"], code, run["out"], run["err"]))
+    return run["out"]
+
+
+def check_sensors_io_check(r, rack, log):
+    """The I/O check drives each output of the simulated rack once and reads its
+    sensor back with the time; with the spindle on a release is refused and the
+    chuck never moves; the state file and the tool table are as they were."""
+    shown = io_command(r, "sensors", 0)
+    for line in ("drawbar-closed: on, expected on (the chuck is clamped)",
+                 "drawbar-open: off, expected off (the chuck is clamped)",
+                 "rack-cover-closed: on, expected on (the cover is commanded closed)",
+                 "chuck-release: allowed"):
+        if line not in shown:
+            fail("--operator io does not show %r: %s" % (line, shown))
+    ok("--operator io shows the sensors against the belief, and what may be driven")
+    for name, (words, timeout) in IO_TIMINGS.items():
+        out = io_command(r, name, 0)
+        if words not in out:
+            fail("--operator io:%s says no time: %s" % (name, out))
+        seconds = float(out.split(words, 1)[1].split(" s;", 1)[0])
+        wanted = "your timeout %g s" % timeout
+        if not 0.0 < seconds < timeout or wanted not in out:
+            fail("io:%s answered in %s s, not within %s: %s" % (name, seconds, wanted, out))
+        ok("io:%s: %s" % (name, out.strip().splitlines()[-2]))
+    if r["snapshots"]["released"]["pins"]["fixed_atc_probe.chuck"] is not True:
+        fail("the chuck output was not on after io:chuck-release")
+    ok("the chuck output on after the release, the simulated drawbar open (read from HAL)")
+    if "air blast on for 1.0 s" not in io_command(r, "air-blast", 0):
+        fail("io:air-blast did not say what it drove")
+    if not any(s["fixed_atc_probe.air-blast"] for s in r["samples"]):
+        fail("air-blast never seen on")
+    ok("io:air-blast: air-blast on, then off again")
+    refused = io_command(r, "refused", 1)
+    if "refused: the spindle is on" not in refused:
+        fail("io:chuck-release with the spindle on was not refused for it: %s" % refused)
+    spun = [s for s in r["samples"] if s["spindle.0.on"]]
+    if not spun or any(s["fixed_atc_probe.chuck"] or s["fatc-chuck-guard.chuck"] for s in spun):
+        fail("the chuck moved while the spindle was on (%d samples)" % len(spun))
+    ok("spindle on: io:chuck-release refused, the chuck closed in all %d samples" % len(spun))
+    before, after = r["snapshots"]["before"], r["snapshots"]["after"]
+    if before["state_file"] != after["state_file"]:
+        fail("the state file changed: %s -> %s" % (before["state_file"], after["state_file"]))
+    tables = r["tool_tables"]
+    if any(tables["before"][k] != tables["after"][k] for k in ("file", "stat")):
+        fail("the tool table changed: %s -> %s" % (tables["before"], tables["after"]))
+    if after["pins"]["fixed_atc_probe.fault"] or any(s["fixed_atc_probe.fault"] for s in r["samples"]):
+        fail("the changer faulted during the I/O check")
+    ok("state file and tool table unchanged, no fault: %s" % in_pockets(after["state_file"]))
+
+
 def main():
     results_path, config_path, name = sys.argv[1:4]
     results = load_results(results_path, name)

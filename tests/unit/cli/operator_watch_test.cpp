@@ -50,6 +50,45 @@ TEST(OperatorArguments, shouldReadEachActionTheWayAMachinistTypesIt) {
   EXPECT_TRUE(*clear->pocket_holds_tool);
 }
 
+TEST(OperatorArguments, shouldReadTheIoCheckLiveOrOneOutput) {
+  std::string error;
+  const auto live = parsed({"--operator", "io", "--timeout", "2", "--ini", "m.ini"}, error);
+  ASSERT_TRUE(live) << error;
+  EXPECT_EQ(live->request->action, Action::io);
+  EXPECT_EQ(live->request->io, std::nullopt);
+  const auto release =
+      parsed({"--operator", "io:chuck-release", "--holding-tool", "--ini", "m.ini"}, error);
+  ASSERT_TRUE(release) << error;
+  EXPECT_EQ(release->request->io, IoAction::chuck_release);
+  EXPECT_TRUE(release->holding_tool);
+  EXPECT_STREQ(press_of(*release->request, {}, {}, {}).pulse, "io-check-chuck-release");
+  EXPECT_FALSE(parsed({"--operator", "io:flush", "--ini", "m.ini"}, error));
+  EXPECT_EQ(error,
+            "--operator io: expected io (the sensors, live) or one of io:chuck-release, "
+            "io:chuck-clamp, io:cover-open, io:cover-close, io:air-blast, got \"io:flush\"");
+  EXPECT_FALSE(parsed({"--operator", "io:chuck-clamp", "--holding-tool", "--ini", "m.ini"}, error));
+  EXPECT_EQ(error, "--holding-tool is read only by --operator io:chuck-release");
+  EXPECT_FALSE(parsed({"--operator", "unload:3", "--holding-tool", "--ini", "m.ini"}, error));
+  EXPECT_EQ(error, "--holding-tool is read only by --operator io:chuck-release");
+}
+
+TEST(OperatorStatus, shouldReadTheIoChecksWordsWhereTheComponentWritesThem) {
+  const auto words = parse_status_words(
+      R"json({"state": 1, "awaiting": 0, "activity": "", "serial": 4, "messages": [],
+          "io_check": {"sensors": ["drawbar-closed: on, expected on (the chuck is clamped)"],
+                       "refusals": {"chuck-release": "", "cover-close": "the machine is off"},
+                       "last": "", "held": false}})json");
+  ASSERT_TRUE(words);
+  EXPECT_EQ(words->io_sensors,
+            std::vector<std::string>{"drawbar-closed: on, expected on (the chuck is clamped)"});
+  ASSERT_EQ(words->io_refusals.size(), 2u);
+  EXPECT_EQ(words->io_refusals[1].second, "the machine is off");
+  // An older component's file has none.
+  EXPECT_TRUE(parse_status_words(
+                  R"({"state": 1, "awaiting": 0, "activity": "", "serial": 4, "messages": []})")
+                  ->io_sensors.empty());
+}
+
 TEST(OperatorArguments, shouldRefuseBadInputWithOneLineSayingWhatIsExpected) {
   const struct {
     std::vector<std::string> args;
@@ -57,7 +96,7 @@ TEST(OperatorArguments, shouldRefuseBadInputWithOneLineSayingWhatIsExpected) {
   } cases[] = {
       {{"--operator", "lod:3", "--ini", "m.ini"},
        "--operator: expected load:T, unload:T, continue, cancel, clear-fault, measure-all, "
-       "measure-all:never, measure-all:program or verify:P, got \"lod:3\""},
+       "measure-all:never, measure-all:program, verify:P, io or io:OUTPUT, got \"lod:3\""},
       {{"--operator", "load:0", "--ini", "m.ini"},
        "--operator load: expected load:N, N a tool number above 0, got \"load:0\""},
       {{"--operator", "load:x", "--ini", "m.ini"},
@@ -68,10 +107,10 @@ TEST(OperatorArguments, shouldRefuseBadInputWithOneLineSayingWhatIsExpected) {
        "--operator verify: expected verify:N, N a pocket number above 0, got \"verify:-1\""},
       {{"--operator", "continue:2", "--ini", "m.ini"},
        "--operator: expected load:T, unload:T, continue, cancel, clear-fault, measure-all, "
-       "measure-all:never, measure-all:program or verify:P, got \"continue:2\""},
+       "measure-all:never, measure-all:program, verify:P, io or io:OUTPUT, got \"continue:2\""},
       {{"--operator", "measure-all:some", "--ini", "m.ini"},
        "--operator: expected load:T, unload:T, continue, cancel, clear-fault, measure-all, "
-       "measure-all:never, measure-all:program or verify:P, got \"measure-all:some\""},
+       "measure-all:never, measure-all:program, verify:P, io or io:OUTPUT, got \"measure-all:some\""},
       {{"--operator", "load:3"},
        "--operator needs --ini FILE (the machine's INI, whose [FIXED_ATC_PROBE]STATE names the "
        "status file) or --state FILE"},
@@ -96,11 +135,13 @@ TEST(OperatorArguments, shouldRefuseBadInputWithOneLineSayingWhatIsExpected) {
 
 TEST(OperatorArguments, shouldShowTheFlagWithoutAValueInEveryReference) {
   EXPECT_NE(usage().find("fixed_atc_probe --operator ACTION [--ini FILE] [--state FILE] [--into "
-                         "P] [--spindle N] [--pocket yes|no] [--yes] [--timeout SECONDS]"),
+                         "P] [--spindle N] [--pocket yes|no] [--yes] [--holding-tool] [--timeout "
+                         "SECONDS]"),
             std::string::npos)
       << usage();
   EXPECT_NE(options_man().find(".B --yes\n"), std::string::npos);
   EXPECT_NE(command_line_markdown().find("| `--yes` |"), std::string::npos);
+  EXPECT_NE(options_man().find(".B --holding-tool\n"), std::string::npos);
 }
 
 TEST(OperatorExitStatus, shouldGiveEachOutcomeItsOwnStatusBesideUsages2) {
