@@ -56,9 +56,22 @@ std::vector<Step> air_route(const Config& config, const std::vector<Step>& steps
                       const AirSettings& air) {
   const std::vector<RackPart> volume = rack_volume(config);
   std::vector<Step> route;
+  // Where the sequence itself goes, and the height its probing started at:
+  // the moves around a probe (backing off the sensor, the retract) go below
+  // that only because the probe went down first; they stay out with it.
+  Point real;
+  std::optional<double> probing_from;
   for (const Step& step : steps) {
+    if (step.kind == StepKind::probe) {
+      if (!probing_from) probing_from = real.z;
+      real = moved_to(real, step);
+      continue;
+    }
     if (step.kind != StepKind::rapid && step.kind != StepKind::feed) continue;
     for (const Step& move : moves_of(step)) {
+      real = moved_to(real, move);
+      if (probing_from && real.z < *probing_from - 1e-9) continue;
+      probing_from.reset();
       route.push_back(in_the_air(volume, move, air));
     }
   }

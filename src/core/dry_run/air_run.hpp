@@ -29,8 +29,9 @@ std::optional<std::string> why_not_air(const Config& config, const AirSettings& 
 /// touch-off sensor), keep their target, so the approach heights above that
 /// floor are flown as they are.
 /// Every move runs at `air.feed`, a blended run as its single moves. Probe
-/// moves, the chuck, dwells, the operator's waits and LinuxCNC's tool
-/// commands are left out: nothing is taken, handed or measured.
+/// moves and the moves below where the probing started (backing off the
+/// sensor, the retract), the chuck, dwells, the operator's waits and
+/// LinuxCNC's tool commands are left out: nothing is taken, handed or measured.
 std::vector<Step> air_route(const Config& config, const std::vector<Step>& steps,
                       const AirSettings& air);
 

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <functional>
 #include <memory>
 
@@ -97,6 +98,31 @@ TEST(AirRun, shouldLeaveOutTheProbeTheChuckAndTheToolCommands) {
   ASSERT_TRUE(plan.request) << plan.refused;
   for (const Step& step : plan.request->route) EXPECT_EQ(step.kind, StepKind::feed);
   EXPECT_EQ(plan.request->name, "air run of M6 T3, 30 mm above the rack at F1000");
+}
+
+TEST(AirRun, shouldStayAboveTheTouchOffSensorWhereTheLoadWouldMeasure) {
+  // The real load probes down from loading Z, backs off the sensor and
+  // retracts from it: in the air nothing goes below where the probe started.
+  const Config config = valid_config();
+  ToolState tools = with_in_spindle(config, 0);
+  tools.pockets[2] = {};
+  const auto load = [](Changer& c) { c.load(30, 2); };
+  const Simulator real = plan_from(config, tools, config.safe, axis_xyz, load);
+  bool backs_off = false;
+  for (const Step& step : real.steps()) backs_off = backs_off || step.label == "back off the sensor";
+  ASSERT_TRUE(backs_off) << "the real load measures on the sensor";
+  const AirPlan plan = plan_air_run(config, tools, config.safe, axis_xyz, load, "load", kAir);
+  ASSERT_TRUE(plan.request) << plan.refused;
+  Point at = config.safe;
+  for (const Step& move : plan.request->route) {
+    at = moved_to(at, move);
+    const bool over_sensor =
+        std::abs(at.x - config.probe_limit.x) < 1e-9 && std::abs(at.y - config.probe_limit.y) < 1e-9;
+    if (over_sensor) {
+      EXPECT_GE(at.z, config.loading.z - 1e-9) << move.label;
+    }
+  }
+  expect_in_the_air(config, plan.request->route, config.safe, kAir);
 }
 
 TEST(AirRun, shouldFlyWithoutTouchingTheChuckOrTheBelief) {
