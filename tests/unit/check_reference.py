@@ -33,6 +33,13 @@ def panel_pins(root):
     tree = ast.parse(source)
     constants = {}
 
+    def sequence(node, env):
+        """A tuple or list of names (A + B + C of them too), not a loop's string."""
+        if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Add):
+            return sequence(node.left, env) and sequence(node.right, env)
+        return isinstance(node, (ast.Tuple, ast.List)) or \
+            (isinstance(node, ast.Name) and node.id not in env)
+
     def value(node, env):
         if isinstance(node, ast.Constant) and isinstance(node.value, str):
             return [node.value]
@@ -48,9 +55,7 @@ def panel_pins(root):
                 return constants[node.id]
         if isinstance(node, ast.BinOp) and isinstance(node.op, ast.Add):
             left, right = value(node.left, env), value(node.right, env)
-            if isinstance(node.left, (ast.Tuple, ast.List, ast.Name)) and \
-                    isinstance(node.right, (ast.Tuple, ast.List, ast.Name)) and \
-                    not (isinstance(node.left, ast.Name) and node.left.id in env):
+            if sequence(node.left, env) and sequence(node.right, env):
                 return left + right
             return [a + b for a in left for b in right]
         raise LookupError("hal/fixed_atc_probe_panel.py:%d: cannot follow %s (teach %s)" %

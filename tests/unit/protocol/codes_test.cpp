@@ -65,6 +65,7 @@ const Codes kPhases = {
     {"measuring", {"Phase::measuring", static_cast<int>(Phase::measuring)}},
     {"verifying", {"Phase::verifying", static_cast<int>(Phase::verifying)}},
     {"chuck", {"Phase::chuck", static_cast<int>(Phase::chuck)}},
+    {"air_run", {"Phase::air_run", static_cast<int>(Phase::air_run)}},
 };
 const Codes kAwaiting = {
     {"nothing", {"Awaiting::nothing", static_cast<int>(Awaiting::nothing)}},
