@@ -166,9 +166,11 @@ OperatorOutcome follow(const io::Options& options, const std::string& status_pat
   io::OperatorWatch watch(*options.request, options.answer_yes, before->serial);
   const auto pressed_at = Clock::now();
   pressed = true;
-  if (!press(io::press_of(*options.request, options.into_pocket, options.spindle_tool,
-                          options.pocket_holds_tool),
-             failure)) {
+  io::Press button = io::press_of(*options.request, options.into_pocket, options.spindle_tool,
+                                  options.pocket_holds_tool);
+  // The sequence takes the switch at its start: run_operator puts it back after.
+  if (options.step_by_step) button.set.push_back({"step-by-step", 1});
+  if (!press(button, failure)) {
     return failure.outcome;
   }
   for (;;) {
@@ -229,7 +231,10 @@ int run_operator(const io::Options& options, std::ostream& given_out, std::ostre
   hal_ready(id);
   Failure failure{OperatorOutcome::done, ""};
   bool pressed = false;
+  const auto step_switch = options.step_by_step ? find("step-by-step") : std::nullopt;
+  const int step_switch_was = step_switch ? value_of(*step_switch) : 0;
   const OperatorOutcome outcome = follow(options, status_path, out, failure, pressed);
+  if (step_switch && pressed) write(*step_switch, step_switch_was);
   hal_exit(id);
   if (const int signal = io::Interruptible::signal(); signal != 0) {
     // The caller's Interruptible ends the program by the signal, as the shell expects.

@@ -31,6 +31,7 @@ struct Options {
   std::optional<OperatorRequest> request;      ///< --operator ACTION
   std::optional<int> into_pocket;              ///< --operator load: --into P
   bool answer_yes = false;                     ///< --operator: --yes
+  bool step_by_step = false;                   ///< --operator: --step
   std::optional<double> timeout_seconds;       ///< --operator: --timeout SECONDS
 };
 

@@ -192,6 +192,12 @@ std::string operator_options_misplaced(const Options& options) {
     return std::string(options.spindle_tool ? "--spindle" : "--pocket") +
            " is read only by --operator clear-fault";
   }
+  const bool flow = action == Action::load || action == Action::unload ||
+                    action == Action::measure_all || action == Action::verify;
+  if (options.step_by_step && !flow) {
+    return "--step is read only by --operator load:T, unload:T, measure-all and verify:P (an "
+           "M6's: the panel's switch or the step-by-step pin)";
+  }
   return "";
 }
 
@@ -334,10 +340,13 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
     return std::nullopt;
   }
   if (options.mode == Mode::operator_request) {
-    if (given.at("--yes")->count() > 1) {
-      error = "--yes given twice";
-      return std::nullopt;
+    for (const char* flag : {"--yes", "--step"}) {
+      if (given.at(flag)->count() > 1) {
+        error = std::string(flag) + " given twice";
+        return std::nullopt;
+      }
     }
+    options.step_by_step = given.at("--step")->count() == 1;
     if (const std::string wrong = operator_options_misplaced(options); !wrong.empty()) {
       error = wrong;
       return std::nullopt;

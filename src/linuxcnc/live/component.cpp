@@ -121,6 +121,7 @@ void Component::read_operator() {
                              *changer_, refuse_);
   }
   if (verify_.rose(*pins_->verify_pocket)) changer_->verify(*pins_->pocket_number);
+  changer_->step_by_step(*pins_->step_by_step);
   if (continue_.rose(*pins_->continue_)) changer_->operator_continue();
   if (cancel_.rose(*pins_->cancel)) {
     if (changer_->status().probe_cancellable && nml_) {
