@@ -231,10 +231,14 @@ int run_operator(const io::Options& options, std::ostream& given_out, std::ostre
   hal_ready(id);
   Failure failure{OperatorOutcome::done, ""};
   bool pressed = false;
-  const auto step_switch = options.step_by_step ? find("step-by-step") : std::nullopt;
-  const int step_switch_was = step_switch ? value_of(*step_switch) : 0;
+  int step_switch_was = 0;
+  if (const auto pin = find("step-by-step"); pin && options.step_by_step) {
+    step_switch_was = value_of(*pin);
+  }
   const OperatorOutcome outcome = follow(options, status_path, out, failure, pressed);
-  if (step_switch && pressed) write(*step_switch, step_switch_was);
+  if (const auto pin = find("step-by-step"); pin && options.step_by_step && pressed) {
+    write(*pin, step_switch_was);
+  }
   hal_exit(id);
   if (const int signal = io::Interruptible::signal(); signal != 0) {
     // The caller's Interruptible ends the program by the signal, as the shell expects.

@@ -76,14 +76,17 @@ bool Context::stop_before(int number, std::string action, std::string where, con
   question.waypoint = std::move(where);
   question.at = at;
   question.known_axes = axes;
+  const bool first = !steps.holding();
   steps.hold(question, std::move(go));
-  ask_operator(question);
+  if (first) ask_operator(question);
   return true;
 }
 
 bool Context::continue_step() {
   if (!steps.holding()) return false;
   steps.release();
+  // A step held behind it (the phase after a chuck action) is asked now.
+  if (steps.holding()) ask_operator(steps.question());
   return true;
 }
 

@@ -9,23 +9,22 @@ void StepGate::end() {
 }
 
 void StepGate::hold(Prompt question, std::function<void()> go) {
-  question_ = std::move(question);
-  held_.push_back(std::move(go));
+  held_.push_back({std::move(question), {std::move(go)}});
 }
 
 void StepGate::then(std::function<void()> effect) {
   if (holding()) {
-    held_.push_back(std::move(effect));
+    held_.back().effects.push_back(std::move(effect));
   } else {
     effect();
   }
 }
 
 void StepGate::release() {
-  // A copy first: an effect may hold the next step.
-  const auto effects = std::move(held_);
-  held_.clear();
-  for (const auto& effect : effects) effect();
+  // Taken out first: an effect may hold the next step.
+  const Held first = std::move(held_.front());
+  held_.pop_front();
+  for (const auto& effect : first.effects) effect();
 }
 
 }  // namespace fatc

@@ -6,6 +6,7 @@
 
 #include <deque>
 #include <functional>
+#include <utility>
 #include <vector>
 
 #include "../../motion/step.hpp"
@@ -25,14 +26,16 @@ class StepGate {
   void end();
   bool on() const { return on_; }
 
-  /// Holds the step `question` describes; `go` makes it at Continue.
+  /// Holds the step `question` describes, behind any held already (a chuck
+  /// action and the phase its row enters); `go` makes it at Continue.
   void hold(Prompt question, std::function<void()> go);
   /// What the state that holds a step does after it (the timer of a chuck
   /// action) waits behind it; with nothing held it is done now.
   void then(std::function<void()> effect);
   bool holding() const { return !held_.empty(); }
-  const Prompt& question() const { return question_; }
-  /// Continue: the held step goes, then what waited behind it.
+  /// The step Continue makes next.
+  const Prompt& question() const { return held_.front().question; }
+  /// Continue: the first step held goes, with what waited behind it.
   void release();
 
   /// The moves of a run of rapids still to go, each a step of its own in
@@ -42,8 +45,11 @@ class StepGate {
  private:
   bool switched_on_ = false;
   bool on_ = false;
-  Prompt question_;
-  std::vector<std::function<void()>> held_;  ///< the step, then what waits behind it
+  struct Held {
+    Prompt question;
+    std::vector<std::function<void()>> effects;  ///< the step, then what waits behind it
+  };
+  std::deque<Held> held_;
 };
 
 }  // namespace fatc
