@@ -6,9 +6,9 @@ its STEP_TIMEOUT cut to 2 s. In one start, in order:
                  program's T2 M6: at each prompt the driver samples LinuxCNC for
                  HOLD_S (the first for LONG_HOLD_S, past STEP_TIMEOUT) and
                  presses Continue
-  step_cancel    the pin on, T3 M6: Continue up to the step after the first
-                 chuck action, Cancel there; the program ends; then the fault is
-                 cleared with LinuxCNC's tool
+  step_cancel    the pin on, T3 M6: Continue up to the first chuck action
+                 (the release of T2 into pocket 2), Cancel there; the program
+                 ends; then the fault is cleared with LinuxCNC's tool
   operator_step  `fixed_atc_probe --operator unload:2 --step --yes`
 step_mode_check.py judges. Environment: FATC_RESULTS.
 """
@@ -47,7 +47,7 @@ def plan(from_tool, to_tool):
 def step_through(name, program, cancel_here=None):
     """Runs `program` with the step-by-step pin on: at each step held (the
     status file's words name it) samples LinuxCNC, then presses Continue, or
-    Cancel where `cancel_here(prompts so far)` says so."""
+    Cancel at the first step `cancel_here(its words)` says so of."""
     result = {"name": name, "samples": [], "prompts": [], "messages": []}
     first_message = len(d.messages)
     hal.set_p(P + "step-by-step", "1")
@@ -78,7 +78,7 @@ def step_through(name, program, cancel_here=None):
             prompt = {"number": answered, "words": match.group(0), "action": match.group(2),
                       "t": s["t"], "pos": s["pos"], "chuck": s[P + "chuck"]}
             sample_for(LONG_HOLD_S if not result["prompts"] else HOLD_S)
-            cancel = cancel_here is not None and cancel_here(result["prompts"])
+            cancel = cancel_here is not None and cancel_here(match.group(2))
             prompt["answer"] = "cancel" if cancel else "continue"
             prompt["answered_at"] = time.monotonic() - start
             result["prompts"].append(prompt)
@@ -99,8 +99,8 @@ def step_through(name, program, cancel_here=None):
     return result
 
 
-def after_the_first_chuck_action(prompts):
-    return bool(prompts) and prompts[-1]["action"].startswith(("open the chuck", "close the chuck"))
+def a_chuck_action(words):
+    return words.startswith(("open the chuck", "close the chuck"))
 
 
 def clear_fault():
@@ -135,10 +135,11 @@ def main():
         change = step_through("step_change", "step_change.ngc")
         change["plan"] = planned
         results["scenarios"].append(change)
-        cancelled = step_through("step_cancel", "step_cancel.ngc", after_the_first_chuck_action)
+        cancelled = step_through("step_cancel", "step_cancel.ngc", a_chuck_action)
         clear_fault()
         d.stat.poll()
         cancelled["cleared_tool_in_spindle"] = d.stat.tool_in_spindle
+        cancelled["cleared_state_file"] = d.read_json(d.state_path())
         results["scenarios"].append(cancelled)
         results["scenarios"].append(operator_step())
     except Exception as e:  # the checker reports it; LinuxCNC must still shut down

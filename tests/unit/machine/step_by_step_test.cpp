@@ -214,12 +214,12 @@ TEST(StepByStep, shouldEndAsAnAbortWhenCancelledAtAHeldStep) {
   rig.changer->tool_change(2);
   rig.run();
   // On to the first chuck action, the release of tool 1 into its pocket.
-  for (int i = 0; i < 40 && !(rig.sim.asked && rig.sim.asked->action == "open the chuck at");
+  for (int i = 0; i < 40 && !(rig.sim.asked && rig.sim.asked->action == "open the chuck");
        ++i) {
     rig.changer->operator_continue();
     rig.run();
   }
-  ASSERT_EQ(rig.sim.asked->action, "open the chuck at");
+  ASSERT_EQ(rig.sim.asked->action, "open the chuck");
   const ToolState before = rig.changer->tools();
   rig.changer->operator_cancel();
   EXPECT_EQ(rig.run(), (Lines{"chuck close", "fail cancelled by the operator before step " +

@@ -129,8 +129,8 @@ void Context::chuck(bool open) {
   };
   const int pocket = sequence_pocket();
   const std::string where =
-      pocket != 0 ? "pocket " + std::to_string(pocket) : std::string("where the spindle stands");
-  if (!stop_before(motion.sequence_step, open ? "open the chuck at" : "close the chuck at", where,
+      pocket != 0 ? "at pocket " + std::to_string(pocket) : std::string("where the spindle stands");
+  if (!stop_before(motion.sequence_step, open ? "open the chuck" : "close the chuck", where,
                    motion.position, motion.known_axes, go)) {
     go();
   }

@@ -30,8 +30,9 @@ struct Prompt {
   Point at;              ///< verify_stop: where the spindle stands (the axes of `known_axes`)
   unsigned known_axes = 0;
   /// step: the sequence ("M6 T3") and what its step does ("rapid to",
-  /// "feed at F300 to", "open the chuck at"); `at` is its target on the
-  /// axes it moves (a move) or where the spindle stands (a chuck action).
+  /// "feed at F300 to", "open the chuck"), `waypoint` where ("safe Z", "at
+  /// pocket 3"); `at` is its target on the axes it moves (a move) or where
+  /// the spindle stands (a chuck action), on the axes known.
   std::string sequence;
   std::string action;
 };
