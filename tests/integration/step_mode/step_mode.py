@@ -4,7 +4,7 @@ its STEP_TIMEOUT cut to 2 s. In one start, in order:
   first_tool     T1 M6, step by step off: T1 in the spindle
   step_change    --plan of M6 T2 with T1 in; then, the step-by-step pin on, a
                  program's T2 M6: at each prompt the driver samples LinuxCNC for
-                 HOLD_S (the first for LONG_HOLD_S, past STEP_TIMEOUT) and
+                 HOLD_S (the first for LONG_HOLD_S), each past STEP_TIMEOUT, and
                  presses Continue
   step_cancel    the pin on, T3 M6: Continue up to the first chuck action
                  (the release of T2 into pocket 2), Cancel there; the program
@@ -26,8 +26,8 @@ import linuxcnc  # noqa: E402
 import operator_command  # noqa: E402
 
 P = d.COMPONENT + "."
-HOLD_S = 0.3
-LONG_HOLD_S = 5.0  # past the run's STEP_TIMEOUT of 2 s: the operator thinks
+HOLD_S = 2.5  # each step past the run's STEP_TIMEOUT of 2 s: the operator thinks
+LONG_HOLD_S = 5.0  # the first, twice as long
 FOLDER = "tests/integration/step_mode/"
 STEP_WORDS = re.compile(r"^Step by step, .*?, step (\d+): (.*)$")
 

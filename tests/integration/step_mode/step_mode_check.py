@@ -59,6 +59,8 @@ def check_step_change(scenario):
     first = scenario["prompts"][0] if scenario["prompts"] else None
     expect(first and first["answered_at"] - first["t"] > 2 * STEP_TIMEOUT,
            "the first step was held less than twice STEP_TIMEOUT")
+    short = [p["number"] for p in scenario["prompts"] if p["answered_at"] - p["t"] <= STEP_TIMEOUT]
+    expect(not short, "steps held no longer than STEP_TIMEOUT: %s" % short)
     last = scenario["samples"][-1]
     expect(last["tool_in_spindle"] == 2, "LinuxCNC's tool after the change: %s" % last["tool_in_spindle"])
     expect(last[P + "state"] == 1, "the changer is not idle after the change (state %s)" % last[P + "state"])
@@ -66,10 +68,10 @@ def check_step_change(scenario):
     expect(not any(word in m for m in scenario["messages"]
                    for word in ("STEP_TIMEOUT", "stopped answering", "refused or failed", "fault")),
            "a message says the program aborted: %s" % scenario["messages"])
-    return "%d steps held, --plan's %s; %d samples while held, none moved; the first held %.1f s " \
-           "(STEP_TIMEOUT %.0f s); LinuxCNC moved between %d of %d pairs of prompts; T%d in " \
+    return "%d steps held, --plan's %s; %d samples while held, none moved; each held over " \
+           "STEP_TIMEOUT (%.0f s), the first %.1f s; LinuxCNC moved between %d of %d pairs of prompts; T%d in " \
            "the spindle" % (len(held), "the same numbers" if held == planned else planned, samples,
-                            first["answered_at"] - first["t"] if first else 0, STEP_TIMEOUT,
+                            STEP_TIMEOUT, first["answered_at"] - first["t"] if first else 0,
                             moved_between(scenario), max(len(held) - 1, 0), last["tool_in_spindle"])
 
 
