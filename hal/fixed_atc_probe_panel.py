@@ -288,6 +288,7 @@ class Handler:
         halcomp.newpin("air-from-tool", hal.HAL_S32, hal.HAL_OUT)
         halcomp["air-from-tool"] = -1
         halcomp.newpin("io-check-holding-tool", hal.HAL_BIT, hal.HAL_OUT)
+        halcomp.newpin("step-by-step", hal.HAL_BIT, hal.HAL_OUT)
         for name in ("state", "awaiting", "tool-in-spindle", "step-kind", "cut-off-pocket",
                      "pocket-served", "batch-done", "batch-total"):
             halcomp.newpin(name, hal.HAL_S32, hal.HAL_IN)
@@ -366,6 +367,11 @@ class Handler:
 
     def on_holding_tool_toggled(self, button):
         self.comp["io-check-holding-tool"] = button.get_active()
+
+    def on_step_by_step_toggled(self, button):
+        # A level the component takes at the start of each sequence: the words of each
+        # held step are the activity the panel shows (step_words).
+        self.comp["step-by-step"] = button.get_active()
 
     def on_button_clicked(self, button):
         name = Gtk.Buildable.get_name(button)

@@ -35,6 +35,9 @@ const std::vector<OptionDeclaration> kOptions = {
    "prompt's work is done (a script, a test)", ""},
   {"--holding-tool", "", "--operator io:chuck-release: the operator holds the tool in the "
    "spindle, so the chuck may open on it", ""},
+  {"--step", "", "--operator load, unload, measure-all, verify: step by step (the step-by-step "
+   "pin on for the request's sequence, then back as it was): each move and each chuck action "
+   "waits for Continue, from --yes, the panel or a second `--operator continue`", ""},
   {"--timeout", "SECONDS",
    "--operator: stop waiting after this long (the request goes on: exit 5); without it the "
    "command waits for the end, as long as the operator takes", ""},
@@ -139,7 +142,8 @@ const std::vector<ModeDeclaration> kModes = {
    "FIFO. Exit 0 written, 1 invalid config or state or a refused change, 2 the file cannot be "
    "written"},
   {Mode::operator_request, "--operator", "ACTION", {},
-   {"--ini", "--state", "--into", "--spindle", "--pocket", "--yes", "--holding-tool", "--timeout"},
+   {"--ini", "--state", "--into", "--spindle", "--pocket", "--yes", "--holding-tool", "--step",
+    "--timeout"},
    "ask the running component, as its panel does: load, unload, continue, cancel, ...",
    "the operator without a GUI (a script, a terminal over SSH): asks the running component, "
    "through the pins its panel pulses and the status file it reads, for ACTION: `load:T` "

@@ -256,9 +256,11 @@ OperatorOutcome follow(const io::Options& options, const std::string& status_pat
   io::OperatorWatch watch(*options.request, options.answer_yes, before->serial);
   const auto pressed_at = Clock::now();
   pressed = true;
-  if (!press(io::press_of(*options.request, options.into_pocket, options.spindle_tool,
-                          options.pocket_holds_tool),
-             failure)) {
+  io::Press button = io::press_of(*options.request, options.into_pocket, options.spindle_tool,
+                                  options.pocket_holds_tool);
+  // The sequence takes the switch at its start: run_operator puts it back after.
+  if (options.step_by_step) button.set.push_back({"step-by-step", 1});
+  if (!press(button, failure)) {
     return failure.outcome;
   }
   for (;;) {
@@ -319,7 +321,14 @@ int run_operator(const io::Options& options, std::ostream& given_out, std::ostre
   hal_ready(id);
   Failure failure{OperatorOutcome::done, ""};
   bool pressed = false;
+  int step_switch_was = 0;
+  if (const auto pin = find("step-by-step"); pin && options.step_by_step) {
+    step_switch_was = value_of(*pin);
+  }
   const OperatorOutcome outcome = follow(options, status_path, out, failure, pressed);
+  if (const auto pin = find("step-by-step"); pin && options.step_by_step && pressed) {
+    write(*pin, step_switch_was);
+  }
   hal_exit(id);
   if (const int signal = io::Interruptible::signal(); signal != 0) {
     // The caller's Interruptible ends the program by the signal, as the shell expects.

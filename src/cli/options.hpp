@@ -32,6 +32,7 @@ struct Options {
   std::optional<int> into_pocket;              ///< --operator load: --into P
   bool answer_yes = false;                     ///< --operator: --yes
   bool holding_tool = false;                   ///< --operator io:chuck-release: --holding-tool
+  bool step_by_step = false;                   ///< --operator: --step
   std::optional<double> timeout_seconds;       ///< --operator: --timeout SECONDS
   std::optional<double> air_height;            ///< --plan: --air HEIGHT, the change flown in the air
   std::optional<double> air_feed;              ///< --plan --air: --air-feed FEED

@@ -207,6 +207,12 @@ std::string operator_options_misplaced(const Options& options) {
     return std::string(options.spindle_tool ? "--spindle" : "--pocket") +
            " is read only by --operator clear-fault";
   }
+  const bool flow = action == Action::load || action == Action::unload ||
+                    action == Action::measure_all || action == Action::verify;
+  if (options.step_by_step && !flow) {
+    return "--step is read only by --operator load:T, unload:T, measure-all and verify:P (an "
+           "M6's: the panel's switch or the step-by-step pin)";
+  }
   return "";
 }
 
@@ -349,13 +355,14 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
     return std::nullopt;
   }
   if (options.mode == Mode::operator_request) {
-    for (const char* flag : {"--yes", "--holding-tool"}) {
+    for (const char* flag : {"--yes", "--holding-tool", "--step"}) {
       if (given.at(flag)->count() > 1) {
         error = std::string(flag) + " given twice";
         return std::nullopt;
       }
     }
     options.holding_tool = given.at("--holding-tool")->count() == 1;
+    options.step_by_step = given.at("--step")->count() == 1;
     if (const std::string wrong = operator_options_misplaced(options); !wrong.empty()) {
       error = wrong;
       return std::nullopt;

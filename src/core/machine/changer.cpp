@@ -45,6 +45,8 @@ void Changer::rehearse_with(const Rehearsal* rehearsal) {
 
 void Changer::machine_at(std::optional<Point> at) { engine_->context.machine.position = at; }
 
+void Changer::step_by_step(bool on) { engine_->context.steps.switch_to(on); }
+
 void Changer::task_availability(std::optional<std::string> why_busy) {
   engine_->context.machine.task_busy = std::move(why_busy);
 }
@@ -79,8 +81,9 @@ std::optional<std::string> rehearse(const Context& c, const FlowRequest& request
 }
 }  // namespace machine
 void Changer::in_position() {
-  // Within a phase the next waypoint follows; the tables see a phase's end.
-  if (engine_->context.next_waypoint()) return;
+  // Within a phase the next waypoint follows (step by step, the next move of
+  // a run first); the tables see a phase's end.
+  if (engine_->context.hold_next_move() || engine_->context.next_waypoint()) return;
   engine_->take(InPosition{});
 }
 void Changer::command_done() { engine_->take(CommandDone{}); }
@@ -90,8 +93,21 @@ void Changer::probe_result(bool touched, double machine_z, bool tripped_before) 
 }
 
 void Changer::timer_elapsed() { engine_->take(TimerElapsed{}); }
-void Changer::operator_continue() { engine_->take(OperatorContinue{}); }
-void Changer::operator_cancel() { engine_->take(OperatorCancel{}); }
+void Changer::operator_continue() {
+  if (engine_->context.continue_step()) return;
+  engine_->take(OperatorContinue{});
+}
+void Changer::operator_cancel() {
+  const Context& c = engine_->context;
+  if (!c.steps.holding()) {
+    engine_->take(OperatorCancel{});
+    return;
+  }
+  // Nothing moves at a held step: the sequence ends there as an abort ends it.
+  engine_->take(Abort{"cancelled by the operator before step " +
+                      std::to_string(c.steps.question().stop) + " of " +
+                      c.steps.question().sequence + " (step by step)"});
+}
 void Changer::abort(const std::string& reason) { engine_->take(Abort{reason}); }
 void Changer::clear_fault(int spindle_tool, std::optional<bool> pocket_holds_tool) {
   engine_->take(ClearFault{spindle_tool, pocket_holds_tool});
@@ -129,7 +145,9 @@ Phase phase_of(const machine::Engine& engine) {
 
 Awaiting awaiting_of(const machine::Engine& engine) {
   namespace flag = machine::flag;
-  if (active<flag::AwaitsOperator>(engine)) return Awaiting::operator_choice;
+  if (active<flag::AwaitsOperator>(engine) || engine.context.steps.holding()) {
+    return Awaiting::operator_choice;
+  }
   if (active<flag::AwaitsProbe>(engine)) return Awaiting::probe;
   if (active<flag::AwaitsMotion>(engine)) return Awaiting::motion;
   if (active<flag::AwaitsTimer>(engine)) return Awaiting::timer;
@@ -204,9 +222,12 @@ Status Changer::status() const {
   status.awaiting = awaiting_of(engine);
   // Inside M6 an operator's answer holds the program, and only Stop ends a probe.
   const bool in_program = c.request.in_program;
+  // A step held for Continue holds the executor too, inside a program or over MDI.
   status.holds_program = active<machine::flag::HoldsProgram>(engine) ||
-                         (active<machine::flag::AwaitsOperator>(engine) && in_program);
-  status.probe_cancellable = active<machine::flag::AwaitsProbe>(engine) && !in_program;
+                         (active<machine::flag::AwaitsOperator>(engine) && in_program) ||
+                         c.steps.holding();
+  status.probe_cancellable =
+      active<machine::flag::AwaitsProbe>(engine) && !in_program && !c.steps.holding();
   status.over_mdi = status.busy() && !in_program;
   status.accepting = status.phase == Phase::idle && status.awaiting == Awaiting::nothing &&
                      !c.machine.task_busy && !c.outputs.chuck_open;

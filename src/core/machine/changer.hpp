@@ -49,6 +49,10 @@ class Changer {
   void rehearse_with(const Rehearsal* rehearsal);
   /// Where LinuxCNC says the spindle stands (none: not known); a rehearsal starts there.
   void machine_at(std::optional<Point> at);
+  /// Step by step (the step-by-step pin): from the next sequence on, each
+  /// move and each chuck action waits for Continue before it goes out;
+  /// Cancel there aborts the sequence.
+  void step_by_step(bool on);
   /// Whether task could run the executor over MDI now; `why_busy` says why not.
   void task_availability(std::optional<std::string> why_busy);
   /// The spindle started (false) or stopped (true) turning.

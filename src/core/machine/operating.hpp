@@ -157,6 +157,8 @@ struct Running : msmf::state<> {
   }
   template <class Event, class Fsm>
   void on_exit(const Event&, Fsm& fsm) {
+    // Nothing stays held for Continue: a fault's close of the chuck goes at once.
+    fsm.ctx->steps.end();
     fsm.flow->stop();
     fsm.flow.reset();
   }

@@ -117,6 +117,8 @@ void Component::read_executor(std::optional<bool> interpreter_idle) {
 }
 
 void Component::read_operator() {
+  // Before the requests: a sequence takes the switch as it stands at its start.
+  changer_->step_by_step(*pins_->step_by_step);
   if (load_.rose(*pins_->load)) changer_->load(*pins_->tool_number, *pins_->pocket_number);
   if (unload_.rose(*pins_->unload)) changer_->unload(*pins_->tool_number);
   if (measure_all_.rose(*pins_->measure_all)) {

@@ -87,6 +87,7 @@ struct HalPins {
   hal_bit_t* continue_;
   hal_bit_t* cancel;
   hal_bit_t* waiting_for_operator;
+  hal_bit_t* step_by_step;
   hal_float_t* last_length;
   hal_s32_t* step_number;
   hal_s32_t* awaiting;

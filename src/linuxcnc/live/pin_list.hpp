@@ -263,6 +263,10 @@ inline const std::vector<PinDeclaration> kPins = joined({{
    "a prompt waits for Continue or Cancel: in the load and unload flows once the executor has "
    "ended its run (jogging and the GUI are free); inside M6 (manual tools) while the program "
    "holds"},
+  {"step-by-step", &HalPins::step_by_step, HAL_IN,
+   "level, taken at the start of each sequence: each move and each chuck action of it waits "
+   "for `continue` before it goes out (`waiting-for-operator` high, the prompt naming the step, "
+   "its target and feed); `cancel` there aborts the sequence"},
   {"last-length", &HalPins::last_length, HAL_OUT, "the last tool length measured"},
   // What a panel needs to show and to enable only the buttons that can act.
   {"awaiting", &HalPins::awaiting, HAL_OUT,

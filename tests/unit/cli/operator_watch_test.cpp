@@ -26,7 +26,13 @@ TEST(OperatorArguments, shouldReadEachActionTheWayAMachinistTypesIt) {
   EXPECT_EQ(load->request->number, 3);
   EXPECT_EQ(*load->into_pocket, 5);
   EXPECT_TRUE(load->answer_yes);
+  EXPECT_FALSE(load->step_by_step);
   EXPECT_TRUE(load->state_path.empty());  // the INI's STATE, read when it runs
+  for (const char* flow : {"load:3", "unload:3", "measure-all", "verify:2"}) {
+    const auto stepped = parsed({"--operator", flow, "--step", "--state", "s.json"}, error);
+    ASSERT_TRUE(stepped) << flow << ": " << error;
+    EXPECT_TRUE(stepped->step_by_step) << flow;
+  }
 
   const struct {
     const char* text;
@@ -125,6 +131,12 @@ TEST(OperatorArguments, shouldRefuseBadInputWithOneLineSayingWhatIsExpected) {
       {{"--operator", "load:3", "--yes=1", "--ini", "m.ini"}, "--yes takes no value, got \"1\""},
       {{"--operator", "load:3", "--yes", "--yes", "--ini", "m.ini"}, "--yes given twice"},
       {{"--check", "--config", "c.json", "--yes"}, "--yes is not used by --check"},
+      {{"--operator", "load:3", "--step", "--step", "--ini", "m.ini"}, "--step given twice"},
+      {{"--operator", "continue", "--step", "--ini", "m.ini"},
+       "--step is read only by --operator load:T, unload:T, measure-all and verify:P (an M6's: "
+       "the panel's switch or the step-by-step pin)"},
+      {{"--plan", "--config", "c.json", "--from", "1", "--to", "2", "--step"},
+       "--step is not used by --plan"},
   };
   for (const auto& c : cases) {
     std::string error;
@@ -135,8 +147,8 @@ TEST(OperatorArguments, shouldRefuseBadInputWithOneLineSayingWhatIsExpected) {
 
 TEST(OperatorArguments, shouldShowTheFlagWithoutAValueInEveryReference) {
   EXPECT_NE(usage().find("fixed_atc_probe --operator ACTION [--ini FILE] [--state FILE] [--into "
-                         "P] [--spindle N] [--pocket yes|no] [--yes] [--holding-tool] [--timeout "
-                         "SECONDS]"),
+                         "P] [--spindle N] [--pocket yes|no] [--yes] [--holding-tool] [--step] "
+                         "[--timeout SECONDS]"),
             std::string::npos)
       << usage();
   EXPECT_NE(options_man().find(".B --yes\n"), std::string::npos);

@@ -39,8 +39,55 @@ void Context::publish(const Step& next) {
     motion.known_axes = 0;  // the operator may jog; a failed sequence may stop anywhere
   }
   motion.step = published;
+  const int first = motion.sequence_step + 1;
   motion.sequence_step += static_cast<int>(moves.size());
+  if (steps.on() && is_motion(next.kind)) {
+    for (std::size_t i = 0; i < moves.size(); ++i) {
+      steps.rest.emplace_back(first + static_cast<int>(i), moves[i]);
+      steps.rest.back().second.blend = 0.0;
+    }
+    hold_next_move();
+    return;
+  }
   ports.publish(published);
+}
+
+bool Context::hold_next_move() {
+  if (steps.rest.empty()) return false;
+  auto [number, move] = steps.rest.front();
+  steps.rest.pop_front();
+  char feed[48];
+  std::snprintf(feed, sizeof feed, "%s at F%g to", step_kind_name(move.kind), move.feed);
+  const std::string action =
+      move.kind == StepKind::rapid ? std::string("rapid to") : std::string(feed);
+  stop_before(number, action, move.label, move.target, move.axes,
+              [this, move] { ports.publish(move); });
+  return true;
+}
+
+bool Context::stop_before(int number, std::string action, std::string where, const Point& at,
+                          unsigned axes, std::function<void()> go) {
+  if (!steps.on()) return false;
+  Prompt question;
+  question.kind = Prompt::Kind::step;
+  question.stop = number;
+  question.sequence = tools.in_progress ? tools.in_progress->sequence : std::string("sequence");
+  question.action = std::move(action);
+  question.waypoint = std::move(where);
+  question.at = at;
+  question.known_axes = axes;
+  const bool first = !steps.holding();
+  steps.hold(question, std::move(go));
+  if (first) ask_operator(question);
+  return true;
+}
+
+bool Context::continue_step() {
+  if (!steps.holding()) return false;
+  steps.release();
+  // A step held behind it (the phase after a chuck action) is asked now.
+  if (steps.holding()) ask_operator(steps.question());
+  return true;
 }
 
 std::optional<std::string> Context::rehearse(const std::function<void(Changer&)>& request) const {
@@ -67,18 +114,26 @@ void Context::stop_walking() {
   route_next_ = 0;
 }
 
-void Context::open_chuck() {
-  ++motion.sequence_step;
-  outputs.chuck_open = true;
-  ports.set_chuck_open(true);
-  blow_if_due();
-}
+void Context::open_chuck() { chuck(true); }
 
-void Context::close_chuck() {
+void Context::close_chuck() { chuck(false); }
+
+void Context::chuck(bool open) {
   ++motion.sequence_step;
-  outputs.chuck_open = false;
-  blow_if_due();
-  ports.set_chuck_open(false);
+  const auto go = [this, open] {
+    outputs.chuck_open = open;
+    // Opening: the blast follows the chuck; closing: it stops first.
+    if (open) ports.set_chuck_open(true);
+    blow_if_due();
+    if (!open) ports.set_chuck_open(false);
+  };
+  const int pocket = sequence_pocket();
+  const std::string where =
+      pocket != 0 ? "at pocket " + std::to_string(pocket) : std::string("where the spindle stands");
+  if (!stop_before(motion.sequence_step, open ? "open the chuck" : "close the chuck", where,
+                   motion.position, motion.known_axes, go)) {
+    go();
+  }
 }
 
 void Context::blow_if_due() {
@@ -123,7 +178,7 @@ bool Context::cover_still_closing() const {
 void Context::wait(double seconds, std::string what) {
   activity.dwell = std::move(what);
   ++motion.sequence_step;
-  ports.start_timer(seconds);
+  steps.then([this, seconds] { ports.start_timer(seconds); });
 }
 
 void Context::ask_operator(const Prompt& question) {
@@ -132,6 +187,7 @@ void Context::ask_operator(const Prompt& question) {
 }
 
 void Context::begin_sequence(const std::string& sequence) {
+  steps.begin();
   // Between sequences a program, MDI or a jog may have moved the machine.
   motion.known_axes = 0;
   motion.sequence_step = 0;

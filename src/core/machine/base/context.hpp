@@ -16,6 +16,7 @@
 #include "ports.hpp"
 #include "prompt.hpp"
 #include "rehearsal.hpp"
+#include "step_gate.hpp"
 
 namespace fatc {
 
@@ -114,6 +115,7 @@ class Context {
   Outputs outputs;
   Activity activity;
   Raise raise;
+  StepGate steps;  ///< step by step: what waits for Continue before it goes out
 
   /// A taught config: the changer works with it from the next request on.
   void take_config(Config taught) {
@@ -144,6 +146,11 @@ class Context {
   void close_chuck();
   void wait(double seconds, std::string what);
   void ask_operator(const Prompt& question);
+  /// Step by step, Continue: the held step goes out; false when none is held.
+  bool continue_step();
+  /// Step by step: the next move of a run split into steps is held; false
+  /// when the run is through (the executor's InPosition is then the run's).
+  bool hold_next_move();
   void tell(MessageKind kind, const std::string& text) { ports.tell(kind, text); }
 
   /// A sequence starts: saved before anything moves, cleared when it ends,
@@ -202,6 +209,12 @@ class Context {
 
  private:
   void blow_if_due();
+  /// Step by step: holds `go` (step `number`, `action` `where`, at `at` on
+  /// `axes`) for Continue and says true; false when the mode is off.
+  bool stop_before(int number, std::string action, std::string where, const Point& at,
+                   unsigned axes, std::function<void()> go);
+  /// A chuck action (open or close), held for Continue in step by step.
+  void chuck(bool open);
   unsigned configs_taken_ = 0;
   plan::Route route_;           ///< the waypoints the phase under way walks
   std::size_t route_next_ = 0;  ///< the index of the waypoint to publish next

@@ -52,6 +52,13 @@ std::string words(const Prompt& prompt) {
              std::to_string(prompt.stop) + " of " + std::to_string(prompt.stops) + ": " +
              waypoint_words(prompt.waypoint, prompt.at, prompt.known_axes) +
              ". Look at the clearance, then press Continue (Cancel stops here)";
+    case Prompt::Kind::step:
+      return "Step by step, " + prompt.sequence + ", step " + std::to_string(prompt.stop) + ": " +
+             prompt.action + " " +
+             (prompt.known_axes != 0
+                  ? waypoint_words(prompt.waypoint, prompt.at, prompt.known_axes)
+                  : prompt.waypoint) +
+             ". Press Continue to make it (Cancel aborts the sequence)";
   }
   return "";
 }

@@ -17,6 +17,7 @@ struct Prompt {
     remove_tool,    ///< take `tool` out of the spindle at `loading`
     jog_to_sensor,  ///< `tool` is in: jog closer to the touch-off sensor if wanted, then probe
     verify_stop,    ///< a dry run of `pocket` holds at `stop` of `stops`, at `waypoint`
+    step,           ///< step by step: step `stop` of `sequence`, `action` `waypoint` at `at`
   };
   Kind kind = Kind::none;
   int tool = 0;
@@ -28,6 +29,12 @@ struct Prompt {
   std::string waypoint;  ///< verify_stop: the waypoint reached, as --plan names it
   Point at;              ///< verify_stop: where the spindle stands (the axes of `known_axes`)
   unsigned known_axes = 0;
+  /// step: the sequence ("M6 T3") and what its step does ("rapid to",
+  /// "feed at F300 to", "open the chuck"), `waypoint` where ("safe Z", "at
+  /// pocket 3"); `at` is its target on the axes it moves (a move) or where
+  /// the spindle stands (a chuck action), on the axes known.
+  std::string sequence;
+  std::string action;
 };
 
 /// What the operator reads: "Insert tool 3 into the spindle, then press

@@ -39,7 +39,8 @@ struct Status {
   Phase phase = Phase::not_ready;
   Awaiting awaiting = Awaiting::nothing;
   std::string activity;            ///< what it is doing, in the machinist's words
-  bool holds_program = false;      ///< an operator wait inside M6: the executor holds the program
+  /// An operator wait inside M6, or a step held step by step: the executor holds the program.
+  bool holds_program = false;
   bool probe_cancellable = false;  ///< a load-flow probe runs over MDI: Cancel stops it
   /// The flow under way is an operator's (load, unload, measure all, verify):
   /// its executor runs over MDI, started by the adapter, not inside a program.
