@@ -26,6 +26,11 @@ std::optional<std::string> why_spindle_cannot_be_emptied(const Context& ctx, boo
   return std::nullopt;
 }
 
+std::optional<std::string> why_spindle_turning(const Context& ctx) {
+  if (ctx.spindle_at_standstill()) return std::nullopt;
+  return std::string("the spindle is turning; stop it first");
+}
+
 /// Every sequence opens the chuck: no air, no start (the legs check again
 /// before each opening).
 std::optional<std::string> why_no_air(const Context& ctx) {

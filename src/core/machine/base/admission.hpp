@@ -17,6 +17,9 @@ std::string tool_name(int tool);
 std::optional<std::string> why_not_ready(const Context& ctx);
 /// why_not_ready, or a chuck a G-code release left open.
 std::optional<std::string> why_not_busy(const Context& ctx);
+/// The spindle still turns (LinuxCNC's, or its own feedback where wired):
+/// nothing the operator asks for may start.
+std::optional<std::string> why_spindle_turning(const Context& ctx);
 /// Every sequence opens the chuck: no air, no start (the legs check again
 /// before each opening).
 std::optional<std::string> why_no_air(const Context& ctx);

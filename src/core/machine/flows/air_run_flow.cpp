@@ -17,7 +17,7 @@ std::string AirRun::name(const AirRunRequest& e) { return e.name; }
 std::optional<std::string> AirRun::why_not(const Context& c, const AirRunRequest& e) {
   if (c.machine.task_busy) return c.machine.task_busy;
   if (auto busy = why_not_busy(c)) return busy;
-  if (!c.spindle_at_standstill()) return std::string("the spindle is turning; stop it first");
+  if (auto turning = why_spindle_turning(c)) return turning;
   if (e.route.empty()) return std::string("the sequence moves nowhere");
   return std::nullopt;
 }

@@ -68,7 +68,7 @@ std::optional<std::string> why_not_load(const Context& ctx, int tool, int pocket
   if (pocket < 0)
     return "pocket-number must be 0 (chosen) or a pocket, got " + std::to_string(pocket);
   if (auto busy = why_not_busy(ctx)) return busy;
-  if (!ctx.spindle_at_standstill()) return std::string("the spindle is turning; stop it first");
+  if (auto turning = why_spindle_turning(ctx)) return turning;
   if (auto air = why_no_air(ctx)) return air;
   if (const auto in_rack = ctx.tools.pocket_holding(tool)) {
     return tool_name(tool) + " is already in pocket " + std::to_string(*in_rack) +

@@ -39,7 +39,7 @@ namespace {
 std::optional<std::string> why_not_measure(const Context& ctx, const std::vector<int>& asked) {
   if (ctx.machine.task_busy) return ctx.machine.task_busy;
   if (auto busy = why_not_busy(ctx)) return busy;
-  if (!ctx.spindle_at_standstill()) return std::string("the spindle is turning; stop it first");
+  if (auto turning = why_spindle_turning(ctx)) return turning;
   if (auto air = why_no_air(ctx)) return air;
   std::string skipped;
   std::string never;

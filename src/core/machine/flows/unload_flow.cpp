@@ -16,7 +16,7 @@ std::optional<std::string> why_not_unload(const Context& ctx, int tool) {
   if (ctx.machine.task_busy) return ctx.machine.task_busy;
   if (tool <= 0) return "unload needs a tool number above 0, got " + std::to_string(tool);
   if (auto busy = why_not_busy(ctx)) return busy;
-  if (!ctx.spindle_at_standstill()) return std::string("the spindle is turning; stop it first");
+  if (auto turning = why_spindle_turning(ctx)) return turning;
   if (auto air = why_no_air(ctx)) return air;
   if (ctx.tools.spindle == tool) return std::nullopt;
   if (!ctx.tools.pocket_holding(tool)) return tool_name(tool) + " is not in the rack";

@@ -21,7 +21,7 @@ std::optional<std::string> why_not_verify(const Context& ctx, int pocket) {
            pocket_list(numbers) + ")";
   }
   if (auto busy = why_not_busy(ctx)) return busy;
-  if (!ctx.spindle_at_standstill()) return std::string("the spindle is turning; stop it first");
+  if (auto turning = why_spindle_turning(ctx)) return turning;
   // The spindle goes where the tool would sit: only an empty pocket can be
   // driven into (a wired pocket sensor that disagrees stops all work before this).
   if (ctx.tools.holds(pocket)) {
