@@ -3,8 +3,9 @@
 its STEP_TIMEOUT cut to 2 s. In one start, in order:
   first_tool     T1 M6, step by step off: T1 in the spindle
   step_change    --plan of M6 T2 with T1 in; then, the step-by-step pin on, a
-                 program's T2 M6: at each prompt the driver samples LinuxCNC for
-                 HOLD_S (the first for LONG_HOLD_S), each past STEP_TIMEOUT, and
+                 program's T2 M6: at each prompt the driver samples LinuxCNC,
+                 the first step of each kind for HOLD_S past STEP_TIMEOUT (the
+                 very first for LONG_HOLD_S), the others for QUICK_HOLD_S, and
                  presses Continue
   step_cancel    the pin on, T3 M6: Continue up to the first chuck action
                  (the release of T2 into pocket 2), Cancel there; the program
@@ -26,8 +27,9 @@ import linuxcnc  # noqa: E402
 import operator_command  # noqa: E402
 
 P = d.COMPONENT + "."
-HOLD_S = 2.5  # each step past the run's STEP_TIMEOUT of 2 s: the operator thinks
+HOLD_S = 2.5  # past the run's STEP_TIMEOUT of 2 s: the operator thinks
 LONG_HOLD_S = 5.0  # the first, twice as long
+QUICK_HOLD_S = 0.3  # a step of a kind already held long: answered at once
 FOLDER = "tests/integration/step_mode/"
 STEP_WORDS = re.compile(r"^Step by step, .*?, step (\d+): (.*)$")
 
@@ -42,6 +44,12 @@ def plan(from_tool, to_tool):
                            str(from_tool), "--to", str(to_tool), "--state", d.state_path(), "--ini",
                            os.environ["INI_FILE_NAME"]], capture_output=True, text=True)
     return {"code": done.returncode, "out": done.stdout, "err": done.stderr}
+
+
+def step_kind(words):
+    """rapid, feed, open the chuck or close the chuck: a held step's action."""
+    return next(kind for kind in ("rapid", "feed", "open the chuck", "close the chuck", "")
+                if words.startswith(kind))
 
 
 def step_through(name, program, cancel_here=None):
@@ -69,6 +77,7 @@ def step_through(name, program, cancel_here=None):
 
     d.wait_for(lambda: d.stat.interp_state != linuxcnc.INTERP_IDLE, 30, "the program to start")
     answered = None
+    held_kinds = set()
     deadline = start + 300
     while time.monotonic() < deadline:
         s = sample()
@@ -77,7 +86,16 @@ def step_through(name, program, cancel_here=None):
             answered = int(match.group(1))
             prompt = {"number": answered, "words": match.group(0), "action": match.group(2),
                       "t": s["t"], "pos": s["pos"], "chuck": s[P + "chuck"]}
-            sample_for(LONG_HOLD_S if not result["prompts"] else HOLD_S)
+            # The first step of each kind (rapid, feed, chuck opened, closed)
+            # held past STEP_TIMEOUT: each kind's wait counted from the answer.
+            kind = step_kind(match.group(2))
+            if not result["prompts"]:
+                sample_for(LONG_HOLD_S)
+            elif kind not in held_kinds:
+                sample_for(HOLD_S)
+            else:
+                sample_for(QUICK_HOLD_S)
+            held_kinds.add(kind)
             cancel = cancel_here is not None and cancel_here(match.group(2))
             prompt["answer"] = "cancel" if cancel else "continue"
             prompt["answered_at"] = time.monotonic() - start
