@@ -4,8 +4,8 @@
 # runs the simulated demo from the installed files only (the binary in
 # /usr/bin; NGC, HAL, panel and sample configs in /usr/share/fixed_atc_probe;
 # the chuck guard in LinuxCNC's modules), removes it with --purge and checks
-# nothing of it is left. Then puts back the chuck guard the build tree's
-# tests load (scripts/setup.sh installs it the same way). As root.
+# nothing of it is left. Then puts back the realtime modules the build tree's
+# tests load (scripts/setup.sh's, kept aside before the install). As root.
 #   tests/package/run.sh BUILD_DIR
 set -euo pipefail
 [ "$(id -u)" = 0 ] || { echo "tests/package/run.sh: needs root (apt-get install)"; exit 77; }
@@ -22,14 +22,28 @@ dpkg-deb --field "$deb" Package Version Depends Recommends
 dpkg-deb --field "$deb" Depends | grep -q 'linuxcnc-uspace (<< ' ||
   { echo "FAIL: the package's Depends does not pin the LinuxCNC series it was built against"; exit 1; }
 
+# The realtime modules the build tree's tests load (scripts/setup.sh's), kept
+# aside: the package replaces them and --purge removes them.
+modules=/usr/lib/linuxcnc/modules
+kept=$(mktemp -d)
+for comp in "$root"/src/rt/*.comp; do
+  module=$modules/$(basename "${comp%.comp}").so
+  if [ -e "$module" ]; then cp -p "$module" "$kept/"; fi
+done
 put_back_guard() {
-  local tmp
+  local tmp comp
   # A failed run leaves nothing installed either.
   dpkg -s fixed-atc-probe >/dev/null 2>&1 && apt-get remove --purge -y -qq fixed-atc-probe >/dev/null
+  # Those kept, as they were; halcompile only for one there was none of.
   tmp=$(mktemp -d)
-  cp "$root"/src/rt/*.comp "$tmp/"
-  for comp in "$tmp"/*.comp; do (cd "$tmp" && halcompile --install "$comp" >/dev/null); done
-  rm -rf "$tmp"
+  for comp in "$root"/src/rt/*.comp; do
+    if [ -e "$kept/$(basename "${comp%.comp}").so" ]; then
+      cp -p "$kept/$(basename "${comp%.comp}").so" "$modules/"
+    else
+      cp "$comp" "$tmp/" && (cd "$tmp" && halcompile --install "$(basename "$comp")" >/dev/null)
+    fi
+  done
+  rm -rf "$tmp" "$kept"
 }
 trap put_back_guard EXIT
 
