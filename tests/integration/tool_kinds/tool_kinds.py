@@ -226,6 +226,8 @@ def g38_probe():
     mdi("G54 G49 G90 G21")
     mdi("G53 G0 Z-5")
     mdi("G53 G0 X%.3f Y%.3f" % (WORK_X, WORK_Y))
+    # Down fast to 5 mm over the work: the probing feed only for the last of it.
+    mdi("G53 G0 Z%.3f" % (WORK_Z + 5))
     said = len(d.messages)
     d.command.mdi("G38.2 Z%.3f F300" % (WORK_Z - 20))
     sampled_until(result, start, lambda s: idle(s) and s["t"] > 0.2, 60, "G38.2 on the work")
@@ -241,6 +243,7 @@ def g38_probe():
     sz = float(ini.find("FIXED_ATC_PROBE", "SIM_SENSOR_Z"))
     mdi("G53 G0 Z-5")
     mdi("G53 G0 X%.3f Y%.3f" % (sx, sy))
+    mdi("G53 G0 Z%.3f" % (sz + 5))  # 5 mm over the sensor, as over the work
     mark = len(result["samples"])
     d.command.mdi("G38.3 Z%.3f F300" % (sz - 3))
     sampled_until(result, start, lambda s: idle(s) and s["t"] > 0.2 and
