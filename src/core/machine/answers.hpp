@@ -27,6 +27,38 @@ struct AnswerDone {
     publish_done(*fsm.ctx);
   }
 };
+/// Touching ended: done, or, where it stopped early of its own (a touch
+/// found nothing), the executor fails saying why, so that the operator's
+/// command ends in that error.
+struct AnswerTouchEnd {
+  template <class Event, class Fsm, class Source, class Target>
+  void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+    Context& c = *fsm.ctx;
+    c.end_sequence();
+    if (c.activity.stopped.empty()) {
+      publish_done(c);
+      return;
+    }
+    const std::string why = std::move(c.activity.stopped);
+    c.activity.stopped.clear();
+    Step fail = failure_step(why);
+    fail.tool = c.tools.spindle;
+    c.publish(fail);
+    c.tell(MessageKind::error, why);
+  }
+};
+/// An M6 is done: the rack datum counts it (rack_touch.check_every_changes).
+struct AnswerChangeDone {
+  template <class Event, class Fsm, class Source, class Target>
+  void operator()(const Event& e, Fsm& fsm, Source& s, Target& t) const {
+    Context& c = *fsm.ctx;
+    if (c.config.rack_touch && c.config.rack_touch->check_every_changes > 0) {
+      ++c.tools.datum.changes;
+      c.ports.save(c.tools);
+    }
+    AnswerDone{}(e, fsm, s, t);
+  }
+};
 /// A chuck atom is done. A release leaves its sequence recorded until the
 /// clamp: a restart or the machine going off meanwhile leaves what the
 /// spindle holds for the operator to confirm.

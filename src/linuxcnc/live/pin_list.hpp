@@ -156,7 +156,7 @@ inline const std::vector<PinDeclaration> kPins = joined({{
   {"state", &HalPins::state, HAL_OUT,
    "0 not ready, 1 idle, 2 changing, 3 loading, 4 unloading, 5 fault, 6 measuring (measure "
    "all), 7 verifying (a dry run through a pocket), 8 chuck (a chuck atom), 9 air run (a "
-   "sequence flown above the rack)"},
+   "sequence flown above the rack), 10 touching (the probe touches the rack)"},
   {"ready", &HalPins::ready, HAL_OUT,
    "idle, able to change tools (not while a release holds the chuck open)"},
   {"busy", &HalPins::busy, HAL_OUT, "a sequence runs"},
@@ -241,6 +241,19 @@ inline const std::vector<PinDeclaration> kPins = joined({{
   {"air-feed", &HalPins::air_feed, HAL_IN,
    "the feed of every move of an air run, units per minute; 0 (the default): the config's "
    "`verify_feed`, else `pocket_feed`"},
+  // The rack found by touch, with the probe in the spindle (rack_touch).
+  {"touch-pockets", &HalPins::touch_pockets, HAL_IN,
+   "rising edge: the probe touches pocket `pocket-number`'s feature (0: every pocket it can), "
+   "shows what it found beside config.json and writes it on `continue` (`state` 10)"},
+  {"teach-datum", &HalPins::teach_datum, HAL_IN,
+   "rising edge: the probe touches the rack datum; on `continue` its position becomes the taught "
+   "one in config.json"},
+  {"check-datum", &HalPins::check_datum, HAL_IN,
+   "rising edge: the drift check: the probe touches the rack datum and compares; beyond "
+   "`rack_touch.drift_tolerance` M6 is refused until `teach-datum` or `clear-datum-drift`"},
+  {"clear-datum-drift", &HalPins::clear_datum_drift, HAL_IN,
+   "rising edge: the operator checked the rack: M6 is allowed again, the changes are counted "
+   "from 0; the pockets keep their positions"},
   {"pocket-served", &HalPins::pocket_served, HAL_OUT,
    "the pocket the sequence under way serves (0 none)"},
   {"measure-all", &HalPins::measure_all, HAL_IN,
