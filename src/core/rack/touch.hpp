@@ -26,6 +26,7 @@ struct Touch {
   Point start;             ///< the nose where the touch starts (machine coordinates)
   double expected = 0.0;   ///< the nose's coordinate on `axis` where it should touch
   double limit = 0.0;      ///< where it gives up: `search` past `expected`
+  int pocket = 0;          ///< the pocket whose feature it touches (the datum's too)
 };
 
 /// A feature found by touch: a pocket's (the position it gives the pocket) or the datum's.

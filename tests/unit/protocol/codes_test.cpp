@@ -196,7 +196,7 @@ TEST(Codes, shouldMatchTheCoreWhenTheExecutorNamesAStepKindOrAxes) {
   // Every step kind: the executor must know each one the component can publish.
   check_codes(kExecutor, kNgc,
               {{"step_", &kStepKinds, all_of(kStepKinds)},
-               {"axes_", &kAxes, {"z", "xy"}},
+               {"axes_", &kAxes, {"x", "y", "z", "xy"}},
                {"via_", &kVia, {"across"}}});
 }
 
