@@ -254,6 +254,10 @@ int Simulator::run(Changer& changer, int limit) {
         const double limit = probe.axes == axis_x   ? probe.target.x
                              : probe.axes == axis_y ? probe.target.y
                                                     : probe.target.z;
+        // The probe stops where it touched, or at its limit.
+        Step stopped = probe;
+        stopped.target.x = stopped.target.y = stopped.target.z = at.value_or(limit);
+        rack.at = moved_to(rack.at, stopped);
         changer.probe_result(at.has_value(), at.value_or(limit));
         continue;
       }

@@ -127,7 +127,7 @@ std::optional<std::string> Changer::clear_datum_drift() {
 }
 
 std::optional<std::string> Changer::datum_refusal() const {
-  return machine::why_datum_refuses(engine_->context, 0);
+  return why_datum_refuses(engine_->context, 0);
 }
 
 unsigned Changer::configs_taken() const { return engine_->context.configs_taken(); }
