@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "../formatted.hpp"
-#include "../plan/routes.hpp"
 #include "geometry.hpp"
 
 namespace fatc {
@@ -289,6 +288,27 @@ std::vector<Step> leave_feature(const Config& c, int pocket, int held) {
 }
 
 }  // namespace plan
+
+ExpectedTouches expected_touches(const Config& c, std::vector<FeatureTouch> features, int probe) {
+  ExpectedTouches path;
+  const auto add = [&](std::vector<Step> steps) {
+    path.steps.insert(path.steps.end(), steps.begin(), steps.end());
+  };
+  for (FeatureTouch& feature : features) {
+    int pocket = 0;
+    while (const auto touch = feature.next()) {
+      pocket = touch->pocket;
+      add(plan::to_touch(c, *touch, pocket, probe));
+      add({plan::touch_seek(c, *touch, probe),
+           plan::touch_back_off(c, *touch, touch->expected, probe),
+           plan::touch_latch(c, *touch, probe)});
+      feature.touched(touch->expected);
+    }
+    add(plan::leave_feature(c, pocket, probe));
+    if (const auto found = feature.found()) path.found.push_back(*found);
+  }
+  return path;
+}
 
 std::vector<std::string> found_lines(const Config& c, const std::vector<Found>& found) {
   std::vector<std::string> lines;
