@@ -219,17 +219,11 @@ std::optional<Found> FeatureTouch::found() const {
 namespace plan {
 namespace {
 
+/// A move of the touches: within `pocket`'s column, the probe `held`.
 Step touch_move(StepKind kind, unsigned axes, const Point& target, std::string label, int pocket,
                 int held, double feed = 0.0) {
-  Step step;
-  step.kind = kind;
-  step.axes = axes;
-  step.target = target;
-  step.label = std::move(label);
-  step.pocket = pocket;
-  step.may_enter_column = pocket != 0;
+  Step step = move_step(kind, axes, target, std::move(label), pocket, pocket != 0, feed);
   step.held = held;
-  step.feed = feed;
   return step;
 }
 
