@@ -76,6 +76,9 @@ void read_rack_touch(Reader& reader, const Json& root, Config& config) {
   rack.search = unit_default::touch_search.in(config.units);
   rack.clear = unit_default::touch_clear.in(config.units);
   rack.drift_tolerance = unit_default::touch_drift_tolerance.in(config.units);
+  for (const char* key : {"bore_tolerance", "search", "clear", "drift_tolerance"}) {
+    if (touch->find(key) == touch->end()) config.defaulted.push_back(join_path(kHere, key));
+  }
   reader.read(*touch, kHere, "stylus_radius", rack.stylus_radius);
   rack.bore_diameter = reader.declared(*touch, kHere, "bore_diameter");
   reader.read(*touch, kHere, "bore_tolerance", rack.bore_tolerance);

@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "../formatted.hpp"
-#include "../plan/routes.hpp"
 #include "geometry.hpp"
 
 namespace fatc {
@@ -220,17 +219,11 @@ std::optional<Found> FeatureTouch::found() const {
 namespace plan {
 namespace {
 
+/// A move of the touches: within `pocket`'s column, the probe `held`.
 Step touch_move(StepKind kind, unsigned axes, const Point& target, std::string label, int pocket,
                 int held, double feed = 0.0) {
-  Step step;
-  step.kind = kind;
-  step.axes = axes;
-  step.target = target;
-  step.label = std::move(label);
-  step.pocket = pocket;
-  step.may_enter_column = pocket != 0;
+  Step step = move_step(kind, axes, target, std::move(label), pocket, pocket != 0, feed);
   step.held = held;
-  step.feed = feed;
   return step;
 }
 
@@ -289,6 +282,27 @@ std::vector<Step> leave_feature(const Config& c, int pocket, int held) {
 }
 
 }  // namespace plan
+
+ExpectedTouches expected_touches(const Config& c, std::vector<FeatureTouch> features, int probe) {
+  ExpectedTouches path;
+  const auto add = [&](std::vector<Step> steps) {
+    path.steps.insert(path.steps.end(), steps.begin(), steps.end());
+  };
+  for (FeatureTouch& feature : features) {
+    int pocket = 0;
+    while (const auto touch = feature.next()) {
+      pocket = touch->pocket;
+      add(plan::to_touch(c, *touch, pocket, probe));
+      add({plan::touch_seek(c, *touch, probe),
+           plan::touch_back_off(c, *touch, touch->expected, probe),
+           plan::touch_latch(c, *touch, probe)});
+      feature.touched(touch->expected);
+    }
+    add(plan::leave_feature(c, pocket, probe));
+    if (const auto found = feature.found()) path.found.push_back(*found);
+  }
+  return path;
+}
 
 std::vector<std::string> found_lines(const Config& c, const std::vector<Found>& found) {
   std::vector<std::string> lines;

@@ -79,6 +79,15 @@ Step touch_latch(const Config& c, const Touch& touch, int probe);
 std::vector<Step> leave_feature(const Config& c, int pocket, int held);
 }  // namespace plan
 
+/// A touch path as if every touch touched where it was expected: what
+/// `--plan --touch` prints and what the keep-out check walks.
+struct ExpectedTouches {
+  std::vector<Step> steps;   ///< to each touch, seek, back off, latch; out of each feature
+  std::vector<Found> found;  ///< each feature where the config has it already
+};
+/// `features` one after the other, the probe `probe` in the spindle.
+ExpectedTouches expected_touches(const Config& c, std::vector<FeatureTouch> features, int probe);
+
 /// "pocket 3   X 150.000 → 150.412 (+0.412)   Y ...   Z ...": one line per
 /// found feature, old and new side by side with the difference.
 std::vector<std::string> found_lines(const Config& c, const std::vector<Found>& found);

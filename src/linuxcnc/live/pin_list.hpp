@@ -196,9 +196,10 @@ inline const std::vector<PinDeclaration> kPins = joined({{
   {"return-to-xy", &HalPins::return_to_xy, HAL_IN,
    "after M6, go back over the XY where it was called"},
   {"probe-z", &HalPins::probe_z, HAL_IN,
-   "executor: machine Z where the probe move stopped (`motion.analog-out-NN`)"},
+   "executor: the machine coordinate where the probe move stopped, on the step's axis (Z on "
+   "the sensor; X, Y or Z touching a rack feature) (`motion.analog-out-NN`)"},
   {"probe-result", &HalPins::probe_result, HAL_IN,
-   "executor: 1 touched, 0 missed, -1 sensor already tripped (`motion.analog-out-NN`)"},
+   "executor: 1 touched, 0 missed, -1 the probe input already tripped (`motion.analog-out-NN`)"},
   // The operator's buttons, from the GUI panel or any HAL source.
   {"tool-number", &HalPins::tool_number, HAL_IN, "the tool the operator buttons are about"},
   {"load", &HalPins::load, HAL_IN,
