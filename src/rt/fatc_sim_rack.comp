@@ -22,9 +22,9 @@ position motion commands this period and motion reads its input the next
 its own, so that it loads beside LinuxCNC's simulated configurations, which
 load \\fBor2\\fR themselves (a module loads once).
 """;
-pin in float x "the spindle nose, machine units: axis.x.pos-cmd";
-pin in float y "axis.y.pos-cmd";
-pin in float z "axis.z.pos-cmd";
+pin in float x "the spindle nose, machine units: the X joint's pos-cmd (joint.0.pos-cmd on a mill)";
+pin in float y;
+pin in float z;
 pin in s32 count "how many bores are set, 0 to 16";
 pin in float pocket-x-#[16] "bore N's centre, machine units, before the shift";
 pin in float pocket-y-#[16];

@@ -699,9 +699,15 @@ def touch(step, wait):
     toward = 1.0 if step["to"] > begin else -1.0
 
     def probe(target, feed):
+        began, seen = time.monotonic(), []
+
+        def ended():  # task takes the line before the interpreter says it runs
+            if stat.interp_state != linuxcnc.INTERP_IDLE:
+                seen.append(True)
+            return stat.interp_state == linuxcnc.INTERP_IDLE and (seen or time.monotonic() - began > 2.0)
         command.mdi("G38.3 %s%.4f F%.1f" % (letter, target, feed))
         command.wait_complete(120)
-        wait(lambda: stat.interp_state == linuxcnc.INTERP_IDLE, 60, "the G38.3 to end")
+        wait(ended, 120, "the G38.3 to end")
         found = parameters(5061, 5062, 5063, 5070)
         stat.poll()
         return {"feed": feed, "to": target, "tripped": found[5070] == 1.0,

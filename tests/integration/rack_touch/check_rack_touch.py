@@ -44,7 +44,7 @@ def expected_trip(truth, touch_name):
 
 def check_touch(name, touch, truth):
     """The latched touch within TOLERANCE of the truth, LinuxCNC's #506x as its
-    probed position, the other axes where the move started. Returns the error."""
+    probed position. Returns the error."""
     axis = AXES.index(touch["axis"])
     latch = touch.get("latch")
     if not touch["seek"]["tripped"] or latch is None or not latch["tripped"]:
