@@ -18,17 +18,13 @@ void ConfigTeacher::teach(Changer& changer, const TeachTarget& target, bool linu
 
 void ConfigTeacher::write_found(Changer& changer, const std::vector<Found>& found, bool datum) {
   const std::string request = datum ? "teach the rack datum" : "teach by touch";
+  std::vector<Taught> taught;
+  for (const Found& each : found) {
+    taught.push_back({{datum ? TeachTarget::Kind::datum : TeachTarget::Kind::pocket, each.pocket},
+                      each.at});
+  }
   write(changer, request, [&](const std::string& text) {
-    TeachResult taught{text, "", ""};
-    for (const Found& each : found) {
-      const TeachTarget target{datum ? TeachTarget::Kind::datum : TeachTarget::Kind::pocket,
-                               each.pocket};
-      TeachResult next = fatc::teach(*taught.text, target, each.at, limits_, changer.keepout_lengths());
-      if (!next.text) return next;
-      next.change = taught.change.empty() ? next.change : taught.change + "; " + next.change;
-      taught = std::move(next);
-    }
-    return taught;
+    return teach_all(text, taught, limits_, changer.keepout_lengths());
   });
 }
 

@@ -160,6 +160,9 @@ inline const std::vector<PinDeclaration> kPins = joined({{
   {"ready", &HalPins::ready, HAL_OUT,
    "idle, able to change tools (not while a release holds the chuck open)"},
   {"busy", &HalPins::busy, HAL_OUT, "a sequence runs"},
+  {"touching", &HalPins::touching, HAL_OUT,
+   "the probe touches the rack (`state` 10): to fatc-spindle-guard.touching, which gives motion "
+   "the probe's input then, not the touch-off sensor's"},
   {"fault", &HalPins::fault, HAL_OUT, "in fault: M6 is refused until `clear-fault`"},
   {"tool-in-spindle", &HalPins::tool_in_spindle, HAL_OUT,
    "what the changer knows is in the spindle"},

@@ -35,7 +35,7 @@ struct FlowList {
   using requests = std::variant<typename Kinds::request...>;
 };
 /// Every flow, in the order Operating lists them.
-using Flows = FlowList<Change, Load, Unload, MeasureAll, Verify, ChuckAtom, AirRun, Touch>;
+using Flows = FlowList<Change, Load, Unload, MeasureAll, Verify, ChuckAtom, AirRun, TouchRack>;
 /// A request of any flow (Changer::request).
 using FlowRequest = Flows::requests;
 

@@ -32,7 +32,7 @@ struct AnswerTouchEnd;
 
 /// Touching the rack (touch_flow.hpp): the chuck stays closed and nothing is
 /// recorded until the operator accepts, so an abort is no fault.
-struct Touch : FlowKind {
+struct TouchRack : FlowKind {
   using request = TouchRequest;
   using front = TouchFlow_;
   static constexpr Phase phase = Phase::touching;

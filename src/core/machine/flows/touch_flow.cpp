@@ -92,7 +92,7 @@ void TouchFlow_::TakeFeature::operator()(const Event&, Fsm& fsm, Source&, Target
 template <class Fsm, class Source, class Target>
 void TouchFlow_::SayNoTouch::operator()(const ProbeResult& e, Fsm& fsm, Source&, Target&) const {
   const Config& c = fsm.ctx->config;
-  const Touch& touch = *fsm.touch;
+  const fatc::Touch& touch = *fsm.touch;
   const char* axis = axis_letter(touch.axis);
   if (e.tripped_before) {
     fsm.problem = touch.label + ": the probe was already touching before it moved, at " + axis +
@@ -133,9 +133,9 @@ void TouchFlow_::JudgeDrift::operator()(const Event&, Fsm& fsm, Source&, Target&
   c.tell(drift.within ? MessageKind::info : MessageKind::error, drift.words);
 }
 
-int Touch::tool(const Context& c, const TouchRequest&) { return c.tools.spindle; }
+int TouchRack::tool(const Context& c, const TouchRequest&) { return c.tools.spindle; }
 
-std::string Touch::name(const TouchRequest& e) {
+std::string TouchRack::name(const TouchRequest& e) {
   switch (e.goal) {
     case TouchRequest::Goal::teach_datum:
       return "teaching the rack datum by touch";
@@ -151,7 +151,7 @@ std::string Touch::name(const TouchRequest& e) {
          " by touch";
 }
 
-std::optional<std::string> Touch::why_not(const Context& c, const TouchRequest& e) {
+std::optional<std::string> TouchRack::why_not(const Context& c, const TouchRequest& e) {
   if (c.machine.task_busy) return c.machine.task_busy;
   if (auto busy = why_not_busy(c)) return busy;
   if (auto turning = why_spindle_turning(c)) return turning;
@@ -202,12 +202,12 @@ std::optional<std::string> Touch::why_not(const Context& c, const TouchRequest& 
   return std::nullopt;
 }
 
-std::string Touch::busy(const Context& c) {
+std::string TouchRack::busy(const Context& c) {
   return "the changer is busy " +
          (c.tools.in_progress ? c.tools.in_progress->sequence : std::string("touching the rack"));
 }
 
-std::unique_ptr<FlowRun> Touch::run(Context& c, const TouchRequest& e) {
+std::unique_ptr<FlowRun> TouchRack::run(Context& c, const TouchRequest& e) {
   return std::make_unique<FlowRunOf<TouchFlow_>>(c, e);
 }
 

@@ -25,7 +25,7 @@ struct TouchFlow_ : Flow<TouchFlow_> {
   std::vector<int> features;  ///< the pockets to touch, in order; the datum: one 0
   std::size_t feature = 0;    ///< the one being touched
   std::optional<FeatureTouch> touching;
-  std::optional<Touch> touch;  ///< the touch under way
+  std::optional<fatc::Touch> touch;  ///< the touch under way
   double tripped = 0.0;        ///< where its seek touched
   std::vector<Found> found;
   std::string problem;  ///< why the flow stops early, once it must
