@@ -57,8 +57,8 @@ TEST_F(PlanTouch, shouldCheckTheMovesWithTheProbesLength) {
   const test::CliRun r =
       run({"--plan", "--config", config(), "--touch", "3,5", "--tool-table", table});
   EXPECT_EQ(r.code, 1) << r.out;
-  EXPECT_NE(r.out.find("carries T9 (length 70.0000 mm) with its tip 15.0000 mm below the top of "
-                       "the holder at pocket 4"),
+  EXPECT_NE(r.out.find("  touch, step 37 (rapid to over pocket 5, top face): carries T9 (length "
+                       "70.0000 mm) with its tip 15.0000 mm below the top of the holder at pocket 3"),
             std::string::npos)
       << r.out;
 }

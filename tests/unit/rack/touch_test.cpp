@@ -61,6 +61,12 @@ struct TrueRack {
   }
 };
 
+TrueRack true_rack(const Point& truth) {
+  TrueRack rack;
+  rack.truth = truth;
+  return rack;
+}
+
 /// Walks every touch of `feature` against `rack`; each trip must lie on the
 /// touch's way between its start and its limit.
 std::vector<Touch> touch_all(FeatureTouch& feature, const TrueRack& rack) {
@@ -88,7 +94,7 @@ void expect_found(const FeatureTouch& feature, const Point& truth) {
 TEST(RackTouch, shouldFindABoredPocketWhereItReallyIs) {
   const Config c = config_of(kBore);
   const Point rough = c.pockets.at(3).at;
-  const TrueRack rack{plus(rough, kShift)};
+  const TrueRack rack = true_rack(plus(rough, kShift));
   FeatureTouch feature = FeatureTouch::of_pocket(c, 3, rough, kProbeLength);
   touch_all(feature, rack);
   expect_found(feature, rack.truth);
@@ -99,7 +105,7 @@ TEST(RackTouch, shouldFindABoredPocketWhereItReallyIs) {
 TEST(RackTouch, shouldTouchTheTopFirstThenAcrossXThenAcrossYThroughTheXFound) {
   const Config c = config_of(kBore);
   const Point rough = c.pockets.at(3).at;
-  const TrueRack rack{plus(rough, kShift)};
+  const TrueRack rack = true_rack(plus(rough, kShift));
   FeatureTouch feature = FeatureTouch::of_pocket(c, 3, rough, kProbeLength);
   const std::vector<Touch> made = touch_all(feature, rack);
   ASSERT_EQ(made.size(), 5u);
@@ -123,7 +129,7 @@ TEST(RackTouch, shouldTouchTheTopFirstThenAcrossXThenAcrossYThroughTheXFound) {
 TEST(RackTouch, shouldRefuseABoreThatMeasuresOffItsDiameter) {
   const Config c = config_of(kBore);
   const Point rough = c.pockets.at(3).at;
-  TrueRack rack{plus(rough, kShift)};
+  TrueRack rack = true_rack(plus(rough, kShift));
   rack.diameter = 29.2;
   FeatureTouch feature = FeatureTouch::of_pocket(c, 3, rough, kProbeLength);
   touch_all(feature, rack);
@@ -152,7 +158,7 @@ TEST(RackTouch, shouldFindAForkByItsJawsAndItsBackWall) {
     "rack_touch": {"feature": "fork", "stylus_radius": 1.5, "bore_diameter": 30.0,
     "top": {"x": 20, "y": 0}, "pocket_above_top": 10.0, "depth": 5.0}})");
   const Point rough = c.pockets.at(3).at;
-  const TrueRack rack{plus(rough, kShift)};
+  const TrueRack rack = true_rack(plus(rough, kShift));
   FeatureTouch feature = FeatureTouch::of_pocket(c, 3, rough, kProbeLength);
   const std::vector<Touch> made = touch_all(feature, rack);
   ASSERT_EQ(made.size(), 4u);
@@ -170,7 +176,7 @@ TEST(RackTouch, shouldFindAPocketByTwoOutsideFaces) {
     "top": {"x": 0, "y": -20}, "pocket_above_top": 10.0, "depth": 5.0,
     "x_face": {"x": -22.0, "y": -10.0}, "y_face": {"x": 5.0, "y": -25.0}}})");
   const Point rough = c.pockets.at(3).at;
-  TrueRack rack{plus(rough, kShift)};
+  TrueRack rack = true_rack(plus(rough, kShift));
   rack.faces = true;
   rack.x_face = {-22.0, -10.0};
   rack.y_face = {5.0, -25.0};
@@ -192,7 +198,7 @@ TEST(RackTouch, shouldFindTheDatumAroundItsTaughtPosition) {
     "datum": {"pocket": 1, "x": 50.2, "y": 19.9, "z": -80.1}}})");
   FeatureTouch feature = FeatureTouch::of_datum(c, kProbeLength);
   EXPECT_EQ(feature.name(), "the rack datum (pocket 1)");
-  const TrueRack rack{plus({50.2, 19.9, -80.1}, kShift)};
+  const TrueRack rack = true_rack(plus({50.2, 19.9, -80.1}, kShift));
   const std::vector<Touch> made = touch_all(feature, rack);
   EXPECT_EQ(made[1].start.x, 50.2);
   expect_found(feature, rack.truth);
