@@ -66,6 +66,7 @@ const Codes kPhases = {
     {"verifying", {"Phase::verifying", static_cast<int>(Phase::verifying)}},
     {"chuck", {"Phase::chuck", static_cast<int>(Phase::chuck)}},
     {"air_run", {"Phase::air_run", static_cast<int>(Phase::air_run)}},
+    {"touching", {"Phase::touching", static_cast<int>(Phase::touching)}},
 };
 const Codes kAwaiting = {
     {"nothing", {"Awaiting::nothing", static_cast<int>(Awaiting::nothing)}},
