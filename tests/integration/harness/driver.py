@@ -538,7 +538,11 @@ def perform(step, result, start):
     def now():
         return time.monotonic() - start
 
-    if step["do"] == "restart":
+    if step["do"] == "kill":
+        # SIGKILL from an operator scenario: mid-flow, as a crash would.
+        result["killed_pid"], killed = kill_component()
+        result["killed_at"] = killed - start
+    elif step["do"] == "restart":
         began = now()
         result["restart"] = restart_component()
         result["restart"]["began"], result["restart"]["done"] = began, now()
