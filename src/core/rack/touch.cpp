@@ -65,7 +65,10 @@ struct FeatureTouch::State {
   /// From inside a bore (or fork) at `centre`, the wall across `axis` toward `direction`.
   Touch bore_wall(unsigned axis, int direction, const Point& centre) const {
     const double reach = *rack.bore_diameter / 2.0 - radius();
-    return touch(wall(axis, direction), axis, direction, centre, on(rough, axis) + direction * reach);
+    Touch t = touch(wall(axis, direction), axis, direction, centre,
+                    on(rough, axis) + direction * reach);
+    t.within = true;
+    return t;
   }
   /// From outside a face at `offset` from the pocket, toward the pocket along `axis`.
   Touch face(unsigned axis, const PlanarOffset& offset) const {
@@ -252,6 +255,14 @@ std::vector<Step> to_touch(const Config& c, const Touch& touch, int pocket, int 
   return route;
 }
 
+std::vector<Step> to_next_touch(const Config& c, const Touch& made, const Touch& next, int held) {
+  if (!made.within || !next.within || made.pocket != next.pocket) {
+    return to_touch(c, next, next.pocket, held);
+  }
+  return {touch_move(StepKind::feed, axis_xy, next.start, "across to the start of " + next.label,
+                     next.pocket, held, c.pocket_feed)};
+}
+
 namespace {
 /// A probing move of `touch` toward its limit: G38.3 on the touch's axis.
 Step probing(const Touch& touch, const char* stage, double feed, int probe) {
@@ -290,9 +301,12 @@ ExpectedTouches expected_touches(const Config& c, std::vector<FeatureTouch> feat
   };
   for (FeatureTouch& feature : features) {
     int pocket = 0;
+    std::optional<Touch> made;
     while (const auto touch = feature.next()) {
       pocket = touch->pocket;
-      add(plan::to_touch(c, *touch, pocket, probe));
+      add(made ? plan::to_next_touch(c, *made, *touch, probe)
+               : plan::to_touch(c, *touch, pocket, probe));
+      made = touch;
       add({plan::touch_seek(c, *touch, probe),
            plan::touch_back_off(c, *touch, touch->expected, probe),
            plan::touch_latch(c, *touch, probe)});

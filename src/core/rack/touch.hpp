@@ -27,6 +27,9 @@ struct Touch {
   double expected = 0.0;   ///< the nose's coordinate on `axis` where it should touch
   double limit = 0.0;      ///< where it gives up: `search` past `expected`
   int pocket = 0;          ///< the pocket whose feature it touches (the datum's too)
+  /// Made from inside the feature (a bore's or a fork's walls): from one
+  /// such touch the next is reached straight across (plan::to_next_touch).
+  bool within = false;
 };
 
 /// A feature found by touch: a pocket's (the position it gives the pocket) or the datum's.
@@ -69,6 +72,10 @@ namespace plan {
 /// the spindle: up to the feature's clearance, across, down (the pocket's
 /// keep-out column entered only for its own pocket).
 std::vector<Step> to_touch(const Config& c, const Touch& touch, int pocket, int held);
+/// From where `made` latched to the start of `next`: straight across at
+/// `pocket_feed` where both are made from inside the same feature (the ball
+/// stays within the bore: both ends are), else to_touch.
+std::vector<Step> to_next_touch(const Config& c, const Touch& made, const Touch& next, int held);
 /// The fast seek: a probe step toward `touch.limit` at the probe's seek feed.
 Step touch_seek(const Config& c, const Touch& touch, int probe);
 /// Back off `probe_backoff` from where the seek tripped, against `direction`.

@@ -47,6 +47,11 @@ TEST_F(PlanTouch, shouldPrintTheTouchPathAndWhereItFindsThePockets) {
   EXPECT_NE(r.out.find("pocket 3, top face (seek)"), std::string::npos);
   // The wall +X of pocket 3: 13.5 from the centre, the limit 5 beyond.
   EXPECT_NE(r.out.find("probe      X=168.500 F25"), std::string::npos) << r.out;
+  // From wall to wall inside the bore, straight across.
+  EXPECT_NE(r.out.find("feed       X=150.000 Y=20.000 F500               across to the start "
+                       "of pocket 3, wall -X"),
+            std::string::npos)
+      << r.out;
   EXPECT_NE(r.out.find("  pocket 3   X 150.000 → 150.000 (+0.000)"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("  pocket 5   X 250.000 → 250.000 (+0.000)"), std::string::npos) << r.out;
 }
@@ -57,7 +62,7 @@ TEST_F(PlanTouch, shouldCheckTheMovesWithTheProbesLength) {
   const test::CliRun r =
       run({"--plan", "--config", config(), "--touch", "3,5", "--tool-table", table});
   EXPECT_EQ(r.code, 1) << r.out;
-  EXPECT_NE(r.out.find("  touch, step 37 (rapid to over pocket 5, top face): carries T9 (length "
+  EXPECT_NE(r.out.find("  touch, step 28 (rapid to over pocket 5, top face): carries T9 (length "
                        "70.0000 mm) with its tip 15.0000 mm below the top of the holder at pocket 3"),
             std::string::npos)
       << r.out;

@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <ostream>
 #include <string>
 
 #include "core/config/config.hpp"
@@ -65,6 +66,8 @@ struct Refused {
   const char* patch;
   const char* line;  ///< the whole message
 };
+
+std::ostream& operator<<(std::ostream& out, const Refused& refused) { return out << refused.line; }
 
 class RackTouchRefused : public ::testing::TestWithParam<Refused> {};
 

@@ -254,6 +254,42 @@ TEST(RackTouch, shouldGoToEachTouchFromSafeZAndLeaveTheFeatureUpToIt) {
   EXPECT_EQ(out[0].target.z, c.safe.z);
 }
 
+TEST(RackTouch, shouldCrossInsideABoreFromOneWallToTheNextStart) {
+  const Config c = config_of(kBore);
+  FeatureTouch feature = FeatureTouch::of_pocket(c, 3, c.pockets.at(3).at, kProbeLength);
+  const Touch top = *feature.next();
+  EXPECT_FALSE(top.within);
+  feature.touched(-40.0);
+  const Touch plus_x = *feature.next();
+  EXPECT_EQ(plan::to_next_touch(c, top, plus_x, 9).size(), 4u) << "down into the bore: to_touch";
+  feature.touched(163.5);
+  const Touch minus_x = *feature.next();
+  const std::vector<Step> across = plan::to_next_touch(c, plus_x, minus_x, 9);
+  ASSERT_EQ(across.size(), 1u);
+  EXPECT_EQ(across[0].kind, StepKind::feed);
+  EXPECT_EQ(across[0].axes, static_cast<unsigned>(axis_xy));
+  EXPECT_EQ(across[0].target.x, minus_x.start.x);
+  EXPECT_EQ(across[0].target.y, minus_x.start.y);
+  EXPECT_EQ(across[0].feed, c.pocket_feed);
+  EXPECT_EQ(across[0].label, "across to the start of pocket 3, wall -X");
+  EXPECT_TRUE(across[0].may_enter_column);
+  EXPECT_EQ(across[0].held, 9);
+}
+
+TEST(RackTouch, shouldLeaveAFaceUpToSafeZBeforeTheNext) {
+  const Config c = config_of(R"({"rack_touch": {"feature": "faces", "stylus_radius": 1.5,
+    "top": {"x": 0, "y": -20}, "pocket_above_top": 10.0, "depth": 5.0,
+    "x_face": {"x": -22.0, "y": -10.0}, "y_face": {"x": 5.0, "y": -25.0}}})");
+  FeatureTouch feature = FeatureTouch::of_pocket(c, 3, c.pockets.at(3).at, kProbeLength);
+  feature.touched(-40.0);
+  const Touch x_face = *feature.next();
+  feature.touched(126.0);
+  const Touch y_face = *feature.next();
+  EXPECT_FALSE(x_face.within);
+  EXPECT_EQ(plan::to_next_touch(c, x_face, y_face, 9).front().target.z, c.safe.z)
+      << "around the rack's corner, not through it";
+}
+
 TEST(RackTouch, shouldShowOldAndNewSideBySideWithTheDifference) {
   const Config c = config_of(kBore);
   Found found{"pocket 3", 3, {150.0, 20.0, -80.0}, {150.412, 19.73, -79.87}, 30.004};
