@@ -59,6 +59,7 @@ void TouchFlow_::begin_feature() {
     touching = FeatureTouch::of_datum(c, length);
   }
   touch = touching->next();
+  made.reset();
   ctx->record_progress("touching " + touching->name(), feature_pocket());
 }
 

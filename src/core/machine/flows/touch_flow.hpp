@@ -26,6 +26,7 @@ struct TouchFlow_ : Flow<TouchFlow_> {
   std::size_t feature = 0;    ///< the one being touched
   std::optional<FeatureTouch> touching;
   std::optional<fatc::Touch> touch;  ///< the touch under way
+  std::optional<fatc::Touch> made;   ///< the feature's touch made last, if any
   double tripped = 0.0;        ///< where its seek touched
   std::vector<Found> found;
   std::string problem;  ///< why the flow stops early, once it must
@@ -54,9 +55,12 @@ struct TouchFlow_ : Flow<TouchFlow_> {
   struct ToTouch : Walking<ToTouch> {
     template <class Leg>
     static plan::Route route(const Context& c, const Leg& leg) {
-      return plan::walked(c.config,
-                          plan::to_touch(c.config, *leg.touch, leg.feature_pocket(), leg.tool),
-                          c.standing());
+      // From one wall of a bore to the next straight across, else up and over.
+      return plan::walked(
+          c.config,
+          leg.made ? plan::to_next_touch(c.config, *leg.made, *leg.touch, leg.tool)
+                   : plan::to_touch(c.config, *leg.touch, leg.feature_pocket(), leg.tool),
+          c.standing());
     }
   };
   struct Seek {
@@ -158,6 +162,7 @@ struct TouchFlow_ : Flow<TouchFlow_> {
     template <class Fsm, class Source, class Target>
     void operator()(const ProbeResult& e, Fsm& fsm, Source&, Target&) const {
       fsm.touching->touched(e.z);
+      fsm.made = fsm.touch;
       fsm.touch = fsm.touching->next();
     }
   };
