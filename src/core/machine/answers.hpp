@@ -20,6 +20,13 @@ inline void publish_done(Context& c) {
   done.label = "done";
   c.publish(done);
 }
+/// The executor's last step: failed, saying `why`, which the operator reads too.
+inline void publish_failure(Context& c, const std::string& why) {
+  Step fail = failure_step(why);
+  fail.tool = c.tools.spindle;
+  c.publish(fail);
+  c.tell(MessageKind::error, why);
+}
 struct AnswerDone {
   template <class Event, class Fsm, class Source, class Target>
   void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
@@ -41,10 +48,7 @@ struct AnswerTouchEnd {
     }
     const std::string why = std::move(c.activity.stopped);
     c.activity.stopped.clear();
-    Step fail = failure_step(why);
-    fail.tool = c.tools.spindle;
-    c.publish(fail);
-    c.tell(MessageKind::error, why);
+    publish_failure(c, why);
   }
 };
 /// An M6 is done: the rack datum counts it (rack_touch.check_every_changes).
@@ -81,12 +85,8 @@ struct StopProgram {
   void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
     Context& c = *fsm.ctx;
     c.end_sequence();
-    const std::string why =
-        "M6 T" + std::to_string(c.request.tool) + " cancelled by the operator; " + c.whereabouts();
-    Step fail = failure_step(why);
-    fail.tool = c.tools.spindle;
-    c.publish(fail);
-    c.tell(MessageKind::error, why);
+    publish_failure(c, "M6 T" + std::to_string(c.request.tool) + " cancelled by the operator; " +
+                           c.whereabouts());
   }
 };
 /// A dry run cut off by an abort or the machine going off: nothing to
