@@ -47,6 +47,7 @@ PHASE_MEASURING = 6
 PHASE_VERIFYING = 7
 PHASE_CHUCK = 8
 PHASE_AIR_RUN = 9
+PHASE_TOUCHING = 10
 # The `awaiting` pin: Awaiting.
 AWAITING_NOTHING = 0
 AWAITING_MOTION = 1
@@ -69,7 +70,8 @@ PHASES = {PHASE_NOT_READY: "Machine off, not homed or in estop", PHASE_IDLE: "Id
           PHASE_MEASURING: "Measuring tools (Cancel stops after the current one)",
           PHASE_VERIFYING: "Verifying a pocket: Continue at each stop, Cancel stops there",
           PHASE_CHUCK: "Chuck: releasing or clamping for G-code",
-          PHASE_AIR_RUN: "Air run: flown above the rack, nothing taken or recorded (Stop ends it)"}
+          PHASE_AIR_RUN: "Air run: flown above the rack, nothing taken or recorded (Stop ends it)",
+          PHASE_TOUCHING: "Touching the rack with the probe: nothing written until Continue"}
 # The `measure-which` pin (docs/sequences.md#measure-all): the selector's item ids.
 MEASURE_EVERY = 0
 MEASURE_NEVER_MEASURED = 1

@@ -196,6 +196,8 @@ def sim_ini(ini, path, config, config_path, work):
         write(touchoff, text)
     head = head.replace("HALFILE = touchoff_sensor.hal", "HALFILE = %s\nHALFILE = %s\nHALFILE = %s" % (
         touchoff, os.path.join(work, "rack_sim.hal"), os.path.join(ROOT, "tests", "soak", "soak_rack.hal")))
+    # config/sim's plate with bores for a touch probe is the sample rack's, not theirs.
+    head = re.sub(r"(?m)^# The simulated rack a touch probe touches.*\nHALFILE = sim_rack.hal\n", "", head)
     return head + "\n" + machine_sections(ini, path), length
 
 

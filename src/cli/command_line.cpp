@@ -49,6 +49,11 @@ const std::vector<OptionDeclaration> kOptions = {
   {"--air-feed", "FEED",
    "--plan --air: the feed of every move, units per minute (default: the config's verify_feed, "
    "else pocket_feed)", ""},
+  {"--touch", "POCKETS",
+   "--plan: the path that finds pockets by touch (rack_touch) instead of a change: all, datum, "
+   "or pocket numbers with commas between (3,5), with the probe --from (else the config's first "
+   "tool of kind probe) in the spindle, each touch as if it touched where expected; its moves "
+   "checked against the keep-out with the probe's length in the tool table", ""},
   {"--tool-table", "FILE",
    "--lint, --check, --plan, --teach: LinuxCNC's tool table (else the INI's [EMCIO]TOOL_TABLE)",
    ""},
@@ -84,7 +89,7 @@ const std::vector<ModeDeclaration> kModes = {
    "not checked\"). Config, state and INI must be regular files of at most 1 MiB. Exit 0 "
    "valid, 1 invalid, 2 usage"},
   {Mode::plan, "--plan", "", {"--config", "--from", "--to"},
-   {"--ini", "--state", "--tool-table", "--air", "--air-feed"},
+   {"--ini", "--state", "--tool-table", "--air", "--air-feed", "--touch"},
    "print the steps of M6 TB with TA in the spindle",
    "print the steps of M6 TB with TA in the spindle (the tools where --state has them, else "
    "the first-start map, said so when --state names no file yet), then its estimated time on the config's path and on the other one "
@@ -93,7 +98,8 @@ const std::vector<ModeDeclaration> kModes = {
    "iocontrol's cycles a change) and, with --ini, the bound: the direct path's moves at the INI's velocities and "
    "accelerations, each an exact stop, plus the dwells (and the prototype path's time at the "
    "same limits), and how much of it may move while the spindle runs down "
-   "(move_while_spindle_stops). Exit 0 printed, 1 refused or invalid, 2 usage"},
+   "(move_while_spindle_stops). With --touch POCKETS instead of --to: the touch path (rack_touch) "
+   "and the positions it would find. Exit 0 printed, 1 refused or invalid, 2 usage"},
   {Mode::confirm, "--confirm", "", {"--config", "--spindle"}, {"--state", "--pocket"},
    "after a fault, LinuxCNC stopped: record what you found",
    "the recovery of a fault while LinuxCNC is not running: records in the state file that the "
@@ -120,12 +126,13 @@ const std::vector<ModeDeclaration> kModes = {
    "problem); it is given at most 64 MiB of G-code. Exit 0 clean, 1 problems found, 2 usage, "
    "an input it cannot read "
    "(program, config, state, tool table, INI) or rs274 not installed"},
-  {Mode::teach, "--teach", "pocket:N|loading|safe|sensor", {"--config", "--at"},
+  {Mode::teach, "--teach", "pocket:N|loading|safe|sensor|datum", {"--config", "--at"},
    {"--ini", "--tool-table"},
    "write a jogged-to machine position (G53) into config.json",
    "write a machine position (G53, in config.json's units), where the spindle was jogged to, "
    "into config.json: pocket:N the x, y and z of pockets.\"N\" (the pocket must be there "
-   "already), loading and safe their x, y and z, sensor the x and y of probe_limit. The new "
+   "already), loading and safe their x, y and z, sensor the x and y of probe_limit, datum the "
+   "x, y and z of rack_touch.datum (its pocket named there already). The new "
    "config must pass what --check checks; otherwise nothing is written and one line names the "
    "target, the position and the first problem. The file is replaced crash-safe, the previous "
    "one kept as FILE.bak; a config that is a symbolic link, has a second name or is read-only "

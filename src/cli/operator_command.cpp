@@ -141,6 +141,14 @@ std::string asked(const io::Options& options) {
                                                              : "measure all of the program";
     case Action::verify:
       return "verify of pocket " + n;
+    case Action::touch:
+      return r.number == 0 ? "teaching every pocket by touch" : "teaching pocket " + n + " by touch";
+    case Action::teach_datum:
+      return "teaching the rack datum by touch";
+    case Action::check_datum:
+      return "checking the rack datum";
+    case Action::clear_datum_drift:
+      return "clearing the rack datum's drift";
     case Action::io:
       return r.io ? std::string("I/O check: ") + io_action_name(*r.io) +
                         (options.holding_tool ? " (the operator holds the tool)" : "")

@@ -18,7 +18,8 @@ constexpr int kAwaitsOperator = 5;
 
 const char* const kExpected =
     "expected load:T, unload:T, continue, cancel, clear-fault, measure-all, "
-    "measure-all:never, measure-all:program, verify:P, io or io:OUTPUT";
+    "measure-all:never, measure-all:program, verify:P, io, io:OUTPUT, touch, touch:P, "
+    "teach-datum, check-datum or clear-datum-drift";
 
 /// 1 to 999999999, digits only: what a tool or pocket number may be.
 std::optional<int> positive(const std::string& text) {
@@ -34,6 +35,9 @@ bool contains(const std::string& text, const char* part) {
   return text.find(part) != std::string::npos;
 }
 
+/// Requests whose end writes config.json once the operator accepted.
+bool writes_config(Action action) { return action == Action::touch || action == Action::teach_datum; }
+
 }  // namespace
 
 std::optional<OperatorRequest> parse_operator_action(const std::string& text, std::string& error) {
@@ -45,13 +49,18 @@ std::optional<OperatorRequest> parse_operator_action(const std::string& text, st
     const char* verb;
     Action action;
     const char* number;  ///< what the number after the colon is; nullptr: none
+    bool number_optional = false;
   } verbs[] = {{"load", Action::load, "a tool number"},
                {"unload", Action::unload, "a tool number"},
                {"continue", Action::continue_prompt, nullptr},
                {"cancel", Action::cancel, nullptr},
                {"clear-fault", Action::clear_fault, nullptr},
                {"measure-all", Action::measure_all, nullptr},
-               {"verify", Action::verify, "a pocket number"}};
+               {"verify", Action::verify, "a pocket number"},
+               {"touch", Action::touch, "a pocket number", true},
+               {"teach-datum", Action::teach_datum, nullptr},
+               {"check-datum", Action::check_datum, nullptr},
+               {"clear-datum-drift", Action::clear_datum_drift, nullptr}};
   if (verb == "io") {
     OperatorRequest request{Action::io, 0, std::nullopt};
     if (!value) return request;
@@ -71,7 +80,7 @@ std::optional<OperatorRequest> parse_operator_action(const std::string& text, st
       request.number = *value == "never" ? 1 : 2;
       return request;
     }
-    if (!v.number && !value) return request;
+    if (!value && (!v.number || v.number_optional)) return request;
     if (!v.number) break;
     const auto number = value ? positive(*value) : std::nullopt;
     if (!number) {
@@ -139,6 +148,14 @@ Press press_of(const OperatorRequest& request, std::optional<int> into, std::opt
       return {{{"measure-which", request.number}}, "measure-all"};
     case Action::verify:
       return {{{"pocket-number", request.number}}, "verify-pocket"};
+    case Action::touch:
+      return {{{"pocket-number", request.number}}, "touch-pockets"};
+    case Action::teach_datum:
+      return {{}, "teach-datum"};
+    case Action::check_datum:
+      return {{}, "check-datum"};
+    case Action::clear_datum_drift:
+      return {{}, "clear-datum-drift"};
     case Action::io:
       // --holding-tool's pin is set by the command itself, and dropped after.
       return {{}, request.io ? declared(*request.io).pin : "io-check-chuck-clamp"};
@@ -226,6 +243,15 @@ OperatorWatch::Turn OperatorWatch::observe(const std::optional<StatusWords>& sta
       turn.lines.push_back(escape(kind, kMaxMessageLine) + ": " + escape(text, kMaxMessageLine));
       refused_ = refused_ || (kind == "error" && contains(text, " refused: "));
       prompt_pending_ = prompt_pending_ || kind == "prompt";
+      if (writes_config(request_.action)) {
+        if (kind == "prompt") awaits_write_ = true;
+        if (text.rfind("taught ", 0) == 0) awaits_write_ = false;
+        // Config.json refused what was found: the request failed, nothing was written.
+        if (kind == "error" && contains(text, "teach ") && contains(text, " refused: ")) {
+          awaits_write_ = false;
+          failed_ = true;
+        }
+      }
       cancelled_ = cancelled_ || contains(text, " cancelled");
       failed_ = failed_ || (kind == "error" && !contains(text, " refused: "));
     }
@@ -247,6 +273,10 @@ OperatorWatch::Turn OperatorWatch::observe(const std::optional<StatusWords>& sta
     case Action::clear_fault:
       if (!pins.fault && status->state != kFault) turn.outcome = OperatorOutcome::done;
       return turn;
+    case Action::clear_datum_drift:
+      // No flow: the component's one message is its answer.
+      if (answered_) turn.outcome = OperatorOutcome::done;
+      return turn;
     default:
       break;
   }
@@ -263,7 +293,7 @@ OperatorWatch::Turn OperatorWatch::observe(const std::optional<StatusWords>& sta
   }
   if (status->state == kFault || status->state == 0) {
     turn.outcome = OperatorOutcome::fault;
-  } else if (status->state == kIdle) {
+  } else if (status->state == kIdle && !(awaits_write_ && !cancelled_ && !failed_)) {
     turn.outcome = cancelled_ ? OperatorOutcome::cancelled
                    : failed_  ? OperatorOutcome::failed
                               : OperatorOutcome::done;

@@ -18,7 +18,20 @@ namespace fatc::io {
 /// What --operator ACTION asks for: load:T, unload:T, continue, cancel,
 /// clear-fault, measure-all[:never|:program], verify:P, io[:OUTPUT].
 struct OperatorRequest {
-  enum class Action { load, unload, continue_prompt, cancel, clear_fault, measure_all, verify, io };
+  enum class Action {
+    load,
+    unload,
+    continue_prompt,
+    cancel,
+    clear_fault,
+    measure_all,
+    verify,
+    io,
+    touch,  ///< touch-pockets: `number` the pocket, 0 every pocket
+    teach_datum,
+    check_datum,
+    clear_datum_drift,
+  };
   OperatorRequest() = default;
   OperatorRequest(Action action, int number, std::optional<IoAction> io = std::nullopt)
       : action(action), number(number), io(io) {}
@@ -112,6 +125,9 @@ class OperatorWatch {
   bool cancelled_ = false;        ///< a message of this request said so
   bool failed_ = false;           ///< an error that was no refusal (a probe missed)
   bool refused_ = false;
+  /// Touching showed what it found: once accepted, the changer writes it
+  /// after the flow ends, and the request is done only when that is said.
+  bool awaits_write_ = false;
 };
 
 }  // namespace fatc::io

@@ -2,6 +2,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/dry_run/teach.hpp"
 #include "core/motion/point.hpp"
@@ -36,6 +37,13 @@ struct Options {
   std::optional<double> timeout_seconds;       ///< --operator: --timeout SECONDS
   std::optional<double> air_height;            ///< --plan: --air HEIGHT, the change flown in the air
   std::optional<double> air_feed;              ///< --plan --air: --air-feed FEED
+  /// --plan --touch POCKETS: which features the touch path goes to.
+  struct Touched {
+    bool all = false;         ///< "all": every pocket
+    bool datum = false;       ///< "datum": the rack datum's
+    std::vector<int> pockets;  ///< "3,5"
+  };
+  std::optional<Touched> touch;
 };
 
 }  // namespace fatc::io

@@ -91,12 +91,34 @@ std::optional<Point> position_argument(const std::string& text, std::string& err
   return Point{values[0], values[1], values[2]};
 }
 
+/// --touch POCKETS: "all", "datum" or pocket numbers with commas between, each once.
+std::optional<Options::Touched> parse_touched(const std::string& text) {
+  Options::Touched touched;
+  if (text == "all" || text == "datum") {
+    (text == "all" ? touched.all : touched.datum) = true;
+    return touched;
+  }
+  std::size_t at = 0;
+  while (at <= text.size()) {
+    const std::size_t comma = std::min(text.find(',', at), text.size());
+    const auto number = tool_argument(text.substr(at, comma - at));
+    if (!number || *number == 0 ||
+        std::find(touched.pockets.begin(), touched.pockets.end(), *number) != touched.pockets.end()) {
+      return std::nullopt;
+    }
+    touched.pockets.push_back(*number);
+    at = comma + 1;
+  }
+  return touched;
+}
+
 /// `text`, the value of `arg`, into `options`; false and one line in `error` when it is no such value.
 bool take_value(const std::string& arg, const std::string& text, Options& options,
                 std::string& error) {
   const bool tool = arg == "--from" || arg == "--to" || arg == "--spindle";
   // --teach, --at and --operator say what they expect themselves.
-  const bool says_itself = arg == "--teach" || arg == "--at" || arg == "--operator";
+  const bool says_itself =
+      arg == "--teach" || arg == "--at" || arg == "--operator" || arg == "--touch";
   if (text.empty() && !says_itself && arg != "--into" && arg != "--timeout") {
     error = arg + ": expected " + (tool ? "a tool number" : "a file path") + ", got nothing";
     return false;
@@ -121,6 +143,11 @@ bool take_value(const std::string& arg, const std::string& text, Options& option
     }
     (height ? options.air_height : options.air_feed) = *value;
     return true;
+  }
+  if (arg == "--touch") {
+    options.touch = parse_touched(text);
+    if (!options.touch) error = "--touch: expected all, datum or pocket numbers like 3,5, got " + quote(text);
+    return options.touch.has_value();
   }
   if (arg == "--timeout") {
     options.timeout_seconds = decimal_argument(text);
@@ -156,7 +183,7 @@ bool take_value(const std::string& arg, const std::string& text, Options& option
   } else if (arg == "--teach") {
     options.teach_target = parse_teach_target(text);
     if (!options.teach_target) {
-      error = "--teach: expected pocket:N, loading, safe or sensor, got " + quote(text);
+      error = "--teach: expected pocket:N, loading, safe, sensor or datum, got " + quote(text);
       return false;
     }
   } else if (arg == "--at") {
@@ -342,8 +369,19 @@ std::optional<Options> parse_options(const std::vector<std::string>& args, std::
       return std::nullopt;
     }
   }
+  const bool touching = options.mode == Mode::plan && options.touch;
+  if (touching && options.to_tool) {
+    error = "--plan: --touch POCKETS plans the touch path, --to B a change: give one of them";
+    return std::nullopt;
+  }
+  if (touching && options.air_height) {
+    error = "--plan: --touch is not flown in the air (--air)";
+    return std::nullopt;
+  }
   for (const char* name : mode->needs) {
     if (given.at(name)->count() != 0) continue;
+    // The touch path needs no change: the probe comes with --from or from the config.
+    if (touching && std::string(name) != "--config") continue;
     const OptionDeclaration& o = option(name);
     error = std::string(name) == "--config" ? std::string("--config FILE is required")
                                             : std::string(mode->flag) + " needs " + name + " " +

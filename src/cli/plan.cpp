@@ -10,6 +10,7 @@
 #include "inputs.hpp"
 #include "io/files.hpp"
 #include "lint.hpp"
+#include "plan_touch.hpp"
 #include "linuxcnc/offline/ini.hpp"
 #include "linuxcnc/offline/program_tools.hpp"
 
@@ -106,6 +107,7 @@ int plan_in_the_air(const Options& options, const Config& config, const ToolStat
 int plan(const Options& options, std::ostream& out, std::ostream& err) {
   const Loaded loaded = load(options, err);
   if (!loaded.config || loaded.problems > 0) return 1;
+  if (options.touch) return plan_touch(options, loaded, out);
   const Config& config = *loaded.config;
   const int from = *options.from_tool;
   const int to = *options.to_tool;

@@ -35,6 +35,12 @@ void StatusFile::io_check(IoCheckWords words) {
   ++io_check_serial_;
 }
 
+void StatusFile::datum(std::string refusal) {
+  if (refusal == datum_) return;
+  datum_ = std::move(refusal);
+  ++io_check_serial_;
+}
+
 void StatusFile::write(const Status& status, const std::optional<InProgress>& cut_off,
                        const std::string& keepout) {
   // Called every poll: compare what it shows before building anything.
@@ -61,6 +67,7 @@ void StatusFile::write(const Status& status, const std::optional<InProgress>& cu
                          {"serial", serial_}};
   nlohmann::json refusals = nlohmann::json::object();
   for (const auto& [action, why] : io_check_.refusals) refusals[action] = why;
+  root["datum"] = datum_;
   root["io_check"] = {{"sensors", io_check_.sensors},
                       {"refusals", refusals},
                       {"last", io_check_.last},

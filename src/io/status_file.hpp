@@ -40,6 +40,9 @@ class StatusFile {
     }
   };
   void io_check(IoCheckWords words);
+  /// Why the rack datum refuses M6 (a drift found, a check due), empty when
+  /// it does not: the file's `datum`, written with the next write.
+  void datum(std::string refusal);
 
  private:
   struct Message {
@@ -52,7 +55,8 @@ class StatusFile {
   std::string written_;
   std::string shown_;  ///< what the last write was asked to show
   IoCheckWords io_check_;
-  long io_check_serial_ = 0;  ///< changes of io_check_, for the write's key
+  long io_check_serial_ = 0;  ///< changes of io_check_ and datum_, for the write's key
+  std::string datum_;
 };
 
 }  // namespace fatc::io

@@ -13,12 +13,14 @@ live component releases it: when its heartbeat stops for \\fBtimeout\\fR
 seconds (it died, hangs or was unloaded) the spindle stays held.
 \\fBprobe-input\\fR, for motion.probe-input, is the probe's own input
 (\\fBspindle-probe\\fR) while it is in the spindle and the changer is not
-measuring (\\fBchanger-busy\\fR false), else the touch-off \\fBsensor\\fR.
+measuring (\\fBchanger-busy\\fR false) or is touching the rack with it
+(\\fBtouching\\fR), else the touch-off \\fBsensor\\fR.
 """;
 pin in bit probe-in-spindle "fixed_atc_probe.probe-in-spindle: the spindle holds a probe";
 pin in bit heartbeat "fixed_atc_probe.heartbeat: toggles on every poll of the component";
 pin in float timeout = 0.5 "seconds without a heartbeat edge before the component is taken for gone";
 pin in bit changer-busy "fixed_atc_probe.busy: the changer's own moves measure on the touch-off sensor";
+pin in bit touching "fixed_atc_probe.touching: the changer's own moves touch the rack with the probe";
 pin in bit chuck-held "fixed_atc_probe.chuck-held: a chuck atom holds the spindle as well";
 pin in bit spindle-on-in "spindle.0.on: LinuxCNC asks for the spindle";
 pin in float speed-command "spindle.0.speed-cmd-rps: the speed asked for, before spindle.0.inhibit (2.9.0 drops spindle.0.on with the inhibited speed)";
@@ -30,7 +32,7 @@ pin out bit held "a probe is in the spindle, or was when the component stopped a
 pin out bit refused "held while LinuxCNC asks for the spindle (spindle-on-in, or a speed-command)";
 pin in bit sensor "the touch-off sensor";
 pin in bit spindle-probe "the touch probe's own input";
-pin out bit probe-input "to motion.probe-input: the probe's input while it is in the spindle and the changer is not measuring, else the sensor's";
+pin out bit probe-input "to motion.probe-input: the probe's input while it is in the spindle and the changer is not measuring or touches the rack with it, else the sensor's";
 pin out bit alive "a heartbeat edge came within timeout";
 variable int last_beat = 0;
 variable double quiet = 1e9;
@@ -49,4 +51,4 @@ spindle_on = spindle_on_in && !held;
 speed_out = held ? 0 : speed_in;
 inhibit = held || chuck_held;
 refused = held && (spindle_on_in || speed_command != 0);
-probe_input = (probe_in_spindle && !changer_busy) ? spindle_probe : sensor;
+probe_input = (probe_in_spindle && (!changer_busy || touching)) ? spindle_probe : sensor;

@@ -56,9 +56,9 @@ def main():
     ini = re.sub(r"^ON_ABORT_COMMAND = .*fixed_atc_probe.*\n", "", ini, flags=re.M)
     ini = re.sub(r"^REMAP = M6 .*$", "REMAP = M6 modalgroup=6 prolog=change_prolog ngc=rack_change "
                  "epilog=change_epilog\nON_ABORT_COMMAND = O <on_abort> call", ini, flags=re.M)
-    # Our component, its panel, its wiring and touch-off sensor out: basic_sim.tcl's own loops
+    # Our component, its panel, its wiring, touch-off sensor and simulated rack out: basic_sim.tcl's own loops
     # answer tool-prepare and tool-change at once.
-    ini = re.sub(r"^(POSTGUI_)?HALFILE = .*(fixed_atc_probe|touchoff_sensor|spindle_sim).*\.hal\n", "", ini, flags=re.M)
+    ini = re.sub(r"^(POSTGUI_)?HALFILE = .*(fixed_atc_probe|touchoff_sensor|sim_rack|spindle_sim).*\.hal\n", "", ini, flags=re.M)
     ini = re.sub(r"^GLADEVCP = .*\n", "", ini, flags=re.M)
     ini += """
 [PYTHON]

@@ -52,6 +52,7 @@ struct LinkedPorts : Ports {
   }
   void ask(const Prompt& prompt) override { log.push_back("  changer: message " + words(prompt)); }
   void save(const ToolState&) override { log.push_back("  changer: save tool state"); }
+  void write_found(const std::vector<Found>&, bool) override { log.push_back("  changer: write found"); }
   void unexpected(const std::string& state, const std::string& event) override {
     unexpected_events.push_back(event + " in " + state);
   }

@@ -22,7 +22,7 @@ std::vector<std::string> defaulted_words(const Config& config) {
     std::optional<UnitDefault> fallback;
     const char* follows;
   };
-  const Taken taken[] = {
+  std::vector<Taken> taken = {
       {"pocket_feed", config.pocket_feed, true, unit_default::pocket_feed, ""},
       {"probe_seek_feed", config.probe_seek_feed, true, unit_default::probe_seek_feed, ""},
       {"probe_latch_feed", config.probe_latch_feed, true, unit_default::probe_latch_feed, ""},
@@ -34,6 +34,15 @@ std::vector<std::string> defaulted_words(const Config& config) {
       {"verify_feed", config.dry_run_feed(), true, std::nullopt, "pocket_feed"},
       {"rack_keepout_margin", config.keepout_margin(), false, std::nullopt,
        "half the side offset's length"}};
+  if (config.rack_touch) {
+    const RackTouch& touch = *config.rack_touch;
+    taken.push_back({"rack_touch.bore_tolerance", touch.bore_tolerance, false,
+                     unit_default::bore_tolerance, ""});
+    taken.push_back({"rack_touch.search", touch.search, false, unit_default::touch_search, ""});
+    taken.push_back({"rack_touch.clear", touch.clear, false, unit_default::touch_clear, ""});
+    taken.push_back({"rack_touch.drift_tolerance", touch.drift_tolerance, false,
+                     unit_default::touch_drift_tolerance, ""});
+  }
   const auto amount = [](double value, bool feed, bool in_inch) {
     return format_number(value) + (feed ? (in_inch ? " in/min" : " mm/min")
                                         : (in_inch ? " inch" : " mm"));

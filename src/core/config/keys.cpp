@@ -21,6 +21,7 @@ constexpr Range kTimeout{0.01, 3600.0, "seconds"};
 constexpr Range kSensorTimeout{0.01, 60.0, "seconds"};
 constexpr Range kPulses{0.0, 20.0, ""};
 constexpr Range kBlend{0.0, 1000.0, "length"};
+constexpr Range kChanges{0.0, 1000000.0, ""};
 constexpr const char* kBoolean = "`true`, `false`";
 constexpr const char* kRequired = "required";
 
@@ -200,6 +201,53 @@ const std::vector<KeyDeclaration> kKeys = {
   {"rack_cover.timeout_seconds", stated(kCover.timeout_seconds), kTimeout, "", "how long a wired cover sensor may take"},
   {"air_blast", "`false`", {}, kBoolean,
    "drive `air-blast` while the chuck is open at a pocket with the spindle empty"},
+  {"rack_touch", "absent: nothing is found by touch", {}, "an object of the keys below",
+   "how a 3D probe (a tool of kind `\"probe\"`) in the spindle finds each pocket by touching its "
+   "feature, and the rack datum it touches again to see whether the rack moved "
+   "(docs/sequences.md, teach by touch)"},
+  {"rack_touch.feature", kRequired, {}, "`\"bore\"`, `\"fork\"`, `\"faces\"`",
+   "`\"bore\"`: a hole at the pocket, its walls touched across X, then across Y from the X "
+   "found; `\"fork\"`: a bore open toward the pocket's side, its jaws across the side's axis "
+   "and its back wall; `\"faces\"`: two outside faces, `x_face` and `y_face`. Pins are not "
+   "supported"},
+  {"rack_touch.stylus_radius", kRequired, kOffset, "below `depth`; a bore wider than twice it",
+   "the radius of the probe's stylus ball: a wall touched lies this far beyond the ball's centre"},
+  {"rack_touch.bore_diameter", "required for `\"bore\"` and `\"fork\"`", kOffset,
+   "above twice `stylus_radius`", "the bore's diameter; a fork's, at its back wall"},
+  {"rack_touch.bore_tolerance", stated(unit_default::bore_tolerance, false), kTolerance, "",
+   "how far the diameter measured across X and across Y may be from `bore_diameter`: a chip, "
+   "or the wrong feature, is refused"},
+  {"rack_touch.top", kRequired, {}, "an object of the keys below",
+   "where the top face is touched for Z, from the pocket's X,Y"},
+  {"rack_touch.top.{x,y}", kRequired, kSideComponent, "", "the top face's touch point"},
+  {"rack_touch.pocket_above_top", kRequired, kSideComponent, "",
+   "a pocket's Z is the top face's Z (the nose where it touched, less the probe's tool-table "
+   "length) plus this; may be negative"},
+  {"rack_touch.depth", kRequired, kOffset, "",
+   "how far below the top face the walls and faces are touched"},
+  {"rack_touch.x_face", "required for `\"faces\"`", {}, "an object of the keys below",
+   "a point on the face touched across X, from the pocket's X,Y; x not 0: its sign says on which "
+   "side of the pocket the face lies"},
+  {"rack_touch.x_face.{x,y}", kRequired, kSideComponent, "", "the X face's point"},
+  {"rack_touch.y_face", "required for `\"faces\"`", {}, "an object of the keys below",
+   "a point on the face touched across Y, from the pocket's X,Y; y not 0"},
+  {"rack_touch.y_face.{x,y}", kRequired, kSideComponent, "", "the Y face's point"},
+  {"rack_touch.search", stated(unit_default::touch_search, false), kOffset, "",
+   "how far past where a touch is expected the probe goes before it says it found nothing"},
+  {"rack_touch.clear", stated(unit_default::touch_clear, false), kOffset, "",
+   "how far short of a face a touch starts, and how far above the top face the Z touch starts"},
+  {"rack_touch.drift_tolerance", stated(unit_default::touch_drift_tolerance, false), kTolerance,
+   "", "how far the datum may be from where it was taught before M6 is refused"},
+  {"rack_touch.datum", "absent: no drift check", {}, "an object of the keys below",
+   "the rack datum: one pocket's feature, touched again to see whether the rack moved"},
+  {"rack_touch.datum.pocket", kRequired, {}, "a pocket of `pockets`",
+   "the pocket whose feature is the datum"},
+  {"rack_touch.datum.{x,y,z}", "written by teach-datum", kCoordinate, "all three or none",
+   "where the datum was found when it was taught: what the drift check compares against"},
+  {"rack_touch.check_every_changes", "0", kChanges, "a whole number; needs `datum`",
+   "the drift check falls due after this many changes; 0: never"},
+  {"rack_touch.check_at_start", "`false`", {}, kBoolean,
+   "the drift check falls due each time the component starts"},
   {"tools", "`{}`", {}, "an object of tool numbers, each an object of the keys below",
    "what a tool is and how it is measured, where it differs from the rest; lengths stay in "
    "LinuxCNC's tool table"},

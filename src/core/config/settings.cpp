@@ -16,6 +16,18 @@ double machine_per_unit(Units units, double machine_per_mm) {
 
 const char* approach_name(Approach approach) { return approach == Approach::top ? "top" : "side"; }
 
+const char* feature_name(TouchFeature feature) {
+  switch (feature) {
+    case TouchFeature::bore:
+      return "bore";
+    case TouchFeature::fork:
+      return "fork";
+    case TouchFeature::faces:
+      return "faces";
+  }
+  return "?";
+}
+
 std::optional<int> Config::first_pocket_of(int tool) const {
   if (tool == 0) return std::nullopt;
   for (const auto& [number, pocket] : pockets) {

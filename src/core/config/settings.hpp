@@ -37,6 +37,10 @@ constexpr UnitDefault probe_backoff{2.0, 0.08};
 constexpr UnitDefault probe_check_tolerance{0.1, 0.004};
 constexpr UnitDefault probe_window{10.0, 0.4};
 constexpr UnitDefault rack_keepout_above{5.0, 0.2};
+constexpr UnitDefault touch_search{5.0, 0.2};
+constexpr UnitDefault touch_clear{3.0, 0.12};
+constexpr UnitDefault touch_drift_tolerance{0.1, 0.004};
+constexpr UnitDefault bore_tolerance{0.5, 0.02};
 }  // namespace unit_default
 
 /// When the changer measures a tool on the touch-off sensor: a tool's own
@@ -99,6 +103,34 @@ struct Pocket {
       side_offset;  ///< from the pocket to its side (`side_offset`, else pocket_side_offset)
 };
 
+/// Which feature of a pocket a 3D probe touches to find it (`rack_touch.feature`).
+enum class TouchFeature {
+  bore,   ///< a round hole at the pocket: two walls across X, then two across Y
+  fork,   ///< a bore open toward the pocket's side: its jaws and its back wall
+  faces,  ///< two outside faces, one across X and one across Y
+};
+
+/// `rack_touch`: how a 3D probe finds a pocket, and the rack datum it watches
+/// (docs/sequences.md, teach by touch). Lengths in the config's units.
+struct RackTouch {
+  TouchFeature feature = TouchFeature::bore;
+  double stylus_radius = 0.0;
+  std::optional<double> bore_diameter;  ///< bore and fork
+  double bore_tolerance = unit_default::bore_tolerance.mm;
+  PlanarOffset top;              ///< where the top face is touched, from the pocket's X,Y
+  double pocket_above_top = 0.0;  ///< pocket Z = the top face's Z + this
+  double depth = 0.0;            ///< how far below the top face walls and faces are touched
+  PlanarOffset x_face;           ///< faces: a point on the face across X, from the pocket's X,Y
+  PlanarOffset y_face;           ///< faces: a point on the face across Y
+  double search = unit_default::touch_search.mm;
+  double clear = unit_default::touch_clear.mm;
+  double drift_tolerance = unit_default::touch_drift_tolerance.mm;
+  int datum_pocket = 0;             ///< the pocket whose feature is the rack datum, 0: none
+  std::optional<Point> datum;       ///< where teach-datum found it
+  int check_every_changes = 0;      ///< 0: never
+  bool check_at_start = false;
+};
+
 /// The validated contents of config.json. Lengths are in `units`, feeds in
 /// `units` per minute, positions are machine coordinates (G53).
 struct Config {
@@ -142,6 +174,7 @@ struct Config {
   std::optional<double> verify_feed;  ///< unset: pocket_feed
   Path path = Path::prototype;
   std::map<int, ToolConfig> tools;  ///< tool number -> what `tools` says of it
+  std::optional<RackTouch> rack_touch;  ///< unset: nothing is found by touch
   /// The keys with a unit that config.json left out, as --check lists them.
   std::vector<std::string> defaulted;
 
@@ -183,6 +216,8 @@ const char* units_name(Units units);
 /// units to the mm (LinuxCNC's linear units: 1 mm, 1/25.4 inch).
 double machine_per_unit(Units units, double machine_per_mm);
 const char* approach_name(Approach approach);
+/// "bore", "fork", "faces".
+const char* feature_name(TouchFeature feature);
 /// The word config.json uses: "always", "new", ...
 const char* rule_name(MeasureRule rule);
 /// Where `tool`'s rule comes from, for a message: `tools.7.measure is "never"`,

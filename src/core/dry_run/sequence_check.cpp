@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "../formatted.hpp"
+#include "../rack/touch.hpp"
 
 namespace fatc {
 
@@ -79,6 +80,22 @@ SequencesChecked check_sequences(const Config& config, const std::optional<SoftL
     add(number, "measure " + t + at, from_safe(full, [tool](Changer& c) { c.measure_all({tool}); }));
     add(number, "verify of pocket " + std::to_string(number) + " with " + t,
         from_safe(in_spindle, [number](Changer& c) { c.verify(number); }));
+  }
+  // Each pocket found by touch (rack_touch), with each probe of `tools`.
+  if (!config.rack_touch) return checked;
+  for (const auto& [probe, said] : config.tools) {
+    if (said.kind != ToolKind::probe) continue;
+    const double length = lengths.of(probe, measured).length;
+    for (const auto& [number, pocket] : config.pockets) {
+      const ExpectedTouches path =
+          expected_touches(config, {FeatureTouch::of_pocket(config, number, pocket.at, length)}, probe);
+      const std::string sequence =
+          "touch pocket " + std::to_string(number) + " with T" + std::to_string(probe);
+      for (const Violation& v : check_steps(config, path.steps, limits, from_safe)) {
+        checked.violations.push_back({sequence, v.step, path.steps[v.step], v.what});
+      }
+      ++checked.sequences;
+    }
   }
   return checked;
 }

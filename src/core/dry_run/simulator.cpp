@@ -191,6 +191,11 @@ void Simulator::ask(const Prompt& prompt) {
   tell(MessageKind::prompt, words(prompt));
 }
 
+void Simulator::write_found(const std::vector<Found>& found, bool datum) {
+  written.insert(written.end(), found.begin(), found.end());
+  written_datum = datum;
+}
+
 void Simulator::save(const ToolState& state) {
   Record record;
   record.kind = Record::Kind::save;
@@ -244,6 +249,18 @@ int Simulator::run(Changer& changer, int limit) {
       const Step probe = *pending;
       pending.reset();
       waiting_since_ = clock;
+      if (touches) {
+        const auto at = touches(probe);
+        const double limit = probe.axes == axis_x   ? probe.target.x
+                             : probe.axes == axis_y ? probe.target.y
+                                                    : probe.target.z;
+        // The probe stops where it touched, or at its limit.
+        Step stopped = probe;
+        stopped.target.x = stopped.target.y = stopped.target.z = at.value_or(limit);
+        rack.at = moved_to(rack.at, stopped);
+        changer.probe_result(at.has_value(), at.value_or(limit));
+        continue;
+      }
       const bool touched = sensor_z && *sensor_z >= probe.target.z;
       changer.probe_result(touched, touched ? *sensor_z : probe.target.z);
     } else if (awaiting == Awaiting::motion && pending) {

@@ -77,6 +77,13 @@ class Simulator : public Ports {
   /// whole rack each time, most of a long program's preflight).
   bool keeps_saved_states = true;
   std::optional<double> sensor_z;
+  /// Where a probe move touches, where set (the rack found by touch): the
+  /// coordinate on the move's axis, nullopt where it touches nothing. Unset:
+  /// `sensor_z` answers.
+  std::function<std::optional<double>(const Step& probe)> touches;
+  /// What touching found and the operator accepted (write_found), in order.
+  std::vector<Found> written;
+  bool written_datum = false;
   bool chuck_open = false;
   bool timer_armed = false;
   std::optional<Step> pending;  ///< last published step not yet finished
@@ -94,6 +101,7 @@ class Simulator : public Ports {
   /// Recorded as a prompt message in its words, and kept typed in `asked`.
   void ask(const Prompt& prompt) override;
   void save(const ToolState& state) override;
+  void write_found(const std::vector<Found>& found, bool datum) override;
   void unexpected(const std::string& state, const std::string& event) override;
 
   /// Finishes steps and runs out timers until the changer waits for something

@@ -134,6 +134,7 @@ std::optional<TeachTarget> parse_teach_target(const std::string& text) {
   if (text == "loading") return TeachTarget{Kind::loading, 0};
   if (text == "safe") return TeachTarget{Kind::safe, 0};
   if (text == "sensor") return TeachTarget{Kind::sensor, 0};
+  if (text == "datum") return TeachTarget{Kind::datum, 0};
   const std::string prefix = "pocket:";
   if (text.rfind(prefix, 0) != 0) return std::nullopt;
   const auto number = tool_number_key(text.substr(prefix.size()));
@@ -149,6 +150,8 @@ std::string target_name(const TeachTarget& target) {
       return "loading";
     case TeachTarget::Kind::safe:
       return "safe";
+    case TeachTarget::Kind::datum:
+      return "the rack datum";
     case TeachTarget::Kind::sensor:
       break;
   }
@@ -217,6 +220,15 @@ TeachResult teach(const std::string& config_text, const TeachTarget& target, con
     if (const auto defaults = root.find("pocket_default"); defaults != root.end()) {
       fallback = &*defaults;
     }
+  } else if (target.kind == TeachTarget::Kind::datum) {
+    // The datum's pocket is named by hand once; teaching writes where it was found.
+    path = "rack_touch.datum";
+    const auto touch = root.find("rack_touch");
+    if (touch == root.end() || !touch->is_object() || !touch->contains("datum")) {
+      return refuse("config.json has no rack_touch.datum: name the datum's pocket there first, "
+                    "\"datum\": {\"pocket\": N}");
+    }
+    entry = &(*touch)["datum"];
   } else {
     path = target.kind == TeachTarget::Kind::loading ? "loading"
            : target.kind == TeachTarget::Kind::safe  ? "safe"
@@ -257,6 +269,24 @@ TeachResult teach(const std::string& config_text, const TeachTarget& target, con
   if (!checked.violations.empty()) return refuse(describe(checked.violations.front()));
   result.text = std::move(text);
   return result;
+}
+
+}  // namespace fatc
+
+namespace fatc {
+
+TeachResult teach_all(const std::string& config_text, const std::vector<Taught>& taught,
+                      const std::optional<SoftLimits>& limits, const ToolLengths& lengths) {
+  TeachResult all;
+  std::string text = config_text;
+  for (const Taught& one : taught) {
+    TeachResult result = teach(text, one.target, one.at, limits, lengths);
+    if (!result.text) return result;
+    text = std::move(*result.text);
+    all.change += (all.change.empty() ? "" : "\n") + result.change;
+  }
+  all.text = std::move(text);
+  return all;
 }
 
 }  // namespace fatc

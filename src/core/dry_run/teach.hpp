@@ -3,6 +3,7 @@
 #include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "../config/config.hpp"
 #include "../rack/geometry.hpp"
@@ -17,14 +18,15 @@ struct TeachTarget {
     loading,  ///< loading: x, y and z
     safe,     ///< safe: x, y and z
     sensor,  ///< the touch-off sensor, probe_limit: x and y; its z (how low the probe may go) stays
+    datum,   ///< the rack datum, rack_touch.datum: x, y and z where its feature was found
   };
   Kind kind = Kind::pocket;
   int pocket = 0;  ///< for Kind::pocket: its number, the key in `pockets`
 };
 
-/// "pocket:3", "loading", "safe" or "sensor"; nullopt for anything else.
+/// "pocket:3", "loading", "safe", "sensor" or "datum"; nullopt for anything else.
 std::optional<TeachTarget> parse_teach_target(const std::string& text);
-/// "pocket 3", "loading", "safe", "sensor".
+/// "pocket 3", "loading", "safe", "sensor", "the rack datum".
 std::string target_name(const TeachTarget& target);
 
 /// Either the new config.json text and what changed, or why nothing may be written.
@@ -44,6 +46,17 @@ struct TeachResult {
 /// The tools the sequences carry count as long as `lengths` says.
 TeachResult teach(const std::string& config_text, const TeachTarget& target, const Point& at,
                   const std::optional<SoftLimits>& limits, const ToolLengths& lengths = {});
+
+/// One position taught of several at once.
+struct Taught {
+  TeachTarget target;
+  Point at;
+};
+
+/// Each of `taught` in turn, as teach() does one, into one text: all or
+/// nothing. `change` holds one line per target; `error` the first refused.
+TeachResult teach_all(const std::string& config_text, const std::vector<Taught>& taught,
+                      const std::optional<SoftLimits>& limits, const ToolLengths& lengths = {});
 
 /// The units the config text declares (`units`); mm when it says nothing or
 /// cannot be read. The machine's soft limits are read in these.

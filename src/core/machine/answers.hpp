@@ -20,11 +20,47 @@ inline void publish_done(Context& c) {
   done.label = "done";
   c.publish(done);
 }
+/// The executor's last step: failed, saying `why`, which the operator reads too.
+inline void publish_failure(Context& c, const std::string& why) {
+  Step fail = failure_step(why);
+  fail.tool = c.tools.spindle;
+  c.publish(fail);
+  c.tell(MessageKind::error, why);
+}
 struct AnswerDone {
   template <class Event, class Fsm, class Source, class Target>
   void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
     fsm.ctx->end_sequence();
     publish_done(*fsm.ctx);
+  }
+};
+/// Touching ended: done, or, where it stopped early of its own (a touch
+/// found nothing), the executor fails saying why, so that the operator's
+/// command ends in that error.
+struct AnswerTouchEnd {
+  template <class Event, class Fsm, class Source, class Target>
+  void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
+    Context& c = *fsm.ctx;
+    c.end_sequence();
+    if (c.activity.stopped.empty()) {
+      publish_done(c);
+      return;
+    }
+    const std::string why = std::move(c.activity.stopped);
+    c.activity.stopped.clear();
+    publish_failure(c, why);
+  }
+};
+/// An M6 is done: the rack datum counts it (rack_touch.check_every_changes).
+struct AnswerChangeDone {
+  template <class Event, class Fsm, class Source, class Target>
+  void operator()(const Event& e, Fsm& fsm, Source& s, Target& t) const {
+    Context& c = *fsm.ctx;
+    if (c.config.rack_touch && c.config.rack_touch->check_every_changes > 0) {
+      ++c.tools.datum.changes;
+      c.ports.save(c.tools);
+    }
+    AnswerDone{}(e, fsm, s, t);
   }
 };
 /// A chuck atom is done. A release leaves its sequence recorded until the
@@ -49,12 +85,8 @@ struct StopProgram {
   void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
     Context& c = *fsm.ctx;
     c.end_sequence();
-    const std::string why =
-        "M6 T" + std::to_string(c.request.tool) + " cancelled by the operator; " + c.whereabouts();
-    Step fail = failure_step(why);
-    fail.tool = c.tools.spindle;
-    c.publish(fail);
-    c.tell(MessageKind::error, why);
+    publish_failure(c, "M6 T" + std::to_string(c.request.tool) + " cancelled by the operator; " +
+                           c.whereabouts());
   }
 };
 /// A dry run cut off by an abort or the machine going off: nothing to

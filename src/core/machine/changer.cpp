@@ -113,6 +113,23 @@ void Changer::clear_fault(int spindle_tool, std::optional<bool> pocket_holds_too
   engine_->take(ClearFault{spindle_tool, pocket_holds_tool});
 }
 
+std::optional<std::string> Changer::clear_datum_drift() {
+  Context& c = engine_->context;
+  if (status().busy()) return std::string("the changer is busy");
+  if (!datum_refusal()) return std::string("the rack datum refuses nothing: nothing to clear");
+  c.tools.datum = {};
+  c.datum_checked = true;
+  c.ports.save(c.tools);
+  c.tell(MessageKind::info,
+         "rack datum cleared by the operator: M6 is allowed again; the pockets keep their "
+         "positions and the changes are counted from 0");
+  return std::nullopt;
+}
+
+std::optional<std::string> Changer::datum_refusal() const {
+  return why_datum_refuses(engine_->context, 0);
+}
+
 unsigned Changer::configs_taken() const { return engine_->context.configs_taken(); }
 
 bool Changer::reconfigure(Config config, std::string request) {

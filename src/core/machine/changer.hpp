@@ -91,6 +91,12 @@ class Changer {
   /// The operator's confirmation after a fault: what the spindle holds and,
   /// if a sequence was cut off at a pocket, whether that pocket holds its tool.
   void clear_fault(int spindle_tool, std::optional<bool> pocket_holds_tool = std::nullopt);
+  /// The operator checked the rack by other means and lifts the datum's
+  /// refusal (clear-datum-drift): the drift found and the changes counted are
+  /// forgotten, the pockets keep their positions. Why it cannot, if it cannot.
+  std::optional<std::string> clear_datum_drift();
+  /// Why the rack datum refuses M6 now (a drift found, a check due), if it does.
+  std::optional<std::string> datum_refusal() const;
   /// What was under way when the changer last stopped or faulted, if anything.
   const std::optional<InProgress>& cut_off() const;
 

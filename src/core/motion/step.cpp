@@ -4,6 +4,19 @@
 
 namespace fatc {
 
+Step move_step(StepKind kind, unsigned axes, const Point& target, std::string label, int pocket,
+               bool may_enter_column, double feed) {
+  Step step;
+  step.kind = kind;
+  step.axes = axes;
+  step.target = target;
+  step.label = std::move(label);
+  step.pocket = pocket;
+  step.may_enter_column = may_enter_column;
+  step.feed = feed;
+  return step;
+}
+
 Step failure_step(std::string why) {
   Step step;
   step.kind = StepKind::fail;

@@ -46,6 +46,11 @@ struct Step {
   double blend = 0.0;  ///< how far a corner of the run may be cut; 0: none is
 };
 
+/// A move (rapid, feed or probe) to `target` on `axes`, named `label`; part
+/// of the way into or out of `pocket` when `may_enter_column`.
+Step move_step(StepKind kind, unsigned axes, const Point& target, std::string label,
+               int pocket = 0, bool may_enter_column = false, double feed = 0.0);
+
 /// The step that makes a waiting executor abort its program, saying `why`.
 Step failure_step(std::string why);
 /// Nothing to do: the executor asks again.

@@ -10,19 +10,6 @@ namespace fatc::plan {
 
 namespace {
 
-Step move(StepKind kind, unsigned axes, const Point& target, std::string label, int pocket = 0,
-          bool may_enter_column = false, double feed = 0.0) {
-  Step step;
-  step.kind = kind;
-  step.axes = axes;
-  step.target = target;
-  step.label = std::move(label);
-  step.pocket = pocket;
-  step.may_enter_column = may_enter_column;
-  step.feed = feed;
-  return step;
-}
-
 std::string of_pocket(const char* what, int pocket) {
   return std::string(what) + " of pocket " + std::to_string(pocket);
 }
@@ -40,36 +27,36 @@ struct PocketMoves {
   PocketWaypoints at = pocket_waypoints(c, number);
 
   /// Straight up from the pocket or its side, still within its approach.
-  Step safe_z() const { return move(StepKind::rapid, axis_z, c.safe, "safe Z", number, true); }
+  Step safe_z() const { return move_step(StepKind::rapid, axis_z, c.safe, "safe Z", number, true); }
   Step over_side() const {
-    return move(StepKind::rapid, axis_xy, at.side, of_pocket("over the side", number), number);
+    return move_step(StepKind::rapid, axis_xy, at.side, of_pocket("over the side", number), number);
   }
   Step down_to_side() const {
-    return move(StepKind::rapid, axis_z, at.side, of_pocket("side", number), number, true);
+    return move_step(StepKind::rapid, axis_z, at.side, of_pocket("side", number), number, true);
   }
   Step over_pocket() const {
-    return move(StepKind::rapid, axis_xy, at.pocket, "over pocket " + std::to_string(number),
+    return move_step(StepKind::rapid, axis_xy, at.pocket, "over pocket " + std::to_string(number),
                 number);
   }
   Step above_chuck() const {
-    return move(StepKind::rapid, axis_z, at.above_chuck, of_pocket("above-chuck", number), number,
+    return move_step(StepKind::rapid, axis_z, at.above_chuck, of_pocket("above-chuck", number), number,
                 true);
   }
   Step above_clearance() const {
-    return move(StepKind::rapid, axis_z, at.above_clearance, of_pocket("above-clearance", number),
+    return move_step(StepKind::rapid, axis_z, at.above_clearance, of_pocket("above-clearance", number),
                 number, true);
   }
   /// On the direct path the side approach crosses to the pocket's column at
   /// rapid; only inside the column (the holder engaged) is it slow.
   Step column_edge() const {
-    return move(StepKind::rapid, axis_xy, at.column_edge, of_pocket("column edge", number), number,
+    return move_step(StepKind::rapid, axis_xy, at.column_edge, of_pocket("column edge", number), number,
                 true);
   }
   Step out_to_side() const {
-    return move(StepKind::rapid, axis_xy, at.side, of_pocket("side", number), number, true);
+    return move_step(StepKind::rapid, axis_xy, at.side, of_pocket("side", number), number, true);
   }
   Step slowly(unsigned axes, const Point& target, std::string label) const {
-    return move(StepKind::feed, axes, target, std::move(label), number, true, c.pocket_feed);
+    return move_step(StepKind::feed, axes, target, std::move(label), number, true, c.pocket_feed);
   }
   Step slowly_into() const {
     return slowly(axis_xy, at.pocket, "pocket " + std::to_string(number));
@@ -89,14 +76,14 @@ struct PocketMoves {
 
 }  // namespace
 
-Step safe_z(const Config& c) { return move(StepKind::rapid, axis_z, c.safe, "safe Z"); }
-Step safe_xy(const Config& c) { return move(StepKind::rapid, axis_xy, c.safe, "safe XY"); }
-Step loading_z(const Config& c) { return move(StepKind::rapid, axis_z, c.loading, "loading Z"); }
+Step safe_z(const Config& c) { return move_step(StepKind::rapid, axis_z, c.safe, "safe Z"); }
+Step safe_xy(const Config& c) { return move_step(StepKind::rapid, axis_xy, c.safe, "safe XY"); }
+Step loading_z(const Config& c) { return move_step(StepKind::rapid, axis_z, c.loading, "loading Z"); }
 Step loading_xy(const Config& c) {
-  return move(StepKind::rapid, axis_xy, c.loading, "loading XY");
+  return move_step(StepKind::rapid, axis_xy, c.loading, "loading XY");
 }
 Step sensor_xy(const Config& c) {
-  return move(StepKind::rapid, axis_xy, c.probe_limit, "over the touch-off sensor");
+  return move_step(StepKind::rapid, axis_xy, c.probe_limit, "over the touch-off sensor");
 }
 std::optional<double> probe_approach_z(const Config& c, int tool, double length,
                                        std::optional<double> start_z) {
@@ -108,26 +95,26 @@ std::optional<double> probe_approach_z(const Config& c, int tool, double length,
 Step probe_approach(const Config& c, double z) {
   Point above = c.probe_limit;
   above.z = z;
-  return move(StepKind::probe, axis_z, above, "touch-off sensor (approach)", 0, false,
+  return move_step(StepKind::probe, axis_z, above, "touch-off sensor (approach)", 0, false,
               c.probe_seek_feed);
 }
 Step probe_seek(const Config& c, int tool) {
-  return move(StepKind::probe, axis_z, c.probe_limit, "touch-off sensor (seek)", 0, false,
+  return move_step(StepKind::probe, axis_z, c.probe_limit, "touch-off sensor (seek)", 0, false,
               c.seek_feed_of(tool));
 }
 Step probe_back_off(const Config& c, int tool, double first_touch_z) {
   Point above = c.probe_limit;
   above.z = first_touch_z + c.probe_backoff;
-  return move(StepKind::feed, axis_z, above, "back off the sensor", 0, false, c.seek_feed_of(tool));
+  return move_step(StepKind::feed, axis_z, above, "back off the sensor", 0, false, c.seek_feed_of(tool));
 }
 Step probe_latch(const Config& c, int tool) {
-  return move(StepKind::probe, axis_z, c.probe_limit, "touch-off sensor (latch)", 0, false,
+  return move_step(StepKind::probe, axis_z, c.probe_limit, "touch-off sensor (latch)", 0, false,
               c.latch_feed_of(tool));
 }
 Step retract_from_sensor(const Config& c, double latched_z) {
   Point up = c.probe_limit;
   up.z = latched_z + c.probe_retract_offset_z;
-  return move(StepKind::rapid, axis_z, up, "retract from the sensor");
+  return move_step(StepKind::rapid, axis_z, up, "retract from the sensor");
 }
 Step spindle_tool(int tool) {
   Step step;

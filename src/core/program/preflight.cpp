@@ -33,8 +33,15 @@ struct PlannedChange {
 class Checker {
  public:
   explicit Checker(const PreflightInput& input)
-      : in_(input), config_(*input.config), lengths_(input.lengths) {
+      : in_(input), config_(*input.config), lengths_(input.lengths), planning_(*input.config) {
     tools_ = input.tools;
+    datum_changes_ = tools_.datum.changes;
+    // The rack datum is judged here, change by change (datum_refusal): each
+    // change is planned as the changer makes it once the datum lets it.
+    if (planning_.rack_touch) {
+      planning_.rack_touch->check_every_changes = 0;
+      planning_.rack_touch->check_at_start = false;
+    }
   }
 
   Preflight run(const std::vector<program::ToolUse>& uses) {
@@ -126,6 +133,7 @@ class Checker {
       row.seconds = 0.0;
       return;
     }
+    if (const auto datum = datum_refusal(tool)) problem(use.where, *datum);
     ++result_.changes;
     if (tool != 0 &&
         std::find(result_.tools.begin(), result_.tools.end(), tool) == result_.tools.end()) {
@@ -178,6 +186,28 @@ class Checker {
     if (tool != 0 && measuring_of(config_, tool, measured(tool)).after_change) {
       measured_here_.insert(tool);
     }
+  }
+
+  /// The rack datum (rack_touch) at a change to `tool`: the drift the state
+  /// file records, or its check falling due after check_every_changes,
+  /// makes the changer refuse it; said once, the first time.
+  std::optional<std::string> datum_refusal(int tool) {
+    if (!config_.rack_touch || said_datum_) return std::nullopt;
+    const std::string change = "M6 " + tool_word(tool) + ": ";
+    if (!tools_.datum.drift.empty()) {
+      said_datum_ = true;
+      return change + "the state file " + in_.state_name + " says " + tools_.datum.drift +
+             ": the changer refuses M6 until teach-datum or clear-datum-drift";
+    }
+    const int every = config_.rack_touch->check_every_changes;
+    if (every <= 0) return std::nullopt;
+    const int made = datum_changes_++;
+    if (made < every || (tool != 0 && config_.is_probe(tool))) return std::nullopt;
+    said_datum_ = true;
+    return change + "the rack datum check falls due here, " + std::to_string(made) +
+           " changes after the last (" + std::to_string(tools_.datum.changes) +
+           " in the state file, rack_touch.check_every_changes " + std::to_string(every) +
+           "): the changer refuses it; run check-datum before the program";
   }
 
   void set_tool(PreflightRow& row) {
@@ -300,6 +330,7 @@ class Checker {
     // The problems the lint reports itself (a state cut off, a tool not in
     // its pocket) do not stop the estimate: it plans as if they were resolved.
     ToolState resolved = tools_;
+    resolved.datum = {};
     resolved.uncertain = false;
     resolved.in_progress.reset();
     if (const auto home = resolved.home_of(to); home && to != from)
@@ -307,7 +338,7 @@ class Checker {
     if (measured(to) && resolved.lengths.count(to) == 0) {
       resolved.lengths[to] = touch - config_.probe_length_compensation_offset;
     }
-    const Simulator sim = plan_change_timed(config_, resolved, to, touch);
+    const Simulator sim = plan_change_timed(planning_, resolved, to, touch);
     PlannedChange planned;
     for (const Step& step : sim.steps()) {
       if (step.kind == StepKind::fail) planned.refused = step.label;
@@ -327,6 +358,9 @@ class Checker {
   std::set<std::pair<int, std::string>> named_;
   bool spindle_known_ = true;
   bool said_uncertain_ = false;
+  Config planning_;  ///< the config each change is planned with: the datum judged apart
+  int datum_changes_ = 0;  ///< changes since the datum's last check, as the changer counts them
+  bool said_datum_ = false;
   std::set<int> never_measured_;
   std::set<int> measured_here_;  ///< tools a change of the program measured
   bool probe_start_said_ = false;  ///< an M3 or M4 with the probe in the spindle now was named

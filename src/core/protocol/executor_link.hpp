@@ -19,8 +19,8 @@ struct LinkInputs {
   bool step_request = false;             ///< step-request: the executor asks for its next step
   int call = 0;                          ///< executor-call: read at the first request of a run
   int number = 0;                        ///< number: the tool an M6 is for
-  double probe_result = 0.0;             ///< 1 touched, 0 missed, -1 the sensor was already tripped
-  double probe_z = 0.0;                  ///< machine Z where the probe move stopped
+  double probe_result = 0.0;             ///< 1 touched, 0 missed, -1 the probe input was already tripped
+  double probe_z = 0.0;                  ///< machine coordinate where the probe stopped, on its axis
   bool tool_prepare = false;             ///< iocontrol's tool-prepare
   bool tool_change = false;              ///< iocontrol's tool-change
   std::optional<bool> interpreter_idle;  ///< nothing when there is no NML status

@@ -46,6 +46,31 @@ std::string text_problem(const Json& value) {
   return "";
 }
 
+/// `datum`: {"changes": n, "drift": "..."}, both optional.
+std::string read_datum(const Json& datum, DatumWatch& watch) {
+  if (!datum.is_object()) return "datum: expected an object, got " + describe(datum);
+  for (const auto& item : datum.items()) {
+    if (item.key() != "changes" && item.key() != "drift") {
+      return join_path("datum", item.key()) + ": unknown key";
+    }
+  }
+  if (datum.contains("changes")) {
+    const Json& changes = datum["changes"];
+    if (!(changes.is_number_integer() || changes.is_number_unsigned()) ||
+        changes.get<std::int64_t>() < 0 || changes.get<std::int64_t>() > 1000000000) {
+      return "datum.changes: expected a count from 0 to 1000000000, got " + describe(changes);
+    }
+    watch.changes = changes.get<int>();
+  }
+  if (datum.contains("drift")) {
+    if (const std::string why = text_problem(datum["drift"]); !why.empty()) {
+      return "datum.drift: " + why;
+    }
+    watch.drift = datum["drift"].get<std::string>();
+  }
+  return "";
+}
+
 /// Version 1's `in_pocket`: the tools sitting in their own pocket (pocket N is tool N's).
 std::string read_in_pocket(const Json& root, ToolState& state) {
   if (!root.contains("in_pocket") || !root["in_pocket"].is_array()) {
@@ -116,7 +141,7 @@ ToolState ToolState::fresh(const Config& config) {
 
 bool ToolState::operator==(const ToolState& other) const {
   return spindle == other.spindle && uncertain == other.uncertain && pockets == other.pockets &&
-         lengths == other.lengths && in_progress == other.in_progress;
+         lengths == other.lengths && in_progress == other.in_progress && datum == other.datum;
 }
 
 std::optional<int> ToolState::home_of(int tool) const {
@@ -222,6 +247,9 @@ std::string to_json(const ToolState& state) {
                            {"step", state.in_progress->step},
                            {"pocket", state.in_progress->pocket}};
   }
+  if (!(state.datum == DatumWatch{})) {
+    root["datum"] = {{"changes", state.datum.changes}, {"drift", state.datum.drift}};
+  }
   return root.dump(2) + "\n";
 }
 
@@ -269,7 +297,7 @@ ToolStateResult tool_state_from_json(const std::string& text) {
   for (const auto& item : root.items()) {
     const auto& k = item.key();
     if (k != "version" && k != "spindle" && k != "uncertain" && k != rack_key && k != "lengths" &&
-        k != "in_progress") {
+        k != "in_progress" && k != "datum") {
       return failure(join_path("", k), "unknown key");
     }
   }
@@ -337,6 +365,11 @@ ToolStateResult tool_state_from_json(const std::string& text) {
                    progress["pocket"].get<int>()};
     // A sequence cut off by a crash leaves nothing certain.
     state.uncertain = true;
+  }
+  if (root.contains("datum")) {
+    if (const std::string why = read_datum(root["datum"], state.datum); !why.empty()) {
+      return {std::nullopt, why};
+    }
   }
   return {state, "", version};
 }

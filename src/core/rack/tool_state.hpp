@@ -30,6 +30,18 @@ struct PocketState {
   }
 };
 
+/// The rack datum's watch (rack_touch.datum): how many changes since it was
+/// last touched, and what the last check found beyond its tolerance. Kept in
+/// the state file, so a restart neither forgets a rack that moved nor counts
+/// from zero again.
+struct DatumWatch {
+  int changes = 0;    ///< changes made since the datum was last checked or taught
+  std::string drift;  ///< the last check's words where the rack moved: M6 is refused meanwhile
+  bool operator==(const DatumWatch& other) const {
+    return changes == other.changes && drift == other.drift;
+  }
+};
+
 /// What the changer knows about where the tools are. Saved after every change.
 struct ToolState {
   int spindle = 0;         ///< tool in the spindle, 0 = empty
@@ -37,6 +49,7 @@ struct ToolState {
   std::map<int, PocketState> pockets;     ///< by pocket number, every pocket of the config
   std::map<int, double> lengths;          ///< measured tool lengths, in the config's units
   std::optional<InProgress> in_progress;  ///< a sequence was under way when this was saved
+  DatumWatch datum;
 
   /// First start: every pocket holds its first-start tool (`tool`), the spindle is empty.
   static ToolState fresh(const Config& config);

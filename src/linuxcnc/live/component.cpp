@@ -41,6 +41,11 @@ void Component::poll(Clock::time_point now, std::optional<bool> interpreter_idle
     changer_->timer_elapsed();
   }
   measure_all_press_.poll(*changer_, refuse_);
+  // Written once the executor's MDI run is over: config.json is taken only then.
+  if (accepted_ && changer_->status().phase == Phase::idle && task_free_) {
+    teacher_.write_found(*changer_, accepted_->found, accepted_->datum);
+    accepted_.reset();
+  }
   poll_io_check();
   start_executor_if_needed();
   if (task_free_ && !changer_->status().busy()) {
@@ -57,6 +62,7 @@ void Component::poll(Clock::time_point now, std::optional<bool> interpreter_idle
   write_status(*pins_, status, *changer_, link_.attached(), nml_ != nullptr);
   if (io_check_.holds_chuck_open()) *pins_->chuck_held = true;
   status_file_.io_check(io_check_.words());
+  status_file_.datum(changer_->datum_refusal().value_or(""));
   status_file_.write(status, changer_->cut_off(), keepout_words(keepout_.state()));
 }
 
@@ -131,6 +137,15 @@ void Component::read_operator() {
   if (air_load_.rose(*pins_->air_run_load)) fly(What::load);
   if (air_unload_.rose(*pins_->air_run_unload)) fly(What::unload);
   if (air_verify_.rose(*pins_->air_run_verify)) fly(What::verify);
+  using Goal = TouchRequest::Goal;
+  if (touch_pockets_.rose(*pins_->touch_pockets)) touch(Goal::pockets);
+  if (teach_datum_.rose(*pins_->teach_datum)) touch(Goal::teach_datum);
+  if (check_datum_.rose(*pins_->check_datum)) touch(Goal::check_datum);
+  if (clear_datum_drift_.rose(*pins_->clear_datum_drift)) {
+    if (const auto why = changer_->clear_datum_drift()) {
+      tell(MessageKind::error, "clear-datum-drift refused: " + *why);
+    }
+  }
   if (continue_.rose(*pins_->continue_)) changer_->operator_continue();
   if (cancel_.rose(*pins_->cancel)) {
     if (changer_->status().probe_cancellable && nml_) {
@@ -156,6 +171,15 @@ void Component::read_operator() {
 
 void Component::teach(const TeachTarget& target) {
   teacher_.teach(*changer_, target, nml_ != nullptr, position());
+}
+
+void Component::touch(TouchRequest::Goal goal) {
+  TouchRequest request;
+  request.goal = goal;
+  if (goal == TouchRequest::Goal::pockets && *pins_->pocket_number > 0) {
+    request.pockets = {*pins_->pocket_number};
+  }
+  changer_->request(request);
 }
 
 void Component::fly(AirAsk::What what) {

@@ -60,6 +60,9 @@ class Component : public Ports {
   void tell(MessageKind kind, const std::string& text) override;
   void ask(const Prompt& prompt) override;
   void save(const ToolState& state) override;
+  void write_found(const std::vector<Found>& found, bool datum) override {
+    accepted_ = Accepted{found, datum};
+  }
   void unexpected(const std::string& state, const std::string& event) override;
 
  private:
@@ -77,6 +80,8 @@ class Component : public Ports {
   void read_executor(std::optional<bool> interpreter_idle);
   void read_operator();
   void teach(const TeachTarget& target);
+  /// A touch press (touch-pockets, teach-datum, check-datum).
+  void touch(TouchRequest::Goal goal);
   /// An air-run press: the sequence `what` flown, or refused in one message.
   void fly(AirAsk::What what);
   /// Where the machine stands, in machine coordinates and config units; nothing without NML.
@@ -112,6 +117,13 @@ class Component : public Ports {
   Edge abort_, clear_, load_, unload_, continue_, cancel_, spindle_refused_;
   Edge teach_pocket_, teach_loading_, teach_safe_, teach_sensor_, measure_all_, verify_;
   Edge air_change_, air_load_, air_unload_, air_verify_;
+  Edge touch_pockets_, teach_datum_, check_datum_, clear_datum_drift_;
+  /// What touching found and the operator accepted, written once the changer is idle.
+  struct Accepted {
+    std::vector<Found> found;
+    bool datum = false;
+  };
+  std::optional<Accepted> accepted_;
   IoCheckDriver io_check_;
 };
 

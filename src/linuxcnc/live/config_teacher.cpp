@@ -7,11 +7,30 @@ namespace fatc::linuxcnc {
 void ConfigTeacher::teach(Changer& changer, const TeachTarget& target, bool linuxcnc_status,
                           const std::optional<Point>& at) {
   const std::string request = "teach " + target_name(target);
-  const std::string refused = request + " refused: ";
   if (const auto why = changer.why_not_teach(linuxcnc_status, at)) {
-    ports_.tell(MessageKind::error, refused + *why);
+    ports_.tell(MessageKind::error, request + " refused: " + *why);
     return;
   }
+  write(changer, request, [&](const std::string& text) {
+    return fatc::teach(text, target, *at, limits_, changer.keepout_lengths());
+  });
+}
+
+void ConfigTeacher::write_found(Changer& changer, const std::vector<Found>& found, bool datum) {
+  const std::string request = datum ? "teach the rack datum" : "teach by touch";
+  std::vector<Taught> taught;
+  for (const Found& each : found) {
+    taught.push_back({{datum ? TeachTarget::Kind::datum : TeachTarget::Kind::pocket, each.pocket},
+                      each.at});
+  }
+  write(changer, request, [&](const std::string& text) {
+    return teach_all(text, taught, limits_, changer.keepout_lengths());
+  });
+}
+
+void ConfigTeacher::write(Changer& changer, const std::string& request,
+                          const std::function<TeachResult(const std::string&)>& make) {
+  const std::string refused = request + " refused: ";
   // Taken before it is read: a --teach at the same time waits its turn, and
   // this one reads what it wrote. Held briefly: the poll loop waits on it.
   std::optional<io::FileWriter> file;
@@ -27,7 +46,7 @@ void ConfigTeacher::teach(Changer& changer, const TeachTarget& target, bool linu
     ports_.tell(MessageKind::error, refused + error);
     return;
   }
-  const TeachResult taught = fatc::teach(*text, target, *at, limits_, changer.keepout_lengths());
+  const TeachResult taught = make(*text);
   if (!taught.text) {
     ports_.tell(MessageKind::error, taught.error);
     return;

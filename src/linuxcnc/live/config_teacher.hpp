@@ -1,6 +1,8 @@
 #pragma once
 
+#include <functional>
 #include <optional>
+#include <vector>
 #include <string>
 
 #include "core/machine/changer.hpp"
@@ -23,8 +25,14 @@ class ConfigTeacher {
   /// position it gives (machine coordinates, config units).
   void teach(Changer& changer, const TeachTarget& target, bool linuxcnc_status,
              const std::optional<Point>& at);
+  /// What touching found and the operator accepted (Ports::write_found): the
+  /// pockets' positions, or the rack datum's (`datum`), all or nothing.
+  void write_found(Changer& changer, const std::vector<Found>& found, bool datum);
 
  private:
+  /// config.json as `make` changes its text, taken by the changer, then written.
+  void write(Changer& changer, const std::string& request,
+             const std::function<TeachResult(const std::string&)>& make);
   std::string config_path_;
   Ports& ports_;
   std::optional<SoftLimits> limits_;

@@ -40,6 +40,7 @@ struct HalPins {
   hal_s32_t* state;
   hal_bit_t* ready;
   hal_bit_t* busy;
+  hal_bit_t* touching;
   hal_bit_t* fault;
   hal_s32_t* tool_in_spindle;
   hal_bit_t* step_request;
@@ -76,6 +77,10 @@ struct HalPins {
   hal_bit_t* air_run_load;
   hal_bit_t* air_run_unload;
   hal_bit_t* air_run_verify;
+  hal_bit_t* touch_pockets;
+  hal_bit_t* teach_datum;
+  hal_bit_t* check_datum;
+  hal_bit_t* clear_datum_drift;
   hal_s32_t* air_from_tool;
   hal_float_t* air_height;
   hal_float_t* air_feed;

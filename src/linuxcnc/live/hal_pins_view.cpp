@@ -62,6 +62,7 @@ void write_status(HalPins& pins, const Status& status, const Changer& changer,
   *pins.probe_in_spindle = status.spindle_probe != 0;
   *pins.fault = status.phase == Phase::fault;
   *pins.busy = status.busy();
+  *pins.touching = status.phase == Phase::touching;
   *pins.tool_in_spindle = changer.tools().spindle;
   *pins.awaiting = static_cast<int>(status.awaiting);
   *pins.step_number = status.step_number;

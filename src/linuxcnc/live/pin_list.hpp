@@ -156,10 +156,13 @@ inline const std::vector<PinDeclaration> kPins = joined({{
   {"state", &HalPins::state, HAL_OUT,
    "0 not ready, 1 idle, 2 changing, 3 loading, 4 unloading, 5 fault, 6 measuring (measure "
    "all), 7 verifying (a dry run through a pocket), 8 chuck (a chuck atom), 9 air run (a "
-   "sequence flown above the rack)"},
+   "sequence flown above the rack), 10 touching (the probe touches the rack)"},
   {"ready", &HalPins::ready, HAL_OUT,
    "idle, able to change tools (not while a release holds the chuck open)"},
   {"busy", &HalPins::busy, HAL_OUT, "a sequence runs"},
+  {"touching", &HalPins::touching, HAL_OUT,
+   "the probe touches the rack (`state` 10): to fatc-spindle-guard.touching, which gives motion "
+   "the probe's input then, not the touch-off sensor's"},
   {"fault", &HalPins::fault, HAL_OUT, "in fault: M6 is refused until `clear-fault`"},
   {"tool-in-spindle", &HalPins::tool_in_spindle, HAL_OUT,
    "what the changer knows is in the spindle"},
@@ -196,9 +199,10 @@ inline const std::vector<PinDeclaration> kPins = joined({{
   {"return-to-xy", &HalPins::return_to_xy, HAL_IN,
    "after M6, go back over the XY where it was called"},
   {"probe-z", &HalPins::probe_z, HAL_IN,
-   "executor: machine Z where the probe move stopped (`motion.analog-out-NN`)"},
+   "executor: the machine coordinate where the probe move stopped, on the step's axis (Z on "
+   "the sensor; X, Y or Z touching a rack feature) (`motion.analog-out-NN`)"},
   {"probe-result", &HalPins::probe_result, HAL_IN,
-   "executor: 1 touched, 0 missed, -1 sensor already tripped (`motion.analog-out-NN`)"},
+   "executor: 1 touched, 0 missed, -1 the probe input already tripped (`motion.analog-out-NN`)"},
   // The operator's buttons, from the GUI panel or any HAL source.
   {"tool-number", &HalPins::tool_number, HAL_IN, "the tool the operator buttons are about"},
   {"load", &HalPins::load, HAL_IN,
@@ -241,6 +245,19 @@ inline const std::vector<PinDeclaration> kPins = joined({{
   {"air-feed", &HalPins::air_feed, HAL_IN,
    "the feed of every move of an air run, units per minute; 0 (the default): the config's "
    "`verify_feed`, else `pocket_feed`"},
+  // The rack found by touch, with the probe in the spindle (rack_touch).
+  {"touch-pockets", &HalPins::touch_pockets, HAL_IN,
+   "rising edge: the probe touches pocket `pocket-number`'s feature (0: every pocket it can), "
+   "shows what it found beside config.json and writes it on `continue` (`state` 10)"},
+  {"teach-datum", &HalPins::teach_datum, HAL_IN,
+   "rising edge: the probe touches the rack datum; on `continue` its position becomes the taught "
+   "one in config.json"},
+  {"check-datum", &HalPins::check_datum, HAL_IN,
+   "rising edge: the drift check: the probe touches the rack datum and compares; beyond "
+   "`rack_touch.drift_tolerance` M6 is refused until `teach-datum` or `clear-datum-drift`"},
+  {"clear-datum-drift", &HalPins::clear_datum_drift, HAL_IN,
+   "rising edge: the operator checked the rack: M6 is allowed again, the changes are counted "
+   "from 0; the pockets keep their positions"},
   {"pocket-served", &HalPins::pocket_served, HAL_OUT,
    "the pocket the sequence under way serves (0 none)"},
   {"measure-all", &HalPins::measure_all, HAL_IN,

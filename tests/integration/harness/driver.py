@@ -538,7 +538,11 @@ def perform(step, result, start):
     def now():
         return time.monotonic() - start
 
-    if step["do"] == "restart":
+    if step["do"] == "kill":
+        # SIGKILL from an operator scenario: mid-flow, as a crash would.
+        result["killed_pid"], killed = kill_component()
+        result["killed_at"] = killed - start
+    elif step["do"] == "restart":
         began = now()
         result["restart"] = restart_component()
         result["restart"]["began"], result["restart"]["done"] = began, now()
@@ -623,6 +627,16 @@ def perform(step, result, start):
              not hal.get_value("iocontrol.0.tool-changed"), 10, "the change handshake to end")
         result.setdefault("programs", {})[step["name"]] = {"began": began, "ended": now(),
                                                            "program": step["program"]}
+    elif step["do"] == "shift_rack":
+        # The simulated rack bumped (config/sim/sim_rack.hal): moved by x, y, z
+        # from where its HAL file set it up.
+        for axis in "xyz":
+            hal.set_p(RACK + "shift-" + axis, repr(float(step.get(axis, 0.0))))
+        result.setdefault("shifts", []).append({"t": now(), "shift": [step.get(a, 0.0) for a in "xyz"]})
+    elif step["do"] == "rack_truth":
+        result.setdefault("rack_truth", {})[step["name"]] = dict(rack_truth(), t=now())
+    elif step["do"] == "touch":
+        result.setdefault("touches", {})[step["name"]] = touch(step, wait)
     elif step["do"] == "status_lock_lost":
         # A reader of task's status dies holding its lock (NML_BUFFER_KEYS):
         # LinuxCNC stalls until it restarts, so this ends its run; nothing
@@ -642,6 +656,81 @@ def perform(step, result, start):
         result["answered_at"] = now()
     else:
         raise ValueError("unknown step %s" % step)
+
+
+RACK = "fatc-sim-rack."  # the simulated rack a touch probe touches (config/sim/sim_rack.hal)
+
+
+def rack_truth():
+    """Where the simulated rack is: its pins as set, and what they make of it
+    (each bore's centre and the top face, the shift added), in machine units."""
+    pins = {pin: hal.get_value(RACK + pin) for pin in (
+        "count", "bore-diameter", "top-z", "bottom-z", "x-min", "x-max", "y-min", "y-max",
+        "shift-x", "shift-y", "shift-z", "probe-length", "stylus-radius", "touching", "out")}
+    bores = [[hal.get_value(RACK + "pocket-x-%d" % k) + pins["shift-x"],
+              hal.get_value(RACK + "pocket-y-%d" % k) + pins["shift-y"]] for k in range(pins["count"])]
+    return {"pins": pins, "bores": bores, "top_z": pins["top-z"] + pins["shift-z"]}
+
+
+def parameters(*numbers):
+    """The interpreter's numbered parameters, as LinuxCNC prints them (DEBUG)."""
+    said = len(messages)
+    command.mode(linuxcnc.MODE_MDI)
+    command.wait_complete()
+    command.mdi("(DEBUG,fatc-parameters %s)" % " ".join("#%d" % n for n in numbers))
+    command.wait_complete(10)
+    wait_for(lambda: any(m.startswith("fatc-parameters") for m in messages[said:]), 10,
+             "the parameters " + " ".join(map(str, numbers)))
+    line = [m for m in messages[said:] if m.startswith("fatc-parameters")][0]
+    return dict(zip(numbers, map(float, line.split()[1:])))
+
+
+def touch(step, wait):
+    """A touch as a probing flow makes one, on `axis` toward `to` from where the
+    spindle stands, by MDI in the work coordinates in effect: G38.3 at the seek
+    feed, back off by the backoff, G38.3 again at the latch feed (config.json's
+    probe_seek_feed, probe_latch_feed, probe_backoff unless the step says),
+    then back where it started. What LinuxCNC reports after each G38.3:
+    #5061-#5063, #5070 and its probed position."""
+    config = read_json(config_path())
+    seek = step.get("seek", config.get("probe_seek_feed"))
+    latch = step.get("latch", config.get("probe_latch_feed"))
+    backoff = step.get("backoff", config.get("probe_backoff"))
+    axis = "xyz".index(step["axis"].lower())
+    letter = step["axis"].upper()
+    stat.poll()
+    begin = stat.position[axis] - stat.g5x_offset[axis] - stat.g92_offset[axis] - stat.tool_offset[axis]
+    toward = 1.0 if step["to"] > begin else -1.0
+
+    def probe(target, feed):
+        began, seen = time.monotonic(), []
+
+        def ended():  # task takes the line before the interpreter says it runs
+            if stat.interp_state != linuxcnc.INTERP_IDLE:
+                seen.append(True)
+            return stat.interp_state == linuxcnc.INTERP_IDLE and (seen or time.monotonic() - began > 2.0)
+        command.mdi("G38.3 %s%.4f F%.1f" % (letter, target, feed))
+        command.wait_complete(120)
+        wait(ended, 120, "the G38.3 to end")
+        found = parameters(5061, 5062, 5063, 5070)
+        stat.poll()
+        return {"feed": feed, "to": target, "tripped": found[5070] == 1.0,
+                "probed": [found[5061], found[5062], found[5063]],
+                "stat_probed": list(stat.probed_position[:3]), "stat_tripped": bool(stat.probe_tripped),
+                "probe_input": hal.get_value("motion.probe-input"),
+                "rack_touching": hal.get_value(RACK + "touching")}
+
+    command.mode(linuxcnc.MODE_MDI)
+    command.wait_complete()
+    done = {"axis": letter, "from": begin, "backoff": backoff, "seek": probe(step["to"], seek)}
+    if done["seek"]["tripped"]:
+        trip = done["seek"]["probed"][axis]
+        command.mdi("G1 %s%.4f F%.1f" % (letter, trip - toward * backoff, seek))
+        command.wait_complete(60)
+        done["latch"] = probe(trip + toward * 2 * backoff, latch)
+    command.mdi("G0 %s%.4f" % (letter, begin))
+    command.wait_complete(60)
+    return done
 
 
 def run_operator(scenario):

@@ -48,6 +48,7 @@ sed -e "s|^DISPLAY = .*|DISPLAY = $display|" \
     -e "s|^CONFIG = .*|CONFIG = $work/config.json|" \
     -e "s|^HALFILE = touchoff_sensor.hal|HALFILE = $root/config/sim/touchoff_sensor.hal|" \
     -e "s|^HALFILE = spindle_sim.hal|HALFILE = $root/config/sim/spindle_sim.hal|" \
+    -e "s|^HALFILE = sim_rack.hal|HALFILE = $root/config/sim/sim_rack.hal|" \
     "${FATC_SIM_INI:-$root/config/sim/fixed_atc_sim.ini}" > "$work/sim.ini"
 if [ -n "${FATC_INI_EXTRA:-}" ]; then
   sed -i "s|^RETURN_TO_XY = .*|$FATC_INI_EXTRA|" "$work/sim.ini"

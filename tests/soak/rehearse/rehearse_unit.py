@@ -86,6 +86,8 @@ class Translation(Machine):
         self.assertEqual(sim.find("FIXED_ATC_PROBE", "MACHINE_ON_SIGNAL"), "sample:enable")
         self.assertNotIn("gmoccapy", " ".join(sim.findall("HAL", "HALFILE")))
         self.assertIn(os.path.join(self.folder, "rack_sim.hal"), sim.findall("HAL", "HALFILE"))
+        # config/sim's plate for a touch probe sits where the sample rack is, not theirs.
+        self.assertNotIn("sim_rack.hal", " ".join(sim.findall("HAL", "HALFILE")))
         # The setter under probe_limit (X 60 +- 5), a quarter of the way up to loading.
         self.assertEqual(float(sim.find("FIXED_ATC_PROBE", "SIM_SENSOR_Z")), -70.0)
         self.assertEqual(float(sim.find("FIXED_ATC_PROBE", "SIM_SENSOR_XMIN")), 55.0)

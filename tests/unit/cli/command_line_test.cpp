@@ -144,7 +144,7 @@ TEST(CommandLine, shouldTakeToolNumbersAsDigitsOnly) {
                                    "pocket: 3", "pocket:1e1"}) {
     EXPECT_FALSE(parse_options({"--teach", pocket, "--at", "1,2,3", "--config", "c.json"}, error))
         << pocket;
-    EXPECT_EQ(error, "--teach: expected pocket:N, loading, safe or sensor, got " + quote(pocket));
+    EXPECT_EQ(error, "--teach: expected pocket:N, loading, safe, sensor or datum, got " + quote(pocket));
   }
 }
 

@@ -263,6 +263,36 @@ TEST_F(Lint, shouldReportAStateFileThatRecordsACutOffSequence) {
   EXPECT_LINE(r, "after_fault.ngc: 2 tool changes (M6), 0 M61, 1 problem, 0 not known\n");
 }
 
+TEST_F(Lint, shouldNameTheChangeWhereTheRackDatumCheckFallsDue) {
+  const std::string config = config_with(
+      "rack_touch", {{"feature", "bore"}, {"stylus_radius", 1.0}, {"bore_diameter", 30.0},
+                     {"top", {{"x", 25.0}, {"y", 0.0}}}, {"pocket_above_top", 20.0},
+                     {"depth", 5.0}, {"datum", {{"pocket", 1}}}, {"check_every_changes", 3}});
+  const auto loaded = io::load_config_file(config);
+  ASSERT_TRUE(loaded.config) << loaded.errors.front();
+  ToolState tools = ToolState::fresh(*loaded.config);
+  tools.lengths = {{1, 21.0}, {2, 22.0}, {3, 23.0}};
+  tools.datum.changes = 1;
+  io::save_state_file(path("due.state"), tools, io::kCommandLineWait);
+  const LintRun r = run({"--lint", write("due.ngc", "T1 M6\nT2 M6\nT3 M6\nT1 M6\nM2\n"),
+                         "--config", config, "--state", path("due.state")});
+  EXPECT_EQ(r.code, 1) << r.out << r.err;
+  EXPECT_LINE(r, "due.ngc: line 3: M6 T3: the rack datum check falls due here, 3 changes after "
+                 "the last (1 in the state file, rack_touch.check_every_changes 3): the changer "
+                 "refuses it; run check-datum before the program\n");
+  EXPECT_LINE(r, "1 problem");
+
+  tools.datum.changes = 0;
+  tools.datum.drift = "the rack datum is 0.62 mm off in X (tolerance 0.10): re-teach or check the rack";
+  io::save_state_file(path("drift.state"), tools, io::kCommandLineWait);
+  const LintRun moved = run({"--lint", write("moved.ngc", "T1 M6\nM2\n"), "--config", config,
+                             "--state", path("drift.state")});
+  EXPECT_LINE(moved, "moved.ngc: line 1: M6 T1: the state file " + path("drift.state") +
+                         " says the rack datum is 0.62 mm off in X (tolerance 0.10): re-teach or "
+                         "check the rack: the changer refuses M6 until teach-datum or "
+                         "clear-datum-drift\n");
+}
+
 TEST_F(Lint, shouldAcceptAnUnmeasuredToolWhenTheChangeMeasuresIt) {
   const LintRun r = run({"--lint", write("measure.ngc", "T1 M6\nM2\n"), "--config",
                          config_with("probe_after_change", "measure"), "--state", no_state()});

@@ -102,7 +102,8 @@ TEST(OperatorArguments, shouldRefuseBadInputWithOneLineSayingWhatIsExpected) {
   } cases[] = {
       {{"--operator", "lod:3", "--ini", "m.ini"},
        "--operator: expected load:T, unload:T, continue, cancel, clear-fault, measure-all, "
-       "measure-all:never, measure-all:program, verify:P, io or io:OUTPUT, got \"lod:3\""},
+       "measure-all:never, measure-all:program, verify:P, io, io:OUTPUT, touch, touch:P, "
+       "teach-datum, check-datum or clear-datum-drift, got \"lod:3\""},
       {{"--operator", "load:0", "--ini", "m.ini"},
        "--operator load: expected load:N, N a tool number above 0, got \"load:0\""},
       {{"--operator", "load:x", "--ini", "m.ini"},
@@ -111,12 +112,20 @@ TEST(OperatorArguments, shouldRefuseBadInputWithOneLineSayingWhatIsExpected) {
        "--operator load: expected load:N, N a tool number above 0, got \"load\""},
       {{"--operator", "verify:-1", "--ini", "m.ini"},
        "--operator verify: expected verify:N, N a pocket number above 0, got \"verify:-1\""},
+      {{"--operator", "touch:0", "--ini", "m.ini"},
+       "--operator touch: expected touch:N, N a pocket number above 0, got \"touch:0\""},
+      {{"--operator", "check-datum:1", "--ini", "m.ini"},
+       "--operator: expected load:T, unload:T, continue, cancel, clear-fault, measure-all, "
+       "measure-all:never, measure-all:program, verify:P, io, io:OUTPUT, touch, touch:P, "
+       "teach-datum, check-datum or clear-datum-drift, got \"check-datum:1\""},
       {{"--operator", "continue:2", "--ini", "m.ini"},
        "--operator: expected load:T, unload:T, continue, cancel, clear-fault, measure-all, "
-       "measure-all:never, measure-all:program, verify:P, io or io:OUTPUT, got \"continue:2\""},
+       "measure-all:never, measure-all:program, verify:P, io, io:OUTPUT, touch, touch:P, "
+       "teach-datum, check-datum or clear-datum-drift, got \"continue:2\""},
       {{"--operator", "measure-all:some", "--ini", "m.ini"},
        "--operator: expected load:T, unload:T, continue, cancel, clear-fault, measure-all, "
-       "measure-all:never, measure-all:program, verify:P, io or io:OUTPUT, got \"measure-all:some\""},
+       "measure-all:never, measure-all:program, verify:P, io, io:OUTPUT, touch, touch:P, "
+       "teach-datum, check-datum or clear-datum-drift, got \"measure-all:some\""},
       {{"--operator", "load:3"},
        "--operator needs --ini FILE (the machine's INI, whose [FIXED_ATC_PROBE]STATE names the "
        "status file) or --state FILE"},

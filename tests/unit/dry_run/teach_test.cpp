@@ -324,9 +324,9 @@ TEST_F(TeachCli, shouldRefuseASymlinkedConfigWritingNothing) {
 
 TEST_F(TeachCli, shouldExitTwoOnBadArgumentsAndUnreadableFiles) {
   EXPECT_EQ(run({"--teach", "pocket:x", "--at", "1,2,3", "--config", config_}).err,
-            "--teach: expected pocket:N, loading, safe or sensor, got \"pocket:x\"");
+            "--teach: expected pocket:N, loading, safe, sensor or datum, got \"pocket:x\"");
   EXPECT_EQ(run({"--teach", "", "--at", "1,2,3", "--config", config_}).err,
-            "--teach: expected pocket:N, loading, safe or sensor, got \"\"");
+            "--teach: expected pocket:N, loading, safe, sensor or datum, got \"\"");
   EXPECT_EQ(run({"--teach", "safe", "--config", config_}).err,
             "--teach needs --at X,Y,Z (the machine position, G53)");
   // Blanks around a number are a machinist's ( 1,2,3); the rest is refused naming --at.

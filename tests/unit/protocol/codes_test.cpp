@@ -66,6 +66,7 @@ const Codes kPhases = {
     {"verifying", {"Phase::verifying", static_cast<int>(Phase::verifying)}},
     {"chuck", {"Phase::chuck", static_cast<int>(Phase::chuck)}},
     {"air_run", {"Phase::air_run", static_cast<int>(Phase::air_run)}},
+    {"touching", {"Phase::touching", static_cast<int>(Phase::touching)}},
 };
 const Codes kAwaiting = {
     {"nothing", {"Awaiting::nothing", static_cast<int>(Awaiting::nothing)}},
@@ -196,7 +197,7 @@ TEST(Codes, shouldMatchTheCoreWhenTheExecutorNamesAStepKindOrAxes) {
   // Every step kind: the executor must know each one the component can publish.
   check_codes(kExecutor, kNgc,
               {{"step_", &kStepKinds, all_of(kStepKinds)},
-               {"axes_", &kAxes, {"z", "xy"}},
+               {"axes_", &kAxes, {"x", "y", "z", "xy"}},
                {"via_", &kVia, {"across"}}});
 }
 

@@ -76,4 +76,27 @@ std::optional<std::string> why_not_reconfigure(const Context& ctx, bool idle,
   return why_chuck_held_open(ctx);
 }
 
+std::optional<std::string> why_datum_refuses(const Context& ctx, int tool) {
+  if (!ctx.config.rack_touch) return std::nullopt;
+  const RackTouch& touch = *ctx.config.rack_touch;
+  if (!ctx.tools.datum.drift.empty()) {
+    return ctx.tools.datum.drift +
+           "; M6 is refused until the datum is taught again (teach-datum) or the operator clears "
+           "it (clear-datum-drift)";
+  }
+  if (tool != 0 && ctx.config.is_probe(tool)) return std::nullopt;
+  const int every = touch.check_every_changes;
+  if (every > 0 && ctx.tools.datum.changes >= every) {
+    return "the rack datum check is due: " + std::to_string(ctx.tools.datum.changes) +
+           " changes since the last (rack_touch.check_every_changes " + std::to_string(every) +
+           "); put the probe in and run check-datum";
+  }
+  if (touch.check_at_start && !ctx.datum_checked) {
+    return std::string(
+        "the rack datum check is due at start (rack_touch.check_at_start): put the probe in and "
+        "run check-datum");
+  }
+  return std::nullopt;
+}
+
 }  // namespace fatc

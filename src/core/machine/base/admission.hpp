@@ -23,6 +23,11 @@ std::optional<std::string> why_spindle_turning(const Context& ctx);
 /// Every sequence opens the chuck: no air, no start (the legs check again
 /// before each opening).
 std::optional<std::string> why_no_air(const Context& ctx);
+/// The rack datum (rack_touch) refuses a change to `tool`: its last check
+/// found the rack moved, or a check is due (every check_every_changes, or
+/// once each start with check_at_start) and `tool` is not the probe that
+/// would make it.
+std::optional<std::string> why_datum_refuses(const Context& ctx, int tool);
 /// The tool in the spindle must be able to go home before anything else; a
 /// manual tool only can when M6 may hand it out at `loading` (`hand_out`).
 std::optional<std::string> why_spindle_cannot_be_emptied(const Context& ctx, bool hand_out);

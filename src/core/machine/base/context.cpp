@@ -34,7 +34,8 @@ void Context::publish(const Step& next) {
     motion.position = along;
     motion.known_axes = known_along;
   } else if (next.kind == StepKind::probe) {
-    motion.known_axes &= ~static_cast<unsigned>(axis_z);  // the probe stops wherever it touches
+    // The probe stops wherever it touches, on its axis (the tool setter's: Z).
+    motion.known_axes &= ~(next.axes != 0 ? next.axes : static_cast<unsigned>(axis_z));
   } else if (next.kind == StepKind::wait_operator || next.kind == StepKind::fail) {
     motion.known_axes = 0;  // the operator may jog; a failed sequence may stop anywhere
   }

@@ -81,6 +81,9 @@ struct Activity {
   /// Why the changer is in fault: a flow's failure (FlowFailed), a refused
   /// step, a failed check, an abort.
   std::string fault_reason;
+  /// Why a flow stopped early of its own, not as a fault (a touch that found
+  /// nothing): its end makes the executor fail saying so.
+  std::string stopped;
 };
 
 /// Events a part raises in the machine, each queued behind the current event
@@ -116,6 +119,9 @@ class Context {
   Activity activity;
   Raise raise;
   StepGate steps;  ///< step by step: what waits for Continue before it goes out
+  /// The rack datum was checked or taught since the component started
+  /// (rack_touch.check_at_start asks for it once each start).
+  bool datum_checked = false;
 
   /// A taught config: the changer works with it from the next request on.
   void take_config(Config taught) {

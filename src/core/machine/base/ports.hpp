@@ -4,6 +4,7 @@
 
 #include "../../motion/step.hpp"
 #include "../../rack/tool_state.hpp"
+#include "../../rack/touch.hpp"
 #include "prompt.hpp"
 
 namespace fatc {
@@ -35,6 +36,10 @@ class Ports {
   virtual void ask(const Prompt& prompt) = 0;
   /// Called after every change of the tool state, to persist it.
   virtual void save(const ToolState& state) = 0;
+  /// The operator accepted what touching found: config.json takes it through
+  /// the teach path (validated, backed up) once the changer is idle; `datum`:
+  /// the rack datum's taught position, else the pockets'.
+  virtual void write_found(const std::vector<Found>& found, bool datum) = 0;
   /// An event arrived that no state expects: a bug. The machine faults after this.
   virtual void unexpected(const std::string& state, const std::string& event) = 0;
 };

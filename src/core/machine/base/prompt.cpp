@@ -59,6 +59,10 @@ std::string words(const Prompt& prompt) {
                   ? waypoint_words(prompt.waypoint, prompt.at, prompt.known_axes)
                   : prompt.waypoint) +
              ". Press Continue to make it (Cancel aborts the sequence)";
+    case Prompt::Kind::touch_found:
+      return prompt.sequence + " found: " + prompt.action +
+             ". Press Continue to write this into config.json (its backup is kept), Cancel to "
+             "write nothing";
   }
   return "";
 }

@@ -18,6 +18,7 @@ struct Prompt {
     jog_to_sensor,  ///< `tool` is in: jog closer to the touch-off sensor if wanted, then probe
     verify_stop,    ///< a dry run of `pocket` holds at `stop` of `stops`, at `waypoint`
     step,           ///< step by step: step `stop` of `sequence`, `action` `waypoint` at `at`
+    touch_found,    ///< `sequence` touched: `action` is what it found, old beside new; write it?
   };
   Kind kind = Kind::none;
   int tool = 0;

@@ -17,6 +17,7 @@ enum class Phase {
   verifying = 7,  ///< a dry run through one pocket's approach
   chuck = 8,      ///< a chuck atom from G-code releases or clamps the chuck
   air_run = 9,    ///< a sequence flown above the rack, nothing taken or recorded
+  touching = 10,  ///< the probe in the spindle touches the rack: teaching by touch, the datum
 };
 
 /// The phase in words ("changing"), as the status file shows it.

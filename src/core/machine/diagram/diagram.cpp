@@ -7,6 +7,7 @@
 #include "../flows/chuck_flow.hpp"
 #include "../flows/load_flow.hpp"
 #include "../flows/measure_all_flow.hpp"
+#include "../flows/touch_flow.hpp"
 #include "../flows/unload_flow.hpp"
 #include "../flows/verify_flow.hpp"
 #include "../machine.hpp"

@@ -19,6 +19,7 @@ namespace fatc::machine {
 struct ChangeFlow_;
 struct AlreadyInSpindle;
 struct StopProgram;
+struct AnswerChangeDone;
 
 /// M6 (change_flow.hpp).
 struct Change : FlowKind {
@@ -30,6 +31,7 @@ struct Change : FlowKind {
   using answered_at_once = AlreadyInSpindle;
   static constexpr bool may_fail = true;
   using when_cancelled = StopProgram;
+  using when_finished = AnswerChangeDone;
   static std::string name(const ToolChange& e);
   static std::optional<std::string> why_not(const Context& c, const ToolChange& e);
   static std::string busy(const Context& c);

@@ -15,6 +15,7 @@ std::optional<std::string> why_not_change(const Context& ctx, int tool) {
   if (tool < 0) return "T" + std::to_string(tool) + " is not a tool number";
   if (auto busy = why_not_busy(ctx)) return busy;
   if (tool == ctx.tools.spindle) return std::nullopt;
+  if (auto datum = why_datum_refuses(ctx, tool)) return datum;
   if (auto air = why_no_air(ctx)) return air;
   const auto home = ctx.tools.home_of(tool);
   if (tool != 0 && !home && !ctx.config.manual_tools) {

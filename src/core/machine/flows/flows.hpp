@@ -19,6 +19,7 @@
 #include "chuck_atom.hpp"
 #include "load.hpp"
 #include "measure_all.hpp"
+#include "touch.hpp"
 #include "unload.hpp"
 #include "verify.hpp"
 
@@ -34,7 +35,7 @@ struct FlowList {
   using requests = std::variant<typename Kinds::request...>;
 };
 /// Every flow, in the order Operating lists them.
-using Flows = FlowList<Change, Load, Unload, MeasureAll, Verify, ChuckAtom, AirRun>;
+using Flows = FlowList<Change, Load, Unload, MeasureAll, Verify, ChuckAtom, AirRun, TouchRack>;
 /// A request of any flow (Changer::request).
 using FlowRequest = Flows::requests;
 

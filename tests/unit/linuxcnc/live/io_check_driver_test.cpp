@@ -46,6 +46,7 @@ struct Said : Ports {
   void tell(MessageKind, const std::string& text) override { lines.push_back(text); }
   void ask(const Prompt&) override {}
   void save(const ToolState&) override {}
+  void write_found(const std::vector<Found>&, bool) override {}
   void unexpected(const std::string&, const std::string&) override {}
 };
 
