@@ -142,7 +142,7 @@ def main():
     if r.get("measure_all_sensitive_idle") is not True:
         fail("the Measure all button on screen once the program opened: sensitive %s" % r.get("measure_all_sensitive_idle"))
     ok("Measure all on screen and enabled while the changer is idle (every tool), off during a flow")
-    clicks = [s["what"] for s in r["steps"] if s["what"].startswith("clicked")]
+    clicks = [s["what"] for s in r["steps"] if s["what"].startswith(("clicked", "pressed"))]
     ok("clicked in %s: %s" % (r["gui"], ", ".join(c[8:] for c in clicks)))
 
     expect_rack(r, "rack_start", "at the start", {})

@@ -88,9 +88,24 @@ def sensitive(name):
 
 
 def click(name, node=None):
-    """A left click in the middle of the button (or of `node`), through the X server."""
-    click_at(node or button(name))
-    note("clicked " + name)
+    """A left click in the middle of the button (or of `node`), through the X
+    server; a button below the fold of the panel's scrolled window (QtDragon's
+    USER page gives it less room than it asks) is pressed over AT-SPI instead,
+    as the keyboard would."""
+    node = node or button(name)
+    if in_view(node):
+        click_at(node)
+        note("clicked " + name)
+    else:
+        node.call("org.a11y.atspi.Action", "DoAction", GLib.Variant("(i)", (0,)))
+        note("pressed " + name)
+
+
+def in_view(node):
+    """`node` lies wholly inside the view of the panel's scrolled window."""
+    pane_x, pane_y, pane_w, pane_h = panel_plug().find("scroll pane").extents()
+    x, y, w, h = node.extents()
+    return h > 0 and pane_y <= y and y + h <= pane_y + pane_h
 
 
 def said_or_shown(words, said):
@@ -211,10 +226,8 @@ def show_page(name):
     show the tabs (QtDragon's USER page: they lie below the fold of its
     scrolled window), the tab is selected over AT-SPI instead, as the
     keyboard would."""
-    pane_x, pane_y, pane_w, pane_h = panel_plug().find("scroll pane").extents()
     tab = panel_plug().find("page tab", name)
-    x, y, w, h = tab.extents()
-    if h > 0 and pane_y <= y and y + h <= pane_y + pane_h:
+    if in_view(tab):
         click(name, tab)
         return
     tabs = panel_plug().find("page tab list")
