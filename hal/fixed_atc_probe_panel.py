@@ -5,7 +5,10 @@ component's rising-edge inputs want, shows what the changer reports in the
 machinist's words, and enables a button only when the component says it can
 act. The Setup page's Teach buttons pulse the component's teach pins, which
 write the machine position into config.json; Verify pocket pulses
-verify-pocket, a dry run through the pocket's approach. Measure all pulses
+verify-pocket, a dry run through the pocket's approach. The Touch page pulses
+the touch pins (the probe in the spindle finds the pockets and the rack
+datum); the status file's `datum`, why the rack datum refuses M6, is shown
+in red on top. Measure all pulses
 measure-all with the chosen measure-which and shows the batch's progress. The rack (each pocket, its tool, the tool's length, its approach) comes
 from the component's state file and config, the paths named in
 [FIXED_ATC_PROBE] of the INI; the program loaded in the GUI is checked with
@@ -28,7 +31,10 @@ AIR_BUTTONS = ("air-run-change", "air-run-load", "air-run-unload", "air-run-veri
 # The I/O page: each drives one output once (the component's io-check-* pins).
 IO_BUTTONS = ("io-check-chuck-release", "io-check-chuck-clamp", "io-check-cover-open",
               "io-check-cover-close", "io-check-air-blast")
-PAGE_BUTTONS = TEACH_BUTTONS + IO_BUTTONS + AIR_BUTTONS
+# The Touch page: the probe in the spindle touches the rack; config.json is
+# written only at the Continue of the prompt that shows what was found.
+TOUCH_BUTTONS = ("touch-pockets", "teach-datum", "check-datum", "clear-datum-drift")
+PAGE_BUTTONS = TEACH_BUTTONS + IO_BUTTONS + AIR_BUTTONS + TOUCH_BUTTONS
 BUTTONS = OPERATOR_BUTTONS + PAGE_BUTTONS
 # The component polls every 20 ms at most: high and low phases it cannot miss.
 PULSE_MS = 100
@@ -345,6 +351,8 @@ class Handler:
             "Teach pocket %d" % pocket if pocket > 0 else "Teach pocket")
         self.builder.get_object("verify-pocket").set_label(
             "Verify pocket %d" % pocket if pocket > 0 else "Verify pocket")
+        self.builder.get_object("touch-pockets").set_label(
+            "Touch pocket %d" % pocket if pocket > 0 else "Touch all pockets")
 
     def on_measure_which_changed(self, combo):
         self.comp["measure-which"] = int(combo.get_active_id() or MEASURE_EVERY)
@@ -418,6 +426,10 @@ class Handler:
         else:
             get("step_words").set_text(describe_awaiting(c["awaiting"], c["step-kind"], c["step-x"],
                                                          c["step-y"], c["step-z"], c["units-inch"]))
+        # Why M6 is refused, on the first page: a drift found or a check due.
+        datum = (status or {}).get("datum") or ""
+        get("datum_words").set_text("M6 refused: " + datum if datum else " ")
+        get("datum_words").set_visible(bool(datum))
         self.show_recovery(state == PHASE_FAULT)
         get("spindle_tool").set_text("T%d" % c["tool-in-spindle"] if c["tool-in-spindle"] else "empty")
         length = c["last-length"]
@@ -444,6 +456,10 @@ class Handler:
         flies = accepting and c["air-height"] > 0
         enabled.update({"air-run-change": flies and wanted, "air-run-load": flies and wanted,
                         "air-run-unload": flies and wanted, "air-run-verify": flies and pocket})
+        # Each touch moves the machine: only when Load could start. Clear datum
+        # only while the datum refuses M6: otherwise the component has nothing to clear.
+        enabled.update({"touch-pockets": accepting, "teach-datum": accepting,
+                        "check-datum": accepting, "clear-datum-drift": accepting and bool(datum)})
         enabled.update(self.show_io_check(status))
         for name, on in enabled.items():
             get(name).set_sensitive(bool(on))

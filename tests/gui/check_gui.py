@@ -6,7 +6,8 @@ each stage, the prompt the panel shows (and the GUI, in its own way), the
 rack page as the panel showed it at each stage, the measured length in
 LinuxCNC's tool table, and the screenshots (the panel on the screen,
 inside the GUI's window); in AXIS also the program page's preflight of the
-program opened in AXIS and Teach loading.
+program opened in AXIS and Teach loading; in AXIS and QtDragon the I/O page,
+the rack datum's line and the Touch page's refusal of Check datum.
    check_gui.py RESULTS.json"""
 import json
 import os
@@ -141,7 +142,7 @@ def main():
     if r.get("measure_all_sensitive_idle") is not True:
         fail("the Measure all button on screen once the program opened: sensitive %s" % r.get("measure_all_sensitive_idle"))
     ok("Measure all on screen and enabled while the changer is idle (every tool), off during a flow")
-    clicks = [s["what"] for s in r["steps"] if s["what"].startswith("clicked")]
+    clicks = [s["what"] for s in r["steps"] if s["what"].startswith(("clicked", "pressed"))]
     ok("clicked in %s: %s" % (r["gui"], ", ".join(c[8:] for c in clicks)))
 
     expect_rack(r, "rack_start", "at the start", {})
@@ -186,11 +187,46 @@ def main():
         fail("the I/O buttons' sensitivity is %s" % r["io_sensitive"])
     if io:
         ok("the I/O buttons enabled as the component allows them: %s" % r["io_sensitive"])
+    if r.get("touch_checked"):
+        touch_page(r)
     expect_on_screen(r)
-    wanted = (4 if axis else 2) + (1 if io else 0)
+    wanted = (4 if axis else 2) + (1 if io else 0) + (1 if r.get("touch_checked") else 0)
     if len(r["screenshots"]) != wanted:
         fail("expected %d screenshots, got %d" % (wanted, len(r["screenshots"])))
     ok("the panel wholly on the screen%s in every screenshot" % ("" if axis else " and inside %s's window" % r["gui"]))
+
+
+def touch_page(r):
+    """The rack datum's line and the Touch page with the spindle empty. The
+    config of the run says whether the datum check was due at start
+    (rack_touch.check_at_start): then M6 is refused, the panel says why in red
+    and Clear datum is enabled; else the line is hidden, Clear datum not."""
+    due = r["config_rack_touch"].get("check_at_start", False)
+    datum = r["status_datum"]
+    if due != datum.startswith("the rack datum check is due at start (rack_touch.check_at_start)"):
+        fail("the status file's datum is %r; check_at_start is %s" % (datum, due))
+    line = r["datum_line"]
+    if not due and line is not None:
+        fail("the rack datum's line shows %s while the datum refuses nothing" % line)
+    if due:
+        if not line or line["text"] != "M6 refused: " + datum:
+            fail("the rack datum's line shows %s, expected 'M6 refused: %s'" % (line, datum))
+        # The .ui's #c62828, as ATK gives a Pango colour: 16 bits per channel.
+        if line["attributes"].get("fg-color") != "50886,10280,10280":
+            fail("the rack datum's line is not red: its attributes are %s" % line["attributes"])
+        ok("the first page says in red %r" % line["text"])
+    else:
+        ok("the rack datum refuses nothing: its line is hidden")
+    wanted = {"Touch all pockets": True, "Teach datum": True, "Check datum": True, "Clear datum": due}
+    if r["touch_sensitive"] != wanted:
+        fail("the Touch page's buttons' sensitivity is %s, expected %s" % (r["touch_sensitive"], wanted))
+    ok("the Touch page's buttons enabled: %s" % r["touch_sensitive"])
+    shown = r.get("check_datum_shown")
+    expected = ("checking the rack datum refused: the spindle is empty: put the probe "
+                "(a tool of \"kind\": \"probe\") in the spindle first")
+    if not shown or shown[0] != expected:
+        fail("after Check datum with the spindle empty the panel shows %r, expected %r" % (shown, expected))
+    ok("Check datum with the spindle empty: the panel shows %r" % shown[0])
 
 
 def program_and_setup(r):

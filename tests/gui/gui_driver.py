@@ -15,7 +15,9 @@ is in screens.py.
 
 In AXIS the whole operator run: unload and load tool 4, the program page
 (a program opened with axis-remote), the Setup page's Teach loading. In the
-others the part that proves the embedding: the same unload and load."""
+others the part that proves the embedding: the same unload and load. AXIS
+and QtDragon also look at the I/O page, and at the Touch page and the rack
+datum's line on the first page (Check datum pressed with the spindle empty)."""
 import json
 import os
 import subprocess
@@ -40,6 +42,10 @@ PANEL_PINS = ["load-enabled", "unload-enabled", "continue-enabled", "cancel-enab
 
 # The GUIs whose run looks at the I/O page too (the issue asks for AXIS and QtDragon).
 IO_PAGE_GUIS = ("axis", "qtdragon")
+# And at the Touch page and the rack datum's line (issue 45); QtDragon's config
+# makes the datum check due at start (tests/gui/CMakeLists.txt).
+TOUCH_PAGE_GUIS = ("axis", "qtdragon")
+TOUCH_BUTTONS = ("Touch all pockets", "Teach datum", "Check datum", "Clear datum")
 
 result = {"steps": [], "messages": [], "error": None, "screenshots": []}
 # The GUI LinuxCNC runs ([DISPLAY]DISPLAY): its name and how it is met.
@@ -82,9 +88,24 @@ def sensitive(name):
 
 
 def click(name, node=None):
-    """A left click in the middle of the button (or of `node`), through the X server."""
-    click_at(node or button(name))
-    note("clicked " + name)
+    """A left click in the middle of the button (or of `node`), through the X
+    server; a button below the fold of the panel's scrolled window (QtDragon's
+    USER page gives it less room than it asks) is pressed over AT-SPI instead,
+    as the keyboard would."""
+    node = node or button(name)
+    if in_view(node):
+        click_at(node)
+        note("clicked " + name)
+    else:
+        node.call("org.a11y.atspi.Action", "DoAction", GLib.Variant("(i)", (0,)))
+        note("pressed " + name)
+
+
+def in_view(node):
+    """`node` lies wholly inside the view of the panel's scrolled window."""
+    pane_x, pane_y, pane_w, pane_h = panel_plug().find("scroll pane").extents()
+    x, y, w, h = node.extents()
+    return h > 0 and pane_y <= y and y + h <= pane_y + pane_h
 
 
 def said_or_shown(words, said):
@@ -205,10 +226,8 @@ def show_page(name):
     show the tabs (QtDragon's USER page: they lie below the fold of its
     scrolled window), the tab is selected over AT-SPI instead, as the
     keyboard would."""
-    pane_x, pane_y, pane_w, pane_h = panel_plug().find("scroll pane").extents()
     tab = panel_plug().find("page tab", name)
-    x, y, w, h = tab.extents()
-    if h > 0 and pane_y <= y and y + h <= pane_y + pane_h:
+    if in_view(tab):
         click(name, tab)
         return
     tabs = panel_plug().find("page tab list")
@@ -293,6 +312,9 @@ def run():
     result["io_checked"] = gui() in IO_PAGE_GUIS
     if result["io_checked"]:
         io_page()
+    result["touch_checked"] = gui() in TOUCH_PAGE_GUIS
+    if result["touch_checked"]:
+        touch_page()
     if gui() == "axis":
         program_and_setup()
     result["tool_table_file"] = open(os.path.join(os.getcwd(), "sim.tbl")).read()
@@ -310,6 +332,41 @@ def io_page():
     result["io_sensitive"] = {b: sensitive(b) for b in ("Release chuck", "Clamp chuck", "Open cover")}
     screenshot("io", ("Clamp chuck", True), "zero-speed: on")
     note("I/O page")
+
+
+def datum_line():
+    """The rack datum's line as the panel shows it, with its attributes (its
+    colour among them); None while it is hidden (hidden widgets lie far off)."""
+    label = panel_plug().find_named("Rack datum")
+    if label is None:
+        return None
+    x, y, w, h = label.extents()
+    if w <= 0 or h <= 0 or x < 0 or y < 0:
+        return None
+    attributes = label.call("org.a11y.atspi.Text", "GetAttributes", GLib.Variant("(i)", (0,)))[0]
+    return {"text": label.text(), "attributes": dict(attributes)}
+
+
+def touch_page():
+    """The rack datum's line on the first page, as the status file's `datum`
+    says (empty: hidden), then the Touch page with the spindle empty: its
+    buttons enabled as the panel's rules say, and Check datum refused, the
+    component's words in the panel's message area. Nothing moves."""
+    with open(driver.config_path()) as f:
+        result["config_rack_touch"] = json.load(f).get("rack_touch", {})
+    with open(driver.state_path() + ".status") as f:
+        result["status_datum"] = json.load(f).get("datum", "")
+    result["datum_line"] = datum_line()
+    show_page("Touch")
+    result["touch_sensitive"] = {b: sensitive(b) for b in TOUCH_BUTTONS}
+    said = len(driver.messages)
+    click("Check datum")
+    refused = "checking the rack datum refused: "
+    wait_for(lambda: said_or_shown(refused, said), 30, "the refusal of Check datum")
+    wait_for(lambda: panel_says(refused), 10, "the panel to show the refusal of Check datum")
+    result["check_datum_shown"] = panel_says(refused)
+    screenshot("touch", ("Check datum", True), refused)
+    note("check datum refused")
 
 
 def program_and_setup():
