@@ -251,13 +251,9 @@ int Simulator::run(Changer& changer, int limit) {
       waiting_since_ = clock;
       if (touches) {
         const auto at = touches(probe);
-        const double limit = probe.axes == axis_x   ? probe.target.x
-                             : probe.axes == axis_y ? probe.target.y
-                                                    : probe.target.z;
         // The probe stops where it touched, or at its limit.
-        Step stopped = probe;
-        stopped.target.x = stopped.target.y = stopped.target.z = at.value_or(limit);
-        rack.at = moved_to(rack.at, stopped);
+        const double limit = coordinate(probe.target, probe.axes);
+        coordinate(rack.at, probe.axes) = at.value_or(limit);
         changer.probe_result(at.has_value(), at.value_or(limit));
         continue;
       }

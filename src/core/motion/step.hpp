@@ -46,6 +46,16 @@ struct Step {
   double blend = 0.0;  ///< how far a corner of the run may be cut; 0: none is
 };
 
+/// `p`'s coordinate on one axis (axis_x, axis_y or axis_z).
+inline double& coordinate(Point& p, unsigned axis) {
+  return axis == axis_x ? p.x : axis == axis_y ? p.y : p.z;
+}
+inline double coordinate(const Point& p, unsigned axis) {
+  return axis == axis_x ? p.x : axis == axis_y ? p.y : p.z;
+}
+/// 'X', 'Y' or 'Z'.
+inline char axis_letter(unsigned axis) { return axis == axis_x ? 'X' : axis == axis_y ? 'Y' : 'Z'; }
+
 /// A move (rapid, feed or probe) to `target` on `axes`, named `label`; part
 /// of the way into or out of `pocket` when `may_enter_column`.
 Step move_step(StepKind kind, unsigned axes, const Point& target, std::string label,

@@ -9,11 +9,6 @@
 namespace fatc {
 namespace {
 
-double& on(Point& p, unsigned axis) { return axis == axis_x ? p.x : axis == axis_y ? p.y : p.z; }
-double on(const Point& p, unsigned axis) {
-  return axis == axis_x ? p.x : axis == axis_y ? p.y : p.z;
-}
-char axis_letter(unsigned axis) { return axis == axis_x ? 'X' : axis == axis_y ? 'Y' : 'Z'; }
 int sign(double value) { return value < 0.0 ? -1 : 1; }
 
 /// A coordinate as the config's unit shows one: 3 decimals in mm, 4 in inch.
@@ -66,7 +61,7 @@ struct FeatureTouch::State {
   Touch bore_wall(unsigned axis, int direction, const Point& centre) const {
     const double reach = *rack.bore_diameter / 2.0 - radius();
     Touch t = touch(wall(axis, direction), axis, direction, centre,
-                    on(rough, axis) + direction * reach);
+                    coordinate(rough, axis) + direction * reach);
     t.within = true;
     return t;
   }
@@ -74,8 +69,8 @@ struct FeatureTouch::State {
   Touch face(unsigned axis, const PlanarOffset& offset) const {
     const int side = sign(axis == axis_x ? offset.x : offset.y);
     Point start{rough.x + offset.x, rough.y + offset.y, wall_z()};
-    const double face_at = on(start, axis);
-    on(start, axis) = face_at + side * (rack.clear + radius());
+    const double face_at = coordinate(start, axis);
+    coordinate(start, axis) = face_at + side * (rack.clear + radius());
     return touch(std::string("face ") + (side > 0 ? "+" : "-") + axis_letter(axis), axis, -side,
                  start, face_at + side * radius());
   }
@@ -114,7 +109,7 @@ std::optional<Touch> FeatureTouch::State::next() const {
       const unsigned jaws = open_axis == axis_x ? axis_y : axis_x;
       if (made <= 2) return bore_wall(jaws, made == 1 ? 1 : -1, centre);
       Point from = centre;
-      on(from, jaws) = middle(1);
+      coordinate(from, jaws) = middle(1);
       Touch back = bore_wall(open_axis, -open_sign, from);
       back.label = name + ", back wall";
       return back;
@@ -199,11 +194,11 @@ std::optional<Found> FeatureTouch::found() const {
       break;
     case TouchFeature::fork: {
       const unsigned jaws = s.open_axis == axis_x ? axis_y : axis_x;
-      on(f.at, jaws) = s.middle(1);
+      coordinate(f.at, jaws) = s.middle(1);
       // The back wall lies the ball's radius beyond its centre, toward the
       // back; the centre half a diameter from it, toward the opening.
       const double back = s.trips.at(3) - s.open_sign * r;
-      on(f.at, s.open_axis) = back + s.open_sign * *s.rack.bore_diameter / 2.0;
+      coordinate(f.at, s.open_axis) = back + s.open_sign * *s.rack.bore_diameter / 2.0;
       f.across = s.across(1);
       break;
     }
@@ -267,7 +262,7 @@ namespace {
 /// A probing move of `touch` toward its limit: G38.3 on the touch's axis.
 Step probing(const Touch& touch, const char* stage, double feed, int probe) {
   Point target = touch.start;
-  on(target, touch.axis) = touch.limit;
+  coordinate(target, touch.axis) = touch.limit;
   return touch_move(StepKind::probe, touch.axis, target, touch.label + " (" + stage + ")",
                     touch.pocket, probe, feed);
 }
@@ -279,9 +274,14 @@ Step touch_seek(const Config& c, const Touch& touch, int probe) {
 
 Step touch_back_off(const Config& c, const Touch& touch, double tripped, int probe) {
   Point target = touch.start;
-  on(target, touch.axis) = tripped - touch.direction * c.probe_backoff;
+  coordinate(target, touch.axis) = tripped - touch.direction * c.probe_backoff;
   return touch_move(StepKind::feed, touch.axis, target, "back off " + touch.label, touch.pocket,
                     probe, c.seek_feed_of(probe));
+}
+
+Step back_to_touch_start(const Config& c, const Touch& touch, int probe) {
+  return touch_move(StepKind::feed, touch.axis, touch.start, "back to the start of " + touch.label,
+                    touch.pocket, probe, c.seek_feed_of(probe));
 }
 
 Step touch_latch(const Config& c, const Touch& touch, int probe) {
@@ -325,8 +325,8 @@ std::vector<std::string> found_lines(const Config& c, const std::vector<Found>& 
   for (const Found& f : found) {
     std::string line = f.name + std::string(width - f.name.size(), ' ');
     for (const unsigned axis : {axis_x, axis_y, axis_z}) {
-      const double was = on(f.before, axis);
-      const double now = on(f.at, axis);
+      const double was = coordinate(f.before, axis);
+      const double now = coordinate(f.at, axis);
       line += std::string("   ") + axis_letter(axis) + " " + figure(c.units, was) + " → " +
               figure(c.units, now) + " (" + (now - was < 0.0 ? "" : "+") +
               figure(c.units, now - was) + ")";
@@ -341,7 +341,7 @@ Drift drift_of(const Config& c, const Point& taught, const Point& measured) {
   Drift drift;
   drift.off = {measured.x - taught.x, measured.y - taught.y, measured.z - taught.z};
   for (const unsigned axis : {axis_x, axis_y, axis_z}) {
-    const double off = std::fabs(on(drift.off, axis));
+    const double off = std::fabs(coordinate(drift.off, axis));
     if (off > drift.worst) {
       drift.worst = off;
       drift.axis = axis_letter(axis);

@@ -82,6 +82,8 @@ Step touch_seek(const Config& c, const Touch& touch, int probe);
 Step touch_back_off(const Config& c, const Touch& touch, double tripped, int probe);
 /// The slow latch toward `touch.limit` at the probe's latch feed.
 Step touch_latch(const Config& c, const Touch& touch, int probe);
+/// A touch that found nothing: back along its axis to where it started.
+Step back_to_touch_start(const Config& c, const Touch& touch, int probe);
 /// Up and out of the feature to its clearance once its touches are made.
 std::vector<Step> leave_feature(const Config& c, int pocket, int held);
 }  // namespace plan

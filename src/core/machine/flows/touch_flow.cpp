@@ -24,12 +24,6 @@ std::optional<double> probe_length(const Context& c, int probe) {
   return std::nullopt;
 }
 
-const char* axis_letter(unsigned axis) { return axis == axis_x ? "X" : axis == axis_y ? "Y" : "Z"; }
-
-double along(const Point& p, unsigned axis) {
-  return axis == axis_x ? p.x : axis == axis_y ? p.y : p.z;
-}
-
 bool feature_is_hollow(const RackTouch& touch) { return touch.feature != TouchFeature::faces; }
 
 }  // namespace
@@ -42,6 +36,11 @@ std::vector<int> TouchFlow_::touched_pockets(const Context& c, const TouchReques
     if (!(hollow && c.tools.holds(number))) every.push_back(number);
   }
   return every;
+}
+
+void TouchFlow_::end_early(std::string why) {
+  problem = why;
+  ctx->activity.stopped = std::move(why);
 }
 
 int TouchFlow_::feature_pocket() const {
@@ -63,51 +62,32 @@ void TouchFlow_::begin_feature() {
   ctx->record_progress("touching " + touching->name(), feature_pocket());
 }
 
-template <class Leg>
-plan::Route TouchFlow_::BackingOut::route(const Context& c, const Leg& leg) {
-  Step back;
-  back.kind = StepKind::feed;
-  back.axes = leg.touch->axis;
-  back.target = leg.touch->start;
-  back.feed = c.config.seek_feed_of(leg.tool);
-  back.pocket = leg.feature_pocket();
-  back.may_enter_column = true;
-  back.label = "back to the start of " + leg.touch->label;
-  plan::Route out{back};
-  for (const Step& up : plan::leave_feature(c.config, leg.feature_pocket(), leg.tool)) {
-    out.push_back(up);
-  }
-  return plan::walked(c.config, out, c.standing());
-}
-
 template <class Event, class Fsm, class Source, class Target>
 void TouchFlow_::TakeFeature::operator()(const Event&, Fsm& fsm, Source&, Target&) const {
   if (const auto found = fsm.touching->found()) {
     fsm.found.push_back(*found);
     return;
   }
-  fsm.problem = fsm.touching->problem() + "; nothing written";
-  fsm.ctx->activity.stopped = fsm.problem;
+  fsm.end_early(fsm.touching->problem() + "; nothing written");
 }
 
 template <class Fsm, class Source, class Target>
 void TouchFlow_::SayNoTouch::operator()(const ProbeResult& e, Fsm& fsm, Source&, Target&) const {
   const Config& c = fsm.ctx->config;
   const fatc::Touch& touch = *fsm.touch;
-  const char* axis = axis_letter(touch.axis);
+  const std::string axis(1, axis_letter(touch.axis));
   if (e.tripped_before) {
-    fsm.problem = touch.label + ": the probe was already touching before it moved, at " + axis +
-                  " " + format_length(c, along(touch.start, touch.axis)) + "; nothing written";
+    fsm.end_early(touch.label + ": the probe was already touching before it moved, at " + axis + " " +
+             format_length(c, coordinate(touch.start, touch.axis)) + "; nothing written");
   } else {
-    const double travelled = std::abs(e.z - along(touch.start, touch.axis));
-    fsm.problem = touch.label + ": no touch within " +
-                  format_length(c, std::abs(touch.limit - along(touch.start, touch.axis))) +
-                  " (travelled " + format_length(c, travelled) + " from " + axis + " " +
-                  format_length(c, along(touch.start, touch.axis)) +
-                  "): the rack is not where config.json puts it, or the probe missed its feature; "
-                  "nothing written";
+    const double travelled = std::abs(e.z - coordinate(touch.start, touch.axis));
+    fsm.end_early(touch.label + ": no touch within " +
+             format_length(c, std::abs(touch.limit - coordinate(touch.start, touch.axis))) +
+             " (travelled " + format_length(c, travelled) + " from " + axis + " " +
+             format_length(c, coordinate(touch.start, touch.axis)) +
+             "): the rack is not where config.json puts it, or the probe missed its feature; "
+             "nothing written");
   }
-  fsm.ctx->activity.stopped = fsm.problem;
 }
 
 template <class Event, class Fsm, class Source, class Target>
@@ -164,13 +144,14 @@ std::optional<std::string> TouchRack::why_not(const Context& c, const TouchReque
   const RackTouch& touch = *c.config.rack_touch;
   const int probe = c.tools.spindle;
   if (probe == 0 || !c.config.is_probe(probe)) {
-    return std::string(probe == 0 ? "the spindle is empty" : "the spindle holds " + tool_name(probe) +
-                                                                  ", no probe") +
+    return std::string(probe == 0 ? "the spindle is empty"
+                                  : "the spindle holds " + tool_name(probe) + ", no probe") +
            ": put the probe (a tool of \"kind\": \"probe\") in the spindle first";
   }
   if (!probe_length(c, probe)) {
     return "probe " + tool_name(probe) +
-           " has no length in LinuxCNC's tool table: measure it first (its tip is where it touches)";
+           " has no length in LinuxCNC's tool table: measure it first (its tip is where it "
+           "touches)";
   }
   if (e.goal != TouchRequest::Goal::pockets) {
     if (touch.datum_pocket == 0) {
@@ -188,8 +169,9 @@ std::optional<std::string> TouchRack::why_not(const Context& c, const TouchReque
   }
   const std::vector<int> pockets = TouchFlow_::touched_pockets(c, e);
   if (pockets.empty()) {
-    return std::string("every pocket holds its tool, and their bores are touched empty: unload "
-                       "the tools first");
+    return std::string(
+        "every pocket holds its tool, and their bores are touched empty: unload "
+        "the tools first");
   }
   for (const int pocket : pockets) {
     if (!c.config.has_pocket(pocket)) {

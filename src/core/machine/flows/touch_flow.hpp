@@ -49,6 +49,9 @@ struct TouchFlow_ : Flow<TouchFlow_> {
   static std::vector<int> touched_pockets(const Context& c, const TouchRequest& e);
   /// The feature `feature` is next: its first touch.
   void begin_feature();
+  /// The flow ends early, saying `why` (its end fails the executor with it).
+  /// Not stop(): the back-end's stop(Event) would end the machine itself.
+  void end_early(std::string why);
   /// The pocket whose column the touches enter, 0 for the datum's (its pocket's).
   int feature_pocket() const;
 
@@ -97,7 +100,13 @@ struct TouchFlow_ : Flow<TouchFlow_> {
   /// A touch found nothing: back to where it started, then out of the feature.
   struct BackingOut : Walking<BackingOut> {
     template <class Leg>
-    static plan::Route route(const Context& c, const Leg& leg);
+    static plan::Route route(const Context& c, const Leg& leg) {
+      plan::Route out{plan::back_to_touch_start(c.config, *leg.touch, leg.tool)};
+      for (const Step& up : plan::leave_feature(c.config, leg.feature_pocket(), leg.tool)) {
+        out.push_back(up);
+      }
+      return plan::walked(c.config, out, c.standing());
+    }
   };
   struct FoundPrompt {
     template <class Leg>
