@@ -145,6 +145,21 @@ TEST(TeachByTouch, shouldBackOutAndSayHowFarItWentWhenTheProbeFindsNothing) {
                                                << lines.back();
 }
 
+TEST(TeachByTouch, shouldBackOutAndSayItWhenTheOperatorCancelsATouch) {
+  TouchRig rig(parsed(touch_config()));
+  rig.changer->request(TouchRequest{TouchRequest::Goal::pockets, {3}});
+  for (int i = 0; i < 50 && rig.changer->status().awaiting != Awaiting::probe; ++i) {
+    rig.sim.run(*rig.changer, 1);
+  }
+  ASSERT_EQ(rig.changer->status().awaiting, Awaiting::probe);
+  rig.changer->operator_cancel();
+  rig.run();
+  EXPECT_EQ(rig.changer->status().phase, Phase::idle);
+  EXPECT_TRUE(rig.sim.written.empty());
+  EXPECT_EQ(rig.last_message(),
+            "pocket 3, top face: the touch was cancelled by the operator; nothing written");
+}
+
 TEST(TeachByTouch, shouldBeRefusedWithoutAProbeInTheSpindleOrWithAToolInTheBore) {
   const Config config = parsed(touch_config());
   ToolState tools = probe_in_spindle(config);

@@ -186,7 +186,7 @@ struct TouchFlow_ : Flow<TouchFlow_> {
   struct SayCancelled {
     template <class Event, class Fsm, class Source, class Target>
     void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      fsm.problem = fsm.touch->label + ": the touch was cancelled by the operator; nothing written";
+      fsm.end_early(fsm.touch->label + ": the touch was cancelled by the operator; nothing written");
     }
   };
   struct Onward {
