@@ -90,6 +90,9 @@ static int over(struct __comp_state *__comp_inst) {
     return -1;
 }
 
+/* holds[N]: pocket N has a nut (missing-N hides it). from: the pocket number
+   the nut on the spindle came from, 0 none. home: that nut is seated. */
+
 static int occupied(struct __comp_state *__comp_inst, int k) {
     return holds[k] && !missing(k);
 }
