@@ -37,6 +37,21 @@ def settle(until, timeout=2.0):
 failures = []
 
 
+# name; inputs: changer-busy, changer-spindle, probe-in-spindle, the heartbeat
+# toggling; wanted: the spindle runs, held-for-change, held (and so refused, inhibit).
+ROWS = [
+    ("idle: the operator's spindle", False, False, False, True, True, False, False),
+    ("busy, the changer not asking: held", True, False, False, True, False, True, False),
+    ("busy, the changer asking and alive: runs", True, True, False, True, True, False, False),
+    ("busy, asking, heartbeat stopped: held", True, True, False, False, False, True, False),
+    ("not busy, asking, heartbeat stopped: held", False, True, False, False, False, True, False),
+    ("busy, asking, heartbeat back: runs", True, True, False, True, True, False, False),
+    ("a probe in the spindle, the changer asking: probe hold first", True, True, True, True, False, False, True),
+    ("a probe in the spindle, idle: held and refused", False, False, True, True, False, False, True),
+    ("the probe out, idle: runs", False, False, False, True, True, False, False),
+]
+
+
 def row(name, busy, asked, probe, alive, expect):
     for pin, value in (("changer-busy", busy), ("changer-spindle", asked), ("probe-in-spindle", probe)):
         hal.set_p(G + pin, "1" if value else "0")
@@ -54,7 +69,7 @@ def row(name, busy, asked, probe, alive, expect):
         failures.append(name)
 
 
-def outputs(runs, held_for_change, held=False):
+def outputs(runs, held_for_change, held):
     return {"spindle-on": runs, "speed-out": SPEED if runs else 0.0, "held-for-change": held_for_change,
             "held": held, "refused": held, "inhibit": held}
 
@@ -66,24 +81,8 @@ def main():
     hal.set_p(G + "spindle-on-in", "1")
     hal.set_p(G + "speed-in", repr(SPEED))
     hal.set_p(G + "speed-command", "20")
-    row("idle: the operator's spindle", busy=False, asked=False, probe=False, alive=True,
-        expect=outputs(runs=True, held_for_change=False))
-    row("busy, the changer not asking: held", busy=True, asked=False, probe=False, alive=True,
-        expect=outputs(runs=False, held_for_change=True))
-    row("busy, the changer asking and alive: runs", busy=True, asked=True, probe=False, alive=True,
-        expect=outputs(runs=True, held_for_change=False))
-    row("busy, asking, heartbeat stopped: held", busy=True, asked=True, probe=False, alive=False,
-        expect=outputs(runs=False, held_for_change=True))
-    row("not busy, asking, heartbeat stopped: held", busy=False, asked=True, probe=False, alive=False,
-        expect=outputs(runs=False, held_for_change=True))
-    row("busy, asking, heartbeat back: runs", busy=True, asked=True, probe=False, alive=True,
-        expect=outputs(runs=True, held_for_change=False))
-    row("a probe in the spindle, the changer asking: the probe hold wins", busy=True, asked=True,
-        probe=True, alive=True, expect=outputs(runs=False, held_for_change=False, held=True))
-    row("a probe in the spindle, idle: held and refused", busy=False, asked=False, probe=True,
-        alive=True, expect=outputs(runs=False, held_for_change=False, held=True))
-    row("the probe out, idle: runs", busy=False, asked=False, probe=False, alive=True,
-        expect=outputs(runs=True, held_for_change=False))
+    for name, busy, asked, probe, alive, runs, held_for_change, held in ROWS:
+        row(name, busy, asked, probe, alive, outputs(runs, held_for_change, held))
     with open(sys.argv[1], "w") as verdict:
         verdict.write("fail" if failures else "pass")
     print("%d rows failed" % len(failures) if failures else "every row held")

@@ -16,7 +16,4 @@ addf fatc-spindle-guard fatc-guard-thread
 start
 loadusr -w /usr/bin/python3 $here/spindle_guard_test.py $work/verdict
 HAL
-chmod a+r "$work/guard.hal"
-runuser -u "$user" -- timeout 120 halrun -f "$work/guard.hal" > "$work/out.txt" 2>&1 || true
-cat "$work/out.txt"
-test "$(cat "$work/verdict" 2>/dev/null)" = pass
+halrun_verdict "$work/guard.hal"
