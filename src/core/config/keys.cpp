@@ -22,6 +22,8 @@ constexpr Range kSensorTimeout{0.01, 60.0, "seconds"};
 constexpr Range kPulses{0.0, 20.0, ""};
 constexpr Range kBlend{0.0, 1000.0, "length"};
 constexpr Range kChanges{0.0, 1000000.0, ""};
+constexpr Range kRpm{1.0, 100000.0, "rpm"};
+constexpr Range kPlunges{1.0, 20.0, ""};
 constexpr const char* kBoolean = "`true`, `false`";
 constexpr const char* kRequired = "required";
 
@@ -187,6 +189,7 @@ const std::vector<KeyDeclaration> kKeys = {
   sensor_key(Sensor::drawbar_closed),
   sensor_key(Sensor::air_pressure),
   sensor_key(Sensor::zero_speed),
+  sensor_key(Sensor::at_speed),
   {kPocketSensor.key, "`false`", {},
    "`true` (every pocket), `false`, or a list of pockets of `pockets`, each once: `[1, 2, 5]`",
    pin_says(kPocketSensor)},
@@ -248,6 +251,41 @@ const std::vector<KeyDeclaration> kKeys = {
    "the drift check falls due after this many changes; 0: never"},
   {"rack_touch.check_at_start", "`false`", {}, kBoolean,
    "the drift check falls due each time the component starts"},
+  {"chuck", "`{\"kind\": \"drawbar\"}`", {}, "an object of the keys below",
+   "what holds the tool in the spindle (docs/collet_nut.md)"},
+  {"chuck.kind", "`\"drawbar\"`", {}, "`\"drawbar\"`, `\"collet_nut\"`",
+   "`\"drawbar\"`: the changer releases and clamps a drawbar (`chuck-release`); "
+   "`\"collet_nut\"`: an ER nut per tool, gripped by its pocket, screwed off (reverse) and on "
+   "(forward) by the spindle, which the changer turns itself (M4, M3) over the served pocket only. "
+   "A pocket's `z` is then its engage Z, every pocket is entered from the top, and the keys "
+   "below are read"},
+  {"chuck.spin_off_offset_z", "required for `\"collet_nut\"`", kOffset,
+   "below `chuck.rise_after_unload_offset_z`; below safe Z",
+   "above a pocket's `z`: where the spindle starts turning before it plunges, and where the "
+   "plunges of a load come back to (RapidChange: the spin-off / load spindle start Z)"},
+  {"chuck.rise_after_unload_offset_z", "`chuck.spin_off_offset_z`", kOffset, "",
+   "above a pocket's `z`: how high the spindle rises, still reversing, after it unscrewed a nut"},
+  {"chuck.engage_feed", "required for `\"collet_nut\"`", kFeed, "",
+   "the plunges onto and into a nut: about the thread's pitch times the speed"},
+  {"chuck.unload_rpm", "required for `\"collet_nut\"`", kRpm, "",
+   "the spindle's speed in reverse (M4) while it screws a nut off"},
+  {"chuck.load_rpm", "required for `\"collet_nut\"`", kRpm, "",
+   "the spindle's speed forward (M3) while it screws a nut on"},
+  {"chuck.tighten_plunges", "1", kPlunges, "a whole number",
+   "how many times a load plunges onto the nut: the spindle stalls as the thread seats, and "
+   "each plunge tightens it a little more"},
+  {"chuck.spindle_ramp_seconds", "2", kPulse, "",
+   "how long the spindle takes to reach its speed or to stop, waited where `sensors.at_speed` "
+   "(or `sensors.zero_speed`) is not wired"},
+  {"chuck.recognition", "absent: no tool-recognition sensor", {}, "an object of the keys below",
+   "the infrared tool-recognition sensor on `nut-seen`, read with the spindle stopped over the "
+   "pocket: after an unload zone 1 must be clear; after a load zone 1 must be cut (a nut is "
+   "there) and zone 2 clear (it is screwed home). A failed reading is tried once more, then "
+   "the changer faults naming the zone"},
+  {"chuck.recognition.zone_1_z", kRequired, kCoordinate, "below safe Z",
+   "the nose's machine Z where a nut on the spindle cuts the beam"},
+  {"chuck.recognition.zone_2_z", kRequired, kCoordinate, "above `zone_1_z`, below safe Z",
+   "the nose's machine Z where only a nut not screwed home (hanging low) cuts the beam"},
   {"tools", "`{}`", {}, "an object of tool numbers, each an object of the keys below",
    "what a tool is and how it is measured, where it differs from the rest; lengths stay in "
    "LinuxCNC's tool table"},

@@ -7,6 +7,7 @@
 
 #include "json_text.hpp"
 #include "pocket_reading.hpp"
+#include "chuck.hpp"
 #include "rack_touch.hpp"
 #include "reader.hpp"
 #include "relations.hpp"
@@ -242,11 +243,13 @@ ConfigResult parse_config(const std::string& json_text) {
     if (const auto value = boolean(reader, *blast, "air_blast")) config.air_blast = *value;
   }
   read_rack_touch(reader, root, config);
+  read_chuck(reader, root, config);
 
   // Relations between keys only mean something once every key read cleanly.
   if (reader.count() == 0) check_relations(reader, config);
   if (reader.count() == 0) check_tools(reader, config);
   if (reader.count() == 0) check_rack_touch(reader, config);
+  if (reader.count() == 0) check_chuck(reader, config);
   if (reader.count() == 0) {
     result.config = config;
   } else {

@@ -24,11 +24,21 @@ enum class Sensor {
   air_pressure,
   rack_cover_opened,
   rack_cover_closed,
+  at_speed,
+  nut_seen,
 };
 
 /// What a sensor watches: a fact of the machine, which the dry run's
 /// simulated rack (dry_run/simulator.cpp) holds true or false.
-enum class Fact { spindle_still, tool_in_spindle, drawbar_released, air, cover_open };
+enum class Fact {
+  spindle_still,
+  tool_in_spindle,
+  drawbar_released,
+  air,
+  cover_open,
+  spindle_at_speed,
+  nut_in_beam,  ///< a nut on the spindle cuts the tool-recognition beam where the nose stands
+};
 
 /// A sensor in the words of the config, the pins and their references.
 struct SensorWords {
@@ -70,6 +80,16 @@ inline constexpr SensorDeclaration kSensors[] = {
   {Sensor::rack_cover_closed,
    {"rack_cover.closed_sensor", "rack-cover-closed", "the cover is closed", ""},
    Fact::cover_open, false},
+  {Sensor::at_speed,
+   {"sensors.at_speed", "spindle-at-speed", "the spindle turns at the speed asked for",
+    " (net it with the signal of `spindle.0.at-speed`); a collet-nut changer plunges only with "
+    "it on, else after `chuck.spindle_ramp_seconds`"},
+   Fact::spindle_at_speed, true},
+  {Sensor::nut_seen,
+   {"chuck.recognition", "nut-seen", "the tool-recognition sensor's beam is cut by a nut",
+    " (a beam that reads on when clear: its driver's `-not` pin); read at `chuck.recognition`'s "
+    "two heights"},
+   Fact::nut_in_beam, true},
 };
 
 /// One sensor for each pocket `sensors.pocket_occupancy` names, N its number.

@@ -131,6 +131,35 @@ struct RackTouch {
   bool check_at_start = false;
 };
 
+/// What holds the tool in the spindle (`chuck.kind`).
+enum class ChuckKind {
+  drawbar,     ///< a drawbar the changer releases and clamps (`chuck-release`)
+  collet_nut,  ///< an ER nut per tool, gripped by its pocket and screwed off and on by the spindle
+};
+
+/// Where the tool-recognition sensor's beam is read (`chuck.recognition`):
+/// the nose's machine Z at zone 1 (a nut on the spindle cuts the beam) and at
+/// zone 2 (only a nut hanging low, not screwed home, still cuts it).
+struct Recognition {
+  double zone_1_z = 0.0;
+  double zone_2_z = 0.0;
+};
+
+/// `chuck`: a drawbar (the default), or a collet-nut magazine and how the
+/// spindle screws its nuts (docs/collet_nut.md). A pocket's z is then its
+/// engage Z: the nose with the nut fully engaged.
+struct ChuckConfig {
+  ChuckKind kind = ChuckKind::drawbar;
+  double spin_off_offset_z = 0.0;           ///< above a pocket's z: the spindle starts and stops turning
+  double rise_after_unload_offset_z = 0.0;  ///< above a pocket's z: the rise, still reversing
+  double engage_feed = 0.0;                 ///< the plunges onto and into the nut
+  double unload_rpm = 0.0;                  ///< reverse (M4)
+  double load_rpm = 0.0;                    ///< forward (M3)
+  int tighten_plunges = 1;                  ///< plunges while loading: the thread seats
+  double spindle_ramp_seconds = 2.0;        ///< a start or stop where no sensor says
+  std::optional<Recognition> recognition;   ///< unset: no tool-recognition sensor
+};
+
 /// The validated contents of config.json. Lengths are in `units`, feeds in
 /// `units` per minute, positions are machine coordinates (G53).
 struct Config {
@@ -175,10 +204,13 @@ struct Config {
   Path path = Path::prototype;
   std::map<int, ToolConfig> tools;  ///< tool number -> what `tools` says of it
   std::optional<RackTouch> rack_touch;  ///< unset: nothing is found by touch
+  ChuckConfig chuck;
   /// The keys with a unit that config.json left out, as --check lists them.
   std::vector<std::string> defaulted;
 
   bool has_pocket(int number) const { return pockets.count(number) != 0; }
+  /// The spindle screws collet nuts off and on (`chuck.kind` "collet_nut").
+  bool screws_nuts() const { return chuck.kind == ChuckKind::collet_nut; }
   /// The pocket that holds `tool` at first start, if any.
   std::optional<int> first_pocket_of(int tool) const;
   double keepout_margin() const;

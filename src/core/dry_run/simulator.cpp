@@ -41,7 +41,7 @@ void Simulator::publish(const Step& step) {
   // done, fail and wait_operator end an executor run: nothing to finish. A
   // refused M6's fail goes to that M6's executor, not to the one running.
   if (is_motion(step.kind) || step.kind == StepKind::set_tool_length ||
-      step.kind == StepKind::set_spindle_tool) {
+      step.kind == StepKind::set_spindle_tool || step.kind == StepKind::spindle) {
     pending = step;
   }
 }
@@ -94,44 +94,18 @@ void Simulator::set_air_blast(bool on) {
   blowing = on;
 }
 
-int Rack::pocket_at(const Config& config) const {
-  if (known_axes != axis_xyz) return 0;
-  for (const auto& entry : config.pockets) {
-    const Point p = pocket_waypoints(config, entry.first).pocket;
-    if (std::abs(p.x - at.x) < 1e-6 && std::abs(p.y - at.y) < 1e-6 && std::abs(p.z - at.z) < 1e-6) {
-      return entry.first;
-    }
-  }
-  return 0;
-}
-
 void Simulator::model_rack(const Config& config, const ToolState& tools) {
   config_ = &config;
   rack = Rack{};
   rack.modelled = config.sensors.any();
   rack.spindle = tools.spindle;
+  rack.zones = config.chuck.recognition;
   // Unmodelled, nothing reads the pockets: a rack of 200 is not copied at each plan.
   for (const auto& entry : config.pockets) {
     if (!rack.modelled) break;
     rack.pockets[entry.first] = tools.holds(entry.first) ? tools.tool_of(entry.first) : 0;
   }
   reported_.reset();
-}
-
-bool Rack::holds(Fact fact) const {
-  switch (fact) {
-    case Fact::spindle_still:
-      return spindle_still;
-    case Fact::tool_in_spindle:
-      return spindle != 0;
-    case Fact::drawbar_released:
-      return drawbar_released;
-    case Fact::air:
-      return air;
-    case Fact::cover_open:
-      return cover_open;
-  }
-  return false;
 }
 
 SensorReadings Simulator::readings() const {
@@ -241,8 +215,10 @@ int Simulator::run(Changer& changer, int limit) {
   for (; fed < limit; ++fed) {
     if (!answers_late && report_sensors(changer)) continue;
     const Awaiting awaiting = changer.status().awaiting;
+    // The spindle is waited for on a timer too where no sensor says it got
+    // there (a collet nut's ramps).
     const bool waits_on_time = awaiting == Awaiting::timer || awaiting == Awaiting::sensor ||
-                               (answers_late && awaiting == Awaiting::spindle);
+                               awaiting == Awaiting::spindle;
     if (waits_on_time && timer_armed) {
       run_out_timer(changer, awaiting != Awaiting::timer);
     } else if (awaiting == Awaiting::probe && pending && pending->kind == StepKind::probe) {
@@ -266,7 +242,12 @@ int Simulator::run(Changer& changer, int limit) {
         for (const Step& move : moves_of(*pending)) {
           rack.at = moved_to(rack.at, move);
           rack.known_axes |= move.axes;
+          if (rack.modelled) rack.screw(*config_);
         }
+      } else if (pending->kind == StepKind::spindle) {
+        rack.spindle_rpm = pending->value;
+        rack.spindle_still = pending->value == 0.0;
+        changer.spindle_stopped(rack.spindle_still);
       }
       pending.reset();
       waiting_since_ = clock;

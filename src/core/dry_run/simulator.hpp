@@ -46,9 +46,19 @@ struct Rack {
   bool cover_slow = false;
   Point at;                     ///< where the spindle is (known_axes of it)
   unsigned known_axes = 0;
+  // A collet-nut magazine (`chuck.kind`): the spindle screws the nuts.
+  double spindle_rpm = 0.0;     ///< what the changer turns it at: reverse < 0, forward > 0
+  bool stalled = false;         ///< the spindle never comes up to speed, and screws nothing
+  int screwings_failing = 0;    ///< this many screwings off or on leave the nut where it was
+  bool nut_hangs_low = false;   ///< a nut screwed on is not screwed home (zone 2 sees it)
+  bool seated = true;           ///< the spindle's nut is screwed home
+  std::optional<Recognition> zones;  ///< where the tool-recognition beam is read
 
   /// The pocket the spindle is in (its nose at the pocket's XYZ), 0 none.
   int pocket_at(const Config& config) const;
+  /// The spindle turning at a pocket's engage Z screws its nut: off into the
+  /// empty pocket in reverse, on from the full pocket forward.
+  void screw(const Config& config);
   /// Whether `fact` holds: what the sensors that watch it read.
   bool holds(Fact fact) const;
 };

@@ -250,6 +250,7 @@ Status Changer::status() const {
                      !c.machine.task_busy && !c.outputs.chuck_open;
   status.chuck_held =
       c.outputs.chuck_open && (status.phase == Phase::idle || status.phase == Phase::chuck);
+  status.turns_spindle = c.outputs.spindle_rpm != 0.0;
   status.last_length = c.activity.last_length;
   status.step_number = status.busy() ? c.motion.sequence_step : 0;
   status.pocket = status.busy() ? c.sequence_pocket() : 0;

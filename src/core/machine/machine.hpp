@@ -29,6 +29,7 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
     template <class Event, class Fsm>
     void on_entry(const Event&, Fsm& fsm) {
       Context& c = *fsm.ctx;
+      c.release_spindle();
       if (!c.outputs.chuck_open) return;
       c.close_chuck();
       c.tools.uncertain = true;
@@ -50,6 +51,7 @@ struct Machine_ : msmf::state_machine_def<Machine_> {
         if (!e.reason.empty()) c.activity.fault_reason = e.reason;
       }
       c.close_chuck();
+      c.release_spindle();
       // An executor still waiting for its next step aborts the program on this.
       c.publish(failure_step(c.activity.fault_reason));
       c.tell(MessageKind::error, "fault: " + c.activity.fault_reason + "; " + c.whereabouts() +

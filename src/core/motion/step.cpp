@@ -17,6 +17,15 @@ Step move_step(StepKind kind, unsigned axes, const Point& target, std::string la
   return step;
 }
 
+Step spindle_step(double rpm, std::string label, int pocket) {
+  Step step;
+  step.kind = StepKind::spindle;
+  step.value = rpm;
+  step.label = std::move(label);
+  step.pocket = pocket;
+  return step;
+}
+
 Step failure_step(std::string why) {
   Step step;
   step.kind = StepKind::fail;
@@ -83,6 +92,8 @@ const char* step_kind_name(StepKind kind) {
       return "done";
     case StepKind::fail:
       return "fail";
+    case StepKind::spindle:
+      return "spindle";
   }
   return "?";
 }
@@ -104,6 +115,10 @@ std::string describe(const Step& step) {
     coordinates = formatted("T%d length=%.4f", step.tool, step.value);
   } else if (step.kind == StepKind::set_spindle_tool || step.kind == StepKind::done) {
     coordinates = "T" + std::to_string(step.tool);
+  } else if (step.kind == StepKind::spindle) {
+    coordinates = step.value > 0.0   ? formatted("M3 S%.0f", step.value)
+                  : step.value < 0.0 ? formatted("M4 S%.0f", -step.value)
+                                     : std::string("M5");
   }
   std::string line = formatted("%-10s ", step_kind_name(step.kind));
   line += coordinates;

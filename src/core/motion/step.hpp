@@ -20,6 +20,9 @@ enum class StepKind {
   wait_operator = 6,     ///< end this executor run; the operator acts, Continue runs the next
   done = 7,              ///< the sequence is over; `tool` is in the spindle
   fail = 8,              ///< the sequence cannot go on; `label` says why
+  /// The spindle at `value` rpm: > 0 forward (M3), < 0 reverse (M4), 0 stopped
+  /// (M5); only a collet-nut changer over the pocket it serves turns it.
+  spindle = 9,
 };
 
 /// Axis bits of Step::axes.
@@ -31,7 +34,7 @@ struct Step {
   Point target;           ///< machine coordinates
   double feed = 0.0;      ///< units per minute, for feed and probe
   int tool = 0;           ///< for set_tool_length, set_spindle_tool and done
-  double value = 0.0;     ///< tool length, for set_tool_length
+  double value = 0.0;     ///< tool length, for set_tool_length; signed rpm, for spindle
   int pocket = 0;         ///< the pocket this move serves (its number), 0 if none
   /// Part of the way into or out of `pocket`: the move may enter its keep-out column.
   bool may_enter_column = false;
@@ -61,6 +64,8 @@ inline char axis_letter(unsigned axis) { return axis == axis_x ? 'X' : axis == a
 Step move_step(StepKind kind, unsigned axes, const Point& target, std::string label,
                int pocket = 0, bool may_enter_column = false, double feed = 0.0);
 
+/// The spindle at `rpm` (signed: forward > 0, reverse < 0, 0 stopped), named `label`.
+Step spindle_step(double rpm, std::string label, int pocket = 0);
 /// The step that makes a waiting executor abort its program, saying `why`.
 Step failure_step(std::string why);
 /// Nothing to do: the executor asks again.

@@ -72,6 +72,17 @@ struct PocketMoves {
   Step slowly_up_to_above_chuck() const {
     return slowly(axis_z, at.above_chuck, of_pocket("above-chuck", number));
   }
+  /// A collet nut: `offset` above the engage Z (the pocket's z), or a zone's Z.
+  Step at_height(StepKind kind, double z, const char* what) const {
+    Point there = at.pocket;
+    there.z = z;
+    return move_step(kind, axis_z, there, of_pocket(what, number), number, true,
+                     kind == StepKind::feed ? c.chuck.engage_feed : 0.0);
+  }
+  Step spin_off(StepKind kind) const {
+    return at_height(kind, at.pocket.z + c.chuck.spin_off_offset_z, "spin-off");
+  }
+  Step engaged() const { return at_height(StepKind::feed, at.pocket.z, "engage Z"); }
 };
 
 }  // namespace
@@ -197,6 +208,48 @@ Route fetch_out_and_away(const Config& c, int pocket) {
   return route;
 }
 
+Route nut_to_spin_off(const Config& c, int pocket) {
+  const PocketMoves p{c, pocket};
+  Route route{safe_z(c)};
+  if (!direct(c)) route.push_back(safe_xy(c));
+  route.push_back(p.over_pocket());
+  route.push_back(p.spin_off(StepKind::rapid));
+  return route;
+}
+
+Route nut_away(const Config& c, int pocket) { return return_away(c, pocket, false); }
+
+Route nut_back_to_spin_off(const Config& c, int pocket) {
+  return {PocketMoves{c, pocket}.spin_off(StepKind::rapid)};
+}
+
+Route nut_screw_off(const Config& c, int pocket) {
+  const PocketMoves p{c, pocket};
+  return {p.engaged(),
+          p.at_height(StepKind::feed, p.at.pocket.z + c.chuck.rise_after_unload_offset_z,
+                      "rise after unload")};
+}
+
+Route nut_screw_on(const Config& c, int pocket) {
+  const PocketMoves p{c, pocket};
+  Route route;
+  for (int plunge = 0; plunge < c.chuck.tighten_plunges; ++plunge) {
+    route.push_back(p.engaged());
+    route.push_back(p.spin_off(StepKind::feed));
+  }
+  return route;
+}
+
+Route nut_to_zone_1(const Config& c, int pocket) {
+  return {PocketMoves{c, pocket}.at_height(StepKind::rapid, c.chuck.recognition->zone_1_z,
+                                           "recognition zone 1")};
+}
+
+Route nut_to_zone_2(const Config& c, int pocket) {
+  return {PocketMoves{c, pocket}.at_height(StepKind::rapid, c.chuck.recognition->zone_2_z,
+                                           "recognition zone 2")};
+}
+
 namespace {
 /// A move that stays at safe Z: across, or up (or down) to safe Z.
 bool at_safe_z(const Config& c, const Step& step) {
@@ -217,6 +270,7 @@ Route while_spindle_stops(const Config& c, const Route& first) {
 }
 
 Route while_spindle_stops_before(const Config& c, const FirstLeg& first) {
+  if (c.screws_nuts()) return while_spindle_stops(c, nut_to_spin_off(c, first.pocket));
   return while_spindle_stops(c, first.returns ? return_to_approach(c, first.pocket)
                                               : fetch_to_above_chuck(c, first.pocket));
 }
@@ -325,7 +379,10 @@ Route to_sensor(const Config& c) { return {loading_z(c), sensor_xy(c)}; }
 Route verify_pocket(const Config& c, int pocket) {
   const PocketMoves p{c, pocket};
   Route route{safe_z(c), safe_xy(c)};
-  if (from_above(c, pocket)) {
+  if (c.screws_nuts()) {
+    route.insert(route.end(), {p.over_pocket(), p.spin_off(StepKind::rapid), p.engaged(),
+                               p.spin_off(StepKind::feed)});
+  } else if (from_above(c, pocket)) {
     route.insert(route.end(), {p.over_pocket(), p.above_clearance(), p.slowly_down(),
                                p.slowly_up_to_clearance()});
   } else {

@@ -68,6 +68,25 @@ Route fetch_down_to_tool(const Config& c, int pocket);
 /// Out of the holder with the tool (slowly while engaged) and back to safe.
 Route fetch_out_and_away(const Config& c, int pocket);
 
+// ---------------------------------------------------------------- screw a collet nut (`chuck`)
+// A pocket's z is its engage Z; every move below safe Z stays in its column.
+/// Over the pocket at safe Z (through safe XY on the prototype path) and down
+/// to spin-off, where the spindle starts turning.
+Route nut_to_spin_off(const Config& c, int pocket);
+/// Back down (or up) to spin-off from a recognition zone, to screw once more.
+Route nut_back_to_spin_off(const Config& c, int pocket);
+/// Unloading, the spindle reversing: the plunge to the engage Z at the engage
+/// feed, and the rise to rise-after-unload.
+Route nut_screw_off(const Config& c, int pocket);
+/// Loading, the spindle forward: down to the engage Z and back up to
+/// spin-off at the engage feed, `tighten_plunges` times.
+Route nut_screw_on(const Config& c, int pocket);
+/// To where the tool-recognition beam is read, the spindle stopped over the pocket.
+Route nut_to_zone_1(const Config& c, int pocket);
+Route nut_to_zone_2(const Config& c, int pocket);
+/// Up from the pocket with its nut on the spindle, and back to safe: as a return's way away.
+Route nut_away(const Config& c, int pocket);
+
 // ---------------------------------------------------------------- while the spindle runs down
 /// What M6 may do before the spindle stands, of `first`, the route its first
 /// leg walks: the leading moves that stay at safe Z (up to it, and across

@@ -57,6 +57,17 @@ IoSensorLine expected(Sensor sensor, const IoFacts& f) {
       line.expected = !f.cover_open;
       line.why = cover;
       break;
+    case Sensor::at_speed:
+      if (f.spindle_stopped) {
+        line.expected = false;
+        line.why = "LinuxCNC has the spindle off";
+      } else {
+        line.why = "the spindle turns: at speed once its ramp is through";
+      }
+      break;
+    case Sensor::nut_seen:
+      line.why = "it reads a nut only where the nose stands at a recognition zone";
+      break;
   }
   return line;
 }

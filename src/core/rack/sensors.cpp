@@ -17,6 +17,13 @@ std::string Sensors::turning_words() const {
   return spindle_still() ? "" : pin(Sensor::zero_speed) + " off";
 }
 
+bool Sensors::at_speed() const { return !senses_at_speed() || read.reads(Sensor::at_speed); }
+bool Sensors::senses_at_speed() const { return wired.wired(Sensor::at_speed); }
+
+bool Sensors::nut_reads(bool seen) const {
+  return !wired.wired(Sensor::nut_seen) || read.reads(Sensor::nut_seen) == seen;
+}
+
 bool Sensors::air_ok() const {
   return !wired.wired(Sensor::air_pressure) || read.reads(Sensor::air_pressure);
 }
@@ -56,6 +63,8 @@ bool Sensors::cover_reads_closed() const { return read.reads(Sensor::rack_cover_
 std::string Sensors::tool_pin() { return pin(Sensor::tool_present); }
 std::string Sensors::air_pin() { return pin(Sensor::air_pressure); }
 std::string Sensors::cover_opened_pin() { return pin(Sensor::rack_cover_opened); }
+std::string Sensors::at_speed_pin() { return pin(Sensor::at_speed); }
+std::string Sensors::nut_pin() { return pin(Sensor::nut_seen); }
 
 std::vector<std::string> Sensors::disagreements(const ToolState& tools, bool chuck_open,
                                                 bool cover_open) const {

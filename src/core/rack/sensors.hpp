@@ -50,6 +50,11 @@ class Sensors {
   /// The spindle's own feedback where it says the spindle still turns, for a
   /// message: its pin and "off"; else nothing.
   std::string turning_words() const;
+  /// The spindle turns at the speed asked for (`spindle-at-speed`), where wired.
+  bool at_speed() const;
+  bool senses_at_speed() const;
+  /// The tool-recognition beam reads a nut (`seen`) or none, where wired.
+  bool nut_reads(bool seen) const;
   /// The drawbar has the air to open.
   bool air_ok() const;
   /// The drawbar reads released: its open sensor on, its closed one off.
@@ -85,6 +90,8 @@ class Sensors {
   static std::string tool_pin();
   static std::string air_pin();
   static std::string cover_opened_pin();
+  static std::string at_speed_pin();
+  static std::string nut_pin();
 };
 
 }  // namespace fatc

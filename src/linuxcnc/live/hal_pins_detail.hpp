@@ -41,6 +41,7 @@ struct HalPins {
   hal_bit_t* ready;
   hal_bit_t* busy;
   hal_bit_t* touching;
+  hal_bit_t* changer_spindle;
   hal_bit_t* fault;
   hal_s32_t* tool_in_spindle;
   hal_bit_t* step_request;

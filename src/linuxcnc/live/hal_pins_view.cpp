@@ -63,6 +63,7 @@ void write_status(HalPins& pins, const Status& status, const Changer& changer,
   *pins.fault = status.phase == Phase::fault;
   *pins.busy = status.busy();
   *pins.touching = status.phase == Phase::touching;
+  *pins.changer_spindle = status.turns_spindle;
   *pins.tool_in_spindle = changer.tools().spindle;
   *pins.awaiting = static_cast<int>(status.awaiting);
   *pins.step_number = status.step_number;

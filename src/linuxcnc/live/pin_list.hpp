@@ -115,6 +115,10 @@ inline const std::vector<PinDeclaration> kPins = joined({{
    "a touch probe (config.json's `tools`) is in the spindle, or may be after a cut-off "
    "sequence; the snippet nets it to `fatc-spindle-guard`, which holds the spindle still and "
    "gives `motion.probe-input` the probe's input"},
+  {"changer-spindle", &HalPins::changer_spindle, HAL_OUT,
+   "the changer turns the spindle for the step under way (`chuck.kind` \"collet_nut\": a nut "
+   "screwed off or on over the served pocket): to `fatc-spindle-guard.changer-spindle`, which "
+   "otherwise holds the spindle still while the changer is busy"},
   {"spindle-refused", &HalPins::spindle_refused, HAL_IN,
    "`fatc-spindle-guard.refused`: M3 or M4 met the held spindle; a rising edge aborts what "
    "task runs and says why"},
@@ -138,6 +142,7 @@ inline const std::vector<PinDeclaration> kPins = joined({{
   {"air-blast", &HalPins::air_blast, HAL_OUT,
    "`air_blast`: on while the chuck is open at a pocket with the spindle empty (never at "
    "`loading`); off at a fault"},
+}, sensor_pins("chuck"), {
   // The machine, and the operator's word after a fault.
   {"machine-on", &HalPins::machine_on, HAL_IN,
    "machine on and out of estop (`motion.motion-enabled`)"},

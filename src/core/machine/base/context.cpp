@@ -137,6 +137,25 @@ void Context::chuck(bool open) {
   }
 }
 
+void Context::turn_spindle(double rpm, std::string label) {
+  const Step step = spindle_step(rpm, std::move(label), sequence_pocket());
+  const auto go = [this, step] {
+    outputs.spindle_rpm = step.value;
+    publish(step);
+  };
+  char action[64];
+  std::snprintf(action, sizeof action, "turn the spindle %s at %.0f rpm",
+                rpm > 0.0 ? "forward" : "in reverse", std::fabs(rpm));
+  if (rpm == 0.0 || !stop_before(motion.sequence_step + 1, action, step.label, motion.position,
+                                 motion.known_axes, go)) {
+    go();
+  }
+}
+
+void Context::release_spindle() {
+  outputs.spindle_rpm = 0.0;
+}
+
 void Context::blow_if_due() {
   // The taper is cleaned only at a pocket: at `loading` the operator's hand
   // is at the spindle.
@@ -204,6 +223,7 @@ void Context::record_progress(const std::string& step, int pocket) {
 }
 
 void Context::end_sequence() {
+  release_spindle();
   motion.sequence_step = 0;
   if (!tools.in_progress) return;
   tools.in_progress.reset();

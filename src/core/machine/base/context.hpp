@@ -69,6 +69,8 @@ struct Outputs {
   /// The changer commanded the cover closed after its last sequence and waits
   /// for its closed sensor (Operating's ComparingSensors clears it on exit).
   bool cover_closing = false;
+  /// The speed the changer turns the spindle at (collet nut), signed; 0: it does not.
+  double spindle_rpm = 0.0;
 };
 
 /// What the status view shows of the work under way, beside the machine's flags.
@@ -150,6 +152,13 @@ class Context {
   /// open at a pocket with the spindle empty.
   void open_chuck();
   void close_chuck();
+  /// A collet nut: the spindle at `rpm` over the pocket served (forward > 0,
+  /// reverse < 0, 0 stopped), asked of LinuxCNC by the executor. A start is
+  /// held for Continue step by step; a stop never is.
+  void turn_spindle(double rpm, std::string label);
+  /// The changer no longer asks for the spindle, with no step: a fault or the
+  /// machine off, where LinuxCNC's abort stops it and the guard holds it.
+  void release_spindle();
   void wait(double seconds, std::string what);
   void ask_operator(const Prompt& question);
   /// Step by step, Continue: the held step goes out; false when none is held.

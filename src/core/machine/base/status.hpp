@@ -50,6 +50,10 @@ struct Status {
   /// A chuck atom released the chuck and it stays open: motion and the
   /// spindle must wait for the clamp (the `chuck-held` pin).
   bool chuck_held = false;
+  /// The changer turns the spindle for the step under way (a collet nut
+  /// screwed over its pocket): `changer-spindle`, the only time the spindle
+  /// guard lets it turn while the changer is busy.
+  bool turns_spindle = false;
   std::optional<double> last_length;  ///< the last tool length measured
   int step_number = 0;  ///< the step of the sequence under way, as --plan numbers it; 0 none
   int pocket = 0;       ///< the pocket being served, 0 none

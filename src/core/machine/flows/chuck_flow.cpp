@@ -18,6 +18,11 @@ namespace {
 std::optional<std::string> why_not_chuck(const Context& ctx, const ChuckRequest& request) {
   if (auto not_ready = why_not_ready(ctx)) return not_ready;
   if (request.action == ChuckRequest::Action::clamp) return std::nullopt;
+  if (ctx.config.screws_nuts()) {
+    return std::string(
+        "a collet-nut spindle (chuck.kind \"collet_nut\") has no drawbar to release; its nuts "
+        "are screwed by hand at loading");
+  }
   if (!ctx.machine.spindle_stopped) return std::string("the spindle is on; stop it first (M5)");
   if (auto air = why_no_air(ctx)) return air;
   const int held = ctx.tools.spindle;

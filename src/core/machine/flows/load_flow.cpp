@@ -68,6 +68,11 @@ std::optional<std::string> why_not_load(const Context& ctx, int tool, int pocket
   if (pocket < 0)
     return "pocket-number must be 0 (chosen) or a pocket, got " + std::to_string(pocket);
   if (auto busy = why_not_busy(ctx)) return busy;
+  if (ctx.config.screws_nuts() && ctx.config.is_probe(tool)) {
+    return tool_name(tool) +
+           " is a touch probe: a collet-nut magazine cannot hold it (the spindle would turn it to "
+           "screw it); M6 hands it in at loading";
+  }
   if (auto turning = why_spindle_turning(ctx)) return turning;
   if (auto air = why_no_air(ctx)) return air;
   if (const auto in_rack = ctx.tools.pocket_holding(tool)) {

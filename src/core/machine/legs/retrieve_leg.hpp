@@ -2,8 +2,11 @@
 
 // Fetching a tool from its pocket. docs/sequences.md#retrieve.
 
+#include <boost/mpl/vector/vector30.hpp>
+
 #include "cover.hpp"
 #include "flush_leg.hpp"
+#include "screwing_on.hpp"
 
 namespace fatc::machine {
 
@@ -108,14 +111,18 @@ struct RetrieveLeg_ : Flow<RetrieveLeg_> {
     }
   };
 
+  /// A collet-nut changer screws the nut on instead (`chuck.kind`).
   struct Starting : Decision {};
   using initial_state = Starting;
+  // 22 rows, more than boost::mpl::vector takes, hence vector22.
   // clang-format off
-  using transition_table = boost::mpl::vector<
+  using transition_table = boost::mpl::vector22<
   //    Start                        Event          Next                 Action                                  Guard
   // +----------------------------+--------------+--------------------+---------------------------------------+----------------------------------+
   Row < Starting                   , none         , Halted             , FaultCannotFetch                      , Not<ReadyToFetch>                >,
-  Row < Starting                   , none         , OpeningCover       , none                                  , ReadyToFetch                     >,
+  Row < Starting                   , none         , OpeningCover       , none                                  , And<ReadyToFetch, Not<ScrewsNuts>> >,
+  Row < Starting                   , none         , ScrewingOn         , none                                  , And<ReadyToFetch, ScrewsNuts>    >,
+  Row < ScrewingOn::exit_pt<Finished>, LegDone    , Finished           , none                                  , none                             >,
   Row < OpeningCover               , SensorReport , ToAboveChuck       , none                                  , CoverOpen                        >,
   Row < OpeningCover               , TimerElapsed , Halted             , FaultCoverDidNotOpen                  , CoverHasOpenedSensor             >,
   Row < ToAboveChuck               , InPosition   , FlushLeg           , none                                  , none                             >,

@@ -2,7 +2,7 @@
 
 // Returning the tool in the spindle to a pocket. docs/sequences.md#return.
 
-#include "cover.hpp"
+#include "screwing_off.hpp"
 
 namespace fatc::machine {
 
@@ -92,11 +92,16 @@ struct ReturnLeg_ : Flow<ReturnLeg_<Which>> {
     }
   };
 
-  using initial_state = OpeningCover;
+  /// A collet-nut changer screws the nut off instead (`chuck.kind`).
+  struct Starting : Decision {};
+  using initial_state = Starting;
   // clang-format off
   using transition_table = boost::mpl::vector<
   //    Start                  Event          Next                   Action                               Guard
   // +----------------------+--------------+----------------------+------------------------------------+-----------------------+
+  Row < Starting             , none         , OpeningCover         , none                               , Not<ScrewsNuts>       >,
+  Row < Starting             , none         , ScrewingOff          , none                               , ScrewsNuts            >,
+  Row < ScrewingOff::exit_pt<Finished>, LegDone, Finished          , none                               , none                  >,
   Row < OpeningCover         , SensorReport , ToApproach           , none                               , CoverOpen             >,
   Row < OpeningCover         , TimerElapsed , Halted               , FaultCoverDidNotOpen               , CoverHasOpenedSensor  >,
   Row < ToApproach           , InPosition   , IntoPocket           , none                               , PocketReadsEmpty      >,
