@@ -215,10 +215,11 @@ int Simulator::run(Changer& changer, int limit) {
   for (; fed < limit; ++fed) {
     if (!answers_late && report_sensors(changer)) continue;
     const Awaiting awaiting = changer.status().awaiting;
-    // The spindle is waited for on a timer too where no sensor says it got
-    // there (a collet nut's ramps).
-    const bool waits_on_time = awaiting == Awaiting::timer || awaiting == Awaiting::sensor ||
-                               awaiting == Awaiting::spindle;
+    // The spindle is waited for on a timer too where the changer turned it
+    // itself and no sensor says it got there (a collet nut's ramps).
+    const bool waits_on_time =
+        awaiting == Awaiting::timer || awaiting == Awaiting::sensor ||
+        (awaiting == Awaiting::spindle && (answers_late || turned_spindle_));
     if (waits_on_time && timer_armed) {
       run_out_timer(changer, awaiting != Awaiting::timer);
     } else if (awaiting == Awaiting::probe && pending && pending->kind == StepKind::probe) {
@@ -245,7 +246,9 @@ int Simulator::run(Changer& changer, int limit) {
           if (rack.modelled) rack.screw(*config_);
         }
       } else if (pending->kind == StepKind::spindle) {
+        turned_spindle_ = true;
         rack.spindle_rpm = pending->value;
+        rack.screwed = false;
         rack.spindle_still = pending->value == 0.0;
         changer.spindle_stopped(rack.spindle_still);
       }
@@ -257,6 +260,9 @@ int Simulator::run(Changer& changer, int limit) {
         show(Fact::air);
         report_sensors(changer);
       }
+      // The component reads its sensors before the executor's news in a poll:
+      // what the spindle's arrival changed (the recognition beam) is known then.
+      if (moved && !answers_late) report_sensors(changer);
       moved ? changer.in_position() : changer.command_done();
     } else {
       break;
