@@ -87,6 +87,9 @@ TEST(ColletNutConfig, shouldRefuseBadInputInOneLineNamingTheKey) {
   EXPECT_EQ(error_of(R"({"chuck": {"recognition": {"zone_1_z": -54, "zone_2_z": -60}}})"),
             "chuck.recognition.zone_2_z: must be above zone_1_z (-54): a nut not screwed home "
             "hangs lower, so zone 2 is the higher one, got -60");
+  EXPECT_EQ(error_of(R"({"chuck": {"recognition": {"zone_1_z": -75, "zone_2_z": -54}}})"),
+            "chuck.recognition.zone_1_z: must not be below pocket 1's spin-off (-68): there the "
+            "nose reaches into the nut left in the pocket, got -75");
   EXPECT_EQ(error_of(R"({"chuck": {"recognition": {"zone_1_z": -60}}})"),
             "chuck.recognition.zone_2_z: missing");
   EXPECT_EQ(error_of(R"({"pockets": {"2": {"approach": "side"}}})"),
