@@ -320,3 +320,34 @@ TEST(ColletNutChuck, shouldRefuseAChuckRelease) {
 
 }  // namespace
 }  // namespace fatc
+
+namespace fatc {
+namespace {
+
+TEST(ColletNutStepByStep, shouldHoldEachSpindleStartForContinueButNeverItsStop) {
+  const Config config = collet_config();
+  test::SimRig rig(config, with_spindle(config, 1));
+  rig.changer->step_by_step(true);
+  rig.changer->tool_change(3);
+  rig.run();
+  std::vector<std::string> starts;
+  for (int turn = 0; turn < 200 && rig.changer->status().awaits_operator(); ++turn) {
+    ASSERT_TRUE(rig.sim.asked);
+    if (rig.sim.asked->action.rfind("turn the spindle", 0) == 0) {
+      starts.push_back(rig.sim.asked->action + " " + rig.sim.asked->waypoint);
+      EXPECT_FALSE(rig.changer->status().turns_spindle) << "not before Continue";
+    }
+    rig.changer->operator_continue();
+    rig.run();
+  }
+  EXPECT_EQ(starts, (std::vector<std::string>{
+                        "turn the spindle in reverse at 1200 rpm spindle 1200 rpm in reverse over "
+                        "pocket 1",
+                        "turn the spindle forward at 1000 rpm spindle 1000 rpm forward over "
+                        "pocket 3"}));
+  EXPECT_EQ(rig.changer->status().phase, Phase::idle);
+  EXPECT_EQ(rig.changer->tools().spindle, 3);
+}
+
+}  // namespace
+}  // namespace fatc
