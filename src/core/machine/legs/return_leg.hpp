@@ -57,28 +57,8 @@ struct ReturnLeg_ : Flow<ReturnLeg_<Which>> {
   struct UpFromTool : GoingAtPocket<plan::return_up_from_tool> {};
   /// The spindle lifted with the chuck open: the tool must have stayed behind.
   struct CheckingToolLeft : AwaitingSensor<SpindleReadsEmpty> {};
-  /// Up and away; a fetch that follows on the direct path starts over this pocket.
-  struct Away : Walking<Away> {
-    template <class Leg>
-    static plan::Route route(const Context& c, const Leg& leg) {
-      return plan::phase(c.config, c.standing(), plan::return_away, leg.pocket, leg.fetch_follows);
-    }
-  };
+  struct Away : AwayFromPocket {};
 
-  struct RecordToolInPocket {
-    template <class Event, class Fsm, class Source, class Target>
-    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      fsm.ctx->record_in_pocket(fsm.tool, fsm.pocket);
-    }
-  };
-  struct PocketFull {
-    template <class Leg>
-    static std::string text(const Context&, const Leg& leg) {
-      return "pocket " + std::to_string(leg.pocket) + " is not empty (" + pocket_pin(leg.pocket) +
-             " on): tool " + std::to_string(leg.tool) + " cannot go in";
-    }
-  };
-  using FaultPocketFull = FaultSaying<PocketFull, false>;
   /// The tool came up with the spindle: it is there, as far as anyone knows.
   struct FaultToolStillInSpindle {
     template <class Event, class Fsm, class Source, class Target>

@@ -4,6 +4,7 @@
 
 #include <boost/mpl/vector/vector30.hpp>
 
+#include "returning.hpp"
 #include "screwing.hpp"
 
 namespace fatc::machine {
@@ -40,28 +41,8 @@ struct ScrewingOff_ : Flow<ScrewingOff_> {
   struct ToZone1 : GoingAtPocket<plan::nut_to_zone_1> {};
   /// The beam at zone 1 must be clear: the nut stayed in the pocket.
   struct LookingForNut : AwaitingSensor<BeamReads<false>> {};
-  /// Up and away; a fetch that follows on the direct path starts over this pocket.
-  struct Away : Walking<Away> {
-    template <class Leg>
-    static plan::Route route(const Context& c, const Leg& leg) {
-      return plan::phase(c.config, c.standing(), plan::return_away, leg.pocket, leg.fetch_follows);
-    }
-  };
+  struct Away : AwayFromPocket {};
 
-  struct RecordToolInPocket {
-    template <class Event, class Fsm, class Source, class Target>
-    void operator()(const Event&, Fsm& fsm, Source&, Target&) const {
-      fsm.ctx->record_in_pocket(fsm.tool, fsm.pocket);
-    }
-  };
-  struct PocketFull {
-    template <class Leg>
-    static std::string text(const Context&, const Leg& leg) {
-      return "pocket " + std::to_string(leg.pocket) + " is not empty (" + pocket_pin(leg.pocket) +
-             " on): tool " + std::to_string(leg.tool) + "'s nut cannot go in";
-    }
-  };
-  using FaultPocketFull = FaultSaying<PocketFull, false>;
   using FaultNotAtSpeed = FaultSaying<NotAtSpeed<Reverse>, false>;
   struct SayUnscrewingAgain {
     template <class Event, class Fsm, class Source, class Target>
