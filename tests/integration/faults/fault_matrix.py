@@ -16,6 +16,10 @@ default estop,abort,kill), FATC_MATRIX_MODE (matrix | restart),
 FATC_MATRIX_STEPS (comma list of step numbers, "none", or unset: every step
 that waits); FATC_MATRIX_<KIND>_STEPS, e.g. FATC_MATRIX_HOLD_STEPS (the steps
 of that column, if not those); FATC_MATRIX_SPINDLE (non-empty: the spindle case too); FATC_MATRIX_PENDING (restart mode: the case the last start cut).
+
+A collet-nut config (`"chuck": {"kind": "collet_nut"}`, config/sim/sim_nut.hal
+loaded): what the machinist finds is the simulated magazine's (harness/sim_nut.py),
+read once the cut settled, and every cut also waits for the spindle to stand.
 """
 import json
 import os
@@ -27,10 +31,12 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 import driver as d  # noqa: E402  (shares its LinuxCNC channels and HAL helpers)
 import hal  # noqa: E402
 import linuxcnc  # noqa: E402
+import sim_nut  # noqa: E402
 
 P = d.COMPONENT + "."
 FIRST, SECOND = 1, 2  # adjacent pockets: the change between them is short
 OTHER = 3             # what the refused M6 asks for
+COLLET = []           # [the config's pockets] on a collet-nut magazine, empty on a drawbar's
 
 
 def pin(name):
@@ -66,15 +72,32 @@ def truth(steps, at, held):
     return target, {held: True, target: False}
 
 
-def what_the_operator_says(steps, at, held):
+def what_the_operator_says(steps, at, case):
     """What a machinist finds (truth), and then says: where the spindle is
     empty they put tool 1 into it by hand first, from its pocket, so that the
     next case starts without a fetch."""
-    spindle, pockets = truth(steps, at, held)
+    if COLLET:
+        return what_the_operator_finds_on_the_magazine(case)
+    spindle, pockets = truth(steps, at, case["from"])
     if spindle == 0:
         spindle, pockets = FIRST, dict(pockets, **{str(FIRST): False})
         pockets = {int(k): v for k, v in pockets.items()}
     return spindle, pockets
+
+
+def what_the_operator_finds_on_the_magazine(case):
+    """A collet-nut magazine: the nuts where the simulated magazine has them
+    (a nut from pocket N is tool N). An empty spindle gets tool 1's nut
+    screwed on by hand from pocket 1, a nut left hanging low is screwed home."""
+    found = sim_nut.truth(COLLET)
+    case["found"] = found
+    if found["spindle"] == 0:
+        sim_nut.put_in_pocket(FIRST, False)
+        sim_nut.screw_on_by_hand(FIRST)
+    elif not found["seated"]:
+        sim_nut.screw_on_by_hand(found["spindle"])
+    now = sim_nut.truth(COLLET)
+    return now["spindle"], now["pockets"]
 
 
 def program(name, text):
@@ -158,6 +181,9 @@ def settle(kind, struck, case):
     case["chuck_closed_after"] = since()
     d.wait_for(lambda: d.stat.interp_state == linuxcnc.INTERP_IDLE, 30, "the program stopped")
     case["program_stopped_after"] = since()
+    if COLLET:
+        d.wait_for(sim_nut.spindle_still, 30, "the spindle to stand")
+        case["spindle_stopped_after"] = since()
     if kind == "kill":
         case["restart"] = {k: v for k, v in d.restart_component().items()
                            if k in ("load_seconds", "registered_after_hal_exit")}
@@ -171,10 +197,13 @@ def settle(kind, struck, case):
 
 def after_cut(messages):
     """What LinuxCNC and the component say once a cut has settled."""
-    return {"fault": pin(P + "fault"), "state": pin(P + "state"),
+    said = {"fault": pin(P + "fault"), "state": pin(P + "state"),
             "chuck": pin("fatc-chuck-guard.chuck"), "linuxcnc_tool": d.stat.tool_in_spindle,
             "changer_tool": pin(P + "tool-in-spindle"), "cut_off_pocket": pin(P + "cut-off-pocket"),
             "files": files(), "messages": messages}
+    if COLLET:
+        said["spindle"] = dict(sim_nut.spindle_now(), changer_spindle=pin(P + "changer-spindle"))
+    return said
 
 
 def observe_refusals(case):
@@ -212,6 +241,8 @@ def confirm(spindle, pockets, case):
                          "pocket_holds_tool": pockets.get(cut_off) if cut_off else None,
                          "linuxcnc_tool": d.stat.tool_in_spindle,
                          "changer_tool": pin(P + "tool-in-spindle"), "files": files()}
+    if COLLET:
+        case["confirmed"]["found"] = sim_nut.truth(COLLET)
 
 
 def prepare():
@@ -234,7 +265,7 @@ def run_case(kind, at, steps):
         case["after_cut"] = after_cut(d.messages[first:])
         observe_refusals(case)
         case["seconds"]["refusals"] = time.monotonic() - began
-        spindle, pockets = what_the_operator_says(steps, at, case["from"])
+        spindle, pockets = what_the_operator_says(steps, at, case)
         confirm(spindle, pockets, case)
         case["seconds"]["confirm"] = time.monotonic() - began
     except Exception as e:  # the checker reports it; the next case starts afresh
@@ -259,7 +290,10 @@ def recover():
     if not d.component_pids():
         d.restart_component()
     d.wait_for(lambda: pin(P + "state") in (1, 5), 30, "the changer up")
-    if pin(P + "fault"):
+    if pin(P + "fault") and COLLET:
+        spindle, pockets = what_the_operator_finds_on_the_magazine({})
+        confirm(spindle, pockets, {})
+    elif pin(P + "fault"):
         confirm(pin(P + "tool-in-spindle"), {}, {})
 
 
@@ -340,7 +374,14 @@ def main():
     out = os.environ["FATC_RESULTS"]
     try:
         bring_up()
-        steps = plan(os.path.join(d.ini_dir(), "config.json"))
+        config = os.path.join(d.ini_dir(), "config.json")
+        if json.load(open(config)).get("chuck", {}).get("kind") == "collet_nut":
+            # A fresh magazine: every pocket's nut in it, as the state file starts.
+            COLLET.extend(sorted(int(p) for p in json.load(open(config))["pockets"]))
+            for pocket in COLLET:
+                sim_nut.put_in_pocket(pocket, True)
+        results["collet_nut"] = bool(COLLET)
+        steps = plan(config)
         results["plan"] = steps
         chosen = os.environ.get("FATC_MATRIX_STEPS")
         if chosen == "none":
@@ -390,7 +431,7 @@ def restart_mode(steps, at_steps, results):
         case["after_cut"] = after_cut(list(d.messages))
         try:
             observe_refusals(case)
-            spindle, pockets = what_the_operator_says(steps, case["step"], case["from"])
+            spindle, pockets = what_the_operator_says(steps, case["step"], case)
             confirm(spindle, pockets, case)
         except Exception as e:
             case["error"] = "%s: %s" % (type(e).__name__, e)
