@@ -110,7 +110,10 @@ def collet_problems(case, plan):
     if spindle["on"] or spindle["drive_on"] or spindle["drive_speed"] or spindle["speed"] \
             or spindle["changer_spindle"]:
         found.append("the spindle did not stand after the cut: %s" % spindle)
-    if case["spindle_stopped_after"] > SPINDLE_STANDS_WITHIN.get(kind, 3.0):
+    if case["spindle_stopped_after"] is None:
+        found.append("the spindle did not stand within %.0f s of the cut: %s" % (
+            case["spindle_turning"]["after"], case["spindle_turning"]))
+    elif case["spindle_stopped_after"] > SPINDLE_STANDS_WITHIN.get(kind, 3.0):
         found.append("the spindle stood %.2f s after the cut" % case["spindle_stopped_after"])
     nuts = case["found"]
     seen = (nuts["spindle"], {int(p): v for p, v in nuts["pockets"].items()

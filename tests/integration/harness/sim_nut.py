@@ -23,6 +23,13 @@ def truth(pockets):
             "pockets": {p: bool(_pin("nut-in-pocket-%d" % (p - 1))) for p in pockets}}
 
 
+def _taken():
+    """Long enough for the component, in the 1 ms servo thread, to have read
+    an init pin just set: its outputs may already show what that asks, so
+    there is nothing of its own to wait on."""
+    time.sleep(0.02)
+
+
 def _until(condition, what, timeout=5.0):
     deadline = time.monotonic() + timeout
     while not condition():
@@ -39,7 +46,7 @@ def put_in_pocket(pocket, holds):
     out = "nut-in-pocket-%d" % (pocket - 1)
     if bool(hal.get_value(init)) == holds:
         hal.set_p(init, "0" if holds else "1")
-        _until(lambda: bool(_pin(out)) != holds, "pocket %d's nut toggled" % pocket)
+        _taken()
     hal.set_p(init, "1" if holds else "0")
     _until(lambda: bool(_pin(out)) == holds, "pocket %d %s" % (pocket, "full" if holds else "empty"))
 
@@ -50,6 +57,7 @@ def screw_on_by_hand(pocket):
     init = NUT + "nut-on-spindle-init"
     empty = -1 if hal.get_value(init) != -1 else -2
     hal.set_p(init, str(empty))
+    _taken()
     _until(lambda: not _pin("nut-on-spindle"), "the spindle's nut off")
     if pocket:
         hal.set_p(init, str(pocket))
