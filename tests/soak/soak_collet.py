@@ -19,10 +19,13 @@ from soak import PLAN, POCKETS, HOME_POCKET, P, d
 
 NUT = "fatc-sim-nut."
 CUTS = ("estop", "abort", "kill")
+# A change on the soak's fast axes, two spindle starts and stops and three
+# plunges at the engage feed: some five seconds (the drawbar's 2.5).
+CHANGE_SECONDS = 5.0
 
 
 class ColletSoak(soak.Soak):
-    FAULTS = ["missing", "cross_thread", "abort", "kill", "estop"]
+    FAULTS = ["missing", "cross_thread", "abort", "estop"]
 
     def __init__(self):
         super().__init__()
@@ -92,22 +95,29 @@ class ColletSoak(soak.Soak):
             return
         else:
             kind = self.rng.choice(self.FAULTS)
+        program_seconds *= CHANGE_SECONDS / PLAN["seconds_per_change"]
         at = time.monotonic() + self.rng.uniform(0.1, 0.5) * program_seconds
         self.pending_fault = {"kind": kind, "at": at,
                               "at_chuck": kind in CUTS and self.rng.random() < 0.5}
         if kind == "missing":
-            # The nut of the first tool the program fetches from the magazine.
+            # The nut of the last tool the program fetches from the magazine:
+            # the changes before it are made.
             held = self.where["spindle"]
             fetched = [t for t in self.program_tools if t and t != held and
                        t in self.where["pockets"].values()]
             self.pending_fault["at"] = float("inf")
             if fetched:
-                pocket = next(p for p, t in self.where["pockets"].items() if t == fetched[0])
+                pocket = next(p for p, t in self.where["pockets"].items() if t == fetched[-1])
                 hal.set_p(NUT + "missing-%d" % (pocket - 1), "1")
-                self.injected(kind, pocket=pocket, tool=fetched[0])
-        elif kind == "cross_thread":
+                self.injected(kind, pocket=pocket, tool=fetched[-1])
+
+    def inject(self):
+        """A cross-thread from its moment on: the next nut screwed on never seats."""
+        if self.pending_fault["kind"] == "cross_thread":
             hal.set_p(NUT + "cross-thread", "1")
-            self.injected(kind)
+            self.injected("cross_thread", changer_state=d.pin_value(P + "state"))
+        else:
+            super().inject()
 
     def end_faults(self):
         """The missing nut back in its pocket, the thread good again."""
