@@ -73,9 +73,10 @@ def main():
     config = json.load(open(run + "/config.json"))
     edges = [i for i in range(1, len(samples))
              if samples[i]["motion.digital-out-02"] != samples[i - 1]["motion.digital-out-02"]]
+    axes = "axes %s mm/s, %s mm/s²" % (ini["AXIS_X"]["MAX_VELOCITY"], ini["AXIS_X"]["MAX_ACCELERATION"])
     print("collet nuts on the simulated magazine (%s, spindle ramp %.0f rpm/s, unload %s / load %s rpm, "
           "engage feed %s, %s tightening plunges)" % (
-              "axes as [AXIS_x] says", ramp, config["chuck"]["unload_rpm"], config["chuck"]["load_rpm"],
+              axes, ramp, config["chuck"]["unload_rpm"], config["chuck"]["load_rpm"],
               config["chuck"]["engage_feed"], config["chuck"]["tighten_plunges"]))
     print("%-26s %8s %8s %8s %8s %7s %8s %8s" % ("tests/bench/collet_changes", "real", "moves",
                                                 "ramps", "bound", "ratio", "spindle", "--plan"))
