@@ -6,8 +6,8 @@ simulated magazine, against its physical bound: the moves of what
 INI's velocities and accelerations, each an exact stop) and the spindle's
 ramps: each start to the plan's speed and each stop take
 |speed| / [FIXED_ATC_PROBE]SIM_SPINDLE_RAMP seconds. The plan's own bound
-counts each wait for the spindle (at-speed, zero-speed) and for the
-recognition beam at its time-out, as a dwell: printed beside, not used.
+counts each wait for the spindle (at-speed, zero-speed) as a dwell of
+spindle_ramp_seconds: printed beside, not used.
 Prints, never asserts.
    bench_collet.py RUNDIR BINARY
 RUNDIR holds the run as run_sim.sh left it (results.json, config.json, sim.ini)."""
@@ -35,8 +35,7 @@ def spindle_speeds(plan):
 
 
 def dwells_seconds(plan):
-    """The plan's dwells: on a collet-nut magazine, the waits for the spindle
-    and the beam at their time-outs."""
+    """The plan's dwells: on a collet-nut magazine, the waits for the spindle."""
     return sum(float(m.group(1)) for m in re.finditer(r"^\s*\d+\s+dwell\s+([\d.]+) s", plan, re.M))
 
 
