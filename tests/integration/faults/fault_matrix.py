@@ -55,9 +55,9 @@ def plan(config):
     if not steps:
         raise RuntimeError("--plan printed no steps: %s %s" % (out.stdout, out.stderr))
     if COLLET:
-        # --plan prints each wait for at-speed, zero-speed and the beam as a
-        # dwell row at its time-out; the live step-number counts none of them
-        # (it stays on the spindle step or the move before): numbered as it does.
+        # --plan prints each wait for at-speed and zero-speed as a dwell row;
+        # the live step-number counts none of them (it stays on the spindle
+        # step): numbered as it does.
         steps = [(n + 1, kind, what) for n, (_, kind, what) in
                  enumerate(s for s in steps if s[1] != "dwell")]
     return steps
