@@ -52,6 +52,8 @@ class Stopped(Exception):
 
 
 class Soak:
+    FAULTS = FAULTS  # the kinds this soak injects: its cycle's, in order
+
     def __init__(self):
         self.rng = random.Random(PLAN["seed"] * 1000 + PLAN["start"])
         self.events = open("soak_events.jsonl", "a")
@@ -131,12 +133,16 @@ class Soak:
             self.poll()
             fault = self.pending_fault
             if fault and fault["at"] != float("inf") and (
-                    d.pin_value(P + "chuck") if fault["at_chuck"] else fault["at"] <= time.monotonic()):
+                    self.worst_moment() if fault["at_chuck"] else fault["at"] <= time.monotonic()):
                 self.inject()
             if condition():
                 return
             time.sleep(0.005)
         raise TimeoutError("timed out waiting for " + what)
+
+    def worst_moment(self):
+        """Where half the cuts strike: as the chuck opens, a tool half out."""
+        return d.pin_value(P + "chuck")
 
     # ------------------------------------------------------------ the rack's truth
     def truth(self):
@@ -286,6 +292,11 @@ class Soak:
         """A prompt: the operator puts in or takes out what it asks, then Continue.
         Its words are read once the status file shows this prompt (each prompt is
         said, and its serial counts up), not the one before."""
+        self.hand(self.prompt_words())
+        self.press("continue")
+
+    def prompt_words(self):
+        """The words of the prompt now shown, once the status file has them."""
         status = {}
         pid = d.component_pids()  # a restarted component counts its serials from 0 again
 
@@ -295,7 +306,10 @@ class Soak:
                 "press continue" in status.get("activity", "").lower()
         self.wait(shown, 10, "the prompt's words in the status file")
         self.prompt_serial = (pid, status["serial"])
-        words = status.get("activity", "").lower()
+        return status.get("activity", "").lower()
+
+    def hand(self, words):
+        """What the prompt asks, done by hand on the simulated rack."""
         spindle = d.pin_value(RACK + "spindle-tool")
         if "insert tool " in words and spindle == 0:
             tool = int(words.split("insert tool ")[1].split()[0])
@@ -305,7 +319,6 @@ class Soak:
             hal.set_p(RACK + "hand", "-1")
             self.wait(lambda: d.pin_value(RACK + "spindle-tool") == 0, 5, "the hand-out")
         hal.set_p(RACK + "hand", "0")
-        self.press("continue")
 
     def recover(self, where, provoked=False):
         """As docs/operating.md#faults says: machine on, look, confirm, clear.
@@ -425,6 +438,7 @@ class Soak:
         # finds the changer in fault: recover() confirms what the rack holds.
         d.wait_for(lambda: d.stat.task_state in (linuxcnc.STATE_ESTOP, linuxcnc.STATE_ESTOP_RESET,
                                                  linuxcnc.STATE_ON, linuxcnc.STATE_OFF), 120, "task")
+        self.event("fault kinds", kinds=self.FAULTS)
         self.recover("at the start", provoked=PLAN["start"] > 1)
         self.event("usage", **(self.usage() or {}))
         while self.changes < PLAN["changes"]:
@@ -439,7 +453,11 @@ class Soak:
 def main():
     driver = hal.component("fatc-driver")
     driver.ready()
-    soak = Soak()
+    if PLAN.get("collet_nut"):
+        from soak_collet import ColletSoak  # the collet-nut magazine's truth and faults
+        soak = ColletSoak()
+    else:
+        soak = Soak()
     try:
         soak.run()
     except Stopped:

@@ -80,7 +80,8 @@ not_reached = count("fault not reached", "fault")
 plan = json.load(open(os.path.join(work, "soak_plan.json")))
 missing_kinds = []
 if plan.get("fault_cycle"):
-    kinds = ["flicker", "late", "never", "estop", "abort", "kill", "restart_linuxcnc"]
+    kinds = next((e["kinds"] for e in events if e["kind"] == "fault kinds"),
+                 ["flicker", "late", "never", "estop", "abort", "kill", "restart_linuxcnc"])
     missing_kinds = [k for k in kinds if not faults.get(k)]
     if any(e["kind"] == "fault" and e["fault"] == "flicker" and not e.get("fired") for e in events):
         missing_kinds.append("flicker that fired")

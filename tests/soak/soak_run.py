@@ -11,7 +11,8 @@ FATC_CONFIG_SET, FATC_CONFIG, FATC_TOOL_TABLE, FATC_SIM_INI): the machine of
 tests/soak/CMakeLists.txt or scripts/soak.sh, or a user's own (scripts/rehearse.py).
 The rack is the config's pockets with the tools they hold at the first start
 (`"tool"`, default the pocket's number), the manual tools the table's others;
-FATC_SOAK_TRUE_LENGTH: the length every tool measures on the simulated setter
+FATC_SOAK_OPERATOR_RATE: how often the operator's flows come between programs
+(0.12); FATC_SOAK_TRUE_LENGTH: the length every tool measures on the simulated setter
 (25 on config/sim's), FATC_SOAK_LENGTH_TOLERANCE how far a measured one may
 be from it (0.01). Writes WORKDIR/soak_events.jsonl; soak_report.py turns
 it into the report."""
@@ -57,13 +58,15 @@ for start in range(1, 2 * budget + 20):
                 restarts -= 1
     plan = {"changes": changes, "changes_done": done, "seed": seed, "start": start,
             "faults_before": faults,
-            "restarts_left": max(restarts, 0), "fault_rate": 0.35, "operator_rate": 0.12,
+            "restarts_left": max(restarts, 0), "fault_rate": 0.35,
+            "operator_rate": float(os.environ.get("FATC_SOAK_OPERATOR_RATE") or 0.12),
             "seconds_per_change": 2.5, "sensor_timeout": config.get("sensor_timeout_seconds", 1.0),
             "drawbar_seconds": 0.05,
             "true_length": float(os.environ.get("FATC_SOAK_TRUE_LENGTH") or 25.0),
             "length_tolerance": float(os.environ.get("FATC_SOAK_LENGTH_TOLERANCE") or 0.01),
             "rack": {str(p): t for p, t in rack.items()}, "manual_tools": manual,
             "fault_cycle": bool(os.environ.get("FATC_SOAK_CYCLE")),
+            "collet_nut": config.get("chuck", {}).get("kind") == "collet_nut",
             "quiet_tail": 300 if changes >= 600 else 0}
     with open(os.path.join(work, "soak_plan.json"), "w") as f:
         json.dump(plan, f)

@@ -16,6 +16,10 @@ default estop,abort,kill), FATC_MATRIX_MODE (matrix | restart),
 FATC_MATRIX_STEPS (comma list of step numbers, "none", or unset: every step
 that waits); FATC_MATRIX_<KIND>_STEPS, e.g. FATC_MATRIX_HOLD_STEPS (the steps
 of that column, if not those); FATC_MATRIX_SPINDLE (non-empty: the spindle case too); FATC_MATRIX_PENDING (restart mode: the case the last start cut).
+
+A collet-nut config (`"chuck": {"kind": "collet_nut"}`, config/sim/sim_nut.hal
+loaded): what the machinist finds is the simulated magazine's (harness/sim_nut.py),
+read once the cut settled, and every cut also waits for the spindle to stand.
 """
 import json
 import os
@@ -27,10 +31,12 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 import driver as d  # noqa: E402  (shares its LinuxCNC channels and HAL helpers)
 import hal  # noqa: E402
 import linuxcnc  # noqa: E402
+import sim_nut  # noqa: E402
 
 P = d.COMPONENT + "."
 FIRST, SECOND = 1, 2  # adjacent pockets: the change between them is short
 OTHER = 3             # what the refused M6 asks for
+COLLET = []           # [the config's pockets] on a collet-nut magazine, empty on a drawbar's
 
 
 def pin(name):
@@ -48,6 +54,12 @@ def plan(config):
             steps.append((int(words[0]), words[1], words[2].strip() if len(words) > 2 else ""))
     if not steps:
         raise RuntimeError("--plan printed no steps: %s %s" % (out.stdout, out.stderr))
+    if COLLET:
+        # --plan prints each wait for at-speed and zero-speed as a dwell row;
+        # the live step-number counts none of them (it stays on the spindle
+        # step): numbered as it does.
+        steps = [(n + 1, kind, what) for n, (_, kind, what) in
+                 enumerate(s for s in steps if s[1] != "dwell")]
     return steps
 
 
@@ -66,15 +78,32 @@ def truth(steps, at, held):
     return target, {held: True, target: False}
 
 
-def what_the_operator_says(steps, at, held):
+def what_the_operator_says(steps, at, case):
     """What a machinist finds (truth), and then says: where the spindle is
     empty they put tool 1 into it by hand first, from its pocket, so that the
     next case starts without a fetch."""
-    spindle, pockets = truth(steps, at, held)
+    if COLLET:
+        return what_the_operator_finds_on_the_magazine(case)
+    spindle, pockets = truth(steps, at, case["from"])
     if spindle == 0:
         spindle, pockets = FIRST, dict(pockets, **{str(FIRST): False})
         pockets = {int(k): v for k, v in pockets.items()}
     return spindle, pockets
+
+
+def what_the_operator_finds_on_the_magazine(case):
+    """A collet-nut magazine: the nuts where the simulated magazine has them
+    (a nut from pocket N is tool N). An empty spindle gets tool 1's nut
+    screwed on by hand from pocket 1, a nut left hanging low is screwed home."""
+    found = sim_nut.truth(COLLET)
+    case["found"] = found
+    if found["spindle"] == 0:
+        sim_nut.put_in_pocket(FIRST, False)
+        sim_nut.screw_on_by_hand(FIRST)
+    elif not found["seated"]:
+        sim_nut.screw_on_by_hand(found["spindle"])
+    now = sim_nut.truth(COLLET)
+    return now["spindle"], now["pockets"]
 
 
 def program(name, text):
@@ -127,17 +156,22 @@ def cut(kind, at, steps, case):
     d.start_program(program("fatc_matrix_t%d.ngc" % target, "T%d M6\nM2\n" % target))
     began = time.monotonic()
     deadline = began + 120
+    seen = []  # the steps the change went through, for the error
     while time.monotonic() < deadline:
         d.stat.poll()
         d.drain_errors()
-        if pin(P + "step-number") == at:
+        step = pin(P + "step-number")
+        if step == at:
             break
+        if not seen or seen[-1][0] != step:
+            seen.append((step, round(d.stat.actual_position[2], 1)))
         if d.stat.interp_state == linuxcnc.INTERP_IDLE and time.monotonic() - began > 2:
-            raise RuntimeError("the change ended before step %d (messages %s)" % (at, d.messages[first:]))
+            raise RuntimeError("the change ended before step %d (steps %s, messages %s)" % (
+                at, seen, d.messages[first:]))
         time.sleep(0.001)
     else:
-        raise TimeoutError("step %d never came" % at)
-    case["struck_at"] = {"t": time.monotonic() - began, "pos": list(d.stat.actual_position[:3]),
+        raise TimeoutError("step %d never came (steps %s)" % (at, seen))
+    case["struck_at"] = {"t": time.monotonic() - began, "steps_before": seen, "pos": list(d.stat.actual_position[:3]),
                          "chuck": pin("fatc-chuck-guard.chuck"), "awaiting": pin(P + "awaiting"),
                          "step_ready": pin(P + "step-ready"), "step_request": pin(P + "step-request")}
     struck = time.monotonic()
@@ -158,6 +192,8 @@ def settle(kind, struck, case):
     case["chuck_closed_after"] = since()
     d.wait_for(lambda: d.stat.interp_state == linuxcnc.INTERP_IDLE, 30, "the program stopped")
     case["program_stopped_after"] = since()
+    if COLLET:
+        spindle_stands(case, since)
     if kind == "kill":
         case["restart"] = {k: v for k, v in d.restart_component().items()
                            if k in ("load_seconds", "registered_after_hal_exit")}
@@ -169,12 +205,32 @@ def settle(kind, struck, case):
     d.wait_for(lambda: not hal.get_value("iocontrol.0.tool-change"), 10, "tool-change low")
 
 
+def spindle_stands(case, since):
+    """A collet nut's cut: the spindle must stand within 10 s. Where it does
+    not, what turns it is recorded, and the operator presses Stop once the
+    case has looked again after the component's restart (after_cut)."""
+    try:
+        d.wait_for(sim_nut.spindle_still, 10, "the spindle to stand")
+        case["spindle_stopped_after"] = since()
+    except TimeoutError:
+        d.stat.poll()
+        case["spindle_stopped_after"] = None
+        case["spindle_turning"] = {"after": since(), "pins": sim_nut.spindle_now(),
+                                   "linuxcnc": d.stat.spindle[0]}
+
+
 def after_cut(messages):
     """What LinuxCNC and the component say once a cut has settled."""
-    return {"fault": pin(P + "fault"), "state": pin(P + "state"),
+    said = {"fault": pin(P + "fault"), "state": pin(P + "state"),
             "chuck": pin("fatc-chuck-guard.chuck"), "linuxcnc_tool": d.stat.tool_in_spindle,
             "changer_tool": pin(P + "tool-in-spindle"), "cut_off_pocket": pin(P + "cut-off-pocket"),
             "files": files(), "messages": messages}
+    if COLLET:
+        said["spindle"] = dict(sim_nut.spindle_now(), changer_spindle=pin(P + "changer-spindle"))
+        if not sim_nut.spindle_still():
+            d.command.abort()  # the operator stops what still turns, for the next case
+            d.wait_for(sim_nut.spindle_still, 10, "the spindle to stand after Stop")
+    return said
 
 
 def observe_refusals(case):
@@ -212,6 +268,8 @@ def confirm(spindle, pockets, case):
                          "pocket_holds_tool": pockets.get(cut_off) if cut_off else None,
                          "linuxcnc_tool": d.stat.tool_in_spindle,
                          "changer_tool": pin(P + "tool-in-spindle"), "files": files()}
+    if COLLET:
+        case["confirmed"]["found"] = sim_nut.truth(COLLET)
 
 
 def prepare():
@@ -234,7 +292,7 @@ def run_case(kind, at, steps):
         case["after_cut"] = after_cut(d.messages[first:])
         observe_refusals(case)
         case["seconds"]["refusals"] = time.monotonic() - began
-        spindle, pockets = what_the_operator_says(steps, at, case["from"])
+        spindle, pockets = what_the_operator_says(steps, at, case)
         confirm(spindle, pockets, case)
         case["seconds"]["confirm"] = time.monotonic() - began
     except Exception as e:  # the checker reports it; the next case starts afresh
@@ -259,7 +317,10 @@ def recover():
     if not d.component_pids():
         d.restart_component()
     d.wait_for(lambda: pin(P + "state") in (1, 5), 30, "the changer up")
-    if pin(P + "fault"):
+    if pin(P + "fault") and COLLET:
+        spindle, pockets = what_the_operator_finds_on_the_magazine({})
+        confirm(spindle, pockets, {})
+    elif pin(P + "fault"):
         confirm(pin(P + "tool-in-spindle"), {}, {})
 
 
@@ -329,7 +390,9 @@ def run_spindle_turning(steps):
 
 def waiting_steps(steps):
     """Every step but the chuck actions (they take no time: the dwell after one
-    is where a cut finds the chuck as it left it) and the final done."""
+    is where a cut finds the chuck as it left it) and the final done. A collet
+    nut's spindle step is where the changer waits for the spindle to come up
+    to speed or stand."""
     return [n for n, kind, _ in steps if kind not in ("chuck", "done")]
 
 
@@ -340,7 +403,14 @@ def main():
     out = os.environ["FATC_RESULTS"]
     try:
         bring_up()
-        steps = plan(os.path.join(d.ini_dir(), "config.json"))
+        config = os.path.join(d.ini_dir(), "config.json")
+        if json.load(open(config)).get("chuck", {}).get("kind") == "collet_nut":
+            # A fresh magazine: every pocket's nut in it, as the state file starts.
+            COLLET.extend(sorted(int(p) for p in json.load(open(config))["pockets"]))
+            for pocket in COLLET:
+                sim_nut.put_in_pocket(pocket, True)
+        results["collet_nut"] = bool(COLLET)
+        steps = plan(config)
         results["plan"] = steps
         chosen = os.environ.get("FATC_MATRIX_STEPS")
         if chosen == "none":
@@ -390,7 +460,7 @@ def restart_mode(steps, at_steps, results):
         case["after_cut"] = after_cut(list(d.messages))
         try:
             observe_refusals(case)
-            spindle, pockets = what_the_operator_says(steps, case["step"], case["from"])
+            spindle, pockets = what_the_operator_says(steps, case["step"], case)
             confirm(spindle, pockets, case)
         except Exception as e:
             case["error"] = "%s: %s" % (type(e).__name__, e)
