@@ -32,7 +32,7 @@ targets=()
 for target in "$@"; do targets+=(--target "$target"); done
 cmake --build build -j"$(nproc)" "${targets[@]}"
 # The realtime modules the HAL files load (src/rt: the chuck guard, the
-# rack guard, the spindle guard, the simulated sensor and rack) must be in LinuxCNC's modules folder. The package installs them
+# rack guard, the spindle guard, the simulated sensor, rack and nut magazine) must be in LinuxCNC's modules folder. The package installs them
 # there; without the package this checkout's are compiled and installed by
 # halcompile, said on one line, and an installed package later replaces those
 # files with its own. Building only the package (`setup.sh deb`, as the

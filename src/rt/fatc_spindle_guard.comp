@@ -1,4 +1,4 @@
-component fatc_spindle_guard "Holds the spindle still while fixed_atc_probe has a touch probe in it, and gives motion the probe's input then";
+component fatc_spindle_guard "Holds the spindle still while fixed_atc_probe has a touch probe in it or changes tools without asking for it, and gives motion the probe's input then";
 description """
 While \\fBprobe-in-spindle\\fR is true (config.json's \\fBtools\\fR says the tool
 in the spindle is a probe) the spindle is \\fBheld\\fR: \\fBspindle-on\\fR, the
@@ -11,6 +11,12 @@ M3 or M4 from a program, MDI, a GUI or halui turns nothing. \\fBrefused\\fR
 speed) tells the component, which aborts what asked and says why. Once held, only a
 live component releases it: when its heartbeat stops for \\fBtimeout\\fR
 seconds (it died, hangs or was unloaded) the spindle stays held.
+While the changer is busy (\fBchanger-busy\fR) the spindle is also
+\fBheld-for-change\fR (\fBspindle-on\fR false, \fBspeed-out\fR 0): it
+turns only in a step where the changer asks for it
+(\fBchanger-spindle\fR: a collet nut screwed off or on) and only while the
+component answers (\fBalive\fR); one that stops answering holds it even
+though it asked. This hold raises neither \fBrefused\fR nor \fBinhibit\fR.
 \\fBprobe-input\\fR, for motion.probe-input, is the probe's own input
 (\\fBspindle-probe\\fR) while it is in the spindle and the changer is not
 measuring (\\fBchanger-busy\\fR false) or is touching the rack with it
@@ -20,6 +26,7 @@ pin in bit probe-in-spindle "fixed_atc_probe.probe-in-spindle: the spindle holds
 pin in bit heartbeat "fixed_atc_probe.heartbeat: toggles on every poll of the component";
 pin in float timeout = 0.5 "seconds without a heartbeat edge before the component is taken for gone";
 pin in bit changer-busy "fixed_atc_probe.busy: the changer's own moves measure on the touch-off sensor";
+pin in bit changer-spindle "fixed_atc_probe.changer-spindle: the changer turns the spindle in this step (a collet nut screwed off or on)";
 pin in bit touching "fixed_atc_probe.touching: the changer's own moves touch the rack with the probe";
 pin in bit chuck-held "fixed_atc_probe.chuck-held: a chuck atom holds the spindle as well";
 pin in bit spindle-on-in "spindle.0.on: LinuxCNC asks for the spindle";
@@ -29,6 +36,7 @@ pin in float speed-in "the speed motion gives the drive (spindle.0.speed-out, or
 pin out float speed-out "to the spindle drive's speed: speed-in, 0 while held (M49 and M51 P0 switch spindle.0.inhibit off; this holds still)";
 pin out bit inhibit "to spindle.0.inhibit: held or chuck-held";
 pin out bit held "a probe is in the spindle, or was when the component stopped answering";
+pin out bit held-for-change "the changer is busy (or asks for the spindle) and does not ask for it, or asked and stopped answering";
 pin out bit refused "held while LinuxCNC asks for the spindle (spindle-on-in, or a speed-command)";
 pin in bit sensor "the touch-off sensor";
 pin in bit spindle-probe "the touch probe's own input";
@@ -47,8 +55,9 @@ if (heartbeat != last_beat) {
 }
 alive = quiet < timeout;
 held = probe_in_spindle || (held && !alive);
-spindle_on = spindle_on_in && !held;
-speed_out = held ? 0 : speed_in;
+held_for_change = (changer_busy || changer_spindle) && !(changer_spindle && alive);
+spindle_on = spindle_on_in && !held && !held_for_change;
+speed_out = (held || held_for_change) ? 0 : speed_in;
 inhibit = held || chuck_held;
 refused = held && (spindle_on_in || speed_command != 0);
 probe_input = (probe_in_spindle && (!changer_busy || touching)) ? spindle_probe : sensor;

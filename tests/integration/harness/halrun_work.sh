@@ -4,7 +4,8 @@
 # lock (one LinuxCNC or halrun at a time: a run_sim.sh run ends first), makes
 # the test user $user, and $work, a folder of that user's (the component
 # writes its state and status files there) removed at exit, with the binary
-# and the checkout readable to that user.
+# and the checkout readable to that user. halrun_verdict runs a HAL file whose
+# program writes its verdict into $work/verdict.
 binary=$(readlink -f "$1")
 exec 9>>/tmp/fixed_atc_probe-linuxcnc.lock
 flock -w 3600 9
@@ -17,3 +18,12 @@ chown "$user" "$work"
 for d in "$(dirname "$binary")" "$root"; do
   while [ "$d" != "/" ]; do chmod o+rx "$d" 2>/dev/null || true; d=$(dirname "$d"); done
 done
+
+# halrun_verdict FILE: FILE under halrun as $user (120 s at most), what it
+# printed shown; true when its program wrote "pass" into $work/verdict.
+halrun_verdict() {
+  chmod a+r "$1"
+  runuser -u "$user" -- timeout 120 halrun -f "$1" > "$work/out.txt" 2>&1 || true
+  cat "$work/out.txt"
+  test "$(cat "$work/verdict" 2>/dev/null)" = pass
+}
