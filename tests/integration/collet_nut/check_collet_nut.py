@@ -142,10 +142,12 @@ def check_collet_changes(r, rack):
     if tools != CHANGES:
         fail("LinuxCNC's tool in the spindle went %s, expected %s" % (tools, CHANGES))
     ok("LinuxCNC's tool in the spindle went %s" % tools)
+    # The component records each return: the spindle empty between two tools.
     component = distinct(samples, "fixed_atc_probe.tool-in-spindle")
-    if component != CHANGES:
-        fail("the component's tool in the spindle went %s, expected %s" % (component, CHANGES))
-    ok("the component's tool in the spindle went the same way")
+    wanted = [0] + [t for tool in CHANGES[1:] for t in (tool, 0)][:-1]
+    if component != wanted:
+        fail("the component's tool in the spindle went %s, expected %s" % (component, wanted))
+    ok("the component's tool in the spindle went %s" % component)
     # The manual tools: each handed in and out at loading.
     holds = rising(samples, "fixed_atc_probe.waiting-for-operator")
     if holds != 4:
@@ -219,7 +221,8 @@ def check_failure(r, rack, wanted, belief, nuts):
     if not found:
         fail("no fault saying %s among the component's errors %s" % (wanted, texts))
     ok("the fault: %s" % found[-1])
-    if not any(found[-1] in m for m in r["messages"]):
+    # LinuxCNC shows a long message in lines of its own: the first holds the start.
+    if not any(found[-1][:100] in m for m in r["messages"]):
         fail("LinuxCNC was not told the fault: %s" % r["messages"])
     ok("LinuxCNC's operator messages carry it")
     if fault["pins"]["fixed_atc_probe.state"] == 1 or not fault["pins"]["fixed_atc_probe.fault"]:
