@@ -77,6 +77,28 @@ def only_over_the_served_pocket(samples, rack):
           1000 * max(gaps, default=0.0)))
 
 
+def turn_of(run, rack):
+    """(pocket, 1 forward or -1 reverse) of a run of samples with the spindle
+    turning, checked against the config: one direction at the leg's speed
+    (load_rpm forward, unload_rpm in reverse), as far down as the pocket's
+    engage Z, as high as spin-off forward (a load stops there) and the rise
+    after unloading in reverse."""
+    chuck = rack.c["chuck"]
+    pocket = run[0][SERVED]
+    speeds = sorted({s["spindle.0.speed-out"] for s in run if s["spindle.0.speed-out"] != 0.0})
+    if len(speeds) != 1 or speeds[0] not in (chuck["load_rpm"], -chuck["unload_rpm"]):
+        fail("a turn of the spindle over pocket %d at the speeds %s (load_rpm %s, unload_rpm %s)"
+             % (pocket, speeds, chuck["load_rpm"], chuck["unload_rpm"]))
+    forward = speeds[0] > 0
+    z = rack.pocket(pocket)[2]
+    top = z + chuck["spin_off_offset_z" if forward else "rise_after_unload_offset_z"]
+    heights = [joints(s)[2] for s in run]
+    if abs(min(heights) - z) > TOLERANCE or abs(max(heights) - top) > TOLERANCE:
+        fail("over pocket %d the spindle turned %s from Z %.4f to %.4f, expected the engage Z %.3f to %.3f"
+             % (pocket, "forward" if forward else "in reverse", min(heights), max(heights), z, top))
+    return pocket, 1 if forward else -1
+
+
 def spindle_stopped(s, what):
     """The spindle stands: motion's and the guard's commands and the simulated spindle's real speed."""
     if s["spindle.0.speed-out"] != 0.0 or s["fatc-spindle-guard.spindle-on"] or \
@@ -162,23 +184,14 @@ def check_collet_changes(r, rack):
     # The spindle: only over the served pocket, forward to screw on and in
     # reverse to screw off, as far down as the engage Z.
     only_over_the_served_pocket(samples, rack)
-    runs = stretches(samples)
-    turns = []
-    for run in runs:
-        speeds = [s["spindle.0.speed-out"] for s in run if s["spindle.0.speed-out"] != 0.0]
-        if not speeds or any((v > 0) != (speeds[0] > 0) for v in speeds):
-            fail("a turn of the spindle over pocket %d with the speeds %s" % (run[0][SERVED], sorted(set(speeds))))
-        turns.append((run[0][SERVED], 1 if speeds[0] > 0 else -1))
-        pocket_z = rack.pocket(run[0][SERVED])[2]
-        lowest = min(joints(s)[2] for s in run)
-        if abs(lowest - pocket_z) > TOLERANCE:
-            fail("over pocket %d the spindle turned down to Z %.4f, not its engage Z %.3f"
-                 % (run[0][SERVED], lowest, pocket_z))
+    turns = [turn_of(run, rack) for run in stretches(samples)]
     if turns != TURNS:
         fail("the spindle turned over (pocket, direction) %s, expected %s" % (turns, TURNS))
-    ok("the spindle turned %d times: forward over pockets 1 to 6, in reverse over 1 to 5, each down to "
-       "its engage Z (%s rpm)" % (len(turns), sorted({abs(s["spindle.0.speed-out"]) for run in runs for s in run
-                                                      if s["spindle.0.speed-out"] != 0.0})))
+    chuck = rack.c["chuck"]
+    ok("the spindle turned %d times: forward at %.0f rpm over pockets 1 to 6 from spin-off (%.0f above the engage "
+       "Z) down to the engage Z and back, in reverse at %.0f rpm over 1 to 5 down to the engage Z and up to "
+       "%.0f above it" % (len(turns), chuck["load_rpm"], chuck["spin_off_offset_z"], chuck["unload_rpm"],
+                          chuck["rise_after_unload_offset_z"]))
     # Between changes the magazine's nuts are where the component's tools are.
     checked = 0
     for s in samples:
@@ -205,7 +218,7 @@ def program_of(r):
     return next(iter(r["programs"].values()))
 
 
-def check_failure(r, rack, wanted, belief, nuts):
+def check_failure(r, rack, wanted, belief, nuts, retry=None):
     """The fault saying `wanted` (each piece in one message), the spindle
     stopped, nothing moved after the fault, the component's tool `belief`
     and the magazine `nuts` (pocket numbers with a nut, the pocket of the nut
@@ -225,6 +238,8 @@ def check_failure(r, rack, wanted, belief, nuts):
     if not any(found[-1][:100] in m for m in r["messages"]):
         fail("LinuxCNC was not told the fault: %s" % r["messages"])
     ok("LinuxCNC's operator messages carry it")
+    if retry:
+        said(r, retry)
     if fault["pins"]["fixed_atc_probe.state"] == 1 or not fault["pins"]["fixed_atc_probe.fault"]:
         fail("the component is not in fault once the program ended: %s" % fault["pins"])
     # Nothing moved from the fault on: the joints where they stood at it.
@@ -267,24 +282,63 @@ def check_failure(r, rack, wanted, belief, nuts):
     values = sim_values()
     if cleared[NUT + "window"] != values[NUT + "window"]:
         fail("the window %s after the scenario, sim_nut.hal's %s" % (cleared[NUT + "window"], values[NUT + "window"]))
-    ok("fault cleared (T%d confirmed), the component idle; the magazine's faults off and its window sim_nut.hal's"
-       % belief)
+    if r["snapshots"]["cleared"]["tool_in_spindle"] != belief:
+        fail("LinuxCNC's tool after clearing: T%d" % r["snapshots"]["cleared"]["tool_in_spindle"])
+    ok("fault cleared (T%d confirmed), the component idle, LinuxCNC's tool T%d; the magazine's faults off and its "
+       "window sim_nut.hal's" % (belief, belief))
     print("%s: the program ran %.1f s" % (r["name"], program_of(r)["ended"] - program_of(r)["began"]))
 
 
 def check_collet_reverse(r, rack):
     check_failure(r, rack, ["tool 6's nut still on the spindle", "unscrewed twice", "pocket 6",
-                            "zone 1 (Z -60.000) sees it"], 6, ([1, 2, 3, 4, 5], 6))
+                            "zone 1 (Z -60.000) sees it"], 6, ([1, 2, 3, 4, 5], 6),
+                  "tool 6's nut still seen at zone 1 (nut-seen on) over pocket 6; unscrewing it once more")
 
 
 def check_collet_missing(r, rack):
     check_failure(r, rack, ["tool 1 not on the spindle", "pocket 1", "zone 1 (Z -60.000) sees no nut"],
-                  0, ([2, 3, 4, 5, 6], 0))
+                  0, ([2, 3, 4, 5, 6], 0), "tool 1 over pocket 1: zone 1 sees no nut (nut-seen off); "
+                  "screwing it on once more")
 
 
 def check_collet_cross_thread(r, rack):
     check_failure(r, rack, ["tool 2's nut not screwed home", "pocket 2", "zone 2 (Z -54.000) still sees it"],
-                  2, ([1, 3, 4, 5, 6], 2))
+                  2, ([1, 3, 4, 5, 6], 2), "zone 2 still sees it (nut-seen on); screwing it on once more")
+    if r["snapshots"]["fault"]["pins"][NUT + "seated"]:
+        fail("the cross-threaded nut reads seated")
+    ok("the nut on the spindle is not seated")
+
+
+def check_collet_stall_plunge(r, rack):
+    """The stall as sim_nut.hal has it: only with the nose in the engage
+    window, so the spindle came up to speed at spin-off and stalled in the
+    plunge; the nut stayed on."""
+    check_failure(r, rack, ["tool 2's nut still on the spindle", "unscrewed twice", "pocket 2",
+                            "zone 1 (Z -60.000) sees it"], 2, ([1, 3, 4, 5, 6], 2),
+                  "tool 2's nut still seen at zone 1 (nut-seen on) over pocket 2; unscrewing it once more")
+    stalled = [s for s in r["samples"] if s[NUT + "stalled"]]
+    if not stalled:
+        fail("the spindle never stalled")
+    ok("the spindle stalled in the plunge, from Z %.3f down to %.3f"
+       % (max(joints(s)[2] for s in stalled), min(joints(s)[2] for s in stalled)))
+
+
+def check_collet_after(r, rack):
+    """After every failure, cleared and the magazine restored: the next change works."""
+    no_fault(r)
+    last = r["samples"][-1]
+    if last["tool_in_spindle"] != 3 or last["fixed_atc_probe.tool-in-spindle"] != 3:
+        fail("after T3 M6 LinuxCNC says T%d, the component T%d" % (last["tool_in_spindle"],
+                                                                  last["fixed_atc_probe.tool-in-spindle"]))
+    ok("T2 screwed off into pocket 2 and T3 on: LinuxCNC and the component say T3")
+    only_over_the_served_pocket(r["samples"], rack)
+    turns = [turn_of(run, rack) for run in stretches(r["samples"])]
+    if turns != [(2, -1), (3, 1)]:
+        fail("the spindle turned over (pocket, direction) %s, expected [(2, -1), (3, 1)]" % turns)
+    ok("the spindle turned in reverse over pocket 2, then forward over pocket 3")
+    magazine_agrees(last, 3, "at the end")
+    ok("the magazine agrees: T3's nut on the spindle, seated, every other pocket full")
+    spindle_stopped(last, "at the end")
 
 
 def check_collet_stall(r, rack):
