@@ -6,14 +6,13 @@ sampled with the joints' positions, the magazine's nuts against the
 component's tools, and each failure's fault.
    check_collet_nut.py RESULTS.json CONFIG.json SCENARIO
 Prints what it checked with the figures; exits 1 on the first failed expectation."""
-import json
 import os
 import re
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "harness"))
-from check import (TOLERANCE, Rack, distinct, fail, handshake_complete, load_results, loading, near,  # noqa: E402
-                   no_fault, ok, program_completed, rising, said, scenario)
+from check import (TOLERANCE, distinct, fail, handshake_complete, loading, main, near, no_fault, ok,  # noqa: E402
+                   program_completed, rising, said)
 
 NUT = "fatc-sim-nut."
 JOINTS = ["joint.%d.pos-fb" % k for k in range(3)]
@@ -346,14 +345,5 @@ def check_collet_stall(r, rack):
                             "spindle_stop_timeout_seconds", "tool 2 not screwed"], 2, ([1, 3, 4, 5, 6], 2))
 
 
-def main():
-    results = load_results(sys.argv[1], sys.argv[3])
-    rack = Rack(json.load(open(sys.argv[2])))
-    name = sys.argv[3]
-    r = scenario(results, name)
-    globals()["check_" + name](r, rack)
-    print("%s: %.1f s, %d samples" % (name, r["duration"], len(r["samples"])))
-
-
 if __name__ == "__main__":
-    main()
+    main(globals())
