@@ -43,6 +43,7 @@ const Codes kStepKinds = {
     {"wait_operator", {"StepKind::wait_operator", static_cast<int>(StepKind::wait_operator)}},
     {"done", {"StepKind::done", static_cast<int>(StepKind::done)}},
     {"fail", {"StepKind::fail", static_cast<int>(StepKind::fail)}},
+    {"spindle", {"StepKind::spindle", static_cast<int>(StepKind::spindle)}},
 };
 const Codes kAxes = {
     {"x", {"axis_x", static_cast<int>(axis_x)}},
