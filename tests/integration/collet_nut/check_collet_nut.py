@@ -95,6 +95,12 @@ def turn_of(run, rack):
     if abs(min(heights) - z) > TOLERANCE or abs(max(heights) - top) > TOLERANCE:
         fail("over pocket %d the spindle turned %s from Z %.4f to %.4f, expected the engage Z %.3f to %.3f"
              % (pocket, "forward" if forward else "in reverse", min(heights), max(heights), z, top))
+    # The plunge starts once the spindle is at speed (config's sensors.at_speed).
+    spin_off = z + chuck["spin_off_offset_z"]
+    plunging = next(i for i, s in enumerate(run) if joints(s)[2] < spin_off - TOLERANCE)
+    if not any(s["fixed_atc_probe.spindle-at-speed"] for s in run[:plunging]):
+        fail("over pocket %d the plunge began below spin-off (Z %.3f) before spindle-at-speed, t=%.3f"
+             % (pocket, spin_off, run[plunging]["t"]))
     return pocket, 1 if forward else -1
 
 
