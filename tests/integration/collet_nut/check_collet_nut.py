@@ -5,13 +5,15 @@ simulated magazine reported: the tool in the spindle, the spindle's turning
 sampled with the joints' positions, the magazine's nuts against the
 component's tools, and each failure's fault.
    check_collet_nut.py RESULTS.json CONFIG.json SCENARIO
+   check_collet_nut.py --recorded RECORDER.txt CONFIG.json   (recorder.hal's every servo period)
 Prints what it checked with the figures; exits 1 on the first failed expectation."""
+import json
 import os
 import re
 import sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "harness"))
-from check import (TOLERANCE, distinct, fail, handshake_complete, loading, main, near, no_fault, ok,  # noqa: E402
+from check import (TOLERANCE, Rack, distinct, fail, handshake_complete, loading, main, near, no_fault, ok,  # noqa: E402
                    program_completed, rising, said)
 
 NUT = "fatc-sim-nut."
@@ -351,5 +353,45 @@ def check_collet_stall(r, rack):
                             "spindle_stop_timeout_seconds", "tool 2 not screwed"], 2, ([1, 3, 4, 5, 6], 2))
 
 
+def check_recorded(path, rack):
+    """recorder.hal's file: per servo period its number, X Y Z (the joints'
+    commands), the guard's run, the guard's speed, motion's speed, the real
+    speed, the pocket served. Every period with the spindle turning stands
+    over the served pocket between its engage Z and safe Z; no period lost."""
+    safe_z = rack.c["safe"]["z"]
+    periods, turning_periods, last, pockets = 0, 0, None, set()
+    for line in open(path):
+        words = line.split()
+        if words == ["overrun"]:
+            fail("the recorder lost periods after period %s (overrun)" % last)
+        if len(words) != 9:
+            continue  # a last line cut short by the shutdown
+        number = int(words[0])
+        if last is not None and number != last + 1:
+            fail("the recorder went from period %d to %d" % (last, number))
+        last, periods = number, periods + 1
+        x, y, z = map(float, words[1:4])
+        run, speeds, pocket = words[4] == "1", [float(v) for v in words[5:8]], int(words[8])
+        if not run and not any(speeds):
+            continue
+        turning_periods += 1
+        if pocket not in rack.pockets:
+            fail("period %d: the spindle turned (run %s, speeds %s) with no pocket served at X %.4f Y %.4f Z %.4f"
+                 % (number, run, speeds, x, y, z))
+        px, py, pz = rack.pocket(pocket)
+        if abs(x - px) > TOLERANCE or abs(y - py) > TOLERANCE or not pz - TOLERANCE <= z <= safe_z + TOLERANCE:
+            fail("period %d: the spindle turned (run %s, speeds %s) at X %.4f Y %.4f Z %.4f, not over pocket %d "
+                 "between Z %.3f and %.3f" % (number, run, speeds, x, y, z, pocket, pz, safe_z))
+        pockets.add(pocket)
+    if turning_periods == 0:
+        fail("the recorder saw the spindle turn in none of its %d periods" % periods)
+    ok("%d servo periods recorded, none lost; in the %d with the spindle turning it stood over the served "
+       "pocket (pockets %s, within %.2f mm) between its engage Z and safe Z"
+       % (periods, turning_periods, sorted(pockets), TOLERANCE))
+
+
 if __name__ == "__main__":
-    main(globals())
+    if sys.argv[1] == "--recorded":
+        check_recorded(sys.argv[2], Rack(json.load(open(sys.argv[3]))))
+    else:
+        main(globals())
