@@ -356,25 +356,30 @@ def check_collet_stall(r, rack):
 def check_recorded(path, rack):
     """recorder.hal's file: per servo period its number, X Y Z (the joints'
     commands), the guard's run, the guard's speed, motion's speed, the real
-    speed, the pocket served. Every period with the spindle turning stands
-    over the served pocket between its engage Z and safe Z; no period lost."""
+    speed, the pocket served, the pocket cut off by a fault. Every period
+    with the spindle turning stands over the served pocket (in a fault, the
+    one it was cut off at: the spindle runs on until LinuxCNC's abort stops
+    it) between its engage Z and safe Z; no period lost."""
     safe_z = rack.c["safe"]["z"]
-    periods, turning_periods, last, pockets = 0, 0, None, set()
+    periods, turning_periods, faulted, last, pockets = 0, 0, 0, None, set()
     for line in open(path):
         words = line.split()
         if words == ["overrun"]:
             fail("the recorder lost periods after period %s (overrun)" % last)
-        if len(words) != 9:
+        if len(words) != 10:
             continue  # a last line cut short by the shutdown
         number = int(words[0])
         if last is not None and number != last + 1:
             fail("the recorder went from period %d to %d" % (last, number))
         last, periods = number, periods + 1
         x, y, z = map(float, words[1:4])
-        run, speeds, pocket = words[4] == "1", [float(v) for v in words[5:8]], int(words[8])
+        run, speeds, pocket, cut_off = words[4] == "1", [float(v) for v in words[5:8]], int(words[8]), int(words[9])
         if not run and not any(speeds):
             continue
         turning_periods += 1
+        if pocket == 0 and cut_off:
+            pocket = cut_off
+            faulted += 1
         if pocket not in rack.pockets:
             fail("period %d: the spindle turned (run %s, speeds %s) with no pocket served at X %.4f Y %.4f Z %.4f"
                  % (number, run, speeds, x, y, z))
@@ -386,8 +391,8 @@ def check_recorded(path, rack):
     if turning_periods == 0:
         fail("the recorder saw the spindle turn in none of its %d periods" % periods)
     ok("%d servo periods recorded, none lost; in the %d with the spindle turning it stood over the served "
-       "pocket (pockets %s, within %.2f mm) between its engage Z and safe Z"
-       % (periods, turning_periods, sorted(pockets), TOLERANCE))
+       "pocket (pockets %s, within %.2f mm) between its engage Z and safe Z (%d of them in a fault, over the "
+       "pocket it cut off)" % (periods, turning_periods, sorted(pockets), TOLERANCE, faulted))
 
 
 if __name__ == "__main__":
