@@ -68,6 +68,7 @@ STEP_FEED = 2
 STEP_PROBE = 3
 STEP_SET_TOOL_LENGTH = 4
 STEP_SET_SPINDLE_TOOL = 5
+STEP_SPINDLE = 9
 
 PHASES = {PHASE_NOT_READY: "Machine off, not homed or in estop", PHASE_IDLE: "Idle",
           PHASE_CHANGING: "Changing tool", PHASE_LOADING: "Loading tool",
@@ -99,7 +100,8 @@ SERVED_BACKGROUND = "#ffd54f"
 
 STEP_KINDS = {STEP_RAPID: "rapid", STEP_FEED: "feed", STEP_PROBE: "probing",
               STEP_SET_TOOL_LENGTH: "writing the tool length",
-              STEP_SET_SPINDLE_TOOL: "telling LinuxCNC the tool in the spindle"}
+              STEP_SET_SPINDLE_TOOL: "telling LinuxCNC the tool in the spindle",
+              STEP_SPINDLE: "turning the spindle to screw a collet nut"}
 
 
 def describe_step(kind, x, y, z, inch):
@@ -117,7 +119,7 @@ def describe_awaiting(awaiting, kind, x, y, z, inch):
     if awaiting == AWAITING_TIMER:
         return "chuck and dwell"
     if awaiting == AWAITING_SPINDLE:
-        return "waiting for the spindle to stop"
+        return "waiting for the spindle to stop, or to come up to speed over a collet nut"
     if awaiting == AWAITING_OPERATOR_CHOICE:
         return "Waiting for you: see the message, then Continue or Cancel"
     if awaiting == AWAITING_SENSOR:

@@ -11,12 +11,12 @@ M3 or M4 from a program, MDI, a GUI or halui turns nothing. \\fBrefused\\fR
 speed) tells the component, which aborts what asked and says why. Once held, only a
 live component releases it: when its heartbeat stops for \\fBtimeout\\fR
 seconds (it died, hangs or was unloaded) the spindle stays held.
-While the changer is busy (\fBchanger-busy\fR) the spindle is also
-\fBheld-for-change\fR (\fBspindle-on\fR false, \fBspeed-out\fR 0): it
+While the changer is busy (\\fBchanger-busy\\fR) the spindle is also
+\\fBheld-for-change\\fR (\\fBspindle-on\\fR false, \\fBspeed-out\\fR 0): it
 turns only in a step where the changer asks for it
-(\fBchanger-spindle\fR: a collet nut screwed off or on) and only while the
-component answers (\fBalive\fR); one that stops answering holds it even
-though it asked. This hold raises neither \fBrefused\fR nor \fBinhibit\fR.
+(\\fBchanger-spindle\\fR: a collet nut screwed off or on) and only while the
+component answers (\\fBalive\\fR); one that stops answering holds it even
+though it asked. This hold raises neither \\fBrefused\\fR nor \\fBinhibit\\fR.
 \\fBprobe-input\\fR, for motion.probe-input, is the probe's own input
 (\\fBspindle-probe\\fR) while it is in the spindle and the changer is not
 measuring (\\fBchanger-busy\\fR false) or is touching the rack with it

@@ -62,6 +62,20 @@ void enter_from_the_top(Reader& reader, const Json& root, Config& config) {
   for (auto& [number, pocket] : config.pockets) pocket.approach = Approach::top;
 }
 
+/// The highest spin-off of the pockets, and whose: no zone may lie below it.
+struct Spin {
+  int pocket = 0;
+  double z = 0.0;
+};
+Spin lowest_zone_allowed(const Config& config) {
+  Spin highest{0, -1e300};
+  for (const auto& [number, pocket] : config.pockets) {
+    const double z = pocket.at.z + config.chuck.spin_off_offset_z;
+    if (z > highest.z) highest = {number, z};
+  }
+  return highest;
+}
+
 }  // namespace
 
 void read_chuck(Reader& reader, const Json& root, Config& config) {
@@ -127,6 +141,12 @@ void check_chuck(Reader& reader, const Config& config) {
                    "must be above zone_1_z (" + format_number(zones.zone_1_z) +
                        "): a nut not screwed home hangs lower, so zone 2 is the higher one, got " +
                        format_number(zones.zone_2_z));
+    } else if (const auto low = lowest_zone_allowed(config); zones.zone_1_z < low.z) {
+      reader.error(at("recognition.zone_1_z"),
+                   "must not be below pocket " + std::to_string(low.pocket) + "'s spin-off (" +
+                       format_number(low.z) +
+                       "): there the nose reaches into the nut left in the pocket, got " +
+                       format_number(zones.zone_1_z));
     } else if (zones.zone_2_z >= config.safe.z) {
       reader.error(at("recognition.zone_2_z"), "must be below safe Z (" +
                                                    format_number(config.safe.z) + "), got " +

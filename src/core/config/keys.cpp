@@ -282,7 +282,7 @@ const std::vector<KeyDeclaration> kKeys = {
    "pocket: after an unload zone 1 must be clear; after a load zone 1 must be cut (a nut is "
    "there) and zone 2 clear (it is screwed home). A failed reading is tried once more, then "
    "the changer faults naming the zone"},
-  {"chuck.recognition.zone_1_z", kRequired, kCoordinate, "below safe Z",
+  {"chuck.recognition.zone_1_z", kRequired, kCoordinate, "not below any pocket's spin-off",
    "the nose's machine Z where a nut on the spindle cuts the beam"},
   {"chuck.recognition.zone_2_z", kRequired, kCoordinate, "above `zone_1_z`, below safe Z",
    "the nose's machine Z where only a nut not screwed home (hanging low) cuts the beam"},

@@ -21,7 +21,8 @@ int Rack::pocket_at(const Config& config) const {
 
 void Rack::screw(const Config& config) {
   const int pocket = pocket_at(config);
-  if (pocket == 0 || spindle_rpm == 0.0 || stalled) return;
+  if (pocket == 0 || spindle_rpm == 0.0 || stalled || screwed) return;
+  screwed = true;
   int& in_pocket = pockets[pocket];
   if (spindle_rpm < 0.0 && spindle != 0 && in_pocket == 0) {
     if (screwings_failing > 0) {

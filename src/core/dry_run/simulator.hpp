@@ -50,6 +50,7 @@ struct Rack {
   double spindle_rpm = 0.0;     ///< what the changer turns it at: reverse < 0, forward > 0
   bool stalled = false;         ///< the spindle never comes up to speed, and screws nothing
   int screwings_failing = 0;    ///< this many screwings off or on leave the nut where it was
+  bool screwed = false;         ///< the spindle's start under way has screwed (or failed to) once
   bool nut_hangs_low = false;   ///< a nut screwed on is not screwed home (zone 2 sees it)
   bool seated = true;           ///< the spindle's nut is screwed home
   std::optional<Recognition> zones;  ///< where the tool-recognition beam is read
@@ -144,6 +145,7 @@ class Simulator : public Ports {
   double armed_seconds_ = 0.0;
   int timers_started_ = 0;
   bool spindle_turning_ = false;
+  bool turned_spindle_ = false;  ///< the changer turned the spindle (a collet nut) at least once
   double waiting_since_ = 0.0;  ///< when the executor finished its last step
   Changer* changer_ = nullptr;
   std::optional<SensorReadings> reported_;

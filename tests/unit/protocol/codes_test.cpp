@@ -207,7 +207,8 @@ TEST(Codes, shouldMatchTheCoreWhenThePanelNamesAPhaseAwaitingOrStepKind) {
       kPanel, kPython,
       {{"PHASE_", &kPhases, all_of(kPhases)},
        {"AWAITING_", &kAwaiting, all_of(kAwaiting)},
-       {"STEP_", &kStepKinds, {"rapid", "feed", "probe", "set_tool_length", "set_spindle_tool"}}});
+       {"STEP_", &kStepKinds,
+        {"rapid", "feed", "probe", "set_tool_length", "set_spindle_tool", "spindle"}}});
 }
 
 TEST(Codes, shouldCompareByNameWhenTheExecutorTestsAStepKindOrAxes) {
