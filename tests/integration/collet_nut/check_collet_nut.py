@@ -52,25 +52,27 @@ def stretches(samples):
     return found
 
 
+def off_the_pocket(rack, pocket, at):
+    """Why the nose at `at` (X, Y, Z) is not over `pocket` (X and Y within
+    TOLERANCE) between its engage Z and safe Z; None when it is."""
+    if pocket not in rack.pockets:
+        return "with no pocket served (%s) at X %.4f Y %.4f Z %.4f" % (pocket, at[0], at[1], at[2])
+    x, y, z = rack.pocket(pocket)
+    safe_z = rack.c["safe"]["z"]
+    if abs(at[0] - x) > TOLERANCE or abs(at[1] - y) > TOLERANCE or not z - TOLERANCE <= at[2] <= safe_z + TOLERANCE:
+        return "at X %.4f Y %.4f Z %.4f, not over pocket %d (X %.3f Y %.3f) between its engage Z %.3f and " \
+            "safe Z %.3f" % (at[0], at[1], at[2], pocket, x, y, z, safe_z)
+    return None
+
+
 def only_over_the_served_pocket(samples, rack):
     """Every sample with the spindle turning stands over the pocket the
-    component serves (its X and Y within TOLERANCE), between its engage Z
-    and safe Z."""
-    safe_z = rack.c["safe"]["z"]
+    component serves, between its engage Z and safe Z."""
     turning_samples = [s for s in samples if turning(s)]
     for s in turning_samples:
-        pocket = s[SERVED]
-        if pocket not in rack.pockets:
-            fail("the spindle turned with no pocket served (pocket-served %s) at %s, t=%.3f"
-                 % (pocket, joints(s), s["t"]))
-        x, y, z = rack.pocket(pocket)
-        at = joints(s)
-        if abs(at[0] - x) > TOLERANCE or abs(at[1] - y) > TOLERANCE:
-            fail("the spindle turned at X %.4f Y %.4f, not over pocket %d (X %.3f Y %.3f), t=%.3f"
-                 % (at[0], at[1], pocket, x, y, s["t"]))
-        if not z - TOLERANCE <= at[2] <= safe_z + TOLERANCE:
-            fail("the spindle turned at Z %.4f over pocket %d, outside its engage Z %.3f .. safe Z %.3f, t=%.3f"
-                 % (at[2], pocket, z, safe_z, s["t"]))
+        off = off_the_pocket(rack, s[SERVED], joints(s))
+        if off:
+            fail("the spindle turned %s, t=%.3f" % (off, s["t"]))
     gaps = [b["t"] - a["t"] for a, b in zip(samples, samples[1:])]
     ok("%d samples of %d with the spindle turning, each over the served pocket (within %.2f mm) between "
        "its engage Z and safe Z; samples %.1f ms apart on average, %.1f ms at most"
@@ -134,7 +136,6 @@ def magazine_agrees(s, spindle_tool, what):
         fail("%s: the magazine holds nuts in %s, on the spindle the nut of pocket %d (seated %s); "
              "the component's tool in the spindle is T%d" % (
                  what, [p for p in pockets if pockets[p]], on_spindle, s[NUT + "seated"], spindle_tool))
-    return pockets
 
 
 def sim_values():
@@ -360,7 +361,6 @@ def check_recorded(path, rack):
     with the spindle turning stands over the served pocket (in a fault, the
     one it was cut off at: the spindle runs on until LinuxCNC's abort stops
     it) between its engage Z and safe Z; no period lost."""
-    safe_z = rack.c["safe"]["z"]
     periods, turning_periods, faulted, last, pockets = 0, 0, 0, None, set()
     for line in open(path):
         words = line.split()
@@ -380,13 +380,9 @@ def check_recorded(path, rack):
         if pocket == 0 and cut_off:
             pocket = cut_off
             faulted += 1
-        if pocket not in rack.pockets:
-            fail("period %d: the spindle turned (run %s, speeds %s) with no pocket served at X %.4f Y %.4f Z %.4f"
-                 % (number, run, speeds, x, y, z))
-        px, py, pz = rack.pocket(pocket)
-        if abs(x - px) > TOLERANCE or abs(y - py) > TOLERANCE or not pz - TOLERANCE <= z <= safe_z + TOLERANCE:
-            fail("period %d: the spindle turned (run %s, speeds %s) at X %.4f Y %.4f Z %.4f, not over pocket %d "
-                 "between Z %.3f and %.3f" % (number, run, speeds, x, y, z, pocket, pz, safe_z))
+        off = off_the_pocket(rack, pocket, [x, y, z])
+        if off:
+            fail("period %d: the spindle turned (run %s, speeds %s) %s" % (number, run, speeds, off))
         pockets.add(pocket)
     if turning_periods == 0:
         fail("the recorder saw the spindle turn in none of its %d periods" % periods)
