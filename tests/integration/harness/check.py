@@ -1032,12 +1032,13 @@ def check_status_lock_lost(r, rack):
        "(%.1f s after)" % (r["answered_at"] - r["lock_lost_at"]))
 
 
-def main():
+def main(checks=None):
+    """check_SCENARIO(r, rack) of `checks` (a checker's globals; this file's unless given)."""
     results = load_results(sys.argv[1], sys.argv[3])
     rack = Rack(json.load(open(sys.argv[2])))
     name = sys.argv[3]
     r = scenario(results, name)
-    globals()["check_" + name](r, rack)
+    (checks or globals())["check_" + name](r, rack)
     print("%s: %.1f s, %d samples" % (name, r["duration"], len(r["samples"])))
 
 

@@ -34,6 +34,9 @@ PINS = ["fixed_atc_probe.chuck", "fixed_atc_probe.waiting-for-operator", "fixed_
         "fixed_atc_probe.step-kind", "fixed_atc_probe.step-feed",
         "motion.digital-out-02"]  # the benchmark programs' mark between two changes
 COMPONENT = "fixed_atc_probe"
+# A scenario's own pins sampled beside PINS ("sample_pins": the simulated
+# collet-nut magazine's, the joints', the spindle guard's).
+sample_pins = []
 
 stat = linuxcnc.stat()
 command = linuxcnc.command()
@@ -92,7 +95,7 @@ def pin_value(pin):
 
 
 def sample(start):
-    values = {pin: pin_value(pin) for pin in PINS}
+    values = {pin: pin_value(pin) for pin in PINS + sample_pins}
     values["t"] = time.monotonic() - start
     values["pos"] = list(stat.actual_position[:3])
     values["cmd"] = list(stat.position[:3])
@@ -407,7 +410,7 @@ def restart_component():
 def snapshot(start):
     """What the component and LinuxCNC say at one moment: pins, files, tool."""
     stat.poll()
-    return {"t": time.monotonic() - start, "pins": {p: pin_value(p) for p in PINS},
+    return {"t": time.monotonic() - start, "pins": {p: pin_value(p) for p in PINS + sample_pins},
             "tool_in_spindle": stat.tool_in_spindle, "pos": list(stat.actual_position[:3]),
             "state_file": read_json(state_path()), "status_file": read_json(state_path() + ".status")}
 
@@ -903,6 +906,7 @@ def main():
     try:
         bring_up()
         for scenario in scenarios:
+            sample_pins[:] = scenario.get("sample_pins", [])
             run = run_operator if "operator" in scenario else run_scenario
             results["scenarios"].append(run(scenario))
     except Exception as e:  # the checker reports it; LinuxCNC must still shut down
