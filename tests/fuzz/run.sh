@@ -37,7 +37,7 @@ unit=$root/tests/unit
 
 # Seeds: every hostile file, and the valid ones they were spoiled from.
 mkdir -p "$work/config" "$work/state" "$work/ini" "$work/program" "$work/status"
-cp "$unit"/bad_configs/*.json "$root"/config/config.json "$work/config/"
+cp "$unit"/bad_configs/*.json "$root"/config/config.json "$root"/config/sim/collet_nut.json "$work/config/"
 cp "$unit"/bad_states/*.json "$work/state/"
 printf '%s\n' '{"version": 1, "spindle": 3, "uncertain": false, "in_pocket": [1, 2, 4, 5, 6], "lengths": {"1": 42.125, "3": 17.5}}' \
   > "$work/state/valid.json"
