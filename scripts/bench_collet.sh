@@ -19,7 +19,6 @@ printf '[{"name": "changes", "program": "tests/bench/collet_changes.ngc", "timeo
 chmod 644 "$work/collet.json"
 FATC_BINARY="$binary" FATC_SCENARIOS="$work/collet.json" FATC_RESULTS="$work/collet/results.json" \
   FATC_CONFIG="$PWD/config/sim/collet_nut.json" \
-  FATC_INI_SED="/^HALFILE = .*spindle_sim.hal$/a HALFILE = $PWD/config/sim/sim_nut.hal" \
   tests/integration/harness/run_sim.sh "$work/collet" "$PWD/tests/integration/harness/driver.py" \
   > "$work/collet.log" 2>&1 || { echo "LinuxCNC failed; its output is in $work/collet.log"; exit 1; }
 python3 scripts/bench_collet.py "$work/collet" "$binary"

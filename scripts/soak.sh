@@ -31,8 +31,7 @@ if [ -n "${FATC_SOAK_COLLET:-}" ]; then
   # the same fast axes, at-speed and zero-speed wired, each tool measured at
   # its first change; the operator's flows are the collet-nut scenarios'.
   export FATC_CONFIG=$root/config/sim/collet_nut.json
-  export FATC_INI_SED="s/^\(MAX_\(LINEAR_\)\?VELOCITY\) = 200$/\1 = 2000/;s/^\(MAX_\(LINEAR_\)\?ACCELERATION\) = 2000$/\1 = 20000/
-/^HALFILE = .*spindle_sim.hal$/a HALFILE = $root/config/sim/sim_nut.hal"
+  export FATC_INI_SED="s/^\(MAX_\(LINEAR_\)\?VELOCITY\) = 200$/\1 = 2000/;s/^\(MAX_\(LINEAR_\)\?ACCELERATION\) = 2000$/\1 = 20000/"
   export FATC_CONFIG_SET='{"spindle_stop_timeout_seconds": 2.0, "probe_after_change": "new"}'
   export FATC_SOAK_OPERATOR_RATE=0
 fi

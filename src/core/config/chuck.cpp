@@ -63,12 +63,12 @@ void enter_from_the_top(Reader& reader, const Json& root, Config& config) {
 }
 
 /// The highest spin-off of the pockets, and whose: no zone may lie below it.
-struct Spin {
+struct SpinOff {
   int pocket = 0;
   double z = 0.0;
 };
-Spin lowest_zone_allowed(const Config& config) {
-  Spin highest{0, -1e300};
+SpinOff highest_spin_off(const Config& config) {
+  SpinOff highest{0, -1e300};
   for (const auto& [number, pocket] : config.pockets) {
     const double z = pocket.at.z + config.chuck.spin_off_offset_z;
     if (z > highest.z) highest = {number, z};
@@ -141,7 +141,7 @@ void check_chuck(Reader& reader, const Config& config) {
                    "must be above zone_1_z (" + format_number(zones.zone_1_z) +
                        "): a nut not screwed home hangs lower, so zone 2 is the higher one, got " +
                        format_number(zones.zone_2_z));
-    } else if (const auto low = lowest_zone_allowed(config); zones.zone_1_z < low.z) {
+    } else if (const auto low = highest_spin_off(config); zones.zone_1_z < low.z) {
       reader.error(at("recognition.zone_1_z"),
                    "must not be below pocket " + std::to_string(low.pocket) + "'s spin-off (" +
                        format_number(low.z) +

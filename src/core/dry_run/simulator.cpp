@@ -191,18 +191,7 @@ void Simulator::answer_late(Changer& changer) {
 }
 
 void Simulator::run_out_timer(Changer& changer, bool awaits_sensor) {
-  double waited = armed_seconds_;
-  // A spindle the changer turns itself (a collet nut) gets there within its
-  // ramp, even answering late: the dwell a plan shows is that, not the timeout.
-  if (answers_late && turned_spindle_ && config_ &&
-      changer.status().awaiting == Awaiting::spindle) {
-    waited = std::min(waited, config_->chuck.spindle_ramp_seconds);
-    const auto dwell = std::find_if(records.rbegin(), records.rend(), [](const Record& r) {
-      return r.kind == Record::Kind::dwell;
-    });
-    if (dwell != records.rend()) dwell->seconds = waited;
-  }
-  clock += waited;
+  clock += armed_seconds_;
   if (answers_late && awaits_sensor) {
     const int started = timers_started_;
     rack.air = true;
@@ -226,11 +215,12 @@ int Simulator::run(Changer& changer, int limit) {
   for (; fed < limit; ++fed) {
     if (!answers_late && report_sensors(changer)) continue;
     const Awaiting awaiting = changer.status().awaiting;
-    // The spindle is waited for on a timer too where the changer turned it
-    // itself and no sensor says it got there (a collet nut's ramps).
+    // A collet-nut changer waits for the spindle it turns on a timer too,
+    // where no sensor says it got there (its ramps).
+    const bool screws_nuts = config_ && config_->screws_nuts();
     const bool waits_on_time =
         awaiting == Awaiting::timer || awaiting == Awaiting::sensor ||
-        (awaiting == Awaiting::spindle && (answers_late || turned_spindle_));
+        (awaiting == Awaiting::spindle && (answers_late || screws_nuts));
     if (waits_on_time && timer_armed) {
       run_out_timer(changer, awaiting != Awaiting::timer);
     } else if (awaiting == Awaiting::probe && pending && pending->kind == StepKind::probe) {
@@ -257,16 +247,16 @@ int Simulator::run(Changer& changer, int limit) {
           if (rack.modelled) rack.screw(*config_);
         }
       } else if (pending->kind == StepKind::spindle) {
-        turned_spindle_ = true;
         rack.spindle_rpm = pending->value;
         rack.screwed = false;
         rack.spindle_still = pending->value == 0.0;
         changer.spindle_stopped(rack.spindle_still);
         // Where a sensor says when the spindle got there, the changer waits
         // on it, not on a timer: the plan counts the ramp the spindle takes,
-        // and its sensors say so before the executor's news.
+        // and its sensors say so before the executor's news. Answering late,
+        // the wait's own timer is the worst case.
         const Sensor says = rack.spindle_still ? Sensor::zero_speed : Sensor::at_speed;
-        if (config_ && config_->screws_nuts() && config_->sensors.wired(says)) {
+        if (!answers_late && config_ && config_->screws_nuts() && config_->sensors.wired(says)) {
           Record ramp;
           ramp.kind = Record::Kind::dwell;
           ramp.seconds = config_->chuck.spindle_ramp_seconds;

@@ -145,7 +145,6 @@ class Simulator : public Ports {
   double armed_seconds_ = 0.0;
   int timers_started_ = 0;
   bool spindle_turning_ = false;
-  bool turned_spindle_ = false;  ///< the changer turned the spindle (a collet nut) at least once
   double waiting_since_ = 0.0;  ///< when the executor finished its last step
   Changer* changer_ = nullptr;
   std::optional<SensorReadings> reported_;

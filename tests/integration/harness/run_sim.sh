@@ -50,6 +50,12 @@ sed -e "s|^DISPLAY = .*|DISPLAY = $display|" \
     -e "s|^HALFILE = spindle_sim.hal|HALFILE = $root/config/sim/spindle_sim.hal|" \
     -e "s|^HALFILE = sim_rack.hal|HALFILE = $root/config/sim/sim_rack.hal|" \
     "${FATC_SIM_INI:-$root/config/sim/fixed_atc_sim.ini}" > "$work/sim.ini"
+if python3 -c 'import json, sys; sys.exit(json.load(open(sys.argv[1])).get("chuck", {}).get("kind") != "collet_nut")' \
+    "$work/config.json" 2>/dev/null; then
+  # A collet-nut config: the simulated mill has the simulated magazine too,
+  # after the spindle it reads (config/sim/sim_nut.hal).
+  sed -i "s|^HALFILE = $root/config/sim/spindle_sim.hal$|&\nHALFILE = $root/config/sim/sim_nut.hal|" "$work/sim.ini"
+fi
 if [ -n "${FATC_INI_EXTRA:-}" ]; then
   sed -i "s|^RETURN_TO_XY = .*|$FATC_INI_EXTRA|" "$work/sim.ini"
 fi

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "../../formatted.hpp"
+
 namespace fatc {
 
 void Context::publish(const Step& next) {
@@ -143,9 +145,8 @@ void Context::turn_spindle(double rpm, std::string label) {
     outputs.spindle_rpm = step.value;
     publish(step);
   };
-  char action[64];
-  std::snprintf(action, sizeof action, "turn the spindle %s at %.0f rpm",
-                rpm > 0.0 ? "forward" : "in reverse", std::fabs(rpm));
+  const std::string action = formatted("turn the spindle %s at %.0f rpm",
+                                       rpm > 0.0 ? "forward" : "in reverse", std::fabs(rpm));
   if (rpm == 0.0 || !stop_before(motion.sequence_step + 1, action, step.label, motion.position,
                                  motion.known_axes, go)) {
     go();

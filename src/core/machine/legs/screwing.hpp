@@ -6,23 +6,17 @@
 
 #include <cmath>
 
+#include "../../formatted.hpp"
 #include "cover.hpp"
 
 namespace fatc::machine {
 
 /// "1200 rpm in reverse": a speed of the changer's in a message.
 inline std::string rpm_words(double rpm) {
-  char buffer[48];
-  std::snprintf(buffer, sizeof buffer, "%.0f rpm %s", std::fabs(rpm),
-                rpm < 0.0 ? "in reverse" : "forward");
-  return buffer;
+  return formatted("%.0f rpm %s", std::fabs(rpm), rpm < 0.0 ? "in reverse" : "forward");
 }
 /// "Z -60.000": a height in a message.
-inline std::string z_words(double z) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "Z %.3f", z);
-  return buffer;
-}
+inline std::string z_words(double z) { return formatted("Z %.3f", z); }
 
 /// The spindle screws collet nuts (`chuck.kind` "collet_nut"): the legs
 /// screw a nut off or on instead of working a drawbar.
